@@ -1,0 +1,34 @@
+// serosa: the command line (shared/DESIGN.md "Contracts relied on from outside").
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+
+#include "app/command.h"
+#include "engine/input_error.h"
+
+int main(int argc, char** argv) {
+  CLI::App cli{"Serosa: real-time laparoscopic surgery simulator"};
+  cli.require_subcommand(1);
+  serosa::app::Action action;
+  serosa::app::add_check_command(cli, action);
+  serosa::app::add_surface_command(cli, action);
+  serosa::app::add_headless_command(cli, action);
+  serosa::app::add_run_command(cli, action);
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return cli.exit(e);
+  }
+  // Bad input is the user's to fix: say what and where, exit 1. Anything else is our bug: exit 2.
+  try {
+    return action ? action() : 2;
+  } catch (const serosa::InputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "internal error: %s\n", e.what());
+    return 2;
+  }
+}
