@@ -1,0 +1,89 @@
+#include "app/assemble_state.h"
+
+#include <algorithm>
+#include <set>
+
+#include "engine/input_error.h"
+
+namespace serosa::app {
+
+std::map<int, std::string> AssembledScene::group_names() const {
+  std::map<int, std::string> names;
+  for (const auto& [id, info] : groups) names[id] = info.name;
+  return names;
+}
+
+const Material& AssembledScene::material(const Scene& scene, int g) const {
+  const GroupInfo& info = groups.at(g);
+  return scene.organs[info.organ].material_for(info.local_id);
+}
+
+AssembledScene assemble_state(const Scene& scene) {
+  AssembledScene out;
+  TetMesh& mesh = out.state.mesh;
+  int group_offset = 0;
+  for (std::size_t k = 0; k < scene.organs.size(); ++k) {
+    const Organ& organ = scene.organs[k];
+    MeshReadReport report;
+    const TetMesh part = read_mesh(organ.mesh, {}, &report);
+    const std::int32_t node_base = mesh.num_nodes();
+
+    // Nodes, placed in the scene frame.
+    for (std::int32_t i = 0; i < part.num_nodes(); ++i) {
+      const Vec3 p = organ.transform.apply(part.rest[i]);
+      mesh.add_node(p);
+    }
+    // Groups: scene-wide ids, one organ keeps its own.
+    std::set<int> local_groups(part.group.begin(), part.group.end());
+    std::map<int, int> to_global;
+    for (int local : local_groups) {
+      const int global = local + group_offset;
+      if (global > 0xFFFF)
+        throw InputError(scene.file.string(), 0,
+                         "too many groups across organs (scene-wide group id " +
+                             std::to_string(global) + ")",
+                         "at most 65535");
+      to_global[local] = global;
+      std::string name = organ.groups.count(local) ? organ.groups.at(local)
+                         : report.group_names.count(local) ? report.group_names.at(local)
+                                                           : "group_" + std::to_string(local);
+      if (scene.organs.size() > 1) name = organ.name + "/" + name;
+      out.groups[global] = {k, local, name};
+    }
+    for (std::int32_t t = 0; t < part.num_tets(); ++t) {
+      Tet tet = part.tets[t];
+      for (auto& id : tet) id += node_base;
+      mesh.add_tet(tet, static_cast<std::uint16_t>(to_global.at(part.group[t])));
+    }
+    group_offset = local_groups.empty() ? group_offset : to_global.rbegin()->second;
+
+    // Fixed nodes: box (in scene frame), groups, node ids (mesh-file order).
+    const FixedSpec& fixed = organ.fixed;
+    if (fixed.box)
+      for (std::int32_t i = 0; i < part.num_nodes(); ++i)
+        if (fixed.box->contains(mesh.rest[node_base + i])) mesh.fixed[node_base + i] = 1;
+    for (int g : fixed.groups) {
+      if (!to_global.count(g))
+        throw InputError(scene.file.string(), 0,
+                         "organ '" + organ.name + "': fixed group " + std::to_string(g) +
+                             " has no tets in " + organ.mesh.string(),
+                         "one of the mesh's group ids");
+      for (std::int32_t t = 0; t < part.num_tets(); ++t)
+        if (part.group[t] == g)
+          for (std::int32_t id : part.tets[t]) mesh.fixed[node_base + id] = 1;
+    }
+    for (std::int32_t id : fixed.nodes) {
+      if (id < 0 || id >= part.num_nodes())
+        throw InputError(scene.file.string(), 0,
+                         "organ '" + organ.name + "': fixed node " + std::to_string(id) +
+                             " out of range",
+                         "0.." + std::to_string(part.num_nodes() - 1));
+      mesh.fixed[node_base + id] = 1;
+    }
+    out.reads.push_back(std::move(report));
+  }
+  out.state.tools.resize(scene.tools.size());
+  return out;
+}
+
+}  // namespace serosa::app

@@ -1,0 +1,30 @@
+// serosa run SCENE: the trainee session in a window.
+#include <cstdlib>
+#include <memory>
+#include <string>
+
+#include "app/command.h"
+#include "app/session.h"
+#include "engine/input_error.h"
+
+namespace serosa::app {
+
+void add_run_command(CLI::App& app, Action& action) {
+  auto scene = std::make_shared<std::string>();
+  auto seconds = std::make_shared<double>(0.0);
+  CLI::App* cmd = app.add_subcommand("run", "The trainee session: a window, the rig or the mouse");
+  cmd->add_option("scene", *scene, "Scene TOML file")->required();
+  cmd->add_option("--seconds", *seconds, "Close the window after this much wall time (0: never)");
+  cmd->callback([&action, scene, seconds] {
+    action = [scene, seconds] {
+      const char* x = std::getenv("DISPLAY");
+      const char* wl = std::getenv("WAYLAND_DISPLAY");
+      if ((x == nullptr || *x == '\0') && (wl == nullptr || *wl == '\0'))
+        throw InputError(*scene, 0, "serosa run needs a display and none is set",
+                         "DISPLAY or WAYLAND_DISPLAY; without one use `serosa headless`");
+      return run_session(*scene, *seconds);
+    };
+  });
+}
+
+}  // namespace serosa::app

@@ -1,0 +1,184 @@
+#include "app/headless.h"
+
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+
+#include "app/assemble_state.h"
+#include "app/compose.h"
+#include "app/render_frame_from_surface.h"
+#include "app/script_tool_stage.h"
+#include "app/version.h"
+#include "engine/input_error.h"
+#include "engine/mesh_check.h"
+#include "engine/mesh_io.h"
+#include "engine/scene.h"
+#include "engine/sim_state.h"
+#include "fem/fem_stage.h"
+#include "render/camera.h"
+#include "render/gl_context.h"
+#include "render/snapshot.h"
+#include "surface/extract_surface.h"
+
+namespace serosa::app {
+namespace {
+
+using Json = nlohmann::json;
+
+std::string hex(std::uint64_t h) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+// Pictures of the organs' boundary surface, drawn offscreen (EGL) in the visual view.
+class Pictures {
+ public:
+  Pictures(std::filesystem::path dir, const Scene& scene, std::map<int, std::string> names)
+      : m_dir(std::move(dir)), m_names(std::move(names)) {
+    std::filesystem::create_directories(m_dir);
+    m_options.width = std::min(scene.render.width, 960);
+    m_options.height = std::min(scene.render.height, 540);
+    m_options.tessellation = scene.render.tessellation;
+    m_options.shape_factor = static_cast<float>(scene.render.shape_factor);
+    m_context = std::make_unique<render::OffscreenContext>(m_options.width, m_options.height);
+  }
+
+  std::filesystem::path take(const TetMesh& mesh, const std::string& stem) {
+    const surface::SurfaceMesh surf = surface::extract_surface(mesh);
+    fill_render_frame(mesh, surf, m_names, false, m_frame);
+    // The camera is fitted once, on the first picture, so motion shows between pictures.
+    if (!m_camera) {
+      m_camera = render::auto_camera(
+          m_frame, static_cast<float>(m_options.width) / static_cast<float>(m_options.height));
+    }
+    m_frame.camera = *m_camera;
+    const auto png = m_dir / (stem + ".png");
+    render::render_to_png(*m_context, m_frame, m_options, png);
+    return png;
+  }
+
+ private:
+  std::filesystem::path m_dir;
+  std::map<int, std::string> m_names;
+  render::SnapshotOptions m_options;
+  std::unique_ptr<render::OffscreenContext> m_context;
+  render::RenderFrame m_frame;
+  std::optional<render::Camera> m_camera;
+};
+
+void progress_bar(std::int64_t done, std::int64_t total) {
+  const int width = 40;
+  const int filled = static_cast<int>(width * done / std::max<std::int64_t>(total, 1));
+  std::fprintf(stderr, "\r[%.*s%*s] %lld/%lld steps", filled,
+               "########################################", width - filled, "",
+               static_cast<long long>(done), static_cast<long long>(total));
+  if (done == total) std::fputc('\n', stderr);
+}
+
+Json mesh_json(const TetMesh& mesh) {
+  const MeshCheckReport r = check_mesh(mesh);
+  Json j;
+  j["nodes"] = mesh.num_nodes();
+  j["tets"] = mesh.num_tets();
+  j["topology_version"] = mesh.topology_version;
+  j["rest_volume_m3"] = r.volume_m3;
+  j["valid"] = r.valid;
+  j["min_quality"] = r.min_quality;
+  return j;
+}
+
+}  // namespace
+
+Json run_headless(const HeadlessOptions& options) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  Scene scene = load_scene(options.scene);
+  if (options.tool_path) {
+    if (!std::filesystem::exists(*options.tool_path))
+      throw InputError(options.tool_path->string(), 0, "tool path file not found");
+    for (Tool& t : scene.tools)
+      if (t.device.kind == DeviceKind::kScript) t.device.script = *options.tool_path;
+  }
+  AssembledScene assembled = assemble_state(scene);
+  Composition comp = compose(scene, assembled);
+  SimState& state = assembled.state;
+
+  const std::int64_t steps = options.steps.value_or(scene.headless.steps);
+  if (steps < 0) throw InputError("--steps", 0, "negative step count", ">= 0");
+  for (Effect e : comp.unavailable)
+    spdlog::warn("effect '{}' is listed by {} but not implemented in this build: not simulated",
+                 effect_name(e), scene.file.string());
+
+  Json report;
+  report["serosa"] = std::string(version_string());
+  report["scene"] = scene.file.string();
+  report["dt_s"] = scene.settings.dt_s;
+  report["steps"] = steps;
+  for (Effect e : comp.built) report["effects"]["simulated"].push_back(effect_name(e));
+  for (Effect e : comp.folded) report["effects"]["folded"].push_back(effect_name(e));
+  for (Effect e : comp.unavailable) report["effects"]["unavailable"].push_back(effect_name(e));
+  report["mesh_initial"] = mesh_json(state.mesh);
+
+  std::unique_ptr<Pictures> pictures;
+  std::vector<std::int64_t> picture_steps;
+  if (options.frames) {
+    pictures = std::make_unique<Pictures>(*options.frames, scene, assembled.group_names());
+    const int count = std::max(options.frame_count, 1);
+    for (int k = 0; k < count; ++k)
+      picture_steps.push_back(count == 1 ? steps : steps * k / std::max(count - 1, 1));
+  }
+  auto maybe_picture = [&](std::int64_t step) {
+    if (!pictures) return;
+    for (std::int64_t s : picture_steps)
+      if (s == step) {
+        char stem[32];
+        std::snprintf(stem, sizeof stem, "step_%06lld", static_cast<long long>(step));
+        report["frames"].push_back(pictures->take(state.mesh, stem).string());
+        break;
+      }
+  };
+
+  const bool bar = options.progress && isatty(STDERR_FILENO);
+  const auto sim0 = std::chrono::steady_clock::now();
+  maybe_picture(0);
+  for (std::int64_t i = 0; i < steps; ++i) {
+    comp.runner->step(state);
+    maybe_picture(i + 1);
+    if (bar && ((i + 1) % 10 == 0 || i + 1 == steps)) progress_bar(i + 1, steps);
+  }
+  const double sim_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - sim0).count();
+
+  for (const StageTiming& t : comp.runner->timings())
+    report["time_per_stage_ms"][t.name] = t.calls ? 1e3 * t.total_s / static_cast<double>(t.calls) : 0.0;
+  report["simulated_time_s"] = state.time_s;
+  report["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  report["stepping_time_s"] = sim_s;
+  report["mesh_final"] = mesh_json(state.mesh);
+  report["state_hash"] = hex(state_hash(state));
+  if (comp.fem) {
+    const auto& st = comp.fem->stats();
+    report["fem"] = {{"steps", st.steps},
+                     {"not_converged", st.not_converged},
+                     {"rejected", st.rejected},
+                     {"last_iterations", comp.fem->last_status().iterations},
+                     {"last_residual", comp.fem->last_status().residual}};
+  }
+  if (options.export_final) {
+    write_gmsh22(*options.export_final, state.mesh, /*current=*/true, assembled.group_names());
+    report["export_final"] = options.export_final->string();
+  }
+  if (options.report) {
+    if (options.report->has_parent_path())
+      std::filesystem::create_directories(options.report->parent_path());
+    std::ofstream out(*options.report);
+    out << report.dump(2) << '\n';
+    if (!out) throw std::runtime_error("cannot write report " + options.report->string());
+  }
+  return report;
+}
+
+}  // namespace serosa::app

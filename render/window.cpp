@@ -1,0 +1,91 @@
+#include "render/window.h"
+
+#include <epoxy/gl.h>
+// epoxy before GLFW, so GLFW includes no GL header of its own.
+#include <GLFW/glfw3.h>
+
+#include <stdexcept>
+
+namespace serosa::render {
+namespace {
+
+int glfw_key(Key k) {
+  switch (k) {
+    case Key::kEscape:
+      return GLFW_KEY_ESCAPE;
+    case Key::kSpace:
+      return GLFW_KEY_SPACE;
+    case Key::kV:
+      return GLFW_KEY_V;
+    case Key::kUp:
+      return GLFW_KEY_UP;
+    case Key::kDown:
+      return GLFW_KEY_DOWN;
+  }
+  return GLFW_KEY_UNKNOWN;
+}
+
+}  // namespace
+
+Window::Window(int width, int height, const std::string& title) {
+  if (glfwInit() != GLFW_TRUE) {
+    const char* msg = nullptr;
+    glfwGetError(&msg);
+    throw std::runtime_error(std::string("no window: GLFW could not start (") +
+                             (msg ? msg : "no display?") + ")");
+  }
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 1);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  glfwWindowHint(GLFW_SAMPLES, 4);
+  m_window = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+  if (m_window == nullptr) {
+    const char* msg = nullptr;
+    glfwGetError(&msg);
+    glfwTerminate();
+    throw std::runtime_error(std::string("no window: no OpenGL 4.1 core context (") +
+                             (msg ? msg : "unknown GLFW error") + ")");
+  }
+  glfwMakeContextCurrent(m_window);
+  glfwSwapInterval(1);
+}
+
+Window::~Window() {
+  if (m_window != nullptr) glfwDestroyWindow(m_window);
+  glfwTerminate();
+}
+
+bool Window::should_close() const { return glfwWindowShouldClose(m_window) != 0; }
+void Window::close() { glfwSetWindowShouldClose(m_window, GLFW_TRUE); }
+void Window::poll_events() { glfwPollEvents(); }
+void Window::swap_buffers() { glfwSwapBuffers(m_window); }
+
+void Window::bind_framebuffer() {
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glViewport(0, 0, width(), height());
+}
+
+int Window::width() const {
+  int w = 0, h = 0;
+  glfwGetFramebufferSize(m_window, &w, &h);
+  return w;
+}
+
+int Window::height() const {
+  int w = 0, h = 0;
+  glfwGetFramebufferSize(m_window, &w, &h);
+  return h;
+}
+
+bool Window::pressed(Key key) {
+  const bool down = glfwGetKey(m_window, glfw_key(key)) == GLFW_PRESS;
+  bool& was = m_down[static_cast<int>(key)];
+  const bool edge = down && !was;
+  was = down;
+  return edge;
+}
+
+void Window::set_title(const std::string& title) { glfwSetWindowTitle(m_window, title.c_str()); }
+
+}  // namespace serosa::render

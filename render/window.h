@@ -1,0 +1,46 @@
+// Window: the trainee's on-screen OpenGL 4 window (GLFW), the interactive twin of
+// OffscreenContext. Owns the context; whoever draws into it must be on the thread that made it.
+#pragma once
+
+#include <string>
+
+struct GLFWwindow;
+
+namespace serosa::render {
+
+/// Keys a session reacts to (GLFW key codes stay inside render/).
+enum class Key { kEscape, kSpace, kV, kUp, kDown };
+
+class Window {
+ public:
+  /// Opens a window with an OpenGL >= 4.1 core context, current on the calling thread.
+  /// @throws std::runtime_error naming what failed (no display, no GL 4.1 core context)
+  Window(int width, int height, const std::string& title);
+  ~Window();
+  Window(const Window&) = delete;
+  Window& operator=(const Window&) = delete;
+  Window(Window&&) = delete;
+  Window& operator=(Window&&) = delete;
+
+  /// True once the user closed the window (or close() was called).
+  [[nodiscard]] bool should_close() const;
+  void close();
+  /// Processes pending window events; returns immediately.
+  void poll_events();
+  /// Shows what was drawn since the last swap.
+  void swap_buffers();
+  /// Binds the default framebuffer with the viewport covering it.
+  void bind_framebuffer();
+  /// Framebuffer size in pixels (differs from the window size on high-DPI screens).
+  [[nodiscard]] int width() const;
+  [[nodiscard]] int height() const;
+  /// True when `key` went down since the previous call for that key.
+  [[nodiscard]] bool pressed(Key key);
+  void set_title(const std::string& title);
+
+ private:
+  GLFWwindow* m_window = nullptr;
+  bool m_down[5] = {};
+};
+
+}  // namespace serosa::render
