@@ -1,0 +1,226 @@
+// Scene model: what a scene file describes (organs, materials, solver, tools, effects), parsed
+// and validated once by load_scene and read-only afterwards (shared/DESIGN.md "Model vs state").
+// Every key, its unit, default and range is documented in docs/scene-format.md; the defaults
+// below are the ones the loader applies when a key is absent.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/math.h"
+
+namespace serosa {
+
+// ---------------------------------------------------------------------------------------------
+// Effects: what the scene simulates. app builds one stage per listed effect and nothing else.
+
+/// One effect a scene may list. Enum order is the canonical listing order (not the stage order,
+/// which the runner fixes).
+enum class Effect : std::uint8_t {
+  kFem,         ///< "fem": corotational linear FEM of every organ
+  kGravity,     ///< "gravity": body force density * gravity (needs fem)
+  kPlasticity,  ///< "plasticity": Müller-Gross plastic strain (needs fem)
+  kCutting,     ///< "cutting": scissors cut tets along the swept blade
+  kContact,     ///< "contact": tool-organ contact forces (needs fem and surface)
+  kSurface,     ///< "surface": boundary surface extraction, normals, collision BVH
+  kHaptics,     ///< "haptics": the 1 kHz force loop (needs a tool driven by a device)
+  kRender,      ///< "render": endoscope view (needs surface)
+  kRecord,      ///< "record": record inputs and state hashes to a .lapr file
+};
+inline constexpr std::size_t kNumEffects = 9;
+
+/// Every effect in enum order.
+inline constexpr Effect kAllEffects[kNumEffects] = {
+    Effect::kFem,     Effect::kGravity, Effect::kPlasticity, Effect::kCutting, Effect::kContact,
+    Effect::kSurface, Effect::kHaptics, Effect::kRender,     Effect::kRecord};
+
+/// The scene-file name of an effect ("fem", "gravity", ...).
+[[nodiscard]] std::string_view effect_name(Effect e) noexcept;
+/// The effect with that scene-file name, or nullopt.
+[[nodiscard]] std::optional<Effect> effect_from_name(std::string_view name) noexcept;
+
+// ---------------------------------------------------------------------------------------------
+// Enumerated settings. Each has a name <-> enum pair; names are the scene-file spellings.
+
+enum class Quality : std::uint8_t { kFast, kBalanced, kAccurate };
+enum class SolverKind : std::uint8_t { kPcg, kCholmod, kPcgCholmod };
+enum class ToolKind : std::uint8_t { kScissors, kGrasper, kEndoscope };
+enum class DeviceKind : std::uint8_t { kRig, kRigEmulated, kMouse, kScript };
+enum class Hand : std::uint8_t { kLeft, kRight };
+enum class CutMethod : std::uint8_t { kPattern, kRemove, kSnap };
+
+[[nodiscard]] std::string_view quality_name(Quality q) noexcept;         ///< fast|balanced|accurate
+[[nodiscard]] std::string_view solver_kind_name(SolverKind k) noexcept;  ///< pcg|cholmod|...
+[[nodiscard]] std::string_view tool_kind_name(ToolKind k) noexcept;      ///< scissors|grasper|...
+[[nodiscard]] std::string_view device_kind_name(DeviceKind k) noexcept;  ///< rig|...|script
+[[nodiscard]] std::string_view hand_name(Hand h) noexcept;               ///< left|right
+[[nodiscard]] std::string_view cut_method_name(CutMethod m) noexcept;    ///< pattern|remove|snap
+
+[[nodiscard]] std::optional<Quality> quality_from_name(std::string_view s) noexcept;
+[[nodiscard]] std::optional<SolverKind> solver_kind_from_name(std::string_view s) noexcept;
+[[nodiscard]] std::optional<ToolKind> tool_kind_from_name(std::string_view s) noexcept;
+/// Device kinds without argument: "rig", "rig-emulated", "mouse" (and "script" alone, which the
+/// loader rejects: a script needs ":FILE").
+[[nodiscard]] std::optional<DeviceKind> device_kind_from_name(std::string_view s) noexcept;
+[[nodiscard]] std::optional<Hand> hand_from_name(std::string_view s) noexcept;
+[[nodiscard]] std::optional<CutMethod> cut_method_from_name(std::string_view s) noexcept;
+
+// ---------------------------------------------------------------------------------------------
+// [scene]
+
+struct SceneSettings {
+  double dt_s = 0.005;                                       ///< solver step, s; 0 < dt <= 1
+  Vec3 gravity_mps2 = Vec3(0.0, -9.81, 0.0);                 ///< gravity, m/s^2 (scene frame, y up)
+  std::set<Effect> effects{Effect::kFem, Effect::kGravity};  ///< listed effects, enum order
+  std::optional<Quality> quality;  ///< preset that chose the solver/render defaults, if given
+
+  [[nodiscard]] bool has(Effect e) const { return effects.count(e) != 0; }
+};
+
+// ---------------------------------------------------------------------------------------------
+// [[organ]]
+
+/// Rayleigh damping C = mass * M + stiffness * K.
+struct RayleighDamping {
+  double mass_per_s = 0.1;    ///< mass-proportional coefficient, 1/s; >= 0
+  double stiffness_s = 0.01;  ///< stiffness-proportional coefficient, s; >= 0
+};
+
+/// Plastic flow (Müller & Gross 2004): strain beyond `yield` creeps into the plastic strain at
+/// rate `creep`, whose norm is capped at `max`. Used only when the plasticity effect is listed.
+struct PlasticityParams {
+  double yield = 0.05;       ///< elastic limit, strain norm (dimensionless); >= 0
+  double creep_per_s = 0.5;  ///< creep rate, 1/s; >= 0
+  double max = 0.3;          ///< plastic strain norm cap (dimensionless); >= 0
+};
+
+/// A linear elastic tissue.
+struct Material {
+  double young_pa = 5.0e3;        ///< Young's modulus, Pa; > 0
+  double poisson = 0.45;          ///< Poisson's ratio; -1 < nu < 0.5
+  double density_kgpm3 = 1.05e3;  ///< mass density, kg/m^3; > 0
+  RayleighDamping damping;        ///< Rayleigh damping
+  PlasticityParams plasticity;    ///< plastic flow parameters
+};
+
+/// Axis-aligned box in the scene frame, m. min <= max componentwise.
+struct Box {
+  Vec3 min_m = Vec3::Zero();  ///< lower corner, m
+  Vec3 max_m = Vec3::Zero();  ///< upper corner, m
+  /// True when p lies inside or on the box.
+  [[nodiscard]] bool contains(const Vec3& p) const;
+};
+
+/// Dirichlet nodes: a node is fixed when any of the three selections picks it.
+struct FixedSpec {
+  std::optional<Box> box;           ///< nodes whose transformed rest position lies in the box
+  std::vector<int> groups;          ///< nodes of any tet of these group ids (sorted, unique)
+  std::vector<std::int32_t> nodes;  ///< node ids in mesh-file order, 0-based (sorted, unique)
+  [[nodiscard]] bool empty() const { return !box && groups.empty() && nodes.empty(); }
+};
+
+/// Placement of an organ's mesh in the scene frame: p_scene = translate + R * (scale * p_mesh),
+/// R = Rz(rz) * Ry(ry) * Rx(rx) (rotations about the fixed scene axes, x first).
+struct OrganTransform {
+  Vec3 translate_m = Vec3::Zero();  ///< translation, m
+  Vec3 rotate_deg = Vec3::Zero();   ///< rotation angles about x, y, z, degrees
+  double scale = 1.0;               ///< uniform scale (dimensionless; 0.001 for a mesh in mm)
+
+  [[nodiscard]] bool is_identity() const;
+  [[nodiscard]] Mat3 rotation() const;                 ///< R
+  [[nodiscard]] Vec3 apply(const Vec3& p_mesh) const;  ///< p_scene, m
+};
+
+struct Organ {
+  std::string name;                         ///< unique among organs
+  std::filesystem::path mesh;               ///< mesh file, resolved against the scene file's folder
+  std::map<int, std::string> groups;        ///< group id (Gmsh physical tag) -> name; may be empty
+  Material material;                        ///< material of every group without an override
+  std::map<int, Material> group_materials;  ///< complete materials of overridden group ids
+  FixedSpec fixed;                          ///< Dirichlet nodes
+  OrganTransform transform;                 ///< mesh -> scene frame
+
+  /// The material of the tets of group `group` (its override, else the organ's material).
+  [[nodiscard]] const Material& material_for(int group) const;
+  /// The id of the group named `name`, or nullopt.
+  [[nodiscard]] std::optional<int> group_id(std::string_view name) const;
+};
+
+// ---------------------------------------------------------------------------------------------
+// [solver] [render] [[tool]] [record] [cutting] [headless]
+
+struct SolverSettings {
+  SolverKind kind = SolverKind::kPcg;  ///< linear solver of the implicit step
+  double tolerance = 1e-6;             ///< relative residual for PCG; > 0, < 1
+  int max_iterations = 100;            ///< PCG iteration cap; >= 1
+};
+
+struct RenderSettings {
+  int tessellation = 3;        ///< Phong tessellation level; 1 = flat, 1..16
+  double shape_factor = 0.75;  ///< Phong tessellation alpha; 0 = flat, 0..1
+  int width = 1280;            ///< window or offscreen frame width, pixels; 1..16384
+  int height = 720;            ///< window or offscreen frame height, pixels; 1..16384
+};
+
+struct ToolDevice {
+  DeviceKind kind = DeviceKind::kMouse;
+  std::filesystem::path script;  ///< kScript only: the tool path CSV, resolved, exists
+};
+
+struct Tool {
+  std::string name;  ///< unique among tools; the CSV's `tool` column
+  ToolKind kind = ToolKind::kGrasper;
+  ToolDevice device;             ///< what drives it
+  std::optional<Hand> hand;      ///< rig handle that drives it (rig devices), if given
+  std::optional<Vec3> trocar_m;  ///< trocar (abdominal wall port) position, m, if given
+};
+
+struct RecordSettings {
+  std::optional<std::filesystem::path> path;  ///< .lapr output, resolved; else the CLI decides
+  std::int64_t hash_every = 100;              ///< state hash every N solver steps; >= 1
+};
+
+struct CuttingSettings {
+  CutMethod method = CutMethod::kPattern;  ///< pattern (paper), remove (delete tets), snap
+  double tolerance = 1e-3;  ///< node-on-plane tolerance relative to the tet's mean edge; [0, 0.5)
+};
+
+struct HeadlessSettings {
+  std::int64_t steps = 1000;  ///< steps of `serosa headless` without --steps; >= 1
+};
+
+/// A loaded, validated scene. Read-only after load.
+struct Scene {
+  std::filesystem::path file;  ///< the scene file as given (errors name it)
+  SceneSettings settings;
+  std::vector<Organ> organs;  ///< at least one
+  SolverSettings solver;
+  RenderSettings render;
+  std::vector<Tool> tools;  ///< scene order = SimState::tools order
+  RecordSettings record;
+  CuttingSettings cutting;
+  HeadlessSettings headless;
+
+  /// Index of the tool named `name` in `tools`, or nullopt.
+  [[nodiscard]] std::optional<std::size_t> tool_index(std::string_view name) const;
+};
+
+/// Reads and validates a scene file. Throws InputError naming the file, the line and the key path
+/// ("organ[0].young: must be > 0, got -5") on a TOML syntax error, an unknown key (the message
+/// lists the allowed keys), a wrong type, an out-of-range value, a missing mesh or script file,
+/// an unknown or duplicated effect, duplicate names and unmet effect dependencies.
+[[nodiscard]] Scene load_scene(const std::filesystem::path& path);
+
+/// Same on in-memory TOML; relative paths resolve against scene_path's folder and errors name
+/// scene_path. Referenced mesh and script files must exist.
+[[nodiscard]] Scene parse_scene_text(const std::string& toml,
+                                     const std::filesystem::path& scene_path);
+
+}  // namespace serosa

@@ -1,0 +1,747 @@
+// load_scene / parse_scene_text: TOML -> validated Scene (docs/scene-format.md).
+//
+// Every table is checked against its list of allowed keys before its values are read, so a typo
+// is an error that lists what was meant. Every error names the file, the line of the offending key
+// or value (toml++ source regions) and the key path ("organ[0].young"); a missing key names the
+// line of the table that should hold it.
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <initializer_list>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <system_error>
+#include <utility>
+
+#include "engine/input_error.h"
+#include "engine/scene.h"
+#include "engine/tool_path.h"
+
+namespace serosa {
+namespace {
+
+using Keys = std::initializer_list<std::string_view>;
+
+std::string fmt_num(double v) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+std::string join_keys(Keys keys) {
+  std::string s;
+  for (const auto k : keys) {
+    if (!s.empty()) s += ", ";
+    s += k;
+  }
+  return s;
+}
+
+std::string sub(const std::string& path, std::string_view key) {
+  return path.empty() ? std::string(key) : path + "." + std::string(key);
+}
+
+std::string at(const std::string& path, std::size_t i) {
+  return path + "[" + std::to_string(i) + "]";
+}
+
+std::int64_t line_of(const toml::node& n) {
+  return static_cast<std::int64_t>(n.source().begin.line);
+}
+std::int64_t line_of(const toml::key& k) {
+  return static_cast<std::int64_t>(k.source().begin.line);
+}
+
+std::string_view type_name(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a float";
+    case toml::node_type::boolean:
+      return "a boolean";
+    case toml::node_type::date:
+      return "a date";
+    case toml::node_type::time:
+      return "a time";
+    case toml::node_type::date_time:
+      return "a date-time";
+    case toml::node_type::none:
+      break;
+  }
+  return "nothing";
+}
+
+// Quality presets: the solver and render defaults each one stands for. Explicit keys win.
+void apply_quality(Quality q, SolverSettings& solver, RenderSettings& render) {
+  switch (q) {
+    case Quality::kFast:
+      solver = {SolverKind::kPcg, 1e-4, 25};
+      render.tessellation = 1;
+      return;
+    case Quality::kBalanced:
+      solver = {SolverKind::kPcg, 1e-6, 100};
+      render.tessellation = 3;
+      return;
+    case Quality::kAccurate:
+      solver = {SolverKind::kCholmod, 1e-8, 500};
+      render.tessellation = 6;
+      return;
+  }
+}
+
+// Reads one scene document. One instance per load; holds the file name for errors, the folder
+// relative paths resolve against, and what cross-table checks need.
+class Loader {
+ public:
+  explicit Loader(const std::filesystem::path& scene_path)
+      : m_file(scene_path.string()),
+        m_dir(std::filesystem::absolute(scene_path).lexically_normal().parent_path()) {}
+
+  Scene load(const std::string& text) {
+    toml::table root;
+    try {
+      root = toml::parse(text, m_file);
+    } catch (const toml::parse_error& e) {
+      throw InputError(m_file, static_cast<std::int64_t>(e.source().begin.line),
+                       "TOML syntax error: " + std::string(e.description()), "valid TOML");
+    }
+
+    Scene scene;
+    scene.file = m_file;
+    check_keys(root, "",
+               {"scene", "organ", "solver", "render", "tool", "record", "cutting", "headless"});
+
+    const toml::node* effects_node = nullptr;
+    if (const auto* t = opt_table(root, "scene", "")) {
+      read_scene(*t, scene, effects_node);
+    }
+    if (scene.settings.quality) apply_quality(*scene.settings.quality, scene.solver, scene.render);
+    read_organs(root, scene);
+    if (const auto* t = opt_table(root, "solver", "")) read_solver(*t, scene.solver);
+    if (const auto* t = opt_table(root, "render", "")) read_render(*t, scene.render);
+    read_tools(root, scene);
+    if (const auto* t = opt_table(root, "record", "")) read_record(*t, scene.record);
+    if (const auto* t = opt_table(root, "cutting", "")) read_cutting(*t, scene.cutting);
+    if (const auto* t = opt_table(root, "headless", "")) read_headless(*t, scene.headless);
+    check_dependencies(scene, effects_node);
+    return scene;
+  }
+
+ private:
+  // ---- errors ----
+
+  [[noreturn]] void fail(std::int64_t line, const std::string& path, const std::string& message,
+                         const std::string& expected) const {
+    throw InputError(m_file, line, path.empty() ? message : path + ": " + message, expected);
+  }
+  [[noreturn]] void fail(const toml::node& n, const std::string& path, const std::string& message,
+                         const std::string& expected) const {
+    fail(line_of(n), path, message, expected);
+  }
+
+  // Every key of t must be in `allowed`.
+  void check_keys(const toml::table& t, const std::string& path, Keys allowed) const {
+    for (auto&& [key, value] : t) {
+      bool known = false;
+      for (const auto a : allowed) known = known || key.str() == a;
+      if (!known) {
+        fail(line_of(key), sub(path, key.str()), "unknown key", "one of: " + join_keys(allowed));
+      }
+    }
+  }
+
+  // ---- typed access ----
+
+  const toml::table* opt_table(const toml::table& t, std::string_view key,
+                               const std::string& path) const {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) return nullptr;
+    if (!n->is_table()) {
+      fail(*n, sub(path, key), std::string("expected a table, got ") + std::string(type_name(*n)),
+           "a table [" + sub(path, key) + "] or { ... }");
+    }
+    return n->as_table();
+  }
+
+  const toml::node& required(const toml::table& t, std::string_view key, const std::string& path,
+                             const std::string& expected) const {
+    const toml::node* n = t.get(key);
+    if (n == nullptr) fail(line_of(t), sub(path, key), "missing required key", expected);
+    return *n;
+  }
+
+  double number(const toml::node& n, const std::string& path, const std::string& expected) const {
+    double v = 0.0;
+    if (const auto* f = n.as_floating_point()) {
+      v = f->get();
+    } else if (const auto* i = n.as_integer()) {
+      v = static_cast<double>(i->get());
+    } else {
+      fail(n, path, "expected a number, got " + std::string(type_name(n)), expected);
+    }
+    if (!std::isfinite(v)) fail(n, path, "must be finite, got " + fmt_num(v), expected);
+    return v;
+  }
+
+  std::int64_t integer(const toml::node& n, const std::string& path,
+                       const std::string& expected) const {
+    const auto* i = n.as_integer();
+    if (i == nullptr)
+      fail(n, path, "expected an integer, got " + std::string(type_name(n)), expected);
+    return i->get();
+  }
+
+  const std::string& string(const toml::node& n, const std::string& path,
+                            const std::string& expected) const {
+    const auto* s = n.as_string();
+    if (s == nullptr)
+      fail(n, path, "expected a string, got " + std::string(type_name(n)), expected);
+    return s->get();
+  }
+
+  const toml::array& array(const toml::node& n, const std::string& path,
+                           const std::string& expected) const {
+    const auto* a = n.as_array();
+    if (a == nullptr)
+      fail(n, path, "expected an array, got " + std::string(type_name(n)), expected);
+    return *a;
+  }
+
+  Vec3 vec3(const toml::node& n, const std::string& path, const std::string& expected) const {
+    const toml::array& a = array(n, path, expected);
+    if (a.size() != 3) {
+      fail(n, path, "expected 3 numbers, got " + std::to_string(a.size()), expected);
+    }
+    Vec3 v;
+    for (std::size_t i = 0; i < 3; ++i)
+      v[static_cast<Eigen::Index>(i)] = number(a[i], at(path, i), expected);
+    return v;
+  }
+
+  // A number in [lo, hi] (bounds open where the flag says so).
+  double ranged(const toml::node& n, const std::string& path, double lo, bool lo_open, double hi,
+                bool hi_open, const std::string& expected) const {
+    const double v = number(n, path, expected);
+    const bool lo_ok = lo_open ? v > lo : v >= lo;
+    const bool hi_ok = hi_open ? v < hi : v <= hi;
+    if (!lo_ok)
+      fail(n, path,
+           "must be " + std::string(lo_open ? "> " : ">= ") + fmt_num(lo) + ", got " + fmt_num(v),
+           expected);
+    if (!hi_ok)
+      fail(n, path,
+           "must be " + std::string(hi_open ? "< " : "<= ") + fmt_num(hi) + ", got " + fmt_num(v),
+           expected);
+    return v;
+  }
+
+  std::int64_t ranged_int(const toml::node& n, const std::string& path, std::int64_t lo,
+                          std::int64_t hi, const std::string& expected) const {
+    const std::int64_t v = integer(n, path, expected);
+    if (v < lo || v > hi) {
+      fail(n, path,
+           "must be within [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
+               std::to_string(v),
+           expected);
+    }
+    return v;
+  }
+
+  // A string naming one enum value; `from_name` maps it, `names` lists the allowed spellings.
+  template <class E, class F>
+  E enum_value(const toml::node& n, const std::string& path, F from_name,
+               const std::string& names) const {
+    const std::string& s = string(n, path, "one of: " + names);
+    const std::optional<E> e = from_name(s);
+    if (!e) fail(n, path, "unknown value \"" + s + "\"", "one of: " + names);
+    return *e;
+  }
+
+  // A path relative to the scene file's folder (absolute paths stay as they are).
+  std::filesystem::path resolve(const std::string& rel) const {
+    return (m_dir / std::filesystem::path(rel)).lexically_normal();
+  }
+
+  // An existing regular file, named by the string at node n.
+  std::filesystem::path existing_file(const toml::node& n, const std::string& path,
+                                      const std::string& rel, const std::string& what) const {
+    if (rel.empty()) fail(n, path, "empty path", what + " path relative to the scene file");
+    const std::filesystem::path p = resolve(rel);
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(p, ec)) {
+      fail(n, path, what + " \"" + rel + "\" not found (looked for " + p.string() + ")",
+           "an existing " + what + " path relative to the scene file");
+    }
+    return p;
+  }
+
+  // ---- [scene] ----
+
+  void read_scene(const toml::table& t, Scene& scene, const toml::node*& effects_node) const {
+    const std::string p = "scene";
+    check_keys(t, p, {"dt", "gravity", "effects", "quality"});
+    SceneSettings& s = scene.settings;
+    if (const auto* n = t.get("dt")) {
+      s.dt_s = ranged(*n, sub(p, "dt"), 0.0, true, 1.0, false, "a solver step in s, 0 < dt <= 1");
+    }
+    if (const auto* n = t.get("gravity")) {
+      s.gravity_mps2 = vec3(*n, sub(p, "gravity"), "[x, y, z] in m/s^2");
+    }
+    if (const auto* n = t.get("quality")) {
+      s.quality =
+          enum_value<Quality>(*n, sub(p, "quality"), quality_from_name, "fast, balanced, accurate");
+    }
+    if (const auto* n = t.get("effects")) {
+      effects_node = n;
+      const std::string all = [] {
+        std::string names;
+        for (const Effect e : kAllEffects)
+          names += (names.empty() ? "" : ", ") + std::string(effect_name(e));
+        return names;
+      }();
+      const toml::array& a = array(*n, sub(p, "effects"), "an array of effect names");
+      s.effects.clear();
+      for (std::size_t i = 0; i < a.size(); ++i) {
+        const std::string ip = at(sub(p, "effects"), i);
+        const Effect e = enum_value<Effect>(a[i], ip, effect_from_name, all);
+        if (!s.effects.insert(e).second) {
+          fail(a[i], ip, "effect \"" + std::string(effect_name(e)) + "\" listed twice",
+               "each effect at most once");
+        }
+      }
+    }
+  }
+
+  // ---- [[organ]] ----
+
+  // Reads the material keys present in t into m (absent keys keep m's values).
+  void read_material(const toml::table& t, const std::string& p, Material& m) const {
+    if (const auto* n = t.get("young")) {
+      m.young_pa = ranged(*n, sub(p, "young"), 0.0, true, std::numeric_limits<double>::infinity(),
+                          false, "Young's modulus in Pa > 0");
+    }
+    if (const auto* n = t.get("poisson")) {
+      m.poisson =
+          ranged(*n, sub(p, "poisson"), -1.0, true, 0.5, true,
+                 "Poisson's ratio in (-1, 0.5); 0.5 is incompressible and locks linear tets");
+    }
+    if (const auto* n = t.get("density")) {
+      m.density_kgpm3 =
+          ranged(*n, sub(p, "density"), 0.0, true, std::numeric_limits<double>::infinity(), false,
+                 "density in kg/m^3 > 0");
+    }
+    const double inf = std::numeric_limits<double>::infinity();
+    if (const auto* n = opt_table(t, "damping", p)) {
+      const std::string dp = sub(p, "damping");
+      check_keys(*n, dp, {"mass", "stiffness"});
+      if (const auto* v = n->get("mass")) {
+        m.damping.mass_per_s = ranged(*v, sub(dp, "mass"), 0.0, false, inf, false,
+                                      "Rayleigh mass coefficient in 1/s >= 0");
+      }
+      if (const auto* v = n->get("stiffness")) {
+        m.damping.stiffness_s = ranged(*v, sub(dp, "stiffness"), 0.0, false, inf, false,
+                                       "Rayleigh stiffness coefficient in s >= 0");
+      }
+    }
+    if (const auto* n = opt_table(t, "plasticity", p)) {
+      const std::string pp = sub(p, "plasticity");
+      check_keys(*n, pp, {"yield", "creep", "max"});
+      if (const auto* v = n->get("yield")) {
+        m.plasticity.yield = ranged(*v, sub(pp, "yield"), 0.0, false, inf, false,
+                                    "elastic limit (strain norm) >= 0");
+      }
+      if (const auto* v = n->get("creep")) {
+        m.plasticity.creep_per_s =
+            ranged(*v, sub(pp, "creep"), 0.0, false, inf, false, "creep rate in 1/s >= 0");
+      }
+      if (const auto* v = n->get("max")) {
+        m.plasticity.max =
+            ranged(*v, sub(pp, "max"), 0.0, false, inf, false, "plastic strain norm cap >= 0");
+      }
+    }
+  }
+
+  // A group named by a key or value: an integer id (taken as is), or a name from `groups`.
+  int group_ref(const Organ& organ, const std::string& ref, std::int64_t line,
+                const std::string& path) const {
+    int id = 0;
+    const auto r = std::from_chars(ref.data(), ref.data() + ref.size(), id);
+    if (!ref.empty() && r.ec == std::errc() && r.ptr == ref.data() + ref.size()) {
+      if (id < 0 || id > 65535) {
+        fail(line, path, "group id " + ref + " out of range", "a group id within [0, 65535]");
+      }
+      return id;
+    }
+    if (const auto g = organ.group_id(ref)) return *g;
+    std::string names;
+    for (const auto& [gid, gname] : organ.groups) names += (names.empty() ? "" : ", ") + gname;
+    fail(line, path, "unknown group \"" + ref + "\"",
+         names.empty() ? std::string("a group id (this organ names no groups)")
+                       : "a group id or one of: " + names);
+  }
+
+  void read_organs(const toml::table& root, Scene& scene) {
+    const toml::node* n = root.get("organ");
+    const std::string expected = "one or more [[organ]] tables";
+    if (n == nullptr) fail(0, "organ", "the scene has no organ", expected);
+    const auto* arr = n->as_array();
+    if (arr != nullptr && arr->empty()) fail(*n, "organ", "the scene has no organ", expected);
+    if (arr == nullptr || !arr->is_array_of_tables()) {
+      fail(*n, "organ", "expected an array of tables [[organ]], got " + std::string(type_name(*n)),
+           expected);
+    }
+    std::map<int, std::size_t> group_owner;  // group id -> organ index (ids are scene-wide)
+    for (std::size_t i = 0; i < arr->size(); ++i) {
+      const toml::table& t = *(*arr)[i].as_table();
+      const std::string p = at("organ", i);
+      check_keys(t, p,
+                 {"name", "mesh", "groups", "young", "poisson", "density", "damping", "plasticity",
+                  "material", "fixed", "transform"});
+      Organ organ;
+
+      // name, mesh
+      const toml::node& name_node = required(t, "name", p, "an organ name (string)");
+      organ.name = string(name_node, sub(p, "name"), "an organ name (string)");
+      if (organ.name.empty()) fail(name_node, sub(p, "name"), "empty name", "a non-empty name");
+      for (std::size_t j = 0; j < scene.organs.size(); ++j) {
+        if (scene.organs[j].name == organ.name) {
+          fail(
+              name_node, sub(p, "name"),
+              "duplicate organ name \"" + organ.name + "\" (also organ[" + std::to_string(j) + "])",
+              "unique organ names");
+        }
+      }
+      const toml::node& mesh_node = required(t, "mesh", p, "a mesh file path (string)");
+      organ.mesh = existing_file(mesh_node, sub(p, "mesh"),
+                                 string(mesh_node, sub(p, "mesh"), "a mesh file path (string)"),
+                                 "mesh file");
+
+      // groups = { 1 = "appendix", ... }
+      if (const auto* g = opt_table(t, "groups", p)) {
+        const std::string gp = sub(p, "groups");
+        for (auto&& [key, value] : *g) {
+          const std::string kp = sub(gp, key.str());
+          int id = 0;
+          const std::string_view k = key.str();
+          const auto r = std::from_chars(k.data(), k.data() + k.size(), id);
+          if (k.empty() || r.ec != std::errc() || r.ptr != k.data() + k.size() || id < 0 ||
+              id > 65535) {
+            fail(line_of(key), kp, "group key \"" + std::string(k) + "\" is not a group id",
+                 "an integer group id (Gmsh physical tag) within [0, 65535]");
+          }
+          const std::string& gname = string(value, kp, "a group name (string)");
+          if (gname.empty()) fail(value, kp, "empty group name", "a non-empty name");
+          if (organ.group_id(gname)) {
+            fail(value, kp, "group name \"" + gname + "\" used twice", "unique group names");
+          }
+          if (const auto owner = group_owner.find(id); owner != group_owner.end()) {
+            fail(line_of(key), kp,
+                 "group id " + std::to_string(id) + " already belongs to organ[" +
+                     std::to_string(owner->second) + "]",
+                 "group ids unique across organs (all organs share one mesh)");
+          }
+          organ.groups[id] = gname;
+        }
+        for (const auto& [id, gname] : organ.groups) group_owner[id] = scene.organs.size();
+      }
+
+      // material: organ-wide keys, then per-group overrides [organ.material.GROUP]
+      read_material(t, p, organ.material);
+      if (const auto* mt = opt_table(t, "material", p)) {
+        const std::string mp = sub(p, "material");
+        for (auto&& [key, value] : *mt) {
+          const std::string kp = sub(mp, key.str());
+          const int id = group_ref(organ, std::string(key.str()), line_of(key), kp);
+          const auto* gt = value.as_table();
+          if (gt == nullptr) {
+            fail(value, kp, "expected a table, got " + std::string(type_name(value)),
+                 "a material table { young = ..., poisson = ... }");
+          }
+          check_keys(*gt, kp, {"young", "poisson", "density", "damping", "plasticity"});
+          if (organ.group_materials.count(id) != 0) {
+            fail(line_of(key), kp, "group " + std::to_string(id) + " has two material tables",
+                 "one material table per group");
+          }
+          Material m = organ.material;
+          read_material(*gt, kp, m);
+          organ.group_materials[id] = m;
+        }
+      }
+
+      if (const auto* ft = opt_table(t, "fixed", p)) read_fixed(*ft, sub(p, "fixed"), organ);
+      if (const auto* tt = opt_table(t, "transform", p)) {
+        read_transform(*tt, sub(p, "transform"), organ.transform);
+      }
+      scene.organs.push_back(std::move(organ));
+    }
+  }
+
+  void read_fixed(const toml::table& t, const std::string& p, Organ& organ) const {
+    check_keys(t, p, {"box", "groups", "nodes"});
+    if (const auto* n = t.get("box")) {
+      const std::string bp = sub(p, "box");
+      const std::string expected = "[[xmin, ymin, zmin], [xmax, ymax, zmax]] in m";
+      const toml::array& a = array(*n, bp, expected);
+      if (a.size() != 2)
+        fail(*n, bp, "expected 2 corners, got " + std::to_string(a.size()), expected);
+      Box box;
+      box.min_m = vec3(a[0], at(bp, 0), expected);
+      box.max_m = vec3(a[1], at(bp, 1), expected);
+      if ((box.min_m.array() > box.max_m.array()).any()) {
+        fail(*n, bp, "min corner exceeds max corner", expected);
+      }
+      organ.fixed.box = box;
+    }
+    if (const auto* n = t.get("groups")) {
+      const std::string gp = sub(p, "groups");
+      const toml::array& a = array(*n, gp, "an array of group names or ids");
+      for (std::size_t i = 0; i < a.size(); ++i) {
+        const std::string ip = at(gp, i);
+        int id = 0;
+        if (a[i].is_integer()) {
+          id = static_cast<int>(ranged_int(a[i], ip, 0, 65535, "a group id within [0, 65535]"));
+        } else {
+          id = group_ref(organ, string(a[i], ip, "a group name or id"), line_of(a[i]), ip);
+        }
+        organ.fixed.groups.push_back(id);
+      }
+      std::sort(organ.fixed.groups.begin(), organ.fixed.groups.end());
+      organ.fixed.groups.erase(std::unique(organ.fixed.groups.begin(), organ.fixed.groups.end()),
+                               organ.fixed.groups.end());
+    }
+    if (const auto* n = t.get("nodes")) {
+      const std::string np = sub(p, "nodes");
+      const toml::array& a = array(*n, np, "an array of 0-based node ids");
+      for (std::size_t i = 0; i < a.size(); ++i) {
+        organ.fixed.nodes.push_back(static_cast<std::int32_t>(
+            ranged_int(a[i], at(np, i), 0, std::numeric_limits<std::int32_t>::max(),
+                       "a 0-based node id (mesh file order)")));
+      }
+      std::sort(organ.fixed.nodes.begin(), organ.fixed.nodes.end());
+      organ.fixed.nodes.erase(std::unique(organ.fixed.nodes.begin(), organ.fixed.nodes.end()),
+                              organ.fixed.nodes.end());
+    }
+  }
+
+  void read_transform(const toml::table& t, const std::string& p, OrganTransform& tr) const {
+    check_keys(t, p, {"translate", "rotate_deg", "scale"});
+    if (const auto* n = t.get("translate")) {
+      tr.translate_m = vec3(*n, sub(p, "translate"), "[x, y, z] in m");
+    }
+    if (const auto* n = t.get("rotate_deg")) {
+      tr.rotate_deg = vec3(*n, sub(p, "rotate_deg"), "[rx, ry, rz] in degrees");
+    }
+    if (const auto* n = t.get("scale")) {
+      tr.scale = ranged(*n, sub(p, "scale"), 0.0, true, std::numeric_limits<double>::infinity(),
+                        false, "a uniform scale factor > 0");
+    }
+  }
+
+  // ---- [solver] [render] [record] [cutting] [headless] ----
+
+  void read_solver(const toml::table& t, SolverSettings& s) const {
+    const std::string p = "solver";
+    check_keys(t, p, {"kind", "tolerance", "max_iterations"});
+    if (const auto* n = t.get("kind")) {
+      s.kind = enum_value<SolverKind>(*n, sub(p, "kind"), solver_kind_from_name,
+                                      "pcg, cholmod, pcg-cholmod");
+    }
+    if (const auto* n = t.get("tolerance")) {
+      s.tolerance =
+          ranged(*n, sub(p, "tolerance"), 0.0, true, 1.0, true, "a relative residual in (0, 1)");
+    }
+    if (const auto* n = t.get("max_iterations")) {
+      s.max_iterations = static_cast<int>(
+          ranged_int(*n, sub(p, "max_iterations"), 1, 1000000, "an integer within [1, 1000000]"));
+    }
+  }
+
+  void read_render(const toml::table& t, RenderSettings& r) const {
+    const std::string p = "render";
+    check_keys(t, p, {"tessellation", "shape_factor", "width", "height"});
+    if (const auto* n = t.get("tessellation")) {
+      r.tessellation = static_cast<int>(
+          ranged_int(*n, sub(p, "tessellation"), 1, 16, "a tessellation level within [1, 16]"));
+    }
+    if (const auto* n = t.get("shape_factor")) {
+      r.shape_factor = ranged(*n, sub(p, "shape_factor"), 0.0, false, 1.0, false,
+                              "a Phong shape factor within [0, 1]");
+    }
+    if (const auto* n = t.get("width")) {
+      r.width =
+          static_cast<int>(ranged_int(*n, sub(p, "width"), 1, 16384, "pixels within [1, 16384]"));
+    }
+    if (const auto* n = t.get("height")) {
+      r.height =
+          static_cast<int>(ranged_int(*n, sub(p, "height"), 1, 16384, "pixels within [1, 16384]"));
+    }
+  }
+
+  void read_record(const toml::table& t, RecordSettings& r) const {
+    const std::string p = "record";
+    check_keys(t, p, {"path", "hash_every"});
+    if (const auto* n = t.get("path")) {
+      const std::string& rel = string(*n, sub(p, "path"), "a .lapr path relative to the scene");
+      if (rel.empty()) fail(*n, sub(p, "path"), "empty path", "a .lapr path relative to the scene");
+      r.path = resolve(rel);
+    }
+    if (const auto* n = t.get("hash_every")) {
+      r.hash_every =
+          ranged_int(*n, sub(p, "hash_every"), 1, std::numeric_limits<std::int64_t>::max(),
+                     "a number of solver steps >= 1");
+    }
+  }
+
+  void read_cutting(const toml::table& t, CuttingSettings& c) const {
+    const std::string p = "cutting";
+    check_keys(t, p, {"method", "tolerance"});
+    if (const auto* n = t.get("method")) {
+      c.method = enum_value<CutMethod>(*n, sub(p, "method"), cut_method_from_name,
+                                       "pattern, remove, snap");
+    }
+    if (const auto* n = t.get("tolerance")) {
+      c.tolerance = ranged(*n, sub(p, "tolerance"), 0.0, false, 0.5, true,
+                           "a tolerance relative to the tet's mean edge length within [0, 0.5)");
+    }
+  }
+
+  void read_headless(const toml::table& t, HeadlessSettings& h) const {
+    const std::string p = "headless";
+    check_keys(t, p, {"steps"});
+    if (const auto* n = t.get("steps")) {
+      h.steps = ranged_int(*n, sub(p, "steps"), 1, std::numeric_limits<std::int64_t>::max(),
+                           "a number of solver steps >= 1");
+    }
+  }
+
+  // ---- [[tool]] ----
+
+  const ToolPath& tool_path(const std::filesystem::path& file) {
+    auto it = m_paths.find(file);
+    if (it == m_paths.end()) it = m_paths.emplace(file, read_tool_path(file)).first;
+    return it->second;
+  }
+
+  void read_tools(const toml::table& root, Scene& scene) {
+    const toml::node* n = root.get("tool");
+    if (n == nullptr) return;
+    const auto* arr = n->as_array();
+    if (arr != nullptr && arr->empty()) return;
+    if (arr == nullptr || !arr->is_array_of_tables()) {
+      fail(*n, "tool", "expected an array of tables, got " + std::string(type_name(*n)),
+           "[[tool]] tables");
+    }
+    for (std::size_t i = 0; i < arr->size(); ++i) {
+      const toml::table& t = *(*arr)[i].as_table();
+      const std::string p = at("tool", i);
+      check_keys(t, p, {"name", "kind", "device", "hand", "trocar"});
+      Tool tool;
+      const toml::node& name_node = required(t, "name", p, "a tool name (string)");
+      tool.name = string(name_node, sub(p, "name"), "a tool name (string)");
+      if (tool.name.empty() || tool.name.find_first_of(", \t\r\n") != std::string::npos) {
+        fail(name_node, sub(p, "name"), "bad tool name \"" + tool.name + "\"",
+             "a non-empty name without commas or spaces (it is a tool path CSV column)");
+      }
+      if (const auto j = scene.tool_index(tool.name)) {
+        fail(name_node, sub(p, "name"),
+             "duplicate tool name \"" + tool.name + "\" (also tool[" + std::to_string(*j) + "])",
+             "unique tool names");
+      }
+      tool.kind =
+          enum_value<ToolKind>(required(t, "kind", p, "scissors, grasper, endoscope"),
+                               sub(p, "kind"), tool_kind_from_name, "scissors, grasper, endoscope");
+
+      // device = "rig" | "rig-emulated" | "mouse" | "script:FILE"
+      const std::string dev_expected = "rig, rig-emulated, mouse or script:FILE";
+      const toml::node& dev_node = required(t, "device", p, dev_expected);
+      const std::string dp = sub(p, "device");
+      const std::string& dev = string(dev_node, dp, dev_expected);
+      if (dev.rfind("script:", 0) == 0) {
+        tool.device.kind = DeviceKind::kScript;
+        tool.device.script = existing_file(dev_node, dp, dev.substr(7), "script file");
+        const ToolPath& path = tool_path(tool.device.script);
+        if (!path.index_of(tool.name)) {
+          fail(dev_node, dp,
+               "script " + tool.device.script.string() + " has no rows for tool \"" + tool.name +
+                   "\"",
+               "a tool path CSV with rows whose tool column is \"" + tool.name + "\"");
+        }
+      } else {
+        const auto k = device_kind_from_name(dev);
+        if (!k || *k == DeviceKind::kScript) {
+          fail(dev_node, dp, "unknown device \"" + dev + "\"", dev_expected);
+        }
+        tool.device.kind = *k;
+      }
+
+      if (const auto* h = t.get("hand")) {
+        tool.hand = enum_value<Hand>(*h, sub(p, "hand"), hand_from_name, "left, right");
+      }
+      if (const auto* tr = t.get("trocar")) {
+        tool.trocar_m = vec3(*tr, sub(p, "trocar"), "[x, y, z] in m");
+      }
+      scene.tools.push_back(std::move(tool));
+    }
+  }
+
+  // ---- effects ----
+
+  void check_dependencies(const Scene& scene, const toml::node* effects_node) const {
+    const SceneSettings& s = scene.settings;
+    const std::int64_t line = effects_node != nullptr ? line_of(*effects_node) : 0;
+    const std::string p = "scene.effects";
+    auto need = [&](Effect e, Effect dep) {
+      if (s.has(e) && !s.has(dep)) {
+        fail(line, p,
+             "effect \"" + std::string(effect_name(e)) + "\" needs effect \"" +
+                 std::string(effect_name(dep)) + "\"",
+             "\"" + std::string(effect_name(dep)) + "\" listed too");
+      }
+    };
+    need(Effect::kGravity, Effect::kFem);
+    need(Effect::kPlasticity, Effect::kFem);
+    need(Effect::kContact, Effect::kFem);
+    need(Effect::kContact, Effect::kSurface);
+    need(Effect::kRender, Effect::kSurface);
+    if (s.has(Effect::kHaptics)) {
+      bool device = false;
+      for (const Tool& tool : scene.tools)
+        device = device || tool.device.kind != DeviceKind::kScript;
+      if (!device) {
+        fail(line, p, "effect \"haptics\" needs a tool driven by a device, but no tool has one",
+             "a [[tool]] with device rig, rig-emulated or mouse");
+      }
+    }
+  }
+
+  std::string m_file;                                 // scene file as given, for errors
+  std::filesystem::path m_dir;                        // folder relative paths resolve against
+  std::map<std::filesystem::path, ToolPath> m_paths;  // script files read so far
+};
+
+}  // namespace
+
+Scene parse_scene_text(const std::string& toml, const std::filesystem::path& scene_path) {
+  return Loader(scene_path).load(toml);
+}
+
+Scene load_scene(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string(), 0, "cannot open scene file", "a readable TOML file");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return parse_scene_text(buffer.str(), path);
+}
+
+}  // namespace serosa

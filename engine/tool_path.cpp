@@ -1,0 +1,230 @@
+#include "engine/tool_path.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+
+#include "engine/input_error.h"
+#include "engine/math.h"
+
+namespace serosa {
+namespace {
+
+constexpr std::string_view kHeader = "t,tool,px,py,pz,qw,qx,qy,qz,jaw";
+constexpr std::size_t kColumns = 10;
+constexpr const char* kColumnNames[kColumns] = {"t",  "tool", "px", "py", "pz",
+                                                "qw", "qx",   "qy", "qz", "jaw"};
+
+std::string_view trim(std::string_view s) {
+  const auto first = s.find_first_not_of(" \t\r");
+  if (first == std::string_view::npos) return {};
+  const auto last = s.find_last_not_of(" \t\r");
+  return s.substr(first, last - first + 1);
+}
+
+std::vector<std::string_view> split_commas(std::string_view line) {
+  std::vector<std::string_view> fields;
+  std::size_t start = 0;
+  while (true) {
+    const auto comma = line.find(',', start);
+    fields.push_back(
+        trim(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start)));
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return fields;
+}
+
+// Parses one numeric field; the whole field must be a finite number.
+double parse_number(std::string_view field, const std::string& file, std::int64_t line,
+                    std::size_t column) {
+  double value = 0.0;
+  const char* begin = field.data();
+  const char* end = field.data() + field.size();
+  if (!field.empty() && *begin == '+') ++begin;  // from_chars rejects a leading '+'
+  const auto [ptr, ec] = std::from_chars(begin, end, value);
+  const std::string col = kColumnNames[column];
+  if (field.empty() || ec != std::errc() || ptr != end) {
+    throw InputError(file, line,
+                     "column '" + col + "': '" + std::string(field) + "' is not a number",
+                     "a decimal number");
+  }
+  if (!std::isfinite(value)) {
+    throw InputError(file, line, "column '" + col + "': " + std::string(field) + " is not finite",
+                     "a finite number");
+  }
+  return value;
+}
+
+}  // namespace
+
+std::optional<std::size_t> ToolPath::index_of(std::string_view tool) const {
+  for (std::size_t i = 0; i < tools.size(); ++i) {
+    if (tools[i] == tool) return i;
+  }
+  return std::nullopt;
+}
+
+double ToolPath::end_time_s() const {
+  double t = 0.0;
+  for (const auto& rows : samples) {
+    if (!rows.empty()) t = std::max(t, rows.back().time_s);
+  }
+  return t;
+}
+
+ToolPath parse_tool_path_text(const std::string& text, const std::string& name) {
+  ToolPath path;
+  path.file = name;
+  std::istringstream in(text);
+  std::string raw;
+  std::int64_t line = 0;
+  bool have_header = false;
+  std::vector<std::int64_t> last_line;  // (k) line of each tool's previous row
+
+  while (std::getline(in, raw)) {
+    ++line;
+    const std::string_view content = trim(raw);
+    if (content.empty() || content.front() == '#') continue;
+
+    // The first non-comment line is the header.
+    if (!have_header) {
+      std::string header;
+      for (const auto f : split_commas(content)) {
+        if (!header.empty()) header += ',';
+        header += f;
+      }
+      if (header != kHeader) {
+        throw InputError(name, line, "bad tool path header '" + std::string(content) + "'",
+                         "the header " + std::string(kHeader));
+      }
+      have_header = true;
+      continue;
+    }
+
+    const auto fields = split_commas(content);
+    if (fields.size() != kColumns) {
+      throw InputError(name, line, "row has " + std::to_string(fields.size()) + " columns",
+                       std::to_string(kColumns) + " columns: " + std::string(kHeader));
+    }
+    double v[kColumns] = {};
+    for (std::size_t c = 0; c < kColumns; ++c) {
+      if (c != 1) v[c] = parse_number(fields[c], name, line, c);
+    }
+    const std::string tool(fields[1]);
+    if (tool.empty()) {
+      throw InputError(name, line, "column 'tool' is empty", "a tool name from the scene");
+    }
+    const double t = v[0];
+    if (t < 0.0) {
+      throw InputError(name, line, "column 't': time " + std::string(fields[0]) + " is negative",
+                       "a time in s >= 0");
+    }
+
+    // Orientation: normalized; a norm far from 1 is a typo, not a rounding error.
+    const Quat q(v[5], v[6], v[7], v[8]);
+    const double norm = q.norm();
+    if (norm < 0.5 || norm > 1.5) {
+      std::ostringstream msg;
+      msg << "quaternion (qw,qx,qy,qz) has norm " << norm;
+      throw InputError(name, line, msg.str(), "a unit quaternion (norm within [0.5, 1.5])");
+    }
+    const double jaw = v[9];
+    if (jaw < 0.0 || jaw > std::numbers::pi) {
+      throw InputError(name, line, "column 'jaw': " + std::string(fields[9]) + " out of range",
+                       "a jaw opening angle in rad within [0, pi]");
+    }
+
+    // Append to the tool's rows; time must not go backwards within one tool.
+    std::size_t k = 0;
+    if (const auto found = path.index_of(tool)) {
+      k = *found;
+    } else {
+      k = path.tools.size();
+      path.tools.push_back(tool);
+      path.samples.emplace_back();
+      last_line.push_back(0);
+    }
+    auto& rows = path.samples[k];
+    if (!rows.empty() && t < rows.back().time_s) {
+      std::ostringstream msg;
+      msg << "time " << t << " s of tool '" << tool << "' goes backwards (line " << last_line[k]
+          << " has " << rows.back().time_s << " s)";
+      throw InputError(name, line, msg.str(), "times non-decreasing per tool");
+    }
+    ToolState s;
+    s.tick = rows.size();
+    s.time_s = t;
+    s.tip_m = {v[2], v[3], v[4]};
+    s.quat_wxyz = {v[5] / norm, v[6] / norm, v[7] / norm, v[8] / norm};
+    s.jaw_rad = jaw;
+    rows.push_back(s);
+    last_line[k] = line;
+  }
+
+  if (!have_header) {
+    throw InputError(name, 0, "empty tool path", "the header " + std::string(kHeader));
+  }
+  if (path.tools.empty()) {
+    throw InputError(name, line, "tool path has a header but no rows",
+                     "at least one row t,tool,px,py,pz,qw,qx,qy,qz,jaw");
+  }
+  return path;
+}
+
+ToolPath read_tool_path(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) {
+    throw InputError(file.string(), 0, "cannot open tool path", "a readable CSV file");
+  }
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return parse_tool_path_text(buffer.str(), file.string());
+}
+
+ToolState sample(const ToolPath& path, std::size_t tool, double t_s) {
+  if (tool >= path.samples.size() || path.samples[tool].empty()) {
+    throw std::out_of_range("tool path " + path.file + " has no tool #" + std::to_string(tool));
+  }
+  const auto& rows = path.samples[tool];
+
+  // First row strictly after t: the segment is [hi - 1, hi].
+  const auto it = std::upper_bound(rows.begin(), rows.end(), t_s,
+                                   [](double t, const ToolState& s) { return t < s.time_s; });
+  ToolState out;
+  if (it == rows.begin()) {
+    out = rows.front();
+  } else if (it == rows.end()) {
+    out = rows.back();
+  } else {
+    const ToolState& a = *(it - 1);
+    const ToolState& b = *it;
+    const double u = (t_s - a.time_s) / (b.time_s - a.time_s);  // b.time_s > a.time_s
+    out = a;
+    for (int i = 0; i < 3; ++i) out.tip_m[i] = a.tip_m[i] + u * (b.tip_m[i] - a.tip_m[i]);
+    out.jaw_rad = a.jaw_rad + u * (b.jaw_rad - a.jaw_rad);
+    const Quat qa(a.quat_wxyz[0], a.quat_wxyz[1], a.quat_wxyz[2], a.quat_wxyz[3]);
+    const Quat qb(b.quat_wxyz[0], b.quat_wxyz[1], b.quat_wxyz[2], b.quat_wxyz[3]);
+    const Quat q = qa.slerp(u, qb).normalized();  // Eigen's slerp takes the shortest arc
+    out.quat_wxyz = {q.w(), q.x(), q.y(), q.z()};
+  }
+  out.time_s = t_s;
+  out.tick = it == rows.begin() ? 0 : static_cast<std::uint64_t>(it - rows.begin() - 1);
+  out.buttons = 0;
+  return out;
+}
+
+ToolState sample(const ToolPath& path, std::string_view tool, double t_s) {
+  const auto k = path.index_of(tool);
+  if (!k) {
+    throw std::out_of_range("tool path " + path.file + " has no tool '" + std::string(tool) + "'");
+  }
+  return sample(path, *k, t_s);
+}
+
+}  // namespace serosa
