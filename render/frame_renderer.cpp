@@ -1,0 +1,277 @@
+// FrameRenderer: buffers, programs and the three views (see frame_renderer.h).
+#include "render/frame_renderer.h"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "render/camera.h"
+#include "render/gl_program.h"
+#include "render/materials.h"
+#include "render/shaders.h"
+#include "render/vertex_normals.h"
+
+namespace serosa::render {
+namespace {
+
+// Unique undirected edges of the triangles, (e x 2) vertex ids: the mechanical view's fallback.
+std::vector<std::uint32_t> triangle_edges(const std::vector<std::uint32_t>& tri) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> e;
+  e.reserve(tri.size());
+  for (std::size_t f = 0; f + 2 < tri.size(); f += 3) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t a = tri[f + k];
+      const std::uint32_t b = tri[f + (k + 1) % 3];
+      e.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  }
+  std::sort(e.begin(), e.end());
+  e.erase(std::unique(e.begin(), e.end()), e.end());
+  std::vector<std::uint32_t> out;
+  out.reserve(2 * e.size());
+  for (const auto& [a, b] : e) {
+    out.push_back(a);
+    out.push_back(b);
+  }
+  return out;
+}
+
+std::uint8_t to_byte(float v) {
+  return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+}
+
+GLsizeiptr bytes(std::size_t count, std::size_t size) {
+  return static_cast<GLsizeiptr>(count * size);
+}
+
+}  // namespace
+
+FrameRenderer::FrameRenderer()
+    : visual_(std::make_unique<GlProgram>(std::vector<ShaderSource>{
+          {GL_VERTEX_SHADER, shaders::kVisualVertex, "visual vertex"},
+          {GL_TESS_CONTROL_SHADER, shaders::kVisualTessControl, "visual tess control"},
+          {GL_TESS_EVALUATION_SHADER, shaders::kVisualTessEval, "visual tess evaluation"},
+          {GL_FRAGMENT_SHADER, shaders::kVisualFragment, "visual fragment"}})),
+      flat_(std::make_unique<GlProgram>(std::vector<ShaderSource>{
+          {GL_VERTEX_SHADER, shaders::kFlatVertex, "flat vertex"},
+          {GL_FRAGMENT_SHADER, shaders::kFlatFragment, "flat fragment"}})) {
+  glGetIntegerv(GL_MAX_TESS_GEN_LEVEL, &max_tess_level_);
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texture_buffer_);
+  glGenVertexArrays(1, &vao_);
+  glGenVertexArrays(1, &pull_vao_);
+  std::array<GLuint, 5> bufs{};
+  glGenBuffers(static_cast<GLsizei>(bufs.size()), bufs.data());
+  pos_buf_ = bufs[0];
+  nrm_buf_ = bufs[1];
+  tri_buf_ = bufs[2];
+  line_buf_ = bufs[3];
+  material_buf_ = bufs[4];
+  std::array<GLuint, 4> texs{};
+  glGenTextures(static_cast<GLsizei>(texs.size()), texs.data());
+  pos_tex_ = texs[0];
+  nrm_tex_ = texs[1];
+  tri_tex_ = texs[2];
+  material_tex_ = texs[3];
+
+  // Attribute 0: position, attribute 1: normal, both (n x 3) floats.
+  glBindVertexArray(vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, pos_buf_);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glEnableVertexAttribArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, nrm_buf_);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glEnableVertexAttribArray(1);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
+FrameRenderer::~FrameRenderer() {
+  const std::array<GLuint, 5> bufs{pos_buf_, nrm_buf_, tri_buf_, line_buf_, material_buf_};
+  const std::array<GLuint, 4> texs{pos_tex_, nrm_tex_, tri_tex_, material_tex_};
+  const std::array<GLuint, 2> vaos{vao_, pull_vao_};
+  glDeleteTextures(static_cast<GLsizei>(texs.size()), texs.data());
+  glDeleteBuffers(static_cast<GLsizei>(bufs.size()), bufs.data());
+  glDeleteVertexArrays(static_cast<GLsizei>(vaos.size()), vaos.data());
+}
+
+void FrameRenderer::upload_topology(const RenderFrame& frame) {
+  const std::size_t t = frame.num_triangles();
+  // The visual view reads 3t indices and n vertices through buffer textures.
+  const auto limit = static_cast<std::size_t>(max_texture_buffer_);
+  if (frame.tri.size() > limit || frame.num_vertices() > limit) {
+    throw std::runtime_error("FrameRenderer: " + std::to_string(frame.tri.size()) +
+                             " triangle corners or " + std::to_string(frame.num_vertices()) +
+                             " vertices exceed GL_MAX_TEXTURE_BUFFER_SIZE (" +
+                             std::to_string(limit) + ")");
+  }
+  // Index buffers are bound through the vertex array (core profile has no default one).
+  glBindVertexArray(vao_);
+  // Triangle indices (t x 3).
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, tri_buf_);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, bytes(frame.tri.size(), sizeof(std::uint32_t)),
+               frame.tri.data(), GL_STATIC_DRAW);
+  // Line indices (e x 2): the tet edges, or the triangles' edges when the frame has none.
+  const std::vector<std::uint32_t> lines =
+      frame.edges.empty() ? triangle_edges(frame.tri) : frame.edges;
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, line_buf_);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, bytes(lines.size(), sizeof(std::uint32_t)), lines.data(),
+               GL_STATIC_DRAW);
+  glBindVertexArray(0);
+
+  // Per-triangle material (t x RGBA8): rgb the sRGB colour, a the specular strength. Wound faces
+  // take the wound material whatever their group.
+  std::vector<std::uint8_t> mat(4 * std::max<std::size_t>(t, 1), 0);
+  const Material wound = wound_material();
+  for (std::size_t f = 0; f < t; ++f) {
+    const bool cut = !frame.tri_cut.empty() && frame.tri_cut[f] != 0;
+    const std::uint16_t g = frame.tri_group.empty() ? 0 : frame.tri_group[f];
+    const Material m = cut ? wound : group_material(frame, g);
+    for (std::size_t k = 0; k < 3; ++k) mat[4 * f + k] = to_byte(m.color[k]);
+    mat[4 * f + 3] = to_byte(m.specular);
+  }
+  glBindBuffer(GL_TEXTURE_BUFFER, material_buf_);
+  glBufferData(GL_TEXTURE_BUFFER, bytes(mat.size(), 1), mat.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+
+  uploaded_ = true;
+  topology_version_ = frame.topology_version;
+  tri_count_ = t;
+  line_count_ = lines.size() / 2;
+  edge_source_ = frame.edges.size();
+}
+
+void FrameRenderer::draw(const RenderFrame& frame, const SnapshotOptions& options, int width,
+                         int height) {
+  if (const auto errors = validate(frame); !errors.empty()) {
+    std::string msg = "FrameRenderer::draw: invalid frame:";
+    for (const std::string& e : errors) msg += " " + e + ";";
+    throw std::invalid_argument(msg);
+  }
+  if (!uploaded_ || frame.topology_version != topology_version_ ||
+      frame.num_triangles() != tri_count_ || frame.edges.size() != edge_source_) {
+    upload_topology(frame);
+  }
+
+  // Vertex data, every frame: positions, and normals (computed when the frame has none).
+  const std::vector<float> computed =
+      frame.nrm.empty() ? compute_vertex_normals(frame.pos, frame.tri) : std::vector<float>{};
+  const std::vector<float>& nrm = frame.nrm.empty() ? computed : frame.nrm;
+  glBindBuffer(GL_ARRAY_BUFFER, pos_buf_);
+  glBufferData(GL_ARRAY_BUFFER, bytes(frame.pos.size(), sizeof(float)), frame.pos.data(),
+               GL_STREAM_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, nrm_buf_);
+  glBufferData(GL_ARRAY_BUFFER, bytes(nrm.size(), sizeof(float)), nrm.data(), GL_STREAM_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+
+  // Buffer-texture views of the same buffers for the visual view's vertex pulling (re-attached
+  // every draw: glBufferData above gave the buffers new storage).
+  const std::array<std::pair<GLuint, std::pair<GLenum, GLuint>>, 4> views{{
+      {pos_tex_, {GL_RGB32F, pos_buf_}},
+      {nrm_tex_, {GL_RGB32F, nrm_buf_}},
+      {tri_tex_, {GL_R32UI, tri_buf_}},
+      {material_tex_, {GL_RGBA8, material_buf_}},
+  }};
+  for (const auto& [tex, fmt] : views) {
+    glBindTexture(GL_TEXTURE_BUFFER, tex);
+    glTexBuffer(GL_TEXTURE_BUFFER, fmt.first, fmt.second);
+  }
+  glBindTexture(GL_TEXTURE_BUFFER, 0);
+
+  // Camera: view-projection, eye (the light), and the light's reference distance.
+  const float aspect = static_cast<float>(width) / static_cast<float>(std::max(height, 1));
+  const Camera cam = options.fit_camera ? auto_camera(frame, aspect) : frame.camera;
+  const Bounds bounds = drawn_bounds(frame);
+  const CameraMatrices m = camera_matrices(cam, aspect, bounds);
+  const Eigen::Matrix4f view_proj = m.projection * m.view;
+  const Eigen::Vector3f eye(cam.eye[0], cam.eye[1], cam.eye[2]);
+  const Eigen::Vector3f target(cam.target[0], cam.target[1], cam.target[2]);
+  const float ref_dist = std::max((target - eye).norm(), 1e-6f);
+
+  const auto& bg = options.background;
+  glClearColor(bg[0], bg[1], bg[2], 0.0f);  // alpha 0: coverage is read back in alpha
+  glClearDepth(1.0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_CULL_FACE);
+  glEnable(GL_MULTISAMPLE);
+  glBindVertexArray(vao_);
+
+  switch (options.view) {
+    case SnapshotOptions::View::kVisual: {
+      if (tri_count_ == 0) break;
+      const GLuint p = visual_->id();
+      glUseProgram(p);
+      const int level = std::clamp(options.tessellation, 1, max_tess_level_);
+      glUniform1f(visual_->uniform("u_level"), static_cast<float>(level));
+      glUniform1f(visual_->uniform("u_alpha"), std::clamp(options.shape_factor, 0.0f, 1.0f));
+      glUniformMatrix4fv(visual_->uniform("u_view_proj"), 1, GL_FALSE, view_proj.data());
+      glUniform3f(visual_->uniform("u_eye"), eye.x(), eye.y(), eye.z());
+      glUniform1f(visual_->uniform("u_ref_dist"), ref_dist);
+      // Texture units 0..3: positions, normals, indices, materials.
+      const std::array<std::pair<GLuint, const char*>, 4> units{
+          {{pos_tex_, "u_pos"},
+           {nrm_tex_, "u_nrm"},
+           {tri_tex_, "u_tri"},
+           {material_tex_, "u_tri_material"}}};
+      for (std::size_t u = 0; u < units.size(); ++u) {
+        glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(u));
+        glBindTexture(GL_TEXTURE_BUFFER, units[u].first);
+        glUniform1i(visual_->uniform(units[u].second), static_cast<GLint>(u));
+      }
+      glBindVertexArray(pull_vao_);
+      glPatchParameteri(GL_PATCH_VERTICES, 3);
+      glDrawArrays(GL_PATCHES, 0, static_cast<GLsizei>(3 * tri_count_));
+      for (std::size_t u = 0; u < units.size(); ++u) {
+        glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(u));
+        glBindTexture(GL_TEXTURE_BUFFER, 0);
+      }
+      glActiveTexture(GL_TEXTURE0);
+      break;
+    }
+    case SnapshotOptions::View::kCollision: {
+      if (tri_count_ == 0) break;
+      glUseProgram(flat_->id());
+      glUniformMatrix4fv(flat_->uniform("u_view_proj"), 1, GL_FALSE, view_proj.data());
+      glUniform3f(flat_->uniform("u_eye"), eye.x(), eye.y(), eye.z());
+      glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, tri_buf_);
+      // Faceted fill, pushed back so that the wireframe on top wins the depth test.
+      glEnable(GL_POLYGON_OFFSET_FILL);
+      glPolygonOffset(1.0f, 1.0f);
+      glUniform1i(flat_->uniform("u_shaded"), 1);
+      glUniform4f(flat_->uniform("u_color"), 0.55f, 0.70f, 0.75f, 1.0f);
+      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(3 * tri_count_), GL_UNSIGNED_INT, nullptr);
+      glDisable(GL_POLYGON_OFFSET_FILL);
+      // The triangles' edges.
+      glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+      glUniform1i(flat_->uniform("u_shaded"), 0);
+      glUniform4f(flat_->uniform("u_color"), 0.05f, 0.25f, 0.10f, 1.0f);
+      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(3 * tri_count_), GL_UNSIGNED_INT, nullptr);
+      glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+      break;
+    }
+    case SnapshotOptions::View::kMechanical: {
+      if (line_count_ == 0) break;
+      // See-through: every tet edge is drawn, inner ones included.
+      glDisable(GL_DEPTH_TEST);
+      glUseProgram(flat_->id());
+      glUniformMatrix4fv(flat_->uniform("u_view_proj"), 1, GL_FALSE, view_proj.data());
+      glUniform1i(flat_->uniform("u_shaded"), 0);
+      glUniform4f(flat_->uniform("u_color"), 0.55f, 0.95f, 1.0f, 1.0f);
+      glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, line_buf_);
+      glDrawElements(GL_LINES, static_cast<GLsizei>(2 * line_count_), GL_UNSIGNED_INT, nullptr);
+      glEnable(GL_DEPTH_TEST);
+      break;
+    }
+  }
+  glBindVertexArray(0);
+  glUseProgram(0);
+}
+
+}  // namespace serosa::render

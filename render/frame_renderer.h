@@ -1,0 +1,65 @@
+// FrameRenderer: draws a RenderFrame into the bound framebuffer (the GL half of rendering).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "render/render_frame.h"
+#include "render/snapshot_options.h"
+
+namespace serosa::render {
+
+class GlProgram;
+
+/// Owns the GL programs and buffers that draw RenderFrames. Construct and use it with a current
+/// OpenGL 4.1+ core context (OffscreenContext or a window's), and destroy it before the context.
+///
+/// Vertex positions and normals are uploaded on every draw; triangle and edge indices and the
+/// per-triangle materials only when the frame's topology_version (or its triangle or edge count)
+/// differs from the last upload.
+class FrameRenderer {
+ public:
+  /// Compiles the programs. @throws std::runtime_error with the driver's log on a GLSL error
+  FrameRenderer();
+  ~FrameRenderer();
+  FrameRenderer(const FrameRenderer&) = delete;
+  FrameRenderer& operator=(const FrameRenderer&) = delete;
+  FrameRenderer(FrameRenderer&&) = delete;
+  FrameRenderer& operator=(FrameRenderer&&) = delete;
+
+  /// Clears the bound framebuffer to the background and draws `frame` in `options.view`.
+  /// Missing normals are computed (area-weighted); the camera is frame.camera, or auto_camera's
+  /// when options.fit_camera. The viewport must already cover width x height pixels.
+  /// @throws std::invalid_argument when validate(frame) reports a problem
+  void draw(const RenderFrame& frame, const SnapshotOptions& options, int width, int height);
+
+ private:
+  void upload_topology(const RenderFrame& frame);
+
+  std::unique_ptr<GlProgram> visual_;
+  std::unique_ptr<GlProgram> flat_;
+  // GL object names: vertex arrays (attributes for the flat views, none for the visual view's
+  // vertex pulling), position and normal buffers, triangle and line index buffers, the
+  // per-triangle material buffer, and the buffer textures the visual view reads them through.
+  unsigned int vao_ = 0;
+  unsigned int pull_vao_ = 0;
+  unsigned int pos_tex_ = 0;
+  unsigned int nrm_tex_ = 0;
+  unsigned int tri_tex_ = 0;
+  unsigned int pos_buf_ = 0;
+  unsigned int nrm_buf_ = 0;
+  unsigned int tri_buf_ = 0;
+  unsigned int line_buf_ = 0;
+  unsigned int material_buf_ = 0;
+  unsigned int material_tex_ = 0;
+  int max_tess_level_ = 64;
+  int max_texture_buffer_ = 65536;  // texels
+  // What the index buffers hold now.
+  bool uploaded_ = false;
+  std::uint64_t topology_version_ = 0;
+  std::size_t tri_count_ = 0;    // triangles
+  std::size_t line_count_ = 0;   // line segments (tet edges, or triangle edges when none)
+  std::size_t edge_source_ = 0;  // frame.edges.size() at upload
+};
+
+}  // namespace serosa::render

@@ -1,0 +1,17 @@
+// GLSL sources of the renderer's programs (text only; compiled by frame_renderer.cpp).
+#pragma once
+
+namespace serosa::render::shaders {
+
+// Visual view: vertex -> tessellation control -> tessellation evaluation (Phong tessellation,
+// Boubekeur & Alexa 2008) -> fragment (Phong lighting, light at the eye with distance falloff).
+extern const char* const kVisualVertex;
+extern const char* const kVisualTessControl;
+extern const char* const kVisualTessEval;
+extern const char* const kVisualFragment;
+
+// Collision and mechanical views: untessellated triangles or lines, flat shaded or one colour.
+extern const char* const kFlatVertex;
+extern const char* const kFlatFragment;
+
+}  // namespace serosa::render::shaders
