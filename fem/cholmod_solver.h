@@ -1,0 +1,39 @@
+// CholmodSolver: sparse Cholesky A = L L^T through SuiteSparse CHOLMOD (supernodal when it pays).
+// Precompute/solve split: analyze() (fill-reducing ordering, symbolic factorization) once per
+// sparsity pattern, i.e. once per topology version; factorize() (numeric) whenever the values
+// change; solve() any number of times. Reads the CsrMatrix in place as the upper triangle of a
+// symmetric compressed-column matrix (the CSR of a symmetric matrix is its CSC). cholmod.h stays
+// out of this header.
+#pragma once
+
+#include <memory>
+#include <span>
+
+#include "fem/csr_matrix.h"
+#include "fem/solve_status.h"
+
+namespace serosa::fem {
+
+class CholmodSolver {
+ public:
+  CholmodSolver();
+  ~CholmodSolver();
+  CholmodSolver(const CholmodSolver&) = delete;
+  CholmodSolver& operator=(const CholmodSolver&) = delete;
+
+  /// Symbolic analysis of a's pattern (values ignored). Returns false if CHOLMOD fails.
+  bool analyze(const CsrMatrix& a);
+  /// Numeric factorization of a (same pattern as analyzed). False if a is not positive definite.
+  [[nodiscard]] bool factorize(const CsrMatrix& a);
+  /// x = A^{-1} b with the last factorization; b and x: (rows). Status: converged = factor ok.
+  SolveStatus solve(std::span<const double> b, std::span<double> x);
+
+  [[nodiscard]] bool analyzed() const;
+  [[nodiscard]] bool factorized() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> m_impl;
+};
+
+}  // namespace serosa::fem

@@ -1,0 +1,58 @@
+#include "fem/elastic_forces.h"
+#include "fem/parallel.h"
+
+#include <vector>
+
+#include "fem/rotation.h"
+
+namespace serosa::fem {
+
+int update_rotations(const TetMesh& mesh, const FemElements& el, std::span<Quat> q,
+                     std::span<Mat3> rot, int max_iter) {
+  int inverted = 0;
+#pragma omp parallel for schedule(static) reduction(+ : inverted) if (mesh.num_tets() >= kParallelMin)
+  for (std::int32_t t = 0; t < mesh.num_tets(); ++t) {
+    const auto ut = static_cast<std::size_t>(t);
+    const TetElement& e = el.elements[ut];
+    if (!e.active()) {
+      rot[ut].setIdentity();
+      continue;
+    }
+    const Tet& n = mesh.tets[ut];
+    const Mat3 f = nodal_gradient(e, mesh.x[n[0]], mesh.x[n[1]], mesh.x[n[2]], mesh.x[n[3]]);
+    if (f.determinant() <= 0.0) ++inverted;
+    rot[ut] = robust_rotation(f, q[ut], max_iter);
+  }
+  return inverted;
+}
+
+void element_forces(const TetElement& e, const Mat3& r, const Tet& tet, std::span<const Vec3> x,
+                    std::span<const Vec3> v, double k_v, std::span<Vec3, 4> out) {
+  const Mat3 f = nodal_gradient(e, x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]]);
+  Mat3 g = r.transpose() * f - Mat3::Identity();
+  if (k_v != 0.0)
+    g += k_v * (r.transpose() * nodal_gradient(e, v[tet[0]], v[tet[1]], v[tet[2]], v[tet[3]]));
+  const Mat3 eps = 0.5 * (g + g.transpose());
+  // P = -V R sigma: f_a = P b_a
+  const Mat3 p = -e.volume_m3 * (r * linear_stress(e, eps));
+  for (std::size_t a = 0; a < 4; ++a) out[a] = p * e.grad[a];
+}
+
+void corotational_forces(const TetMesh& mesh, const FemElements& el, std::span<const Mat3> rot,
+                         std::span<Vec3> f) {
+  for (Vec3& fi : f) fi.setZero();
+  std::array<Vec3, 4> fe;
+  for (std::int32_t t = 0; t < mesh.num_tets(); ++t) {
+    const auto ut = static_cast<std::size_t>(t);
+    if (!el.elements[ut].active()) continue;
+    element_forces(el.elements[ut], rot[ut], mesh.tets[ut], mesh.x, mesh.v, 0.0, fe);
+    for (std::size_t a = 0; a < 4; ++a) f[static_cast<std::size_t>(mesh.tets[ut][a])] += fe[a];
+  }
+}
+
+void linear_forces(const TetMesh& mesh, const FemElements& el, std::span<Vec3> f) {
+  const std::vector<Mat3> eye(static_cast<std::size_t>(mesh.num_tets()), Mat3::Identity());
+  corotational_forces(mesh, el, eye, f);
+}
+
+}  // namespace serosa::fem

@@ -1,0 +1,57 @@
+// FemConfig: the read-only FEM model a scene describes (materials per group, solver settings,
+// gravity). Plain structs: app maps the scene (engine/scene.h) onto them; fem never reads TOML.
+#pragma once
+
+#include <cstdint>
+#include <map>
+
+#include "engine/math.h"
+
+namespace serosa::fem {
+
+/// Isotropic linear-elastic material of one mesh group, with Rayleigh damping.
+struct FemMaterial {
+  double young_pa = 3.0e3;         ///< Young's modulus E, Pa
+  double poisson = 0.45;           ///< Poisson ratio nu, in (-1, 0.5)
+  double density_kgpm3 = 1.0e3;    ///< mass density rho, kg/m^3
+  double damping_mass = 0.0;       ///< Rayleigh alpha, 1/s:  C = alpha M + beta K
+  double damping_stiffness = 0.0;  ///< Rayleigh beta, s
+
+  /// First Lamé parameter lambda = E nu / ((1 + nu)(1 - 2 nu)), Pa.
+  [[nodiscard]] double lame_lambda() const {
+    return young_pa * poisson / ((1.0 + poisson) * (1.0 - 2.0 * poisson));
+  }
+  /// Shear modulus mu = E / (2 (1 + nu)), Pa.
+  [[nodiscard]] double lame_mu() const { return young_pa / (2.0 * (1.0 + poisson)); }
+};
+
+enum class SolverKind : std::uint8_t {
+  pcg,          ///< conjugate gradient, Jacobi preconditioned, OpenMP
+  cholmod,      ///< CHOLMOD supernodal Cholesky, numeric factorization every step
+  pcg_cholmod,  ///< CG preconditioned by a CHOLMOD factor of the rest-state system (background)
+};
+
+/// Linear solver settings of the implicit step.
+struct SolverSettings {
+  SolverKind kind = SolverKind::pcg;
+  double tolerance = 1e-6;   ///< CG: stop when ||r|| <= tolerance * ||b|| (relative residual)
+  int max_iterations = 100;  ///< CG iteration cap; the step reports converged = false past it
+  bool warm_start = true;    ///< CG: start from the previous step's dv instead of 0
+};
+
+/// The whole FEM model. Const after the stage is built.
+struct FemConfig {
+  std::map<std::uint16_t, FemMaterial> materials;  ///< per group (Gmsh physical tag)
+  FemMaterial default_material;                    ///< for groups not in `materials`
+  SolverSettings solver;
+  bool gravity_on = true;                     ///< the "gravity" effect
+  Vec3 gravity_mps2 = Vec3(0.0, -9.81, 0.0);  ///< gravitational acceleration g, m/s^2
+
+  /// The material of group g.
+  [[nodiscard]] const FemMaterial& material(std::uint16_t g) const {
+    const auto it = materials.find(g);
+    return it == materials.end() ? default_material : it->second;
+  }
+};
+
+}  // namespace serosa::fem

@@ -1,0 +1,162 @@
+#include "fem/implicit_integrator.h"
+#include "fem/parallel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "fem/elastic_forces.h"
+#include "fem/rotation.h"
+
+namespace serosa::fem {
+
+ImplicitIntegrator::ImplicitIntegrator(FemConfig config) : m_config(std::move(config)) {}
+
+void ImplicitIntegrator::rebuild_solver_structure(const TetMesh& mesh) {
+  build_pattern(mesh, m_pattern, m_a);
+  const auto n3 = static_cast<std::size_t>(3 * mesh.num_nodes());
+  m_rhs.assign(n3, 0.0);
+  m_pcg.r.assign(n3, 0.0);
+  m_dv.resize(n3, 0.0);
+  m_fe.resize(4 * static_cast<std::size_t>(mesh.num_tets()));
+  m_rot.resize(static_cast<std::size_t>(mesh.num_tets()), Mat3::Identity());
+  m_analyzed = false;
+  if (m_config.solver.kind == SolverKind::cholmod) m_analyzed = m_cholmod.analyze(m_a);
+}
+
+void ImplicitIntegrator::rebuild(TetMesh& mesh) {
+  mesh.fill_node_state();
+  build_elements(mesh, m_config, m_el);
+  mesh.mass = m_el.node_mass;
+  m_q.assign(static_cast<std::size_t>(mesh.num_tets()), Quat::Identity());
+  m_dv.assign(3 * static_cast<std::size_t>(mesh.num_nodes()), 0.0);
+  m_rot.assign(static_cast<std::size_t>(mesh.num_tets()), Mat3::Identity());
+  rebuild_solver_structure(mesh);
+}
+
+void ImplicitIntegrator::update(TetMesh& mesh, const TopologyDelta& delta) {
+  if (m_el.topology_version != delta.version_before ||
+      mesh.topology_version != delta.version_after || m_el.elements.size() != m_q.size()) {
+    rebuild(mesh);
+    return;
+  }
+  update_elements(mesh, delta, m_config, m_el);
+  mesh.mass = m_el.node_mass;
+  // Per-tet rotations follow the same slot rules; added tets start from their SVD polar factor.
+  for (std::size_t k = 0; k < delta.slot_of_added.size(); ++k) {
+    const auto slot = static_cast<std::size_t>(delta.slot_of_added[k]);
+    if (slot >= m_q.size()) m_q.resize(slot + 1);
+    const TetElement& e = m_el.elements[slot];
+    const Tet& n = mesh.tets[slot];
+    m_q[slot] = e.active() ? Quat(polar_rotation_svd(nodal_gradient(e, mesh.x[n[0]], mesh.x[n[1]],
+                                                                    mesh.x[n[2]], mesh.x[n[3]])))
+                           : Quat::Identity();
+  }
+  for (const auto& [from, to] : delta.moved_tets)
+    m_q[static_cast<std::size_t>(to)] = m_q[static_cast<std::size_t>(from)];
+  m_q.resize(static_cast<std::size_t>(mesh.num_tets()));
+  m_rot.resize(static_cast<std::size_t>(mesh.num_tets()), Mat3::Identity());
+  // New nodes: no warm start.
+  m_dv.resize(3 * static_cast<std::size_t>(mesh.num_nodes()), 0.0);
+  rebuild_solver_structure(mesh);
+}
+
+StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const Vec3> f_ext) {
+  if (m_el.topology_version != mesh.topology_version ||
+      m_el.elements.size() != static_cast<std::size_t>(mesh.num_tets()) ||
+      m_el.node_mass.size() != static_cast<std::size_t>(mesh.num_nodes()) ||
+      m_pattern.topology_version != mesh.topology_version)
+    rebuild(mesh);
+  const std::int32_t n = mesh.num_nodes();
+  const std::int32_t m = mesh.num_tets();
+  StepStatus st;
+
+  // 1. Rotations, warm-started from the last step.
+  st.inverted_tets = update_rotations(mesh, m_el, m_q, m_rot, kRotationMaxIterations);
+
+  // 2. Per-tet forces f_el(x) - (beta + dt) K_R v.
+#pragma omp parallel for schedule(static) if (m >= kParallelMin)
+  for (std::int32_t t = 0; t < m; ++t) {
+    const auto ut = static_cast<std::size_t>(t);
+    const TetElement& e = m_el.elements[ut];
+    std::span<Vec3, 4> out(m_fe.data() + 4 * ut, 4);
+    if (!e.active()) {
+      for (Vec3& f : out) f.setZero();
+      continue;
+    }
+    element_forces(e, m_rot[ut], mesh.tets[ut], mesh.x, mesh.v, e.beta_s + dt_s, out);
+  }
+
+  // 3. Right-hand side b_i = dt (f_ext_i + m_i g - c_i v_i + sum_e f_e,i), 0 on constrained nodes.
+  const Vec3 g = m_config.gravity_on ? m_config.gravity_mps2 : Vec3::Zero();
+  const bool has_ext = f_ext.size() == static_cast<std::size_t>(n);
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
+  for (std::int32_t i = 0; i < n; ++i) {
+    const auto ui = static_cast<std::size_t>(i);
+    Vec3 b = Vec3::Zero();
+    if (!node_constrained(mesh, m_el, ui)) {
+      b = m_el.node_mass[ui] * g - m_el.node_damping[ui] * mesh.v[ui];
+      if (has_ext) b += f_ext[ui];
+      for (std::int32_t k = m_pattern.incident_ptr[ui]; k < m_pattern.incident_ptr[ui + 1]; ++k)
+        b += m_fe[static_cast<std::size_t>(m_pattern.incident[static_cast<std::size_t>(k)])];
+      b *= dt_s;
+    }
+    for (int c = 0; c < 3; ++c) m_rhs[3 * ui + static_cast<std::size_t>(c)] = b[c];
+  }
+
+  // 4. A = M + dt C + dt^2 K_R.
+  fill_system(mesh, m_el, m_pattern, m_rot, dt_s, m_a);
+
+  // 5. Solve A dv = b.
+  if (!m_config.solver.warm_start) std::fill(m_dv.begin(), m_dv.end(), 0.0);
+  SolveStatus ss;
+  if (m_config.solver.kind == SolverKind::cholmod) {
+    if (!m_analyzed) m_analyzed = m_cholmod.analyze(m_a);
+    if (m_analyzed && m_cholmod.factorize(m_a)) {
+      ss = m_cholmod.solve(m_rhs, m_dv);
+      // Residual of the direct solve, for the status: ||b - A dv|| / ||b||.
+      multiply(m_a, m_dv, m_pcg.r);
+      for (std::size_t i = 0; i < m_rhs.size(); ++i) m_pcg.r[i] = m_rhs[i] - m_pcg.r[i];
+      const double rr = dot(m_pcg.r, m_pcg.r);
+      const double bn = std::sqrt(dot(m_rhs, m_rhs));
+      ss.residual = bn > 0.0 ? std::sqrt(rr) / bn : 0.0;
+      double phi = 0.0;  // -dv.(b + r) / 2
+      for (std::size_t i = 0; i < m_rhs.size(); ++i) phi -= 0.5 * m_dv[i] * (m_rhs[i] + m_pcg.r[i]);
+      ss.energy = phi;
+      ss.converged = ss.finite && ss.residual <= std::max(m_config.solver.tolerance, 1e-8);
+    } else {
+      ss.converged = false;
+      ss.finite = false;
+    }
+  } else {
+    ss = pcg(m_a, m_rhs, m_dv, m_config.solver.tolerance, m_config.solver.max_iterations,
+             jacobi(m_a, m_pcg), m_pcg);
+  }
+  st.converged = ss.converged;
+  st.iterations = ss.iterations;
+  st.residual = ss.residual;
+
+  // 6. Guard: never apply a non-finite or diverged solution (worse than dv = 0: phi > 0).
+  if (!ss.finite || !std::isfinite(ss.residual) || !(ss.energy <= 0.0)) {
+    std::fill(m_dv.begin(), m_dv.end(), 0.0);
+    st.applied = false;
+    st.converged = false;
+    return st;
+  }
+
+  // 7. v' = v + dv, x' = x + dt v'; fixed nodes stay.
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
+  for (std::int32_t i = 0; i < n; ++i) {
+    const auto ui = static_cast<std::size_t>(i);
+    if (mesh.fixed[ui] != 0) {
+      mesh.v[ui].setZero();
+      continue;
+    }
+    mesh.v[ui] += Vec3(m_dv[3 * ui], m_dv[3 * ui + 1], m_dv[3 * ui + 2]);
+    mesh.x[ui] += dt_s * mesh.v[ui];
+  }
+  st.applied = true;
+  return st;
+}
+
+}  // namespace serosa::fem

@@ -1,0 +1,84 @@
+// ImplicitIntegrator: one linearized backward-Euler step of corotational FEM (Müller & Gross 2004,
+// section 4), with the rotations frozen over the step.
+//
+// Derivation. Backward Euler on M dv/dt = f_ext + f_el(x) - C v, dx/dt = v:
+//   M (v' - v) = dt (f_ext + f_el(x') - C v'),   x' = x + dt v'.
+// Linearize the elastic force around x with R fixed: f_el(x') = f_el(x) - K_R (x' - x)
+// = f_el(x) - dt K_R v', with K_R = R K R^T (assembled per tet) and f_el(x) = -R K (R^T x - x0).
+// Writing v' = v + dv and C = alpha M + beta K_R (Rayleigh):
+//   (M + dt C + dt^2 K_R) dv = dt (f_ext + f_el(x) - C v - dt K_R v)
+//                            = dt (f_ext - alpha M v + f_el(x) - (beta + dt) K_R v)
+// The right-hand side's last two terms are one stress evaluation per tet (elastic_forces.h,
+// k_v = beta + dt). Then v' = v + dv and x' = x + dt v'. Fixed nodes keep v = 0 and their x.
+//
+// Solvers (FemConfig::solver.kind): Jacobi PCG on the assembled matrix (warm-started from the
+// previous dv), or CHOLMOD (symbolic analysis once per topology version, numeric factorization
+// every step). A step whose solution is not finite, or diverged (the quadratic
+// phi(dv) = dv^T A dv / 2 - b^T dv it minimizes is above phi(0) = 0), is not applied: the mesh is
+// left untouched and the status says so. An unconverged but finite and reduced CG result (iteration
+// cap reached) is applied and reported as converged = false: capping iterations is how real-time
+// runs trade accuracy.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "engine/tet_mesh.h"
+#include "engine/topology_delta.h"
+#include "fem/cholmod_solver.h"
+#include "fem/csr_matrix.h"
+#include "fem/fem_config.h"
+#include "fem/fem_elements.h"
+#include "fem/pcg.h"
+#include "fem/system_matrix.h"
+
+namespace serosa::fem {
+
+struct StepStatus {
+  bool converged = false;  ///< the linear solve reached its tolerance
+  bool applied = false;    ///< the state was advanced (false: left unchanged, see `converged`)
+  int iterations = 0;      ///< CG iterations (0 for CHOLMOD)
+  double residual = 0.0;   ///< relative residual ||b - A dv|| / ||b|| of the linear solve
+  int inverted_tets = 0;   ///< tets with det F <= 0 at the start of the step
+};
+
+class ImplicitIntegrator {
+ public:
+  explicit ImplicitIntegrator(FemConfig config);
+
+  /// Full precompute for the mesh: elements, lumped masses (also written to mesh.mass), matrix
+  /// pattern, CHOLMOD analysis, rotations from scratch.
+  void rebuild(TetMesh& mesh);
+  /// Incremental update after apply(mesh, delta): recomputes only the added elements and the
+  /// masses of touched nodes, relabels per-tet rotations; rebuilds the matrix pattern.
+  /// Falls back to rebuild() if the delta does not follow the version this integrator holds.
+  void update(TetMesh& mesh, const TopologyDelta& delta);
+
+  /// Advances mesh.x and mesh.v by dt_s. f_ext: (n) external node forces, N, or empty. Gravity
+  /// (config) is added to it. Rebuilds first if the mesh's topology_version changed unseen.
+  StepStatus step(TetMesh& mesh, double dt_s, std::span<const Vec3> f_ext = {});
+
+  [[nodiscard]] const FemConfig& config() const { return m_config; }
+  [[nodiscard]] const FemElements& elements() const { return m_el; }
+  [[nodiscard]] std::span<const Mat3> rotations() const { return m_rot; }
+  [[nodiscard]] const CsrMatrix& matrix() const { return m_a; }
+
+ private:
+  void rebuild_solver_structure(const TetMesh& mesh);
+
+  const FemConfig m_config;
+  FemElements m_el;
+  SystemPattern m_pattern;
+  CsrMatrix m_a;              // (3n x 3n) system matrix
+  std::vector<Quat> m_q;      // (m) per-tet rotation, warm start of the next step
+  std::vector<Mat3> m_rot;    // (m) R_e of the current step
+  std::vector<Vec3> m_fe;     // (4m) per-tet corner forces of the right-hand side, N
+  std::vector<double> m_rhs;  // (3n) b = dt (...), N s
+  std::vector<double> m_dv;   // (3n) velocity change, m/s (CG warm start)
+  PcgScratch m_pcg;
+  CholmodSolver m_cholmod;
+  bool m_analyzed = false;
+};
+
+}  // namespace serosa::fem

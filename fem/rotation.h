@@ -1,0 +1,42 @@
+// Rotational part of a deformation gradient: R in SO(3) (never a reflection) maximizing
+// tr(R^T F), which is the polar factor of F when det F > 0 and its reflection-free
+// generalization (Irving et al. 2004, "Invertible finite elements") when the tet is inverted.
+//
+// Two methods, same answer:
+//  * extract_rotation(): Müller, Bender, Chentanez, Macklin 2016, "A robust method to extract the
+//    rotational part of deformations". Iterates on a unit quaternion q, warm-started from the
+//    previous step's rotation:
+//        omega = sum_i r_i x f_i / (|sum_i r_i . f_i| + 1e-9)    (r_i, f_i: columns of R(q), F)
+//        q <- exp(omega) q
+//    omega is the ascent direction of tr(R^T F) on SO(3) scaled by a Newton-like step, so a warm
+//    start converges in 1-3 iterations per step. Always returns a rotation (a unit quaternion),
+//    for singular F (q unchanged when F = 0) and inverted F alike. Used by the solver: cheap.
+//  * polar_rotation_svd(): F = U S V^T, then flip the last column of U (resp. V) when det U < 0
+//    (resp. det V < 0), so that R = U V^T has det +1 and the sign goes into the smallest singular
+//    value (Irving et al. 2004, section 5). The reference the tests compare against.
+#pragma once
+
+#include "engine/math.h"
+
+namespace serosa::fem {
+
+/// Iterations extract_rotation() runs at most unless told otherwise.
+inline constexpr int kRotationMaxIterations = 20;
+
+/// Müller et al. 2016: refines q (unit quaternion, in and out) towards the rotation maximizing
+/// tr(R(q)^T F). F: (3 x 3) deformation gradient. Stops when the step angle |omega| < 1e-9 rad
+/// (returns true) or after max_iter (returns false). Convergence is linear: the step
+/// omega ~ torque / tr(F) undershoots the Newton step torque / (s_j + s_k) (s: singular values),
+/// so each iteration shrinks the error by about 1 - (s_j + s_k) / tr: ~1/3 for a mild stretch,
+/// but barely at all when F is nearly flat (s_j + s_k << tr). Hence the fallback below.
+bool extract_rotation(const Mat3& f, Quat& q, int max_iter = kRotationMaxIterations);
+
+/// Irving et al. 2004: reflection-free polar rotation of F (3 x 3) from its SVD.
+[[nodiscard]] Mat3 polar_rotation_svd(const Mat3& f);
+
+/// What the solver uses per tet and step: extract_rotation() warm-started from q with at most
+/// max_iter iterations; if it has not converged by then (nearly flat or freshly inverted tets),
+/// the SVD answer instead. q is updated to the returned rotation.
+Mat3 robust_rotation(const Mat3& f, Quat& q, int max_iter = kRotationMaxIterations);
+
+}  // namespace serosa::fem
