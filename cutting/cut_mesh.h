@@ -1,0 +1,64 @@
+// cut_mesh: one scissor cut of a tet mesh by the convex polygon a blade swept (paper "Cutting
+// Algorithm"). Returns the change as a TopologyDelta for engine's apply(); never edits the mesh.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "cutting/case_table.h"
+#include "cutting/convex_polygon.h"
+#include "engine/tet_mesh.h"
+#include "engine/topology_delta.h"
+
+namespace serosa::cutting {
+
+struct CutOptions {
+  /// Classification tolerance relative to the local edge length: a node within
+  /// classify_rel * h of the plane is on it (sign 0), where h is the longest edge of the tets
+  /// whose boxes meet the blade's box. Also the in-plane tolerance of "inside the polygon".
+  double classify_rel = 1e-6;
+};
+
+/// What a cut did. Counts are over the tets and nodes of the mesh before the cut.
+struct CutStats {
+  std::int64_t candidates = 0;       ///< tets whose box met the blade's (grown) box
+  std::int64_t tets_split = 0;       ///< tets subdivided by a complete-cut pattern
+  std::int64_t tets_relabelled = 0;  ///< one-sided tets that took a clone of a coplanar node
+  std::int64_t tets_partial = 0;     ///< tets the blade's edge crosses: split welded (Steiner cone)
+  std::int64_t tets_removed = 0;     ///< = tets_split + tets_relabelled + tets_partial
+  std::int64_t tets_added = 0;
+  std::int64_t nodes_added = 0;
+  std::int64_t edge_pairs = 0;       ///< opened cut edges (two nodes each)
+  std::int64_t edge_singles = 0;     ///< welded cut edges (one node each)
+  std::int64_t clones = 0;           ///< coplanar nodes cloned
+  std::int64_t steiner_points = 0;   ///< Schönhardt prisms and partial tets
+  std::int64_t degenerate_tets = 0;  ///< emitted tets with non-positive rest volume (must be 0)
+  double tolerance_m = 0.0;          ///< the classification tolerance used
+  std::array<std::int64_t, 81> per_code{};  ///< candidates per sign case (case_code)
+  std::array<std::int64_t, kNumCanonicalCases> per_case{};        ///< candidates per canonical case
+  std::array<std::int64_t, kNumCanonicalCases> split_per_case{};  ///< split/relabelled per case
+};
+
+struct CutResult {
+  TopologyDelta delta;  ///< apply(mesh, delta) performs the cut
+  CutStats stats;
+};
+
+/// Candidate search: appends to `out` the ids of every tet whose current-position bounding box
+/// meets the box [lo, hi] (m). It may report more tets, never fewer.
+using TetBoxQuery =
+    std::function<void(const Vec3& lo, const Vec3& hi, std::vector<std::int32_t>& out)>;
+
+/// Brute-force TetBoxQuery over all tets of `mesh` (current positions).
+[[nodiscard]] TetBoxQuery brute_force_query(const TetMesh& mesh);
+
+/// Cuts `mesh` (classified in current positions x) by `blade`. Existing nodes never move; new
+/// nodes are cut points on edges (two per edge, one per side), clones of coplanar nodes and
+/// Steiner points, each with its parents and barycentric weights; rest volume is conserved to
+/// rounding, per group. `query` finds candidate tets (a BVH; brute force when empty).
+[[nodiscard]] CutResult cut_mesh(const TetMesh& mesh, const ConvexPolygon& blade,
+                                 const CutOptions& options = {}, const TetBoxQuery& query = {});
+
+}  // namespace serosa::cutting

@@ -1,0 +1,166 @@
+#include "cutting/validate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <set>
+#include <sstream>
+
+#include "engine/boundary.h"
+#include "engine/mesh_check.h"
+
+namespace serosa::cutting {
+namespace {
+
+Tri sorted(Tri t) {
+  std::sort(t.begin(), t.end());
+  return t;
+}
+
+// Distance from p to triangle (a, b, c), m.
+double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 n = (b - a).cross(c - a);
+  const double n2 = n.squaredNorm();
+  if (n2 > 0.0) {
+    const Vec3 q = p - n * (n.dot(p - a) / n2);
+    const double u = n.dot((b - q).cross(c - q)), v = n.dot((c - q).cross(a - q)),
+                 w = n.dot((a - q).cross(b - q));
+    if (u >= 0.0 && v >= 0.0 && w >= 0.0) return (p - q).norm();
+  }
+  auto seg = [&](const Vec3& s, const Vec3& e) {
+    const Vec3 d = e - s;
+    const double l2 = d.squaredNorm();
+    const double t = l2 > 0.0 ? std::clamp(d.dot(p - s) / l2, 0.0, 1.0) : 0.0;
+    return (s + t * d - p).norm();
+  };
+  return std::min({seg(a, b), seg(b, c), seg(c, a)});
+}
+
+std::string str(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+CutCheckReport check_cut(const TetMesh& before, const TetMesh& after, const ConvexPolygon& blade,
+                         const CutCheckOptions& options) {
+  CutCheckReport rep;
+  auto problem = [&](std::string s) { rep.problems.push_back(std::move(s)); };
+
+  // Structure (engine's checker).
+  const MeshCheckReport mc = check_mesh(after);
+  for (const std::string& p : mc.problems) problem("check_mesh: " + p);
+  rep.min_quality = mc.min_quality;
+  const MeshCheckReport mb = check_mesh(before);
+  if (mc.unreferenced_nodes > mb.unreferenced_nodes)
+    problem("the cut left " + std::to_string(mc.unreferenced_nodes - mb.unreferenced_nodes) +
+            " new unreferenced nodes");
+
+  // Volume, total and per group.
+  rep.volume_before_m3 = mb.volume_m3;
+  rep.volume_after_m3 = mc.volume_m3;
+  const double scale = std::abs(mb.volume_m3);
+  if (std::abs(mc.volume_m3 - mb.volume_m3) > options.volume_rel * scale)
+    problem("total volume changed from " + str(mb.volume_m3) + " to " + str(mc.volume_m3));
+  for (const auto& [g, v] : mb.group_volume_m3) {
+    const auto it = mc.group_volume_m3.find(g);
+    const double va = it == mc.group_volume_m3.end() ? 0.0 : it->second;
+    if (std::abs(va - v) > options.volume_rel * scale)
+      problem("group " + std::to_string(g) + " volume changed from " + str(v) + " to " + str(va));
+  }
+  for (const auto& [g, v] : mc.group_volume_m3)
+    if (!mb.group_volume_m3.contains(g)) problem("new group " + std::to_string(g));
+
+  // Boundary faces: kept, on the old surface, or on the blade.
+  const FaceCensus fb = face_census(before);
+  const FaceCensus fa = face_census(after);
+  std::set<Tri> old_faces;
+  for (const BoundaryFace& f : fb.boundary) old_faces.insert(sorted(f.nodes));
+  const double tol = options.geometry_tol_m;
+  for (const BoundaryFace& f : fa.boundary) {
+    if (old_faces.contains(sorted(f.nodes))) {
+      ++rep.boundary_faces_kept;
+      continue;
+    }
+    const Vec3& a = after.x[f.nodes[0]];
+    const Vec3& b = after.x[f.nodes[1]];
+    const Vec3& c = after.x[f.nodes[2]];
+    const Vec3 centroid = (a + b + c) / 3.0;
+    bool on_blade = true;
+    for (const Vec3* p : {&a, &b, &c, &centroid})
+      on_blade = on_blade && std::abs(blade.signed_distance(*p)) <= tol &&
+                 blade.contains_projection(*p, tol);
+    if (on_blade) {
+      ++rep.boundary_faces_on_blade;
+      continue;
+    }
+    bool on_old = false;
+    for (const BoundaryFace& o : fb.boundary) {
+      const Vec3& oa = before.x[o.nodes[0]];
+      const Vec3& ob = before.x[o.nodes[1]];
+      const Vec3& oc = before.x[o.nodes[2]];
+      bool all = true;
+      for (const Vec3* p : {&a, &b, &c, &centroid})
+        all = all && point_triangle_distance(*p, oa, ob, oc) <= tol;
+      if (all) {
+        on_old = true;
+        break;
+      }
+    }
+    if (on_old) {
+      ++rep.boundary_faces_on_old;
+      continue;
+    }
+    problem("boundary face (" + std::to_string(f.nodes[0]) + ", " + std::to_string(f.nodes[1]) +
+            ", " + std::to_string(f.nodes[2]) + ") lies neither on the old surface nor on the " +
+            "blade (plane distance of centroid " + str(blade.signed_distance(centroid)) +
+            " m, inside margin " + str(blade.inside_margin(centroid)) + " m)");
+    if (rep.problems.size() > 20) break;
+  }
+
+  // Separation: no tet crosses the polygon.
+  if (options.expect_separated) {
+    for (std::int32_t ti = 0; ti < after.num_tets(); ++ti) {
+      const Tet& t = after.tets[ti];
+      bool crosses = false;
+      for (int i = 0; i < 4 && !crosses; ++i)
+        for (int j = i + 1; j < 4 && !crosses; ++j) {
+          const double pi = blade.signed_distance(after.x[t[i]]);
+          const double pj = blade.signed_distance(after.x[t[j]]);
+          if ((pi > tol && pj < -tol) || (pi < -tol && pj > tol)) {
+            const Vec3 p = after.x[t[i]] + pi / (pi - pj) * (after.x[t[j]] - after.x[t[i]]);
+            crosses = blade.contains_projection(p, -tol);
+          }
+        }
+      if (crosses) {
+        problem("tet " + std::to_string(ti) + " crosses the blade polygon");
+        break;
+      }
+    }
+  }
+  rep.ok = rep.problems.empty();
+  return rep;
+}
+
+std::int32_t count_components(const TetMesh& mesh) {
+  std::vector<std::int32_t> parent(static_cast<std::size_t>(mesh.num_nodes()));
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](std::int32_t a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  };
+  std::vector<char> used(parent.size(), 0);
+  for (const Tet& t : mesh.tets)
+    for (int k = 0; k < 4; ++k) {
+      used[t[k]] = 1;
+      parent[find(t[k])] = find(t[0]);
+    }
+  std::int32_t count = 0;
+  for (std::int32_t i = 0; i < mesh.num_nodes(); ++i) count += used[i] && find(i) == i ? 1 : 0;
+  return count;
+}
+
+}  // namespace serosa::cutting

@@ -1,0 +1,331 @@
+// cut_mesh: invariants (cutting/validate.h) on every sign case, thousands of random cuts of single
+// tets and grids, and the degenerate families: planes through nodes, along edges, in faces,
+// axis-aligned through grid nodes, partial, repeated, crossing and near-parallel cuts.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "cut_helpers.h"
+#include "cutting/case_table.h"
+#include "mesh_fixtures.h"
+
+namespace serosa::cutting {
+namespace {
+
+using testing::Applied;
+using testing::cut_and_check;
+using testing::problems;
+using testing::square;
+
+// Volume of {phi > 0} in the tets of `m` (x = rest) for the plane (n, d), clipped directly:
+// the positive part is a tet, a tet's complement or a prism split into three tets.
+double positive_volume_exact(const TetMesh& m, const Vec3& n, double d) {
+  double v = 0.0;
+  auto vol = [](const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& e) {
+    return std::abs(signed_volume(a, b, c, e));
+  };
+  for (const Tet& t : m.tets) {
+    std::vector<Vec3> pos, neg;
+    std::vector<double> ppos, pneg;
+    for (int k = 0; k < 4; ++k) {
+      const double phi = n.dot(m.x[t[k]]) - d;
+      (phi > 0.0 ? pos : neg).push_back(m.x[t[k]]);
+      (phi > 0.0 ? ppos : pneg).push_back(phi);
+    }
+    auto cut = [&](std::size_t i, std::size_t j) {  // point on edge pos[i]-neg[j] at phi = 0
+      return Vec3(pos[i] + ppos[i] / (ppos[i] - pneg[j]) * (neg[j] - pos[i]));
+    };
+    const double whole = vol(m.x[t[0]], m.x[t[1]], m.x[t[2]], m.x[t[3]]);
+    if (pos.empty()) continue;
+    if (neg.empty()) {
+      v += whole;
+    } else if (pos.size() == 1) {
+      v += vol(pos[0], cut(0, 0), cut(0, 1), cut(0, 2));
+    } else if (pos.size() == 3) {
+      // Complement of the negative corner tet.
+      const auto c = [&](std::size_t i) {
+        return Vec3(neg[0] + pneg[0] / (pneg[0] - ppos[i]) * (pos[i] - neg[0]));
+      };
+      v += whole - vol(neg[0], c(0), c(1), c(2));
+    } else {
+      const Vec3 ac = cut(0, 0), ad = cut(0, 1), bc = cut(1, 0), bd = cut(1, 1);
+      v += vol(pos[0], pos[1], ac, ad) + vol(pos[1], ac, ad, bd) + vol(pos[1], ac, bd, bc);
+    }
+  }
+  return v;
+}
+
+// Rest volume of the tets whose centroid is on the positive side of (n, d).
+double positive_volume_after(const TetMesh& m, const Vec3& n, double d) {
+  double v = 0.0;
+  for (std::int32_t ti = 0; ti < m.num_tets(); ++ti) {
+    const Tet& t = m.tets[ti];
+    const Vec3 c = (m.x[t[0]] + m.x[t[1]] + m.x[t[2]] + m.x[t[3]]) / 4.0;
+    if (n.dot(c) - d > 0.0) v += m.rest_volume(ti);
+  }
+  return v;
+}
+
+bool has_both_sides(const TetMesh& m, const ConvexPolygon& p, double tol) {
+  bool pos = false, neg = false;
+  for (const Vec3& x : m.x) {
+    pos = pos || p.signed_distance(x) > tol;
+    neg = neg || p.signed_distance(x) < -tol;
+  }
+  return pos && neg;
+}
+
+// A tet whose node k lies at height sign_k * (0.4 + 0.2 k) over the plane z = 0.
+TetMesh tet_for_code(int code) {
+  const std::array<Sign, 4> s = signs_of_code(code);
+  const std::array<Vec3, 4> xy{Vec3(-0.6, -0.4, 0), Vec3(0.9, -0.3, 0), Vec3(0.1, 0.8, 0),
+                               Vec3(0.2, 0.1, 0)};
+  TetMesh m;
+  for (int k = 0; k < 4; ++k)
+    m.add_node(xy[k] + Vec3(0, 0, static_cast<double>(s[k]) * (0.4 + 0.2 * k)));
+  if (signed_volume(m.rest[0], m.rest[1], m.rest[2], m.rest[3]) < 0.0)
+    for (Vec3& p : m.rest) p.x() = -p.x();  // mirror: orientation flips, signs stay
+  m.fill_node_state();
+  for (int k = 0; k < 4; ++k) m.x[k] = m.rest[k];
+  m.add_tet({0, 1, 2, 3}, 1);
+  return m;
+}
+
+TEST(CutMesh, EverySignCaseAndPlacement) {
+  int checked = 0;
+  for (int code = 0; code < 81; ++code) {
+    if (case_table()[code].canonical == CanonicalCase::kDegenerate) continue;  // flat: no tet
+    const TetMesh m = tet_for_code(code);
+    ASSERT_GT(m.rest_volume(0), 1e-3) << code;
+    const Vec3 n = Vec3::UnitZ();
+    const std::array<Sign, 4> s = signs_of_code(code);
+    const bool crosses = std::count(s.begin(), s.end(), Sign::kPos) > 0 &&
+                         std::count(s.begin(), s.end(), Sign::kNeg) > 0;
+    // Covering: a complete cut.
+    {
+      const Applied a = cut_and_check(m, square(n, Vec3::Zero(), 10.0), true);
+      EXPECT_TRUE(a.report.ok) << "code " << code << "\n" << problems(a.report);
+      EXPECT_EQ(a.result.stats.degenerate_tets, 0);
+      EXPECT_EQ(a.result.stats.tets_split, crosses ? 1 : 0) << code;
+      EXPECT_EQ(count_components(a.after), crosses ? 2 : 1) << code;
+      ++checked;
+    }
+    // Partial placements: half-covering, an edge through each node, a corner on each node.
+    std::vector<ConvexPolygon> blades;
+    blades.push_back(
+        ConvexPolygon({Vec3(0.3, -5, 0), Vec3(5, -5, 0), Vec3(5, 5, 0), Vec3(0.3, 5, 0)}));
+    for (int k = 0; k < 4; ++k) {
+      const Vec3 p(m.x[k].x(), m.x[k].y(), 0.0);
+      blades.push_back(ConvexPolygon(
+          {p + Vec3(0, -5, 0), p + Vec3(5, -5, 0), p + Vec3(5, 5, 0), p + Vec3(0, 5, 0)}));
+      blades.push_back(ConvexPolygon({p, p + Vec3(3, 0.2, 0), p + Vec3(0.3, 3, 0)}));
+    }
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {  // an edge along the projection of each tet edge
+        const Vec3 a(m.x[i].x(), m.x[i].y(), 0.0), b(m.x[j].x(), m.x[j].y(), 0.0);
+        if ((b - a).norm() < 1e-9) continue;
+        const Vec3 side = Vec3::UnitZ().cross(b - a).normalized() * 4.0;
+        blades.push_back(ConvexPolygon({a, b, b + side, a + side}));
+      }
+    for (const ConvexPolygon& blade : blades) {
+      const Applied a = cut_and_check(m, blade);
+      EXPECT_TRUE(a.report.ok) << "code " << code << "\n" << problems(a.report);
+      EXPECT_EQ(a.result.stats.degenerate_tets, 0);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 80 * 10);
+}
+
+TEST(CutMesh, RandomPlanesThroughSingleTets) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> g;
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int split = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const TetMesh m = fixtures::random_tet(rng);
+    // A point inside the tet, or (every fourth case) a node, or a point on an edge.
+    std::array<double, 4> w{u(rng), u(rng), u(rng), u(rng)};
+    if (i % 4 == 1) w = {1, 0, 0, 0};
+    if (i % 4 == 2) w = {u(rng), 1, 0, 0};
+    const double ws = w[0] + w[1] + w[2] + w[3];
+    Vec3 c = Vec3::Zero();
+    for (int k = 0; k < 4; ++k) c += w[k] / ws * m.x[k];
+    Vec3 n(g(rng), g(rng), g(rng));
+    if (i % 8 == 3) n = (m.x[1] - m.x[0]).cross(m.x[2] - m.x[0]);               // in a face's plane
+    if (i % 8 == 5) n = (m.x[1] - m.x[0]).cross(Vec3(g(rng), g(rng), g(rng)));  // along edge 01
+    if (i % 8 == 5) c = m.x[0];
+    const ConvexPolygon blade = square(n, c, 10.0, u(rng));
+    const Applied a = cut_and_check(m, blade, true);
+    ASSERT_TRUE(a.report.ok) << "case " << i << "\n" << problems(a.report);
+    ASSERT_EQ(a.result.stats.degenerate_tets, 0);
+    const bool both = has_both_sides(m, blade, a.result.stats.tolerance_m);
+    EXPECT_EQ(count_components(a.after), both ? 2 : 1) << i;
+    split += a.result.stats.tets_split > 0 ? 1 : 0;
+  }
+  EXPECT_GT(split, 1500);
+}
+
+// A complete cut of a grid: invariants, separation in two pieces, and the positive side's volume
+// equal to the exact clipped volume.
+void check_through_cut(const TetMesh& m, const Vec3& n, const Vec3& c, double exact_tol,
+                       const std::string& what) {
+  const ConvexPolygon blade = square(n, c, 100.0, 0.3);
+  const Applied a = cut_and_check(m, blade, true);
+  ASSERT_TRUE(a.report.ok) << what << "\n" << problems(a.report);
+  ASSERT_EQ(a.result.stats.degenerate_tets, 0) << what;
+  if (!has_both_sides(m, blade, a.result.stats.tolerance_m)) return;
+  EXPECT_EQ(count_components(a.after), 2) << what;
+  const double d = blade.offset();
+  const double exact = positive_volume_exact(m, blade.normal(), d);
+  EXPECT_NEAR(positive_volume_after(a.after, blade.normal(), d), exact, exact_tol) << what;
+}
+
+TEST(CutMesh, AxisAlignedPlanesThroughGridNodes) {
+  const TetMesh m = fixtures::grid(4);
+  for (int axis = 0; axis < 3; ++axis)
+    for (double off : {1.0, 2.0, 3.0, 1.5, 2.25}) {
+      Vec3 n = Vec3::Zero();
+      n[axis] = axis == 1 ? -1.0 : 1.0;
+      Vec3 c = Vec3::Constant(2.0);
+      c[axis] = off;
+      const ConvexPolygon blade = square(n, c, 100.0);
+      const Applied a = cut_and_check(m, blade, true);
+      ASSERT_TRUE(a.report.ok) << axis << " " << off << "\n" << problems(a.report);
+      EXPECT_EQ(count_components(a.after), 2);
+      // The positive side holds exactly its share of the cube.
+      const double pos = positive_volume_after(a.after, blade.normal(), blade.offset());
+      const double share = n[axis] > 0 ? (4.0 - off) / 4.0 : off / 4.0;
+      EXPECT_NEAR(pos, 64.0 * share, 1e-12);
+    }
+}
+
+TEST(CutMesh, DiagonalPlanesThroughGridNodes) {
+  const TetMesh m = fixtures::grid(4);
+  const std::vector<Vec3> normals{Vec3(1, 1, 0),  Vec3(1, -1, 0), Vec3(1, 1, 1), Vec3(1, -1, 2),
+                                  Vec3(0, 1, -1), Vec3(2, 1, 0),  Vec3(1, 2, 3)};
+  for (const Vec3& n : normals)
+    for (const Vec3& c : {Vec3(2, 2, 2), Vec3(1, 2, 3), Vec3(3, 1, 1), Vec3(0, 0, 0)})
+      check_through_cut(
+          m, n, c, 1e-9,
+          "n " + std::to_string(n.x()) + std::to_string(n.y()) + std::to_string(n.z()));
+}
+
+TEST(CutMesh, RandomPlanesThroughGrids) {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> g;
+  std::uniform_real_distribution<double> u(0.0, 3.0);
+  const TetMesh exact = fixtures::grid(3);
+  const TetMesh jittered = fixtures::grid(3, 1.0, 0.2, 9);
+  for (int i = 0; i < 400; ++i) {
+    const TetMesh& m = i % 2 == 0 ? exact : jittered;
+    const Vec3 n(g(rng), g(rng), g(rng));
+    const Vec3 c(u(rng), u(rng), u(rng));
+    check_through_cut(m, n, c, 1e-6, "case " + std::to_string(i));
+    if (::testing::Test::HasFatalFailure()) return;
+  }
+}
+
+TEST(CutMesh, PartialCutsStayWelded) {
+  std::mt19937 rng(3);
+  std::normal_distribution<double> g;
+  std::uniform_real_distribution<double> u(0.5, 3.5);
+  std::uniform_real_distribution<double> s(0.2, 3.0);
+  const TetMesh m = fixtures::grid(4);
+  int opened = 0, partial = 0;
+  for (int i = 0; i < 300; ++i) {
+    Vec3 n(g(rng), g(rng), g(rng));
+    if (i % 3 == 0) n = Vec3::UnitZ();  // in the grid's planes: many coplanar nodes
+    const Vec3 c = i % 3 == 0 ? Vec3(u(rng), u(rng), 2.0) : Vec3(u(rng), u(rng), u(rng));
+    // A small polygon ending inside the mesh; every fifth has its tip exactly on a grid node.
+    std::vector<Vec3> pts{c, c + s(rng) * Vec3(1, 0.1, 0), c + s(rng) * Vec3(0.2, 1, 0)};
+    if (i % 5 == 0) pts[0] = Vec3(2, 2, 2);
+    const Vec3 e1 = pts[1] - pts[0], e2 = pts[2] - pts[0];
+    if (i % 3 != 0) {  // tilt into the plane with normal n
+      const Vec3 nn = n.normalized();
+      pts[1] = pts[0] + e1 - nn * nn.dot(e1);
+      pts[2] = pts[0] + e2 - nn * nn.dot(e2);
+    }
+    auto blade = ConvexPolygon::make(pts);
+    if (!blade) continue;
+    const Applied a = cut_and_check(m, *blade);
+    ASSERT_TRUE(a.report.ok) << "case " << i << "\n" << problems(a.report);
+    EXPECT_EQ(count_components(a.after), 1) << "a partial cut must not cut a piece off";
+    opened += a.report.boundary_faces_on_blade > 0 ? 1 : 0;
+    partial += a.result.stats.tets_partial > 0 ? 1 : 0;
+  }
+  EXPECT_GT(opened, 10);
+  EXPECT_GT(partial, 100);
+}
+
+TEST(CutMesh, HalfCoveringBladeOpensACrackAndStaysConnected) {
+  const TetMesh m = fixtures::grid(4);
+  // The blade covers x < 2.5 of the section z = 1.5: the crack opens there and stops.
+  const ConvexPolygon blade(
+      {Vec3(-1, -1, 1.5), Vec3(2.5, -1, 1.5), Vec3(2.5, 5, 1.5), Vec3(-1, 5, 1.5)});
+  const Applied a = cut_and_check(m, blade);
+  ASSERT_TRUE(a.report.ok) << problems(a.report);
+  EXPECT_EQ(count_components(a.after), 1);
+  // At least the first column of cubes (x in [0, 1]) is fully opened: 2 faces per unit square
+  // on each side.
+  EXPECT_GE(a.report.boundary_faces_on_blade, 2 * 2 * 4);
+  EXPECT_GT(a.result.stats.tets_partial, 0);
+}
+
+TEST(CutMesh, RepeatedCrossingAndNearParallelCuts) {
+  std::mt19937 rng(21);
+  std::normal_distribution<double> g;
+  std::uniform_real_distribution<double> u(0.5, 2.5);
+  for (int run = 0; run < 20; ++run) {
+    TetMesh m = fixtures::grid(3, 1.0, run % 2 == 0 ? 0.0 : 0.15, 40 + run);
+    Vec3 last_n = Vec3::UnitZ(), last_c = Vec3::Constant(1.5);
+    for (int step = 0; step < 6; ++step) {
+      Vec3 n(g(rng), g(rng), g(rng));
+      Vec3 c(u(rng), u(rng), u(rng));
+      if (step % 3 == 1) {  // the same plane again
+        n = last_n;
+        c = last_c;
+      } else if (step % 3 == 2) {  // near-parallel: 1e-6 of the mesh size away
+        n = last_n;
+        c = last_c + 1e-6 * last_n.normalized();
+      }
+      last_n = n;
+      last_c = c;
+      const bool full = step % 2 == 0;
+      const ConvexPolygon blade = square(n, c, full ? 100.0 : 0.8, 0.1 * step);
+      const Applied a = cut_and_check(m, blade, full);
+      ASSERT_TRUE(a.report.ok) << "run " << run << " step " << step << "\n" << problems(a.report);
+      ASSERT_EQ(a.result.stats.degenerate_tets, 0);
+      m = a.after;
+    }
+  }
+}
+
+TEST(CutMesh, DeltaIsDeterministicAndLocal) {
+  const TetMesh m = fixtures::grid(4);
+  const ConvexPolygon blade = square(Vec3(0.3, 1, 0.2), Vec3(2, 2.1, 2), 100.0);
+  const CutResult a = cut_mesh(m, blade);
+  const CutResult b = cut_mesh(m, blade);
+  EXPECT_EQ(a.delta.removed_tets, b.delta.removed_tets);
+  EXPECT_EQ(a.delta.added_tets, b.delta.added_tets);
+  EXPECT_EQ(a.delta.added_nodes.size(), b.delta.added_nodes.size());
+  // Existing nodes never move: apply only appends.
+  TetMesh after = m;
+  TopologyDelta d = a.delta;
+  apply(after, d);
+  for (std::int32_t i = 0; i < m.num_nodes(); ++i) EXPECT_EQ(after.rest[i], m.rest[i]);
+  // Stats add up: cut points come in pairs.
+  const CutStats& st = a.stats;
+  EXPECT_EQ(st.nodes_added, 2 * st.edge_pairs + st.edge_singles + st.clones + st.steiner_points);
+  EXPECT_EQ(st.tets_removed, st.tets_split + st.tets_relabelled + st.tets_partial);
+  EXPECT_EQ(st.tets_added, static_cast<std::int64_t>(a.delta.added_tets.size()));
+  EXPECT_GT(st.tets_split, 0);
+  // A small blade touches a few tets only.
+  const CutResult small = cut_mesh(m, square(Vec3(0.3, 1, 0.2), Vec3(2, 2.1, 2), 0.6));
+  EXPECT_LT(small.stats.candidates, m.num_tets() / 4);
+  EXPECT_GT(small.stats.tets_removed, 0);
+}
+
+}  // namespace
+}  // namespace serosa::cutting
