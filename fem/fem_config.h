@@ -28,7 +28,8 @@ struct FemMaterial {
 enum class SolverKind : std::uint8_t {
   pcg,          ///< conjugate gradient, Jacobi preconditioned, OpenMP
   cholmod,      ///< CHOLMOD supernodal Cholesky, numeric factorization every step
-  pcg_cholmod,  ///< CG preconditioned by a CHOLMOD factor of the rest-state system (background)
+  pcg_cholmod,  ///< CG preconditioned by a CHOLMOD factor of the rest-state system (factored
+                ///< on the first step after a topology change; not yet in the background)
 };
 
 /// Linear solver settings of the implicit step.

@@ -12,12 +12,14 @@
 // k_v = beta + dt). Then v' = v + dv and x' = x + dt v'. Fixed nodes keep v = 0 and their x.
 //
 // Solvers (FemConfig::solver.kind): Jacobi PCG on the assembled matrix (warm-started from the
-// previous dv), or CHOLMOD (symbolic analysis once per topology version, numeric factorization
-// every step). A step whose solution is not finite, or diverged (the quadratic
-// phi(dv) = dv^T A dv / 2 - b^T dv it minimizes is above phi(0) = 0), is not applied: the mesh is
-// left untouched and the status says so. An unconverged but finite and reduced CG result (iteration
-// cap reached) is applied and reported as converged = false: capping iterations is how real-time
-// runs trade accuracy.
+// previous dv); CHOLMOD (symbolic analysis once per topology version, numeric factorization
+// every step); or PCG preconditioned by a CHOLMOD factor of the rest-state matrix
+// M + dt C + dt^2 K (R = I), factored once per topology version and dt. That factor is computed
+// synchronously on the first step after a topology change (NOT yet in a background thread). A step
+// whose solution is not finite, or diverged (the quadratic phi(dv) = dv^T A dv / 2 - b^T dv it
+// minimizes is above phi(0) = 0), is not applied: the mesh is left untouched and the status says
+// so. An unconverged but finite and reduced CG result (iteration cap reached) is applied and
+// reported as converged = false: capping iterations is how real-time runs trade accuracy.
 #pragma once
 
 #include <cstdint>
@@ -77,8 +79,13 @@ class ImplicitIntegrator {
   std::vector<double> m_rhs;  // (3n) b = dt (...), N s
   std::vector<double> m_dv;   // (3n) velocity change, m/s (CG warm start)
   PcgScratch m_pcg;
-  CholmodSolver m_cholmod;
+  CholmodSolver m_cholmod;  // cholmod: factor of A; pcg_cholmod: factor of the rest-state A
   bool m_analyzed = false;
+  // pcg_cholmod: the rest-state system (R = I) and the dt its factor was computed for.
+  CsrMatrix m_a_rest;
+  std::vector<Mat3> m_identity;  // (m) identity rotations
+  double m_rest_dt_s = -1.0;
+  bool m_rest_factored = false;
 };
 
 }  // namespace serosa::fem
