@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include "cut_helpers.h"
@@ -325,6 +326,42 @@ TEST(CutMesh, DeltaIsDeterministicAndLocal) {
   const CutResult small = cut_mesh(m, square(Vec3(0.3, 1, 0.2), Vec3(2, 2.1, 2), 0.6));
   EXPECT_LT(small.stats.candidates, m.num_tets() / 4);
   EXPECT_GT(small.stats.tets_removed, 0);
+}
+
+}  // namespace
+}  // namespace serosa::cutting
+
+namespace serosa::cutting {
+namespace {
+
+// Growth per cut is bounded by the patterns (a complete tet gives at most 6 tets: two prisms of
+// three; a relabelled tet 1; a partial tet at most 12: four faces of at most three triangles,
+// coned), and the numbers are reported: tets created per cut and minimum quality after it.
+TEST(CutMesh, GrowthIsBoundedAndReported) {
+  std::mt19937 rng(17);
+  std::normal_distribution<double> g;
+  std::uniform_real_distribution<double> u(0.5, 3.5);
+  const TetMesh m = fixtures::grid(4, 1.0, 0.15, 12);
+  std::int64_t max_added = 0, total_added = 0;
+  double min_quality = 1.0;
+  for (int i = 0; i < 100; ++i) {
+    const ConvexPolygon blade = testing::square(Vec3(g(rng), g(rng), g(rng)),
+                                                Vec3(u(rng), u(rng), u(rng)), i % 2 ? 100.0 : 1.0);
+    const testing::Applied a = testing::cut_and_check(m, blade, i % 2 == 1);
+    ASSERT_TRUE(a.report.ok) << testing::problems(a.report);
+    const CutStats& st = a.result.stats;
+    EXPECT_LE(st.tets_added, 6 * st.tets_split + st.tets_relabelled + 12 * st.tets_partial);
+    max_added = std::max(max_added, st.tets_added - st.tets_removed);
+    total_added += st.tets_added - st.tets_removed;
+    min_quality = std::min(min_quality, a.report.min_quality);
+  }
+  RecordProperty("max_net_tets_per_cut", static_cast<int>(max_added));
+  RecordProperty("mean_net_tets_per_cut", static_cast<int>(total_added / 100));
+  RecordProperty("min_quality_x1e6", static_cast<int>(min_quality * 1e6));
+  std::printf(
+      "grid 4^3 (384 tets), 100 cuts: net tets per cut max %lld mean %lld; min quality %g\n",
+      static_cast<long long>(max_added), static_cast<long long>(total_added / 100), min_quality);
+  EXPECT_GT(min_quality, 0.0);
 }
 
 }  // namespace
