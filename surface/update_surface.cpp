@@ -1,0 +1,221 @@
+#include "surface/update_surface.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace serosa::surface {
+namespace {
+
+using Entry = FaceTable::Entry;
+
+WideKey key_of(const Tri& f) { return make_face_key<WideKey>(f[0], f[1], f[2]); }
+
+WideKey face_key(const Tet& t, int l) {
+  std::int32_t a = 0, b = 0, c = 0;
+  outward_face(t, l, a, b, c);
+  return make_face_key<WideKey>(a, b, c);
+}
+
+// Edits of the group-contiguous face arrays, keeping table.key_at and every entry's pos in step.
+class FaceArrays {
+ public:
+  FaceArrays(SurfaceMesh& s, FaceTable& t) : s_(s), t_(t) {}
+
+  // Moves face `from` onto slot `to` (overwriting it).
+  void move(std::int32_t from, std::int32_t to) {
+    const auto f = static_cast<std::size_t>(from), d = static_cast<std::size_t>(to);
+    s_.faces[d] = s_.faces[f];
+    s_.face_tet[d] = s_.face_tet[f];
+    s_.face_group[d] = s_.face_group[f];
+    t_.key_at[d] = t_.key_at[f];
+    t_.faces.find(t_.key_at[d])->second.pos = to;
+  }
+
+  // Index of group g's range, inserting an empty one in order when absent.
+  std::size_t range_of(std::uint16_t g) {
+    auto it = std::lower_bound(s_.groups.begin(), s_.groups.end(), g,
+                               [](const GroupRange& r, std::uint16_t id) { return r.group < id; });
+    if (it == s_.groups.end() || it->group != g) {
+      const std::int32_t offset = it == s_.groups.end() ? s_.num_faces() : it->offset;
+      it = s_.groups.insert(it, GroupRange{g, offset, 0});
+    }
+    return static_cast<std::size_t>(it - s_.groups.begin());
+  }
+
+  // Removes face p (its entry's pos must already be cleared by the caller): the last face of its
+  // group fills the slot, then each later group shifts down by one through its last face.
+  void remove(std::int32_t p) {
+    std::size_t r = range_of(s_.face_group[static_cast<std::size_t>(p)]);
+    GroupRange& own = s_.groups[r];
+    std::int32_t hole = own.offset + own.count - 1;
+    if (p != hole) move(hole, p);
+    --own.count;
+    for (++r; r < s_.groups.size(); ++r) {
+      GroupRange& g = s_.groups[r];
+      const std::int32_t last = g.offset + g.count - 1;
+      if (g.count > 0) {
+        move(last, hole);
+        hole = last;
+      }
+      --g.offset;
+    }
+    s_.faces.pop_back();
+    s_.face_tet.pop_back();
+    s_.face_group.pop_back();
+    t_.key_at.pop_back();
+  }
+
+  // Appends a face to group g's range: each later group shifts up by one through its first face.
+  void insert(const WideKey& key, Entry& e, const Tri& tri, std::int32_t tet, std::uint16_t g) {
+    const std::size_t r = range_of(g);
+    std::int32_t hole = s_.num_faces();
+    s_.faces.emplace_back();
+    s_.face_tet.push_back(0);
+    s_.face_group.push_back(0);
+    t_.key_at.emplace_back();
+    for (std::size_t q = s_.groups.size() - 1; q > r; --q) {
+      GroupRange& h = s_.groups[q];
+      if (h.count > 0) {
+        move(h.offset, hole);
+        hole = h.offset;
+      }
+      ++h.offset;
+    }
+    GroupRange& own = s_.groups[r];
+    const auto d = static_cast<std::size_t>(hole);
+    s_.faces[d] = tri;
+    s_.face_tet[d] = tet;
+    s_.face_group[d] = g;
+    t_.key_at[d] = key;
+    e.pos = hole;
+    ++own.count;
+  }
+
+ private:
+  SurfaceMesh& s_;
+  FaceTable& t_;
+};
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("update_surface: " + what);
+}
+
+}  // namespace
+
+FaceTable build_face_table(const TetMesh& mesh, const SurfaceMesh& s) {
+  FaceTable t;
+  t.tets = mesh.tets;
+  t.faces.reserve(mesh.tets.size() * 5 / 2);
+  for (std::int32_t i = 0; i < mesh.num_tets(); ++i)
+    for (int l = 0; l < 4; ++l) {
+      Entry& e = t.faces[face_key(mesh.tets[static_cast<std::size_t>(i)], l)];
+      ++e.count;
+      e.code_sum += std::int64_t{i} * 4 + l;
+    }
+  t.key_at.resize(s.faces.size());
+  for (std::size_t i = 0; i < s.faces.size(); ++i) {
+    t.key_at[i] = key_of(s.faces[i]);
+    auto it = t.faces.find(t.key_at[i]);
+    require(it != t.faces.end() && it->second.count == 1 && it->second.pos < 0,
+            "face " + std::to_string(i) + " is not a boundary face of the mesh");
+    it->second.pos = static_cast<std::int32_t>(i);
+  }
+  return t;
+}
+
+void update_surface(SurfaceMesh& s, FaceTable& table, const TetMesh& after,
+                    const TopologyDelta& d) {
+  const auto removed = d.removed_tets.size();
+  const auto added = d.added_tets.size();
+  require(s.topology_version == d.version_before,
+          "surface is at topology version " + std::to_string(s.topology_version) +
+              ", the delta starts at " + std::to_string(d.version_before));
+  require(d.slot_of_added.size() == added, "delta not applied (slot_of_added missing)");
+  require(table.tets.size() + added - removed == after.tets.size(),
+          "tet counts of table, delta and mesh disagree");
+
+  std::vector<WideKey> touched;
+  touched.reserve(4 * (removed + added + d.moved_tets.size()));
+  std::vector<Tet>& tets = table.tets;
+
+  // 1. Removed tets (old ids, nodes from the mirror): one use less of each face.
+  for (std::int32_t r : d.removed_tets)
+    for (int l = 0; l < 4; ++l) {
+      const WideKey k = face_key(tets[static_cast<std::size_t>(r)], l);
+      Entry& e = table.faces.find(k)->second;
+      --e.count;
+      e.code_sum -= std::int64_t{r} * 4 + l;
+      touched.push_back(k);
+    }
+
+  // 2. Mirror apply(): added tets into reused slots or appended, then the moves.
+  for (std::size_t k = 0; k < added; ++k) {
+    const auto slot = static_cast<std::size_t>(d.slot_of_added[k]);
+    if (slot < tets.size())
+      tets[slot] = d.added_tets[k];
+    else
+      tets.push_back(d.added_tets[k]);
+  }
+  for (const auto& [from, to] : d.moved_tets) {
+    const Tet t = tets[static_cast<std::size_t>(from)];
+    for (int l = 0; l < 4; ++l) {
+      const WideKey k = face_key(t, l);
+      table.faces.find(k)->second.code_sum += (std::int64_t{to} - from) * 4;
+      touched.push_back(k);
+    }
+    tets[static_cast<std::size_t>(to)] = t;
+  }
+  tets.resize(after.tets.size());
+
+  // 3. Added tets (final ids): one use more of each face.
+  for (std::size_t k = 0; k < added; ++k) {
+    const std::int32_t slot = d.slot_of_added[k];
+    for (int l = 0; l < 4; ++l) {
+      const WideKey key = face_key(d.added_tets[k], l);
+      Entry& e = table.faces[key];
+      ++e.count;
+      e.code_sum += std::int64_t{slot} * 4 + l;
+      touched.push_back(key);
+    }
+  }
+
+  // 4. Reconcile each touched face with the surface arrays.
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  FaceArrays arrays(s, table);
+  for (const WideKey& key : touched) {
+    auto it = table.faces.find(key);
+    Entry& e = it->second;
+    if (e.count == 1) {
+      const auto tet = static_cast<std::int32_t>(e.code_sum >> 2);
+      const auto l = static_cast<int>(e.code_sum & 3);
+      require(tet >= 0 && tet < after.num_tets(), "face owner out of range (delta mismatch)");
+      Tri tri{};
+      outward_face(tets[static_cast<std::size_t>(tet)], l, tri[0], tri[1], tri[2]);
+      const std::uint16_t g = after.group[static_cast<std::size_t>(tet)];
+      if (e.pos >= 0 && s.face_group[static_cast<std::size_t>(e.pos)] == g) {
+        s.faces[static_cast<std::size_t>(e.pos)] = tri;
+        s.face_tet[static_cast<std::size_t>(e.pos)] = tet;
+        continue;
+      }
+      if (e.pos >= 0) {
+        const std::int32_t p = e.pos;
+        e.pos = -1;
+        arrays.remove(p);
+      }
+      arrays.insert(key, e, tri, tet, g);
+    } else {
+      if (e.pos >= 0) {
+        const std::int32_t p = e.pos;
+        e.pos = -1;
+        arrays.remove(p);
+      }
+      if (e.count == 0) table.faces.erase(it);
+    }
+  }
+  std::erase_if(s.groups, [](const GroupRange& r) { return r.count == 0; });
+  s.topology_version = after.topology_version;
+}
+
+}  // namespace serosa::surface

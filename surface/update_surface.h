@@ -1,0 +1,53 @@
+// Incremental boundary update from a TopologyDelta (issue 5 item 2): only the faces of removed,
+// added and moved tets are looked at, and the result equals a full extraction (same oriented
+// faces with the same tets in the same groups; the order inside a group may differ).
+#pragma once
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "engine/tet_mesh.h"
+#include "engine/topology_delta.h"
+#include "surface/face_key.h"
+#include "surface/surface_mesh.h"
+
+namespace serosa::surface {
+
+struct WideKeyHash {
+  std::size_t operator()(const WideKey& k) const noexcept {
+    std::uint64_t z = k.hi * 0x9E3779B97F4A7C15ull ^ (std::uint64_t{k.lo} + 0x632BE59BD9B4E019ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;  // splitmix64 finaliser
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return static_cast<std::size_t>(z ^ (z >> 31));
+  }
+};
+
+/// The surface consumer's private bookkeeping (the SurfaceMesh itself stays plain data to copy and
+/// publish). Holds node ids only, never positions.
+struct FaceTable {
+  struct Entry {
+    std::int32_t count = 0;     ///< tets using the face (1: boundary, 2: interior, 3+: invalid)
+    std::int32_t pos = -1;      ///< index in SurfaceMesh::faces, -1 when not there
+    std::int64_t code_sum = 0;  ///< sum of 4 tet + l over its uses: the owner when count == 1
+  };
+  std::unordered_map<WideKey, Entry, WideKeyHash> faces;  ///< every face of every tet
+  std::vector<WideKey> key_at;                            ///< (f) key of each SurfaceMesh face
+  /// (m) the tets' node ids, kept in step with the mesh: a delta names removed tets by id only,
+  /// and apply() has overwritten them by the time the consumer runs.
+  std::vector<Tet> tets;
+};
+
+/// Builds the table for `mesh` and its full extraction `s` (extract_surface(mesh)). O(m).
+/// Throws std::invalid_argument when s is not mesh's boundary.
+[[nodiscard]] FaceTable build_face_table(const TetMesh& mesh, const SurfaceMesh& s);
+
+/// Updates `s` and `table` for `delta`, already applied (engine apply()) to the mesh now `after`.
+/// Cost: O((removed + added + moved tets) x (1 + number of groups)) hash lookups. Faces keep their
+/// slots unless their group's range must grow or shrink; each group stays one contiguous range,
+/// groups ascending; empty groups are dropped and new ones inserted in order.
+/// Throws std::invalid_argument when the delta does not follow on from `s` (versions or sizes).
+void update_surface(SurfaceMesh& s, FaceTable& table, const TetMesh& after,
+                    const TopologyDelta& delta);
+
+}  // namespace serosa::surface
