@@ -85,6 +85,9 @@ void check_text(std::string_view text, const std::string& name) {
   if (text.find_first_not_of(" \t\r\n\v\f") == std::string_view::npos) {
     throw InputError(name, 0, "empty file", "a mesh");
   }
+}
+
+void check_no_nul(std::string_view text, const std::string& name) {
   const void* nul = std::memchr(text.data(), '\0', text.size());
   if (nul != nullptr) {
     const auto at = static_cast<std::size_t>(static_cast<const char*>(nul) - text.data());

@@ -47,8 +47,11 @@ struct RawMesh {
 /// them in report.repaired_inverted.
 TetMesh finish_mesh(const RawMesh& raw, const MeshReadOptions& options, MeshReadReport& report);
 
-/// Whole-file checks before parsing: empty (or blank) text, and NUL bytes (binary data).
+/// Whole-file check before parsing: empty (or blank) text (InputError, line 0).
 void check_text(std::string_view text, const std::string& name);
+/// Binary data in a text format: a NUL byte (InputError at its line). Readers call it after their
+/// header, so that a header announcing binary data gets its own, clearer error first.
+void check_no_nul(std::string_view text, const std::string& name);
 
 /// A reserve size for a count declared in a file: never more than the text could hold, so a
 /// hostile count cannot allocate gigabytes.

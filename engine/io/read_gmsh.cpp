@@ -20,6 +20,12 @@ namespace {
 
 enum class Version { k2, k41 };
 
+std::string plural(std::string_view what) {
+  if (!what.empty() && what.back() == 'y')
+    return std::string(what.substr(0, what.size() - 1)) + "ies";
+  return std::string(what) + "s";
+}
+
 // Smallest number of bytes a node or element line can take ("1 0 0 0\n" / "1 4 0 1 2 3 4\n").
 constexpr std::size_t kMinNodeBytes = 8;
 constexpr std::size_t kMinElementBytes = 10;
@@ -27,13 +33,14 @@ constexpr std::size_t kMinElementBytes = 10;
 class GmshParser {
  public:
   GmshParser(std::string_view text, const std::string& name, MeshReadReport& report)
-      : m_c(text, name), m_text_size(text.size()), m_report(report) {
+      : m_c(text, name), m_text(text), m_text_size(text.size()), m_report(report) {
     m_raw.node_file = name;
     m_raw.tet_file = name;
   }
 
   RawMesh parse() {
     read_header();
+    check_no_nul(m_text, m_c.file());
     bool have_nodes = false;
     bool have_elements = false;
     while (!m_c.at_end()) {
@@ -94,23 +101,26 @@ class GmshParser {
         std::string(what) + " " + std::to_string(done + 1) + " of " + std::to_string(declared);
     const std::string_view tok = m_c.token(expected);
     if (!tok.empty() && tok[0] == '$') {
-      m_c.fail(quote_token(tok) + " after only " + std::to_string(done) + " " + std::string(what) +
-                   "s (" + std::to_string(declared) + " declared)",
+      m_c.fail(quote_token(tok) + " after only " + std::to_string(done) + " " + plural(what) +
+                   " (" + std::to_string(declared) + " declared)",
                expected + " before " + std::string(end_keyword));
     }
     return tok;
   }
 
-  void expect_end(std::string_view end_keyword, std::int64_t declared, std::string_view what) {
+  // The end keyword of a section; anything else means the section holds more than declared.
+  void expect_end(std::string_view end_keyword, const std::string& more_message) {
     const std::string_view tok = m_c.token(end_keyword);
     if (tok != end_keyword) {
-      const std::string msg = tok.empty() || tok[0] == '$'
-                                  ? "found " + quote_token(tok)
-                                  : "more " + std::string(what) + "s than the " +
-                                        std::to_string(declared) + " declared";
-      m_c.fail(msg, end_keyword);
+      m_c.fail(tok[0] == '$' ? "found " + quote_token(tok)
+                             : more_message + ": found " + quote_token(tok),
+               end_keyword);
     }
     m_c.end_line(end_keyword);
+  }
+
+  static std::string more_than(std::int64_t declared, std::string_view what) {
+    return "more " + std::string(what) + " than the " + std::to_string(declared) + " declared";
   }
 
   std::int64_t count(std::string_view what) {
@@ -176,7 +186,7 @@ class GmshParser {
       if (dim == 3)
         m_report.group_names[static_cast<int>(tag)] = std::string(rest.substr(1, rest.size() - 2));
     }
-    expect_end("$EndPhysicalNames", n, "physical name");
+    expect_end("$EndPhysicalNames", more_than(n, "physical names"));
   }
 
   // ---------------------------------------------------------------- 2.x
@@ -194,7 +204,7 @@ class GmshParser {
       m_c.end_line("the node's x y z");
       m_raw.add_node(id, p, line, line);
     }
-    expect_end("$EndNodes", n, "node");
+    expect_end("$EndNodes", more_than(n, "nodes"));
   }
 
   void read_elements2() {
@@ -225,7 +235,7 @@ class GmshParser {
       const std::int64_t group = physical != 0 ? physical : (ntags >= 2 ? elementary : 1);
       m_raw.add_tet(t, group, line);
     }
-    expect_end("$EndElements", n, "element");
+    expect_end("$EndElements", more_than(n, "elements"));
   }
 
   // ---------------------------------------------------------------- 4.1
@@ -254,7 +264,7 @@ class GmshParser {
         m_c.skip_line();  // bounding surfaces
       }
     }
-    expect_end("$EndEntities", counts[3], "volume entitie");
+    expect_end("$EndEntities", "more entities than the header declares");
   }
 
   void read_nodes41() {
@@ -307,7 +317,7 @@ class GmshParser {
                       " nodes but the header declares " + std::to_string(n),
                   "matching counts");
     }
-    expect_end("$EndNodes", blocks, "node entity block");
+    expect_end("$EndNodes", "more nodes or node blocks than the header declares");
   }
 
   void read_elements41() {
@@ -351,7 +361,7 @@ class GmshParser {
                       " elements but the header declares " + std::to_string(n),
                   "matching counts");
     }
-    expect_end("$EndElements", blocks, "element entity block");
+    expect_end("$EndElements", "more elements or element blocks than the header declares");
   }
 
   // A tet's group: its volume's first physical tag, else the volume's entity tag.
@@ -377,6 +387,7 @@ class GmshParser {
   }
 
   TextCursor m_c;
+  std::string_view m_text;
   std::size_t m_text_size;
   MeshReadReport& m_report;
   Version m_version = Version::k2;

@@ -112,6 +112,8 @@ RawMesh parse_tetgen(std::string_view node_text, const std::string& node_name,
   raw.node_file = node_name;
   raw.tet_file = ele_name;
   report.format = "tetgen";
+  check_no_nul(node_text, node_name);
+  check_no_nul(ele_text, ele_name);
   TextCursor nodes(node_text, node_name, '#');
   read_nodes(nodes, node_text.size(), raw);
   TextCursor tets(ele_text, ele_name, '#');

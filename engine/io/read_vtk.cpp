@@ -5,6 +5,7 @@
 // Point data, other cell data, lookup tables and METADATA blocks are read past.
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -18,6 +19,12 @@ namespace {
 
 constexpr std::size_t kMinValueBytes = 2;  // "0 "
 
+std::string format_number(double v) {
+  char buf[32];
+  const int n = std::snprintf(buf, sizeof buf, "%.17g", v);
+  return std::string(buf, static_cast<std::size_t>(n > 0 ? n : 0));
+}
+
 enum class Context { kNone, kPoints, kCells };
 
 struct GroupArray {
@@ -29,13 +36,14 @@ struct GroupArray {
 class VtkParser {
  public:
   VtkParser(std::string_view text, const std::string& name, MeshReadReport& report)
-      : m_c(text, name), m_text_size(text.size()), m_report(report) {
+      : m_c(text, name), m_text(text), m_text_size(text.size()), m_report(report) {
     m_raw.node_file = name;
     m_raw.tet_file = name;
   }
 
   RawMesh parse() {
     read_header();
+    check_no_nul(m_text, m_c.file());
     while (!m_c.at_end()) {
       const std::string_view kw = m_c.token("a VTK keyword");
       if (iequals(kw, "POINTS")) {
@@ -119,7 +127,7 @@ class VtkParser {
     m_raw.node_line.reserve(r);
     for (std::int64_t i = 0; i < n; ++i) {
       const std::string expected =
-          "coordinates of point " + std::to_string(i) + " (" + std::to_string(n) + " declared)";
+          "coordinates of point id " + std::to_string(i) + " (" + std::to_string(n) + " declared)";
       Vec3 p;
       p.x() = m_c.to_double(value_token(expected), "x coordinate");
       const std::int64_t line = m_c.token_line();
@@ -158,7 +166,7 @@ class VtkParser {
     std::int64_t used = 0;
     for (std::int64_t i = 0; i < n; ++i) {
       const std::string expected =
-          "cell " + std::to_string(i) + " of " + std::to_string(n) + " (point count, then ids)";
+          "cell " + std::to_string(i + 1) + " of " + std::to_string(n) + " (point count, then ids)";
       const std::int64_t k = m_c.to_int(value_token(expected), "number of points in the cell");
       if (k < 0) m_c.fail("negative number of points in a cell", "a count >= 0");
       m_cell_line.push_back(m_c.token_line());
@@ -193,7 +201,8 @@ class VtkParser {
     std::vector<std::int64_t> offsets;
     offsets.reserve(safe_reserve(noff, m_text_size, kMinValueBytes));
     for (std::int64_t i = 0; i < noff; ++i) {
-      const std::string expected = "offset " + std::to_string(i) + " of " + std::to_string(noff);
+      const std::string expected =
+          "offset " + std::to_string(i + 1) + " of " + std::to_string(noff);
       const std::int64_t o = m_c.to_int(value_token(expected), "offset");
       if (i == 0 && o != 0) m_c.fail("first offset is " + std::to_string(o), "0");
       if (i > 0 && o < offsets.back()) m_c.fail("offsets decrease", "non-decreasing offsets");
@@ -218,7 +227,7 @@ class VtkParser {
     std::size_t cell = 0;
     for (std::int64_t i = 0; i < nconn; ++i) {
       const std::string expected =
-          "connectivity value " + std::to_string(i) + " of " + std::to_string(nconn);
+          "connectivity value " + std::to_string(i + 1) + " of " + std::to_string(nconn);
       m_conn.push_back(m_c.to_int(value_token(expected), "point id"));
       while (cell < ncell && offsets[cell + 1] <= i) ++cell;
       if (cell < ncell && offsets[cell] == i) m_cell_line[cell] = m_c.token_line();
@@ -240,7 +249,8 @@ class VtkParser {
     m_c.end_line("the CELL_TYPES header");
     m_cell_type.reserve(safe_reserve(n, m_text_size, kMinValueBytes));
     for (std::int64_t i = 0; i < n; ++i) {
-      const std::string expected = "type of cell " + std::to_string(i) + " of " + std::to_string(n);
+      const std::string expected =
+          "type of cell " + std::to_string(i + 1) + " of " + std::to_string(n);
       m_cell_type.push_back(m_c.to_int(value_token(expected), "cell type"));
     }
   }
@@ -418,7 +428,7 @@ class VtkParser {
       if (groups != nullptr) {
         const double g = groups->value[i];
         if (!(std::abs(g) < 1e15) || std::floor(g) != g) {
-          m_c.fail_at(groups->line[i], "group value " + std::to_string(g) + " is not an integer",
+          m_c.fail_at(groups->line[i], "group value " + format_number(g) + " is not an integer",
                       "an integer group id");
         }
         group = static_cast<std::int64_t>(g);
@@ -430,6 +440,7 @@ class VtkParser {
   }
 
   TextCursor m_c;
+  std::string_view m_text;
   std::size_t m_text_size;
   MeshReadReport& m_report;
   double m_version = 0.0;
