@@ -3,7 +3,10 @@
 #include <thrust/system/cpp/execution_policy.h>
 #include <thrust/system/omp/execution_policy.h>
 
+#include <memory>
+#include <new>
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -14,17 +17,39 @@
 namespace serosa::surface {
 namespace {
 
+// Default-initialising allocator: the pipeline's scratch arrays (4 m entries each) are written
+// before they are read, so value-initialising them (a memset per array) is wasted work.
 template <class T>
-using HostVec = std::vector<T>;
+struct NoInit : std::allocator<T> {
+  using value_type = T;
+  template <class U>
+  struct rebind {
+    using other = NoInit<U>;
+  };
+  NoInit() = default;
+  template <class U>
+  explicit NoInit(const NoInit<U>& /*other*/) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+template <class T>
+using HostVec = std::vector<T, NoInit<T>>;
 
 template <class Key, class Policy>
 SurfaceMesh run(const Policy& policy, const TetMesh& mesh) {
   detail::Boundary<HostVec, Tri> b;
   detail::extract_boundary<Key>(policy, mesh.tets.data(), mesh.group.data(), mesh.num_tets(), b);
   SurfaceMesh s;
-  s.faces = std::move(b.faces);
-  s.face_tet = std::move(b.face_tet);
-  s.face_group = std::move(b.face_group);
+  s.faces.assign(b.faces.begin(), b.faces.end());
+  s.face_tet.assign(b.face_tet.begin(), b.face_tet.end());
+  s.face_group.assign(b.face_group.begin(), b.face_group.end());
   set_group_ranges(s, b.group_ids.data(), b.group_count.data(), b.group_ids.size());
   s.topology_version = mesh.topology_version;
   return s;

@@ -105,6 +105,8 @@ void require(bool ok, const std::string& what) {
 
 FaceTable build_face_table(const TetMesh& mesh, const SurfaceMesh& s) {
   FaceTable t;
+  // Headroom, so that the tets a cut appends rarely reallocate (and page-fault) the whole mirror.
+  t.tets.reserve(mesh.tets.size() + mesh.tets.size() / 4 + 1024);
   t.tets = mesh.tets;
   t.faces.reserve(mesh.tets.size() * 5 / 2);
   for (std::int32_t i = 0; i < mesh.num_tets(); ++i)
