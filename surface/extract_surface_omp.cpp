@@ -1,5 +1,6 @@
 // extract_surface on Thrust's OpenMP backend (g++; serial backend for small meshes), and the
 // backend switch.
+#include <omp.h>
 #include <thrust/system/cpp/execution_policy.h>
 #include <thrust/system/omp/execution_policy.h>
 
@@ -61,7 +62,7 @@ SurfaceMesh extract_surface_cpu(const TetMesh& mesh, const CpuOptions& options) 
   if (mesh.group.size() != mesh.tets.size())
     throw std::invalid_argument("extract_surface: group and tets differ in size");
   const bool narrow = detail::pick_narrow_keys(mesh.tets, options.keys == KeyWidth::kWide);
-  if (mesh.num_tets() < options.serial_below_tets)
+  if (mesh.num_tets() < options.serial_below_tets || omp_get_max_threads() == 1)
     return narrow ? run<NarrowKey>(thrust::cpp::par, mesh) : run<WideKey>(thrust::cpp::par, mesh);
   return narrow ? run<NarrowKey>(thrust::omp::par, mesh) : run<WideKey>(thrust::omp::par, mesh);
 }

@@ -46,7 +46,8 @@ struct FaceTable {
 /// Cost: O((removed + added + moved tets) x (1 + number of groups)) hash lookups. Faces keep their
 /// slots unless their group's range must grow or shrink; each group stays one contiguous range,
 /// groups ascending; empty groups are dropped and new ones inserted in order.
-/// Throws std::invalid_argument when the delta does not follow on from `s` (versions or sizes).
+/// Throws std::invalid_argument when the delta does not follow on from `s` (versions or sizes);
+/// `s` and `table` are then unspecified: rebuild them with extract_surface and build_face_table.
 void update_surface(SurfaceMesh& s, FaceTable& table, const TetMesh& after,
                     const TopologyDelta& delta);
 
