@@ -287,6 +287,11 @@ class GmshParser {
       if (parametric != 0 && parametric != 1) m_c.fail("parametric flag not 0 or 1", "0 or 1");
       const std::int64_t nin = count("number of nodes in block");
       m_c.end_line("the node block header");
+      if (nin > n - total) {  // total <= n here: no overflow
+        m_c.fail(
+            "the node blocks hold more nodes than the header declares (" + std::to_string(n) + ")",
+            "block sizes that add up to the header's count");
+      }
       tags.clear();
       tag_lines.clear();
       for (std::int64_t i = 0; i < nin; ++i) {
@@ -309,7 +314,6 @@ class GmshParser {
                        line);
       }
       total += nin;
-      if (total > n) break;
     }
     if (total != n) {
       m_c.fail_at(header_line,
@@ -336,6 +340,11 @@ class GmshParser {
       const std::int64_t type = m_c.int_on_line("element type");
       const std::int64_t nin = count("number of elements in block");
       m_c.end_line("the element block header");
+      if (nin > n - total) {  // total <= n here: no overflow
+        m_c.fail("the element blocks hold more elements than the header declares (" +
+                     std::to_string(n) + ")",
+                 "block sizes that add up to the header's count");
+      }
       if (type == 4 && dim != 3) {
         m_c.fail("tet block on an entity of dimension " + std::to_string(dim), "dimension 3");
       }
@@ -353,7 +362,6 @@ class GmshParser {
         m_raw.add_tet(t, entity, line);  // entity tag for now: resolved after $Entities
       }
       total += nin;
-      if (total > n) break;
     }
     if (total != n) {
       m_c.fail_at(header_line,

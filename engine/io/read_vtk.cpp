@@ -170,11 +170,12 @@ class VtkParser {
       const std::int64_t k = m_c.to_int(value_token(expected), "number of points in the cell");
       if (k < 0) m_c.fail("negative number of points in a cell", "a count >= 0");
       m_cell_line.push_back(m_c.token_line());
-      used += 1 + k;
-      if (used > size) {
+      // Checked before adding (used <= size here), so a hostile count cannot overflow.
+      if (k > size - used - 1) {
         m_c.fail("cell list longer than the size " + std::to_string(size) + " declared",
                  "CELLS n size with size = sum of (1 + points per cell)");
       }
+      used += 1 + k;
       for (std::int64_t j = 0; j < k; ++j)
         m_conn.push_back(m_c.to_int(value_token(expected), "point id"));
       m_cell_start.push_back(static_cast<std::int64_t>(m_conn.size()));

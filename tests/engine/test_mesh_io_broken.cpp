@@ -89,6 +89,8 @@ const std::map<std::string, Expect>& expectations() {
       {"tetgen_region_not_integer.node",
        {"tetgen_region_not_integer.ele", 2, "'1.5' is not an integer"}},
       {"vtk_binary.vtk", {"vtk_binary.vtk", 3, "binary VTK file"}},
+      {"vtk_cell_point_count_overflows.vtk",
+       {"vtk_cell_point_count_overflows.vtk", 10, "cell list longer than the size 10 declared"}},
       {"vtk_cell_types_count_mismatch.vtk",
        {"vtk_cell_types_count_mismatch.vtk", 12, "CELL_TYPES declares 3 cells"}},
       {"vtk_cells_size_mismatch.vtk",
