@@ -13,12 +13,13 @@ namespace serosa {
 
 namespace {
 
-// "N what (first: tet T)" for a problem or warning line; `first` < 0 leaves the example out.
+// "N what (first: tet T)" or "N what (first in tet T)" for a problem or warning line; `first` < 0
+// leaves the example out.
 std::string count_line(std::int64_t n, const char* what, const char* item, std::int64_t first,
                        const std::string& detail = {}) {
   std::string s = std::to_string(n) + " " + what;
   if (first >= 0) {
-    s += " (first: " + std::string(item) + " " + std::to_string(first) + detail + ")";
+    s += " (first " + std::string(item) + " " + std::to_string(first) + detail + ")";
   }
   return s;
 }
@@ -76,7 +77,7 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const MeshCheckOptions& options)
   }
   if (r.nonfinite_nodes > 0) {
     r.problems.push_back(count_line(r.nonfinite_nodes, "nodes with NaN or infinite coordinates",
-                                    "node", first_nonfinite));
+                                    "node:", first_nonfinite));
   }
 
   // ---- tets: ids, volume, quality ----
@@ -124,22 +125,22 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const MeshCheckOptions& options)
   if (r.bad_tets > 0) {
     const Tet& t = mesh.tets[static_cast<std::size_t>(first_bad)];
     r.problems.push_back(count_line(
-        r.bad_tets, "tets with a node id out of range", "tet", first_bad,
+        r.bad_tets, "tets with a node id out of range", "tet:", first_bad,
         ", ids " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]) +
             " " + std::to_string(t[3]) + " with " + std::to_string(n) + " nodes"));
   }
   if (r.inverted_tets > 0) {
-    r.problems.push_back(count_line(r.inverted_tets, "inverted tets", "tet", first_inverted,
+    r.problems.push_back(count_line(r.inverted_tets, "inverted tets", "tet:", first_inverted,
                                     ", volume " + format_g(first_inverted_volume) + " m^3"));
   }
   if (r.flat_tets > 0) {
-    r.problems.push_back(count_line(r.flat_tets, "flat (zero-volume) tets", "tet", first_flat));
+    r.problems.push_back(count_line(r.flat_tets, "flat (zero-volume) tets", "tet:", first_flat));
   }
   for (std::size_t i = 0; i < n; ++i) r.unreferenced_nodes += referenced[i] ? 0 : 1;
   if (r.unreferenced_nodes > 0) {
     const auto it = std::find(referenced.begin(), referenced.end(), std::uint8_t{0});
     r.warnings.push_back(
-        count_line(r.unreferenced_nodes, "nodes used by no tet", "node", it - referenced.begin()));
+        count_line(r.unreferenced_nodes, "nodes used by no tet", "node:", it - referenced.begin()));
   }
 
   // ---- quality summary ----
@@ -173,12 +174,12 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const MeshCheckOptions& options)
   }
   if (r.overshared_faces > 0) {
     r.problems.push_back(count_line(r.overshared_faces, "faces shared by more than two tets",
-                                    "at tet", first_overshared));
+                                    "in tet", first_overshared));
   }
   if (r.misoriented_faces > 0) {
     r.problems.push_back(count_line(r.misoriented_faces,
                                     "faces shared by two tets on the same side (overlapping tets)",
-                                    "at tet", first_misoriented));
+                                    "in tet", first_misoriented));
   }
   std::vector<std::pair<Tet, std::int32_t>> sorted_tets;
   sorted_tets.reserve(mesh.tets.size());
@@ -199,7 +200,7 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const MeshCheckOptions& options)
   }
   if (r.duplicate_tets > 0) {
     r.problems.push_back(count_line(r.duplicate_tets, "duplicated tets (same nodes as another)",
-                                    "tet", first_duplicate));
+                                    "tet:", first_duplicate));
   }
 
   r.valid = sizes_ok && r.problems.empty();

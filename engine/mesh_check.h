@@ -18,8 +18,10 @@ struct MeshCheckOptions {
   double flat_tolerance = 1e-12;
 };
 
-/// What check_mesh found. Geometry is the rest configuration. Tets with a node id out of range
-/// or touching a non-finite node are left out of volumes and qualities (and counted as such).
+/// What check_mesh found. Geometry is the rest configuration. Messages name tets and nodes by
+/// their 0-based index in the mesh arrays (file order; non-tet elements do not count). Tets with a
+/// node id out of range or touching a non-finite node are left out of volumes and qualities (and
+/// counted as such).
 struct MeshCheckReport {
   std::int64_t nodes = 0;                  ///< n
   std::int64_t tets = 0;                   ///< m

@@ -112,7 +112,7 @@ TEST(CheckMesh, InvertedAndFlatTetsAreCounted) {
   EXPECT_FALSE(r.valid);
   EXPECT_EQ(r.inverted_tets, 1);
   EXPECT_LT(r.min_quality, 0.0);
-  EXPECT_TRUE(mentions(r.problems, "inverted tets (first: tet 2"));
+  EXPECT_TRUE(mentions(r.problems, "inverted tets (first tet: 2"));
   EXPECT_GT(r.misoriented_faces, 0);
 
   TetMesh f = fixtures::cube_mesh(fixtures::kuhn_tets());
@@ -138,7 +138,7 @@ TEST(CheckMesh, BrokenStructureIsReportedNotCrashed) {
   MeshCheckReport r = check_mesh(bad_id);
   EXPECT_FALSE(r.valid);
   EXPECT_EQ(r.bad_tets, 2);
-  EXPECT_TRUE(mentions(r.problems, "out of range (first: tet 6, ids 0 1 2 99 with 8 nodes"));
+  EXPECT_TRUE(mentions(r.problems, "out of range (first tet: 6, ids 0 1 2 99 with 8 nodes"));
   EXPECT_NEAR(r.volume_m3, 1.0, 1e-12);  // bad tets left out
 
   TetMesh nan = fixtures::cube_mesh(fixtures::kuhn_tets());
@@ -167,7 +167,7 @@ TEST(CheckMesh, UnreferencedNodesWarnButStayValid) {
   const MeshCheckReport r = check_mesh(m);
   EXPECT_TRUE(r.valid);
   EXPECT_EQ(r.unreferenced_nodes, 1);
-  EXPECT_TRUE(mentions(r.warnings, "node 8"));
+  EXPECT_TRUE(mentions(r.warnings, "node: 8"));
 }
 
 TEST(CheckMesh, RandomGarbageGivesConsistentCounts) {
