@@ -97,10 +97,11 @@ class GmshParser {
   // A record's first token; `$...` there means the section ended early.
   std::string_view record_start(std::string_view end_keyword, std::int64_t done,
                                 std::int64_t declared, std::string_view what) {
-    const std::string expected =
-        std::string(what) + " " + std::to_string(done + 1) + " of " + std::to_string(declared);
-    const std::string_view tok = m_c.token(expected);
-    if (!tok.empty() && tok[0] == '$') {
+    const std::string_view tok = m_c.try_token();
+    if (tok.empty() || tok[0] == '$') {  // the message is built only on failure
+      const std::string expected =
+          std::string(what) + " " + std::to_string(done + 1) + " of " + std::to_string(declared);
+      if (tok.empty()) m_c.fail_eof(expected);
       m_c.fail(quote_token(tok) + " after only " + std::to_string(done) + " " + plural(what) +
                    " (" + std::to_string(declared) + " declared)",
                expected + " before " + std::string(end_keyword));

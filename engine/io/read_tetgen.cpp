@@ -27,8 +27,12 @@ std::int64_t optional_count(TextCursor& c, std::string_view what) {
 
 std::string_view record_start(TextCursor& c, std::int64_t done, std::int64_t declared,
                               std::string_view what) {
-  return c.token(std::string(what) + " " + std::to_string(done + 1) + " of " +
-                 std::to_string(declared));
+  const std::string_view tok = c.try_token();
+  if (tok.empty()) {  // the message is built only on failure
+    c.fail_eof(std::string(what) + " " + std::to_string(done + 1) + " of " +
+               std::to_string(declared));
+  }
+  return tok;
 }
 
 void expect_no_more(TextCursor& c, std::int64_t declared, std::string_view what) {

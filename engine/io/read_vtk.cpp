@@ -126,24 +126,27 @@ class VtkParser {
     m_raw.node_id_line.reserve(r);
     m_raw.node_line.reserve(r);
     for (std::int64_t i = 0; i < n; ++i) {
-      const std::string expected =
-          "coordinates of point id " + std::to_string(i) + " (" + std::to_string(n) + " declared)";
       Vec3 p;
-      p.x() = m_c.to_double(value_token(expected), "x coordinate");
+      p.x() = m_c.to_double(value_token("x of point", i + 1, n), "x coordinate");
       const std::int64_t line = m_c.token_line();
-      p.y() = m_c.to_double(value_token(expected), "y coordinate");
-      p.z() = m_c.to_double(value_token(expected), "z coordinate");
+      p.y() = m_c.to_double(value_token("y of point", i + 1, n), "y coordinate");
+      p.z() = m_c.to_double(value_token("z of point", i + 1, n), "z coordinate");
       m_raw.add_node(i, p, line, line);
     }
   }
 
-  // A value token; a keyword in its place means the data ended early.
-  std::string_view value_token(const std::string& expected) {
-    const std::string_view tok = m_c.token(expected);
+  // A value token (item `index` of `count`, 1-based, for the message); a keyword in its place
+  // means the data ended early. Messages are built only on failure.
+  std::string_view value_token(const char* what, std::int64_t index, std::int64_t count) {
+    const std::string_view tok = m_c.try_token();
+    const auto expected = [&] {
+      return std::string(what) + " " + std::to_string(index) + " of " + std::to_string(count);
+    };
+    if (tok.empty()) m_c.fail_eof(expected());
     const char c0 = tok[0];
-    if ((c0 >= 'A' && c0 <= 'Z' && tok.size() > 3) || (c0 == '_')) {
+    if ((c0 >= 'A' && c0 <= 'Z' && tok.size() > 3) || c0 == '_') {
       m_c.fail("keyword-like " + quote_token(tok) + " where data was expected (too few values?)",
-               expected);
+               expected());
     }
     return tok;
   }
@@ -165,9 +168,8 @@ class VtkParser {
     m_conn.reserve(safe_reserve(size, m_text_size, kMinValueBytes));
     std::int64_t used = 0;
     for (std::int64_t i = 0; i < n; ++i) {
-      const std::string expected =
-          "cell " + std::to_string(i + 1) + " of " + std::to_string(n) + " (point count, then ids)";
-      const std::int64_t k = m_c.to_int(value_token(expected), "number of points in the cell");
+      const std::int64_t k =
+          m_c.to_int(value_token("point count of cell", i + 1, n), "number of points in the cell");
       if (k < 0) m_c.fail("negative number of points in a cell", "a count >= 0");
       m_cell_line.push_back(m_c.token_line());
       // Checked before adding (used <= size here), so a hostile count cannot overflow.
@@ -176,8 +178,9 @@ class VtkParser {
                  "CELLS n size with size = sum of (1 + points per cell)");
       }
       used += 1 + k;
-      for (std::int64_t j = 0; j < k; ++j)
-        m_conn.push_back(m_c.to_int(value_token(expected), "point id"));
+      for (std::int64_t j = 0; j < k; ++j) {
+        m_conn.push_back(m_c.to_int(value_token("point id of cell", i + 1, n), "point id"));
+      }
       m_cell_start.push_back(static_cast<std::int64_t>(m_conn.size()));
     }
     if (used != size) {
@@ -202,9 +205,7 @@ class VtkParser {
     std::vector<std::int64_t> offsets;
     offsets.reserve(safe_reserve(noff, m_text_size, kMinValueBytes));
     for (std::int64_t i = 0; i < noff; ++i) {
-      const std::string expected =
-          "offset " + std::to_string(i + 1) + " of " + std::to_string(noff);
-      const std::int64_t o = m_c.to_int(value_token(expected), "offset");
+      const std::int64_t o = m_c.to_int(value_token("offset", i + 1, noff), "offset");
       if (i == 0 && o != 0) m_c.fail("first offset is " + std::to_string(o), "0");
       if (i > 0 && o < offsets.back()) m_c.fail("offsets decrease", "non-decreasing offsets");
       if (o > nconn)
@@ -227,9 +228,7 @@ class VtkParser {
     const std::size_t ncell = offsets.empty() ? 0 : offsets.size() - 1;
     std::size_t cell = 0;
     for (std::int64_t i = 0; i < nconn; ++i) {
-      const std::string expected =
-          "connectivity value " + std::to_string(i + 1) + " of " + std::to_string(nconn);
-      m_conn.push_back(m_c.to_int(value_token(expected), "point id"));
+      m_conn.push_back(m_c.to_int(value_token("connectivity value", i + 1, nconn), "point id"));
       while (cell < ncell && offsets[cell + 1] <= i) ++cell;
       if (cell < ncell && offsets[cell] == i) m_cell_line[cell] = m_c.token_line();
     }
@@ -250,9 +249,7 @@ class VtkParser {
     m_c.end_line("the CELL_TYPES header");
     m_cell_type.reserve(safe_reserve(n, m_text_size, kMinValueBytes));
     for (std::int64_t i = 0; i < n; ++i) {
-      const std::string expected =
-          "type of cell " + std::to_string(i + 1) + " of " + std::to_string(n);
-      m_cell_type.push_back(m_c.to_int(value_token(expected), "cell type"));
+      m_cell_type.push_back(m_c.to_int(value_token("type of cell", i + 1, n), "cell type"));
     }
   }
 
@@ -288,8 +285,10 @@ class VtkParser {
       group->line.reserve(safe_reserve(n, m_text_size, kMinValueBytes));
     }
     for (std::int64_t i = 0; i < n; ++i) {
-      const std::string_view tok =
-          m_c.token("data value " + std::to_string(i + 1) + " of " + std::to_string(n));
+      const std::string_view tok = m_c.try_token();
+      if (tok.empty()) {
+        m_c.fail_eof("data value " + std::to_string(i + 1) + " of " + std::to_string(n));
+      }
       if (group != nullptr) {
         group->value.push_back(m_c.to_double(tok, "a group id"));
         group->line.push_back(m_c.token_line());

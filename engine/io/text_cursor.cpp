@@ -98,6 +98,15 @@ std::string_view TextCursor::token(std::string_view expected) {
   return take_token();
 }
 
+std::string_view TextCursor::try_token() {
+  if (at_end()) return {};
+  return take_token();
+}
+
+void TextCursor::fail_eof(std::string_view expected) const {
+  fail_at(eof_line(), "unexpected end of file (truncated?)", expected);
+}
+
 std::string_view TextCursor::token_on_line(std::string_view expected) {
   skip_spaces();
   if (m_pos >= m_text.size()) {

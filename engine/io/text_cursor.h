@@ -27,6 +27,10 @@ class TextCursor {
   [[nodiscard]] bool at_end();
   /// The next token, on this line or a later one; fails at end of file.
   std::string_view token(std::string_view expected);
+  /// The next token, or an empty view at end of file (callers build their message only then).
+  std::string_view try_token();
+  /// Throws InputError "unexpected end of file" at the last line.
+  [[noreturn]] void fail_eof(std::string_view expected) const;
   /// The next token on the current line; fails when the line ends first.
   std::string_view token_on_line(std::string_view expected);
   /// True when another token follows on the current line.
