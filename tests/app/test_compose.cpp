@@ -1,0 +1,104 @@
+// Effects: app builds a stage only for what the scene lists (shared/DESIGN.md "Effects").
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "app/assemble_state.h"
+#include "app/compose.h"
+#include "engine/mesh_io.h"
+#include "engine/scene.h"
+#include "engine/sim_state.h"
+
+namespace serosa::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kBeam = fs::path(SEROSA_SOURCE_DIR) / "assets" / "beam_xcoarse.msh";
+
+Scene scene_with(const std::string& effects, const std::string& extra = {}) {
+  const fs::path scene_path = fs::path(SEROSA_SOURCE_DIR) / "assets" / "test_scene.toml";
+  const std::string toml = "[scene]\ndt = 0.01\neffects = [" + effects +
+                           "]\n[[organ]]\nname = \"beam\"\nmesh = \"beam_xcoarse.msh\"\n"
+                           "fixed = { box = [[-0.001, -1, -1], [0.001, 1, 1]] }\n" + extra;
+  return parse_scene_text(toml, scene_path);
+}
+
+TEST(Compose, NoEffectsBuildsNoStage) {
+  const Scene scene = scene_with("");
+  const AssembledScene a = assemble_state(scene);
+  const Composition c = compose(scene, a);
+  EXPECT_EQ(c.runner->num_stages(), 0u);
+  EXPECT_EQ(c.fem, nullptr);
+  EXPECT_EQ(c.tools, nullptr);
+  EXPECT_TRUE(c.built.empty());
+}
+
+TEST(Compose, OnlyListedEffectsAreBuilt) {
+  const Scene scene = scene_with("\"fem\"");
+  const AssembledScene a = assemble_state(scene);
+  const Composition c = compose(scene, a);
+  ASSERT_NE(c.fem, nullptr);
+  EXPECT_EQ(c.runner->num_stages(), 1u);
+  EXPECT_EQ(c.runner->timings()[0].name, "fem");
+  ASSERT_EQ(c.built.size(), 1u);
+  EXPECT_EQ(c.built[0], Effect::kFem);
+  EXPECT_TRUE(c.folded.empty());  // no gravity listed: not folded into FEM either
+}
+
+TEST(Compose, UnlistedStagesTakeNoTimeInAStep) {
+  // Without "fem", stepping a scene leaves positions untouched and runs no stage at all.
+  const Scene scene = scene_with("");
+  AssembledScene a = assemble_state(scene);
+  Composition c = compose(scene, a);
+  const auto before = a.state.mesh.x;
+  c.runner->run(a.state, 10);
+  EXPECT_EQ(a.state.mesh.x, before);
+  EXPECT_TRUE(c.runner->timings().empty());
+  EXPECT_EQ(a.state.step, 10u);
+}
+
+TEST(Compose, ListedButUnimplementedEffectsAreReportedNotFaked) {
+  const Scene scene = scene_with("\"fem\", \"surface\", \"record\"");
+  const AssembledScene a = assemble_state(scene);
+  const Composition c = compose(scene, a);
+  for (Effect e : c.unavailable) {
+    EXPECT_TRUE(scene.settings.has(e));
+    EXPECT_EQ(std::count(c.built.begin(), c.built.end(), e), 0);
+  }
+  EXPECT_EQ(c.built.size() + c.folded.size() + c.unavailable.size(), scene.settings.effects.size());
+}
+
+TEST(Compose, GravityPullsTheFreeEndDown) {
+  const Scene scene = scene_with("\"fem\", \"gravity\"");
+  AssembledScene a = assemble_state(scene);
+  Composition c = compose(scene, a);
+  std::int32_t tip = 0;
+  for (std::int32_t i = 0; i < a.state.mesh.num_nodes(); ++i)
+    if (a.state.mesh.rest[i].x() > a.state.mesh.rest[tip].x()) tip = i;
+  const double y0 = a.state.mesh.x[tip].y();
+  c.runner->run(a.state, 20);
+  EXPECT_LT(a.state.mesh.x[tip].y(), y0);
+  for (std::int32_t i = 0; i < a.state.mesh.num_nodes(); ++i)
+    if (a.state.mesh.fixed[i]) {
+      EXPECT_EQ(a.state.mesh.x[i], a.state.mesh.rest[i]);
+    }
+}
+
+TEST(AssembleState, FixedBoxAndGroupsApply) {
+  const Scene scene = scene_with("\"fem\"");
+  const AssembledScene a = assemble_state(scene);
+  int fixed = 0;
+  for (std::int32_t i = 0; i < a.state.mesh.num_nodes(); ++i) {
+    const bool at_wall = std::abs(a.state.mesh.rest[i].x()) <= 0.001;
+    EXPECT_EQ(a.state.mesh.fixed[i] != 0, at_wall) << "node " << i;
+    fixed += at_wall;
+  }
+  EXPECT_GT(fixed, 0);
+  ASSERT_EQ(a.groups.size(), 1u);
+  EXPECT_EQ(a.groups.begin()->second.name, "beam");
+}
+
+}  // namespace
+}  // namespace serosa::app
