@@ -24,7 +24,7 @@ struct Camera {
 /// in the visual and collision views.
 struct RenderFrame {
   std::vector<float> pos;          ///< (n x 3) vertex positions, m
-  std::vector<float> nrm;          ///< (n x 3) unit vertex normals (compute_vertex_normals)
+  std::vector<float> nrm;          ///< (n x 3) unit normals; empty: computed when drawn
   std::vector<std::uint32_t> tri;  ///< (t x 3) vertex ids, counter-clockwise seen from outside
   std::vector<std::uint16_t> tri_group;  ///< (t) visual group (Gmsh physical tag) of each triangle
   std::vector<std::uint8_t> tri_cut;     ///< (t) 1 = face made by a cut (wound), else 0
@@ -34,7 +34,9 @@ struct RenderFrame {
   /// Optional names of the groups, indexed by group id ("appendix", "mesoappendix", "cecum",
   /// "liver", ...): a known name picks its material, anything else a palette colour by id.
   std::vector<std::string> group_names;
-  /// The mesh's topology version: index buffers are re-uploaded only when it changes.
+  /// The mesh's topology version: a FrameRenderer re-uploads indices and per-triangle materials
+  /// only when it (or the triangle or edge count) changes; bump it whenever tri, tri_group,
+  /// tri_cut, edges or group_names change.
   std::uint64_t topology_version = 0;
   Camera camera;
 

@@ -1,6 +1,9 @@
 // Meshes and image statistics shared by the render tests: icospheres, a tet fan, masks.
 #pragma once
 
+#include <dlfcn.h>
+#include <link.h>
+
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -160,6 +163,27 @@ inline std::array<double, 3> mean_covered_rgb(const Image& img) {
 /// The wound's look: a dark, saturated red (green and blue well below red).
 inline bool is_wound_red(int r, int g, int b) {
   return r >= 40 && g * 10 < r * 3 && b * 10 < r * 3;
+}
+
+/// Keeps the loaded Mesa DRI driver (*_dri.so, libgallium*) in memory for the rest of the
+/// process. Mesa dlopens the driver in eglInitialize and dlcloses it in eglTerminate; the driver's
+/// global caches (allocated while compiling shaders) then lose their only references, and
+/// LeakSanitizer reports them at exit as leaks from "<unknown module>", which no suppression can
+/// name. Pinned, they stay reachable and real leaks in our code still show. Tests only.
+inline void pin_gl_driver() {
+  std::vector<std::string> names;
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, std::size_t, void* data) {
+        const std::string name = info->dlpi_name != nullptr ? info->dlpi_name : "";
+        if (name.find("_dri.so") != std::string::npos ||
+            name.find("libgallium") != std::string::npos) {
+          static_cast<std::vector<std::string>*>(data)->push_back(name);
+        }
+        return 0;
+      },
+      &names);
+  // RTLD_NOLOAD: only if already loaded; RTLD_NODELETE: never unload it.
+  for (const std::string& n : names) dlopen(n.c_str(), RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
 }
 
 /// Where test pictures go so that a person can look at them.
