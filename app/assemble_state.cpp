@@ -39,12 +39,12 @@ AssembledScene assemble_state(const Scene& scene) {
     for (int local : local_groups) {
       const int global = local + group_offset;
       if (global > 0xFFFF)
-        throw InputError(scene.file.string(), 0,
-                         "too many groups across organs (scene-wide group id " +
-                             std::to_string(global) + ")",
-                         "at most 65535");
+        throw InputError(
+            scene.file.string(), 0,
+            "too many groups across organs (scene-wide group id " + std::to_string(global) + ")",
+            "at most 65535");
       to_global[local] = global;
-      std::string name = organ.groups.count(local) ? organ.groups.at(local)
+      std::string name = organ.groups.count(local)         ? organ.groups.at(local)
                          : report.group_names.count(local) ? report.group_names.at(local)
                                                            : "group_" + std::to_string(local);
       if (scene.organs.size() > 1) name = organ.name + "/" + name;
@@ -74,10 +74,10 @@ AssembledScene assemble_state(const Scene& scene) {
     }
     for (std::int32_t id : fixed.nodes) {
       if (id < 0 || id >= part.num_nodes())
-        throw InputError(scene.file.string(), 0,
-                         "organ '" + organ.name + "': fixed node " + std::to_string(id) +
-                             " out of range",
-                         "0.." + std::to_string(part.num_nodes() - 1));
+        throw InputError(
+            scene.file.string(), 0,
+            "organ '" + organ.name + "': fixed node " + std::to_string(id) + " out of range",
+            "0.." + std::to_string(part.num_nodes() - 1));
       mesh.fixed[node_base + id] = 1;
     }
     out.reads.push_back(std::move(report));

@@ -21,9 +21,9 @@ struct GroupInfo {
 };
 
 struct AssembledScene {
-  SimState state;                      ///< all organs in one TetMesh, tools at rest
-  std::map<int, GroupInfo> groups;     ///< scene-wide group id -> origin
-  std::vector<MeshReadReport> reads;   ///< (organs) what each mesh read reported
+  SimState state;                     ///< all organs in one TetMesh, tools at rest
+  std::map<int, GroupInfo> groups;    ///< scene-wide group id -> origin
+  std::vector<MeshReadReport> reads;  ///< (organs) what each mesh read reported
 
   /// Scene-wide group id -> name, for OBJ groups and Gmsh $PhysicalNames.
   [[nodiscard]] std::map<int, std::string> group_names() const;

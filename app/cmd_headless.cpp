@@ -30,8 +30,7 @@ void add_headless_command(CLI::App& app, Action& action) {
   cmd->callback([&action, opts, record, steps, path, final_msh, report, frames] {
     action = [opts, record, steps, path, final_msh, report, frames] {
       if (!record->empty())
-        throw InputError(*record, 0,
-                         "recording (.lapr) is not implemented in this build yet",
+        throw InputError(*record, 0, "recording (.lapr) is not implemented in this build yet",
                          "a run without --record");
       if (*steps >= 0) opts->steps = *steps;
       if (!path->empty()) opts->tool_path = *path;

@@ -150,12 +150,15 @@ Json run_headless(const HeadlessOptions& options) {
     maybe_picture(i + 1);
     if (bar && ((i + 1) % 10 == 0 || i + 1 == steps)) progress_bar(i + 1, steps);
   }
-  const double sim_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - sim0).count();
+  const double sim_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - sim0).count();
 
   for (const StageTiming& t : comp.runner->timings())
-    report["time_per_stage_ms"][t.name] = t.calls ? 1e3 * t.total_s / static_cast<double>(t.calls) : 0.0;
+    report["time_per_stage_ms"][t.name] =
+        t.calls ? 1e3 * t.total_s / static_cast<double>(t.calls) : 0.0;
   report["simulated_time_s"] = state.time_s;
-  report["wall_time_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  report["wall_time_s"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   report["stepping_time_s"] = sim_s;
   report["mesh_final"] = mesh_json(state.mesh);
   report["state_hash"] = hex(state_hash(state));

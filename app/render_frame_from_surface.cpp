@@ -18,11 +18,13 @@ void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
   const std::size_t f = surface.faces.size();
   frame.tri.resize(3 * f);
   for (std::size_t i = 0; i < f; ++i)
-    for (int k = 0; k < 3; ++k) frame.tri[3 * i + k] = static_cast<std::uint32_t>(surface.faces[i][k]);
+    for (int k = 0; k < 3; ++k)
+      frame.tri[3 * i + k] = static_cast<std::uint32_t>(surface.faces[i][k]);
   frame.tri_group = surface.face_group;
   frame.tri_cut.assign(f, 0);
   // Tet edges change only with the topology: keep them across frames otherwise.
-  const bool edges_stale = frame.edges.empty() || frame.topology_version != surface.topology_version;
+  const bool edges_stale =
+      frame.edges.empty() || frame.topology_version != surface.topology_version;
   frame.topology_version = surface.topology_version;
 
   frame.group_names.clear();

@@ -13,7 +13,8 @@ namespace serosa::app {
 
 /// pos = all nodes' current positions (float, m); tri, tri_group from the surface; tri_cut all 0
 /// until the surface flags cut faces; normals area-weighted; group names by id; tet edges for the
-/// mechanical view when `with_edges` (recomputed only when the topology version changed). The camera is left for the caller (or auto_camera).
+/// mechanical view when `with_edges` (recomputed only when the topology version changed). The
+/// camera is left for the caller (or auto_camera).
 void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
                        const std::map<int, std::string>& group_names, bool with_edges,
                        render::RenderFrame& frame);

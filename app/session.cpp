@@ -54,8 +54,10 @@ int run_session(const std::filesystem::path& scene_path, double seconds) {
     if (window.pressed(render::Key::kEscape)) window.close();
     if (window.pressed(render::Key::kSpace)) paused = !paused;
     if (window.pressed(render::Key::kV)) view = (view + 1) % 3;
-    if (window.pressed(render::Key::kUp)) options.tessellation = std::min(options.tessellation + 1, 16);
-    if (window.pressed(render::Key::kDown)) options.tessellation = std::max(options.tessellation - 1, 1);
+    if (window.pressed(render::Key::kUp))
+      options.tessellation = std::min(options.tessellation + 1, 16);
+    if (window.pressed(render::Key::kDown))
+      options.tessellation = std::max(options.tessellation - 1, 1);
     options.view = static_cast<render::SnapshotOptions::View>(view);
 
     const auto now = Clock::now();

@@ -12,9 +12,9 @@
 namespace serosa {
 
 struct BoundaryFace {
-  Tri nodes;               ///< node ids, counter-clockwise seen from outside (normal outward)
-  std::int32_t tet = -1;   ///< the tet it belongs to
-  std::uint16_t group = 0; ///< that tet's group
+  Tri nodes;                ///< node ids, counter-clockwise seen from outside (normal outward)
+  std::int32_t tet = -1;    ///< the tet it belongs to
+  std::uint16_t group = 0;  ///< that tet's group
 };
 
 struct FaceCensus {

@@ -28,14 +28,15 @@ struct MeshReadOptions {
   /// Inverted tets (negative rest volume) are an error unless this is set; then they are repaired
   /// by swapping their last two nodes and counted in MeshReadReport::repaired_inverted.
   bool repair_inverted = false;
-  /// A tet whose |volume| is at most this fraction of (mean edge length)^3 is flat: always an error.
+  /// A tet whose |volume| is at most this fraction of (mean edge length)^3 is flat: always an
+  /// error.
   double flat_tolerance = 1e-12;
 };
 
 struct MeshReadReport {
-  std::string format;                   ///< "gmsh 2.2", "gmsh 4.1", "tetgen", "vtk 3.0" ...
-  std::int64_t skipped_elements = 0;    ///< non-tet elements ignored
-  std::int64_t repaired_inverted = 0;   ///< tets reordered (repair_inverted only)
+  std::string format;                      ///< "gmsh 2.2", "gmsh 4.1", "tetgen", "vtk 3.0" ...
+  std::int64_t skipped_elements = 0;       ///< non-tet elements ignored
+  std::int64_t repaired_inverted = 0;      ///< tets reordered (repair_inverted only)
   std::map<int, std::string> group_names;  ///< physical names when the file has them (Gmsh)
 };
 

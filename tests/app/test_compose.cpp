@@ -21,7 +21,8 @@ Scene scene_with(const std::string& effects, const std::string& extra = {}) {
   const fs::path scene_path = fs::path(SEROSA_SOURCE_DIR) / "assets" / "test_scene.toml";
   const std::string toml = "[scene]\ndt = 0.01\neffects = [" + effects +
                            "]\n[[organ]]\nname = \"beam\"\nmesh = \"beam_xcoarse.msh\"\n"
-                           "fixed = { box = [[-0.001, -1, -1], [0.001, 1, 1]] }\n" + extra;
+                           "fixed = { box = [[-0.001, -1, -1], [0.001, 1, 1]] }\n" +
+                           extra;
   return parse_scene_text(toml, scene_path);
 }
 
