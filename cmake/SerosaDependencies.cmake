@@ -48,6 +48,8 @@ message(STATUS "Serosa: CUDA targets ${SEROSA_HAVE_CUDA}")
 
 if(SEROSA_TESTS)
   find_package(GTest REQUIRED CONFIG)
+endif()
+if(SEROSA_BENCH)
   find_package(benchmark REQUIRED CONFIG)
 endif()
 add_library(serosa_stb INTERFACE)
