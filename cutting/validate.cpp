@@ -1,6 +1,7 @@
 #include "cutting/validate.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <set>
@@ -50,8 +51,17 @@ CutCheckReport check_cut(const TetMesh& before, const TetMesh& after, const Conv
   CutCheckReport rep;
   auto problem = [&](std::string s) { rep.problems.push_back(std::move(s)); };
 
-  // Structure (engine's checker).
+  // Structure (engine's checker: finite rest coordinates, positive volumes, faces shared by at
+  // most two tets, consistent orientation), and finite current positions and velocities.
   const MeshCheckReport mc = check_mesh(after);
+  for (std::int32_t i = 0; i < after.num_nodes(); ++i) {
+    const bool xf = i < static_cast<std::int32_t>(after.x.size()) && after.x[i].allFinite();
+    const bool vf = i >= static_cast<std::int32_t>(after.v.size()) || after.v[i].allFinite();
+    if (!xf || !vf) {
+      problem("node " + std::to_string(i) + " has a non-finite current position or velocity");
+      break;
+    }
+  }
   for (const std::string& p : mc.problems) problem("check_mesh: " + p);
   rep.min_quality = mc.min_quality;
   const MeshCheckReport mb = check_mesh(before);
@@ -140,9 +150,107 @@ CutCheckReport check_cut(const TetMesh& before, const TetMesh& after, const Conv
         break;
       }
     }
+    // Every piece on one side; the positive pieces hold exactly the clipped volume.
+    const std::vector<std::int32_t> comp = tet_components(after);
+    const std::int32_t nc = comp.empty() ? 0 : *std::max_element(comp.begin(), comp.end()) + 1;
+    rep.components = nc;
+    std::vector<char> has_pos(static_cast<std::size_t>(nc), 0), has_neg(has_pos);
+    std::vector<double> vol(static_cast<std::size_t>(nc), 0.0);
+    for (std::int32_t ti = 0; ti < after.num_tets(); ++ti) {
+      const auto c = static_cast<std::size_t>(comp[static_cast<std::size_t>(ti)]);
+      vol[c] += after.rest_volume(ti);
+      for (std::int32_t id : after.tets[ti]) {
+        const double phi = blade.signed_distance(after.x[id]);
+        has_pos[c] = has_pos[c] || phi > tol;
+        has_neg[c] = has_neg[c] || phi < -tol;
+      }
+    }
+    double pos_vol = 0.0;
+    for (std::size_t c = 0; c < vol.size(); ++c) {
+      if (has_pos[c] && has_neg[c]) {
+        problem("piece " + std::to_string(c) + " (of " + std::to_string(nc) +
+                ") has nodes on both sides of the blade's plane");
+        break;
+      }
+      if (has_pos[c]) pos_vol += vol[c];
+    }
+    rep.positive_volume_m3 = pos_vol;
+    rep.clipped_volume_m3 =
+        clipped_positive_volume(before, blade.normal(), blade.offset(), options.plane_tol_m);
+    if (std::abs(pos_vol - rep.clipped_volume_m3) > options.volume_rel * scale)
+      problem("the positive pieces hold " + str(pos_vol) + " m^3, the exact clipped volume is " +
+              str(rep.clipped_volume_m3) + " m^3");
   }
   rep.ok = rep.problems.empty();
   return rep;
+}
+
+std::vector<std::int32_t> tet_components(const TetMesh& mesh) {
+  std::vector<std::int32_t> parent(static_cast<std::size_t>(mesh.num_nodes()));
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](std::int32_t a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  };
+  for (const Tet& t : mesh.tets)
+    for (int k = 1; k < 4; ++k) parent[find(t[k])] = find(t[0]);
+  std::vector<std::int32_t> label(parent.size(), -1);
+  std::vector<std::int32_t> out;
+  out.reserve(mesh.tets.size());
+  std::int32_t next = 0;
+  for (const Tet& t : mesh.tets) {
+    std::int32_t& l = label[static_cast<std::size_t>(find(t[0]))];
+    if (l < 0) l = next++;
+    out.push_back(l);
+  }
+  return out;
+}
+
+double clipped_positive_volume(const TetMesh& mesh, const Vec3& normal, double offset,
+                               double plane_tol_m) {
+  double total = 0.0;
+  auto vol = [](const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+    return std::abs(signed_volume(a, b, c, d));
+  };
+  for (const Tet& t : mesh.tets) {
+    std::array<double, 4> phi{};
+    for (int k = 0; k < 4; ++k) {
+      phi[k] = normal.dot(mesh.x[t[k]]) - offset;
+      if (std::abs(phi[k]) <= plane_tol_m) phi[k] = 0.0;
+    }
+    // Nodes strictly positive / non-positive; a zero node counts with the negative side (it adds
+    // no volume to the positive part).
+    std::array<int, 4> pos{}, neg{};
+    int np = 0, nn = 0;
+    for (int k = 0; k < 4; ++k) (phi[k] > 0.0 ? pos[np++] : neg[nn++]) = k;
+    const Vec3 &r0 = mesh.rest[t[0]], &r1 = mesh.rest[t[1]], &r2 = mesh.rest[t[2]],
+               &r3 = mesh.rest[t[3]];
+    const double whole = vol(r0, r1, r2, r3);
+    if (np == 0) continue;
+    if (nn == 0) {
+      total += whole;
+      continue;
+    }
+    // Cut point on the edge from positive node i to non-positive node j (rest positions).
+    auto cut = [&](int i, int j) {
+      const double ti = phi[i] / (phi[i] - phi[j]);
+      return Vec3(mesh.rest[t[i]] + ti * (mesh.rest[t[j]] - mesh.rest[t[i]]));
+    };
+    if (np == 1) {
+      total +=
+          vol(mesh.rest[t[pos[0]]], cut(pos[0], neg[0]), cut(pos[0], neg[1]), cut(pos[0], neg[2]));
+    } else if (np == 3) {
+      total += whole - vol(mesh.rest[t[neg[0]]], cut(pos[0], neg[0]), cut(pos[1], neg[0]),
+                           cut(pos[2], neg[0]));
+    } else {  // a prism (a, b, ac, ad, bc, bd) in three tets
+      const Vec3& a = mesh.rest[t[pos[0]]];
+      const Vec3& b = mesh.rest[t[pos[1]]];
+      const Vec3 ac = cut(pos[0], neg[0]), ad = cut(pos[0], neg[1]), bc = cut(pos[1], neg[0]),
+                 bd = cut(pos[1], neg[1]);
+      total += vol(a, b, ac, ad) + vol(b, ac, ad, bd) + vol(b, ac, bd, bc);
+    }
+  }
+  return total;
 }
 
 std::int32_t count_components(const TetMesh& mesh) {

@@ -39,6 +39,7 @@ inline Applied cut_and_check(const TetMesh& mesh, const ConvexPolygon& blade,
   CutCheckOptions co;
   co.geometry_tol_m = 4.0 * a.result.stats.tolerance_m + 1e-12;
   co.expect_separated = expect_separated;
+  co.plane_tol_m = a.result.stats.tolerance_m;
   a.report = check_cut(mesh, a.after, blade, co);
   return a;
 }
