@@ -52,6 +52,26 @@ Camera auto_camera(const RenderFrame& frame, float aspect) {
   return cam;
 }
 
+Camera endoscope_camera(const std::array<float, 3>& tip_m, const std::array<float, 4>& quat_wxyz,
+                        float scope_angle_deg, float fov_y_deg, float working_distance_m) {
+  Eigen::Quaternionf q(quat_wxyz[0], quat_wxyz[1], quat_wxyz[2], quat_wxyz[3]);
+  if (!(q.norm() > 1e-6f)) q = Eigen::Quaternionf::Identity();
+  q.normalize();
+  const Eigen::Matrix3f r = q.toRotationMatrix();
+  const float a = deg_to_rad(scope_angle_deg);
+  // Tilt about the scope's local x axis: +z towards -y.
+  const Eigen::Vector3f dir = std::cos(a) * r.col(2) - std::sin(a) * r.col(1);
+  const Eigen::Vector3f up = std::sin(a) * r.col(2) + std::cos(a) * r.col(1);
+  const Eigen::Vector3f eye = vec(tip_m);
+  const Eigen::Vector3f target = eye + std::max(working_distance_m, 1e-4f) * dir;
+  Camera cam;
+  cam.eye = tip_m;
+  cam.target = {target.x(), target.y(), target.z()};
+  cam.up = {up.x(), up.y(), up.z()};
+  cam.fov_y_deg = fov_y_deg;
+  return cam;
+}
+
 CameraMatrices camera_matrices(const Camera& camera, float aspect, const Bounds& bounds) {
   CameraMatrices m;
   const Eigen::Vector3f eye = vec(camera.eye);

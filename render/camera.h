@@ -27,6 +27,17 @@ struct Bounds {
 /// @param aspect  width / height of the image the camera is for
 [[nodiscard]] Camera auto_camera(const RenderFrame& frame, float aspect = 4.0f / 3.0f);
 
+/// The view of an endoscope whose tip (the lens, and the light) is at `tip_m` with orientation
+/// `quat_wxyz` (tool frame as in docs/scene-format.md: +z along the shaft towards the tip, +y
+/// the image's up). A 0 degree scope looks along +z; an angled scope (30 degrees is common)
+/// looks `scope_angle_deg` away from the shaft, towards the image's down side (-y), so that
+/// rotating the scope about its shaft sweeps the view around. The target lies
+/// `working_distance_m` ahead (the light's intensity is 1 there; see the visual shader).
+[[nodiscard]] Camera endoscope_camera(const std::array<float, 3>& tip_m,
+                                      const std::array<float, 4>& quat_wxyz,
+                                      float scope_angle_deg = 0.0f, float fov_y_deg = 70.0f,
+                                      float working_distance_m = 0.08f);
+
 /// View and projection matrices (column-major, OpenGL clip conventions) for a camera. Near and far
 /// planes enclose `bounds` (with a margin) so that depth precision follows the scene's size.
 struct CameraMatrices {

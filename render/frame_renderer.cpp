@@ -60,7 +60,10 @@ FrameRenderer::FrameRenderer()
           {GL_FRAGMENT_SHADER, shaders::kVisualFragment, "visual fragment"}})),
       flat_(std::make_unique<GlProgram>(std::vector<ShaderSource>{
           {GL_VERTEX_SHADER, shaders::kFlatVertex, "flat vertex"},
-          {GL_FRAGMENT_SHADER, shaders::kFlatFragment, "flat fragment"}})) {
+          {GL_FRAGMENT_SHADER, shaders::kFlatFragment, "flat fragment"}})),
+      tool_(std::make_unique<GlProgram>(std::vector<ShaderSource>{
+          {GL_VERTEX_SHADER, shaders::kToolVertex, "tool vertex"},
+          {GL_FRAGMENT_SHADER, shaders::kToolFragment, "tool fragment"}})) {
   glGetIntegerv(GL_MAX_TESS_GEN_LEVEL, &max_tess_level_);
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texture_buffer_);
   glGenVertexArrays(1, &vao_);
@@ -89,12 +92,34 @@ FrameRenderer::FrameRenderer()
   glEnableVertexAttribArray(1);
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
+
+  // Instruments: attribute 0 position, 1 normal (3 floats each), 2 material (4 floats).
+  std::array<GLuint, 4> tbufs{};
+  glGenBuffers(static_cast<GLsizei>(tbufs.size()), tbufs.data());
+  tool_pos_buf_ = tbufs[0];
+  tool_nrm_buf_ = tbufs[1];
+  tool_mat_buf_ = tbufs[2];
+  tool_idx_buf_ = tbufs[3];
+  glGenVertexArrays(1, &tool_vao_);
+  glBindVertexArray(tool_vao_);
+  const std::array<std::pair<GLuint, GLint>, 3> attrs{
+      {{tool_pos_buf_, 3}, {tool_nrm_buf_, 3}, {tool_mat_buf_, 4}}};
+  for (std::size_t a = 0; a < attrs.size(); ++a) {
+    glBindBuffer(GL_ARRAY_BUFFER, attrs[a].first);
+    glVertexAttribPointer(static_cast<GLuint>(a), attrs[a].second, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glEnableVertexAttribArray(static_cast<GLuint>(a));
+  }
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, tool_idx_buf_);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
 FrameRenderer::~FrameRenderer() {
-  const std::array<GLuint, 5> bufs{pos_buf_, nrm_buf_, tri_buf_, line_buf_, material_buf_};
+  const std::array<GLuint, 9> bufs{pos_buf_,      nrm_buf_,      tri_buf_,
+                                   line_buf_,     material_buf_, tool_pos_buf_,
+                                   tool_nrm_buf_, tool_mat_buf_, tool_idx_buf_};
   const std::array<GLuint, 4> texs{pos_tex_, nrm_tex_, tri_tex_, material_tex_};
-  const std::array<GLuint, 2> vaos{vao_, pull_vao_};
+  const std::array<GLuint, 3> vaos{vao_, pull_vao_, tool_vao_};
   glDeleteTextures(static_cast<GLsizei>(texs.size()), texs.data());
   glDeleteBuffers(static_cast<GLsizei>(bufs.size()), bufs.data());
   glDeleteVertexArrays(static_cast<GLsizei>(vaos.size()), vaos.data());
@@ -146,6 +171,34 @@ void FrameRenderer::upload_topology(const RenderFrame& frame) {
   edge_source_ = frame.edges.size();
 }
 
+void FrameRenderer::draw_tools(const RenderFrame& frame, const float* view_proj, const float* eye,
+                               float ref_dist) {
+  if (frame.tools.empty()) return;
+  tool_mesh_.clear();
+  for (const RenderTool& t : frame.tools) append_tool_mesh(t, tool_mesh_);
+  glBindBuffer(GL_ARRAY_BUFFER, tool_pos_buf_);
+  glBufferData(GL_ARRAY_BUFFER, bytes(tool_mesh_.pos.size(), sizeof(float)), tool_mesh_.pos.data(),
+               GL_STREAM_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, tool_nrm_buf_);
+  glBufferData(GL_ARRAY_BUFFER, bytes(tool_mesh_.nrm.size(), sizeof(float)), tool_mesh_.nrm.data(),
+               GL_STREAM_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, tool_mat_buf_);
+  glBufferData(GL_ARRAY_BUFFER, bytes(tool_mesh_.material.size(), sizeof(float)),
+               tool_mesh_.material.data(), GL_STREAM_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  glBindVertexArray(tool_vao_);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, bytes(tool_mesh_.tri.size(), sizeof(std::uint32_t)),
+               tool_mesh_.tri.data(), GL_STREAM_DRAW);
+  glUseProgram(tool_->id());
+  glUniformMatrix4fv(tool_->uniform("u_view_proj"), 1, GL_FALSE, view_proj);
+  glUniform3f(tool_->uniform("u_eye"), eye[0], eye[1], eye[2]);
+  glUniform1f(tool_->uniform("u_ref_dist"), ref_dist);
+  glEnable(GL_DEPTH_TEST);
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(tool_mesh_.tri.size()), GL_UNSIGNED_INT,
+                 nullptr);
+  glBindVertexArray(0);
+}
+
 void FrameRenderer::draw(const RenderFrame& frame, const SnapshotOptions& options, int width,
                          int height) {
   if (const auto errors = validate(frame); !errors.empty()) {
@@ -186,7 +239,21 @@ void FrameRenderer::draw(const RenderFrame& frame, const SnapshotOptions& option
   // Camera: view-projection, eye (the light), and the light's reference distance.
   const float aspect = static_cast<float>(width) / static_cast<float>(std::max(height, 1));
   const Camera cam = options.fit_camera ? auto_camera(frame, aspect) : frame.camera;
-  const Bounds bounds = drawn_bounds(frame);
+  Bounds bounds = drawn_bounds(frame);
+  // The instruments' working ends are part of the scene's depth range (their shafts may reach
+  // behind the camera and are left to the near plane).
+  for (const RenderTool& t : frame.tools) {
+    const ToolFrame tf = tool_frame(t);
+    for (const auto& p : {t.tip, tf.hinge}) {
+      const Eigen::Vector3f v(p[0], p[1], p[2]);
+      if (bounds.empty) {
+        bounds.lo = bounds.hi = v;
+        bounds.empty = false;
+      }
+      bounds.lo = bounds.lo.cwiseMin(v);
+      bounds.hi = bounds.hi.cwiseMax(v);
+    }
+  }
   const CameraMatrices m = camera_matrices(cam, aspect, bounds);
   const Eigen::Matrix4f view_proj = m.projection * m.view;
   const Eigen::Vector3f eye(cam.eye[0], cam.eye[1], cam.eye[2]);
@@ -201,6 +268,8 @@ void FrameRenderer::draw(const RenderFrame& frame, const SnapshotOptions& option
   glDepthFunc(GL_LESS);
   glDisable(GL_CULL_FACE);
   glEnable(GL_MULTISAMPLE);
+  // Instruments first, depth-tested; the views' lines and surfaces then meet them in depth.
+  draw_tools(frame, view_proj.data(), eye.data(), ref_dist);
   glBindVertexArray(vao_);
 
   switch (options.view) {

@@ -6,6 +6,7 @@
 
 #include "render/render_frame.h"
 #include "render/snapshot_options.h"
+#include "render/tool_mesh.h"
 
 namespace serosa::render {
 
@@ -14,9 +15,10 @@ class GlProgram;
 /// Owns the GL programs and buffers that draw RenderFrames. Construct and use it with a current
 /// OpenGL 4.1+ core context (OffscreenContext or a window's), and destroy it before the context.
 ///
-/// Vertex positions and normals are uploaded on every draw; triangle and edge indices and the
-/// per-triangle materials only when the frame's topology_version (or its triangle or edge count)
-/// differs from the last upload.
+/// The frame's tools are drawn in every view (meshes from render/tool_mesh.h, regenerated every
+/// draw). Vertex positions and normals are uploaded on every draw; triangle and edge indices and
+/// the per-triangle materials only when the frame's topology_version (or its triangle or edge
+/// count) differs from the last upload.
 class FrameRenderer {
  public:
   /// Compiles the programs. @throws std::runtime_error with the driver's log on a GLSL error
@@ -35,9 +37,12 @@ class FrameRenderer {
 
  private:
   void upload_topology(const RenderFrame& frame);
+  void draw_tools(const RenderFrame& frame, const float* view_proj, const float* eye,
+                  float ref_dist);
 
   std::unique_ptr<GlProgram> visual_;
   std::unique_ptr<GlProgram> flat_;
+  std::unique_ptr<GlProgram> tool_;
   // GL object names: vertex arrays (attributes for the flat views, none for the visual view's
   // vertex pulling), position and normal buffers, triangle and line index buffers, the
   // per-triangle material buffer, and the buffer textures the visual view reads them through.
@@ -52,6 +57,13 @@ class FrameRenderer {
   unsigned int line_buf_ = 0;
   unsigned int material_buf_ = 0;
   unsigned int material_tex_ = 0;
+  // Instruments: their vertex array, interleaved-free attribute buffers and index buffer.
+  unsigned int tool_vao_ = 0;
+  unsigned int tool_pos_buf_ = 0;
+  unsigned int tool_nrm_buf_ = 0;
+  unsigned int tool_mat_buf_ = 0;
+  unsigned int tool_idx_buf_ = 0;
+  ToolMesh tool_mesh_;  // scratch, regenerated every draw
   int max_tess_level_ = 64;
   int max_texture_buffer_ = 65536;  // texels
   // What the index buffers hold now.

@@ -2,6 +2,8 @@
 #include "render/render_frame.h"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 
 namespace serosa::render {
 namespace {
@@ -36,6 +38,26 @@ std::vector<std::string> validate(const RenderFrame& frame) {
   if (frame.edges.size() % 2 != 0) errors.emplace_back("edges is not e x 2");
   check_ids(frame.tri, n, "tri", errors);
   check_ids(frame.edges, n, "edges", errors);
+  for (std::size_t i = 0; i < frame.tools.size(); ++i) {
+    const RenderTool& tool = frame.tools[i];
+    bool finite = std::isfinite(tool.jaw_rad);
+    for (const float c : tool.tip) finite = finite && std::isfinite(c);
+    for (const float c : tool.trocar) finite = finite && std::isfinite(c);
+    float qn = 0.0f;
+    for (const float c : tool.quat_wxyz) {
+      finite = finite && std::isfinite(c);
+      qn += c * c;
+    }
+    std::string what = "tools[";
+    what.append(std::to_string(i)).append("]");
+    if (!finite) {
+      errors.push_back(what + " has a non-finite value");
+    } else {
+      if (tool.jaw_rad < 0.0f || tool.jaw_rad > std::numbers::pi_v<float>)
+        errors.push_back(what + " jaw_rad is outside [0, pi]");
+      if (qn < 1e-12f) errors.push_back(what + " quaternion is zero");
+    }
+  }
   return errors;
 }
 

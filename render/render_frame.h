@@ -17,6 +17,41 @@ struct Camera {
   float fov_y_deg = 70.0f;                        ///< vertical field of view, degrees
 };
 
+/// One surgical instrument to draw (plain data, world coordinates, m). Tool frame as in
+/// docs/scene-format.md: local +z along the shaft from the handle towards the tip, local +y up,
+/// the jaws open in the local x-z plane, hinged about local y.
+struct RenderTool {
+  enum class Kind : std::uint8_t {
+    kScissors,  ///< two blades that shear past each other (Metzenbaum-like, slightly curved)
+    kGrasper,   ///< two flat jaws that close on each other
+  };
+  Kind kind = Kind::kGrasper;
+  std::array<float, 3> tip{0.0f, 0.0f, 0.0f};              ///< tip of the closed jaws, m
+  std::array<float, 4> quat_wxyz{1.0f, 0.0f, 0.0f, 0.0f};  ///< orientation (normalised when drawn)
+  bool has_trocar = false;                                 ///< trocar below is given
+  /// Trocar (port in the abdominal wall), m: when given, the shaft runs from outside the body
+  /// through this point to the jaws' hinge, and the tool's axis is the line trocar -> tip.
+  std::array<float, 3> trocar{0.0f, 0.0f, 0.0f};
+  float jaw_rad = 0.0f;  ///< jaw opening angle between the two jaws, rad, [0, pi]
+};
+
+/// What the overlay shows (plain data; drawn by Overlay, render/overlay.h). Negative or zero
+/// rates mean "not running" and are shown as such.
+struct OverlayData {
+  bool visible = true;
+  double sim_time_s = 0.0;       ///< simulated time, s
+  double fem_ms_per_step = 0.0;  ///< wall time of the last solver steps (mean), ms
+  double solver_rate_hz = 0.0;   ///< solver steps per wall second, Hz
+  double haptic_rate_hz = 0.0;   ///< haptic loop rate, Hz; <= 0: no haptic loop
+  std::int64_t cuts = 0;         ///< topology changes (cuts) applied so far
+  bool paused = false;           ///< the simulation is paused
+  bool slow_motion = false;      ///< the solver cannot keep up with real time
+  /// Replay timeline (instructors): shown when `replay` is true.
+  bool replay = false;
+  double replay_position_s = 0.0;  ///< position in the recording, s
+  double replay_duration_s = 0.0;  ///< length of the recording, s
+};
+
 /// One frame to draw: the organs' boundary surface (and optionally the tet edges), the camera.
 ///
 /// Shapes: n vertices, t triangles, e edges. `pos` may hold more vertices than the triangles use
@@ -39,6 +74,9 @@ struct RenderFrame {
   /// tri_cut, edges or group_names change.
   std::uint64_t topology_version = 0;
   Camera camera;
+  /// Instruments, drawn in every view (their meshes are generated each frame: render/tool_mesh.h).
+  std::vector<RenderTool> tools;
+  OverlayData overlay;
 
   [[nodiscard]] std::size_t num_vertices() const { return pos.size() / 3; }
   [[nodiscard]] std::size_t num_triangles() const { return tri.size() / 3; }
@@ -46,7 +84,8 @@ struct RenderFrame {
 
 /// Checks shapes and ids: pos a multiple of 3; nrm empty or as long as pos; tri a multiple of 3
 /// with ids < n; tri_group and tri_cut empty or one per triangle; edges a multiple of 2 with ids
-/// < n. Returns one message per problem; empty == valid.
+/// < n; tools with finite poses and jaw_rad in [0, pi]. Returns one message per problem; empty ==
+/// valid.
 [[nodiscard]] std::vector<std::string> validate(const RenderFrame& frame);
 
 }  // namespace serosa::render

@@ -140,4 +140,44 @@ void main() {
 }
 )";
 
+// Instruments (render/tool_mesh.h): per-vertex normal and material, lit like the tissue by the
+// light at the eye with the same distance falloff; metal gets a sharper, stronger highlight.
+const char* const kToolVertex = R"(#version 410 core
+layout(location = 0) in vec3 a_pos;       // world position, m
+layout(location = 1) in vec3 a_nrm;       // unit normal
+layout(location = 2) in vec4 a_material;  // rgb: sRGB colour, a: specular strength
+out vec3 v_pos;
+out vec3 v_nrm;
+out vec4 v_material;
+uniform mat4 u_view_proj;
+void main() {
+  v_pos = a_pos;
+  v_nrm = a_nrm;
+  v_material = a_material;
+  gl_Position = u_view_proj * vec4(a_pos, 1.0);
+}
+)";
+
+const char* const kToolFragment = R"(#version 410 core
+in vec3 v_pos;
+in vec3 v_nrm;
+in vec4 v_material;
+out vec4 frag_color;
+uniform vec3 u_eye;        // light and eye position, m
+uniform float u_ref_dist;  // distance at which the light's intensity is 1, m
+void main() {
+  vec3 n = normalize(v_nrm);
+  if (!gl_FrontFacing) n = -n;
+  vec3 l = u_eye - v_pos;
+  float d = max(length(l), 1e-9);
+  l /= d;
+  float att = min((u_ref_dist * u_ref_dist) / (d * d), 3.0);
+  float diffuse = max(dot(n, l), 0.0);
+  float spec = pow(diffuse, 90.0) + 0.3 * pow(diffuse, 8.0);
+  vec3 albedo = pow(v_material.rgb, vec3(2.2));
+  vec3 c = albedo * (0.10 + 0.90 * diffuse * att) + v_material.a * spec * att * vec3(1.0);
+  frag_color = vec4(pow(clamp(c, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
+}
+)";
+
 }  // namespace serosa::render::shaders

@@ -13,5 +13,7 @@ extern const char* const kVisualFragment;
 // Collision and mechanical views: untessellated triangles or lines, flat shaded or one colour.
 extern const char* const kFlatVertex;
 extern const char* const kFlatFragment;
+extern const char* const kToolVertex;    ///< instruments: position, normal, material attributes
+extern const char* const kToolFragment;  ///< instruments: lit from the eye, metallic highlight
 
 }  // namespace serosa::render::shaders

@@ -1,0 +1,187 @@
+// Instrument meshes (see tool_mesh.h).
+#include "render/tool_mesh.h"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+namespace serosa::render {
+namespace {
+
+using V3 = Eigen::Vector3f;
+
+V3 vec(const std::array<float, 3>& a) { return {a[0], a[1], a[2]}; }
+std::array<float, 3> arr(const V3& v) { return {v.x(), v.y(), v.z()}; }
+
+constexpr std::array<float, 4> kShaftMaterial{0.10f, 0.10f, 0.11f, 0.55f};  // black coating
+constexpr std::array<float, 4> kSteelMaterial{0.66f, 0.68f, 0.72f, 0.95f};  // polished steel
+
+std::uint32_t add_vertex(ToolMesh& m, const V3& p, const V3& n, const std::array<float, 4>& mat) {
+  const auto id = static_cast<std::uint32_t>(m.num_vertices());
+  m.pos.insert(m.pos.end(), {p.x(), p.y(), p.z()});
+  const V3 u = n.norm() > 1e-12f ? V3(n.normalized()) : V3(0.0f, 0.0f, 1.0f);
+  m.nrm.insert(m.nrm.end(), {u.x(), u.y(), u.z()});
+  m.material.insert(m.material.end(), mat.begin(), mat.end());
+  return id;
+}
+
+// A flat quad a b c d (any winding) facing away from `inside`.
+void add_quad(ToolMesh& m, const std::array<V3, 4>& q, const V3& inside,
+              const std::array<float, 4>& mat) {
+  V3 n = (q[2] - q[0]).cross(q[3] - q[1]);
+  const V3 centre = 0.25f * (q[0] + q[1] + q[2] + q[3]);
+  const bool flip = n.dot(centre - inside) < 0.0f;
+  if (flip) n = -n;
+  std::array<std::uint32_t, 4> id{};
+  for (int k = 0; k < 4; ++k) id[k] = add_vertex(m, q[k], n, mat);
+  if (flip) {
+    m.tri.insert(m.tri.end(), {id[0], id[2], id[1], id[0], id[3], id[2]});
+  } else {
+    m.tri.insert(m.tri.end(), {id[0], id[1], id[2], id[0], id[2], id[3]});
+  }
+}
+
+// One jaw: rectangular sections along `dir` from `base`, each centred at base + u dir +
+// offset(u), half extents hw(u) along `wdir` and ht(u) along `up`; flat-shaded sides and caps.
+template <class Centre, class HalfW, class HalfT>
+void add_jaw(ToolMesh& m, const V3& base, const V3& dir, const V3& wdir, const V3& up, float length,
+             Centre centre, HalfW hw, HalfT ht, const std::array<float, 4>& mat) {
+  constexpr int kSections = 8;
+  std::array<std::array<V3, 4>, kSections + 1> ring{};
+  std::array<V3, kSections + 1> mid{};
+  for (int i = 0; i <= kSections; ++i) {
+    const float s = static_cast<float>(i) / kSections;
+    const V3 c = base + s * length * dir + centre(s);
+    mid[i] = c;
+    const float w = hw(s), t = ht(s);
+    ring[i] = {c - w * wdir - t * up, c + w * wdir - t * up, c + w * wdir + t * up,
+               c - w * wdir + t * up};
+  }
+  for (int i = 0; i < kSections; ++i) {
+    const V3 inside = 0.5f * (mid[i] + mid[i + 1]);
+    for (int k = 0; k < 4; ++k) {
+      const int k1 = (k + 1) % 4;
+      add_quad(m, {ring[i][k], ring[i][k1], ring[i + 1][k1], ring[i + 1][k]}, inside, mat);
+    }
+  }
+  add_quad(m, ring[0], mid[0] + 0.01f * length * dir, mat);
+  add_quad(m, ring[kSections], mid[kSections] - 0.01f * length * dir, mat);
+}
+
+void add_shaft(ToolMesh& m, const V3& a, const V3& b, const V3& side, const V3& up, float r,
+               int segments) {
+  segments = std::max(segments, 3);
+  const auto base = static_cast<std::uint32_t>(m.num_vertices());
+  for (int i = 0; i < segments; ++i) {
+    const float phi = 2.0f * 3.14159265f * static_cast<float>(i) / static_cast<float>(segments);
+    const V3 n = std::cos(phi) * side + std::sin(phi) * up;
+    add_vertex(m, a + r * n, n, kShaftMaterial);
+    add_vertex(m, b + r * n, n, kShaftMaterial);
+  }
+  const V3 axis = (b - a).normalized();
+  const auto seg = static_cast<std::uint32_t>(segments);
+  for (std::uint32_t i = 0; i < seg; ++i) {
+    const std::uint32_t j = (i + 1) % seg;
+    const std::uint32_t a0 = base + 2 * i, b0 = a0 + 1, a1 = base + 2 * j, b1 = a1 + 1;
+    // side x up = axis: counter-clockwise around +axis, so (a0, a1, b1) faces outward.
+    m.tri.insert(m.tri.end(), {a0, a1, b1, a0, b1, b0});
+  }
+  // Caps: fans around a centre vertex, normals along the axis.
+  for (int end = 0; end < 2; ++end) {
+    const V3 c = end == 0 ? a : b;
+    const V3 n = end == 0 ? V3(-axis) : axis;
+    const std::uint32_t centre = add_vertex(m, c, n, kShaftMaterial);
+    const auto first = static_cast<std::uint32_t>(m.num_vertices());
+    for (int i = 0; i < segments; ++i) {
+      const float phi = 2.0f * 3.14159265f * static_cast<float>(i) / static_cast<float>(segments);
+      add_vertex(m, c + r * (std::cos(phi) * side + std::sin(phi) * up), n, kShaftMaterial);
+    }
+    for (std::uint32_t i = 0; i < seg; ++i) {
+      const std::uint32_t p = first + i, q = first + (i + 1) % seg;
+      if (end == 0) {
+        m.tri.insert(m.tri.end(), {centre, q, p});
+      } else {
+        m.tri.insert(m.tri.end(), {centre, p, q});
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void ToolMesh::clear() {
+  pos.clear();
+  nrm.clear();
+  material.clear();
+  tri.clear();
+}
+
+ToolFrame tool_frame(const RenderTool& tool, const ToolDimensions& dims) {
+  Eigen::Quaternionf q(tool.quat_wxyz[0], tool.quat_wxyz[1], tool.quat_wxyz[2], tool.quat_wxyz[3]);
+  if (q.norm() < 1e-6f) q = Eigen::Quaternionf::Identity();
+  q.normalize();
+  const Eigen::Matrix3f r = q.toRotationMatrix();
+  const V3 tip = vec(tool.tip);
+  V3 axis = r.col(2);
+  if (tool.has_trocar) {
+    const V3 d = tip - vec(tool.trocar);
+    if (d.norm() > 1e-6f) axis = d.normalized();
+  }
+  V3 up = r.col(1) - r.col(1).dot(axis) * axis;
+  if (up.norm() < 1e-4f) up = axis.unitOrthogonal();
+  up.normalize();
+  const V3 side = up.cross(axis);
+  const float jaw =
+      tool.kind == RenderTool::Kind::kScissors ? dims.scissors_blade : dims.grasper_jaw;
+  const V3 hinge = tip - jaw * axis;
+  const V3 start = tool.has_trocar ? V3(vec(tool.trocar) - dims.shaft_outside * axis)
+                                   : V3(hinge - dims.shaft_no_trocar * axis);
+  ToolFrame f;
+  f.axis = arr(axis);
+  f.up = arr(up);
+  f.side = arr(side);
+  f.hinge = arr(hinge);
+  f.shaft_start = arr(start);
+  return f;
+}
+
+void append_tool_mesh(const RenderTool& tool, ToolMesh& out, const ToolDimensions& dims) {
+  const ToolFrame f = tool_frame(tool, dims);
+  const V3 axis = vec(f.axis), up = vec(f.up), side = vec(f.side), hinge = vec(f.hinge);
+  const float r = dims.shaft_radius;
+  // The shaft stops where the jaws begin (the hinge sits just inside its end).
+  add_shaft(out, vec(f.shaft_start), hinge + 0.3f * r * axis, side, up, r, dims.shaft_segments);
+
+  const float a = 0.5f * std::clamp(tool.jaw_rad, 0.0f, 3.14159265f);
+  const float ca = std::cos(a), sa = std::sin(a);
+  // Jaw A opens towards +side, jaw B towards -side; wdir points away from the other jaw.
+  const V3 dir_a = ca * axis + sa * side, w_a = ca * side - sa * axis;
+  const V3 dir_b = ca * axis - sa * side, w_b = -(ca * side + sa * axis);
+  if (tool.kind == RenderTool::Kind::kScissors) {
+    const float len = dims.scissors_blade;
+    const float off = 0.45e-3f;  // blades side by side along `up`, 0.9 mm apart
+    const auto half_w = [](float s) { return 1.3e-3f + (0.35e-3f - 1.3e-3f) * s; };
+    const auto half_t = [](float) { return 0.4e-3f; };
+    // Slightly curved (Metzenbaum), both towards +side.
+    const auto curve = [&](float o) {
+      return [&, o](float s) -> V3 { return o * up + 1.2e-3f * s * s * side; };
+    };
+    add_jaw(out, hinge, dir_a, w_a, up, len, curve(off), half_w, half_t, kSteelMaterial);
+    add_jaw(out, hinge, dir_b, w_b, up, len, curve(-off), half_w, half_t, kSteelMaterial);
+  } else {
+    const float len = dims.grasper_jaw;
+    // Each jaw on its own side of the axis: its body spans 0.1..1.5 mm away from the other jaw.
+    const auto half_w = [](float) { return 0.7e-3f; };
+    const auto half_t = [](float s) { return 1.7e-3f + (1.2e-3f - 1.7e-3f) * s; };
+    const V3 oa = 0.8e-3f * w_a, ob = 0.8e-3f * w_b;
+    add_jaw(
+        out, hinge, dir_a, w_a, up, len, [&](float) -> V3 { return oa; }, half_w, half_t,
+        kSteelMaterial);
+    add_jaw(
+        out, hinge, dir_b, w_b, up, len, [&](float) -> V3 { return ob; }, half_w, half_t,
+        kSteelMaterial);
+  }
+}
+
+}  // namespace serosa::render
