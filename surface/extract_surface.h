@@ -12,6 +12,7 @@
 #include <cstdint>
 
 #include "engine/tet_mesh.h"
+#include "surface/cut_faces.h"
 #include "surface/surface_mesh.h"
 
 namespace serosa::surface {
@@ -31,7 +32,13 @@ enum class KeyWidth { kAuto, kWide };
 /// Faces shared by three or more tets (an invalid mesh) are not boundary faces.
 /// Throws std::invalid_argument for more than 2^30 tets or a negative node id, std::runtime_error
 /// for Backend::kCuda without a usable device.
+/// Every face has face_cut = 0 (no reference: the current surface counts as original).
 [[nodiscard]] SurfaceMesh extract_surface(const TetMesh& mesh, Backend backend = Backend::kCpu);
+
+/// The same, with face_cut decided against `original` (the organ's boundary before any cut;
+/// rule in surface/cut_faces.h), on the CPU after the backend's extraction, O(f).
+[[nodiscard]] SurfaceMesh extract_surface(const TetMesh& mesh, const OriginalSurface& original,
+                                          Backend backend = Backend::kCpu);
 
 /// Options of the CPU extraction.
 struct CpuOptions {

@@ -30,6 +30,7 @@ SurfaceMesh extract_surface_cuda(const TetMesh& mesh, KeyWidth keys) {
   s.faces = std::move(b.faces);
   s.face_tet = std::move(b.face_tet);
   s.face_group = std::move(b.face_group);
+  s.face_cut.assign(s.faces.size(), 0);
   set_group_ranges(s, b.group_ids.data(), b.group_count.data(), b.group_ids.size());
   s.topology_version = mesh.topology_version;
   return s;

@@ -51,6 +51,7 @@ SurfaceMesh run(const Policy& policy, const TetMesh& mesh) {
   s.faces.assign(b.faces.begin(), b.faces.end());
   s.face_tet.assign(b.face_tet.begin(), b.face_tet.end());
   s.face_group.assign(b.face_group.begin(), b.face_group.end());
+  s.face_cut.assign(s.faces.size(), 0);
   set_group_ranges(s, b.group_ids.data(), b.group_count.data(), b.group_ids.size());
   s.topology_version = mesh.topology_version;
   return s;
@@ -69,6 +70,12 @@ SurfaceMesh extract_surface_cpu(const TetMesh& mesh, const CpuOptions& options) 
 
 SurfaceMesh extract_surface(const TetMesh& mesh, Backend backend) {
   return backend == Backend::kCuda ? extract_surface_cuda(mesh) : extract_surface_cpu(mesh);
+}
+
+SurfaceMesh extract_surface(const TetMesh& mesh, const OriginalSurface& original, Backend backend) {
+  SurfaceMesh s = extract_surface(mesh, backend);
+  mark_cut_faces(s, mesh, original);
+  return s;
 }
 
 }  // namespace serosa::surface

@@ -24,6 +24,8 @@ struct SurfaceMesh {
   std::vector<Tri> faces;                 ///< (f) node ids, counter-clockwise seen from outside
   std::vector<std::int32_t> face_tet;     ///< (f) the tet each face belongs to
   std::vector<std::uint16_t> face_group;  ///< (f) that tet's group
+  std::vector<std::uint8_t> face_cut;     ///< (f) 1 = made by a cut (wound), 0 = original surface
+                                          ///< (rule: surface/cut_faces.h)
   std::vector<GroupRange> groups;         ///< (g) ascending group id, ranges tile [0, f)
   std::uint64_t topology_version = 0;     ///< TetMesh::topology_version it was extracted from
 

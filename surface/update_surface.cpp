@@ -20,7 +20,13 @@ WideKey face_key(const Tet& t, int l) {
 // Edits of the group-contiguous face arrays, keeping table.key_at and every entry's pos in step.
 class FaceArrays {
  public:
-  FaceArrays(SurfaceMesh& s, FaceTable& t) : s_(s), t_(t) {}
+  FaceArrays(SurfaceMesh& s, FaceTable& t, std::vector<std::int32_t>* changed)
+      : s_(s), t_(t), changed_(changed) {}
+
+  // Records that slot p was written.
+  void touch(std::int32_t p) {
+    if (changed_ != nullptr) changed_->push_back(p);
+  }
 
   // Moves face `from` onto slot `to` (overwriting it).
   void move(std::int32_t from, std::int32_t to) {
@@ -28,7 +34,9 @@ class FaceArrays {
     s_.faces[d] = s_.faces[f];
     s_.face_tet[d] = s_.face_tet[f];
     s_.face_group[d] = s_.face_group[f];
+    s_.face_cut[d] = s_.face_cut[f];
     t_.key_at[d] = t_.key_at[f];
+    touch(to);
     t_.faces.find(t_.key_at[d])->second.pos = to;
   }
 
@@ -63,16 +71,19 @@ class FaceArrays {
     s_.faces.pop_back();
     s_.face_tet.pop_back();
     s_.face_group.pop_back();
+    s_.face_cut.pop_back();
     t_.key_at.pop_back();
   }
 
   // Appends a face to group g's range: each later group shifts up by one through its first face.
-  void insert(const WideKey& key, Entry& e, const Tri& tri, std::int32_t tet, std::uint16_t g) {
+  void insert(const WideKey& key, Entry& e, const Tri& tri, std::int32_t tet, std::uint16_t g,
+              std::uint8_t cut) {
     const std::size_t r = range_of(g);
     std::int32_t hole = s_.num_faces();
     s_.faces.emplace_back();
     s_.face_tet.push_back(0);
     s_.face_group.push_back(0);
+    s_.face_cut.push_back(0);
     t_.key_at.emplace_back();
     for (std::size_t q = s_.groups.size() - 1; q > r; --q) {
       GroupRange& h = s_.groups[q];
@@ -87,7 +98,9 @@ class FaceArrays {
     s_.faces[d] = tri;
     s_.face_tet[d] = tet;
     s_.face_group[d] = g;
+    s_.face_cut[d] = cut;
     t_.key_at[d] = key;
+    touch(hole);
     e.pos = hole;
     ++own.count;
   }
@@ -95,6 +108,7 @@ class FaceArrays {
  private:
   SurfaceMesh& s_;
   FaceTable& t_;
+  std::vector<std::int32_t>* changed_;
 };
 
 void require(bool ok, const std::string& what) {
@@ -126,8 +140,8 @@ FaceTable build_face_table(const TetMesh& mesh, const SurfaceMesh& s) {
   return t;
 }
 
-void update_surface(SurfaceMesh& s, FaceTable& table, const TetMesh& after,
-                    const TopologyDelta& d) {
+void update_surface(SurfaceMesh& s, FaceTable& table, const TetMesh& after, const TopologyDelta& d,
+                    const OriginalSurface* original, std::vector<std::int32_t>* changed_slots) {
   const auto removed = d.removed_tets.size();
   const auto added = d.added_tets.size();
   require(s.topology_version == d.version_before,
@@ -136,6 +150,8 @@ void update_surface(SurfaceMesh& s, FaceTable& table, const TetMesh& after,
   require(d.slot_of_added.size() == added, "delta not applied (slot_of_added missing)");
   require(table.tets.size() + added - removed == after.tets.size(),
           "tet counts of table, delta and mesh disagree");
+  require(s.face_cut.size() == s.faces.size(), "face_cut and faces differ in size");
+  if (changed_slots != nullptr) changed_slots->clear();
 
   std::vector<WideKey> touched;
   touched.reserve(4 * (removed + added + d.moved_tets.size()));
@@ -185,7 +201,7 @@ void update_surface(SurfaceMesh& s, FaceTable& table, const TetMesh& after,
   // 4. Reconcile each touched face with the surface arrays.
   std::sort(touched.begin(), touched.end());
   touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-  FaceArrays arrays(s, table);
+  FaceArrays arrays(s, table, changed_slots);
   for (const WideKey& key : touched) {
     auto it = table.faces.find(key);
     Entry& e = it->second;
@@ -197,8 +213,10 @@ void update_surface(SurfaceMesh& s, FaceTable& table, const TetMesh& after,
       outward_face(tets[static_cast<std::size_t>(tet)], l, tri[0], tri[1], tri[2]);
       const std::uint16_t g = after.group[static_cast<std::size_t>(tet)];
       if (e.pos >= 0 && s.face_group[static_cast<std::size_t>(e.pos)] == g) {
+        // Same nodes and group: face_cut (a function of both) stays.
         s.faces[static_cast<std::size_t>(e.pos)] = tri;
         s.face_tet[static_cast<std::size_t>(e.pos)] = tet;
+        arrays.touch(e.pos);
         continue;
       }
       if (e.pos >= 0) {
@@ -206,7 +224,9 @@ void update_surface(SurfaceMesh& s, FaceTable& table, const TetMesh& after,
         e.pos = -1;
         arrays.remove(p);
       }
-      arrays.insert(key, e, tri, tet, g);
+      const std::uint8_t cut =
+          original != nullptr ? classify_face(tri, g, after, *original) : std::uint8_t{0};
+      arrays.insert(key, e, tri, tet, g, cut);
     } else {
       if (e.pos >= 0) {
         const std::int32_t p = e.pos;
@@ -218,6 +238,12 @@ void update_surface(SurfaceMesh& s, FaceTable& table, const TetMesh& after,
   }
   std::erase_if(s.groups, [](const GroupRange& r) { return r.count == 0; });
   s.topology_version = after.topology_version;
+  if (changed_slots != nullptr) {
+    std::sort(changed_slots->begin(), changed_slots->end());
+    changed_slots->erase(std::unique(changed_slots->begin(), changed_slots->end()),
+                         changed_slots->end());
+    std::erase_if(*changed_slots, [&](std::int32_t p) { return p >= s.num_faces(); });
+  }
 }
 
 }  // namespace serosa::surface

@@ -9,6 +9,7 @@
 
 #include "engine/tet_mesh.h"
 #include "engine/topology_delta.h"
+#include "surface/cut_faces.h"
 #include "surface/face_key.h"
 #include "surface/surface_mesh.h"
 
@@ -46,9 +47,17 @@ struct FaceTable {
 /// Cost: O((removed + added + moved tets) x (1 + number of groups)) hash lookups. Faces keep their
 /// slots unless their group's range must grow or shrink; each group stays one contiguous range,
 /// groups ascending; empty groups are dropped and new ones inserted in order.
+/// face_cut of each new face follows surface/cut_faces.h against `original` (0 when null), so
+/// that it equals extract_surface(after, *original) face for face; faces that only change owner
+/// keep their flag (it depends on nodes and group only).
+/// changed_slots (optional, out): the slots of `s` written by this update (new faces, faces moved
+/// into another slot, faces whose owner or orientation changed), ascending, unique, all below
+/// s.num_faces(); slots at or past the old face count are always listed. With the new face count,
+/// that is all a consumer keyed by slot (SurfaceBvh::update) needs.
 /// Throws std::invalid_argument when the delta does not follow on from `s` (versions or sizes);
 /// `s` and `table` are then unspecified: rebuild them with extract_surface and build_face_table.
 void update_surface(SurfaceMesh& s, FaceTable& table, const TetMesh& after,
-                    const TopologyDelta& delta);
+                    const TopologyDelta& delta, const OriginalSurface* original = nullptr,
+                    std::vector<std::int32_t>* changed_slots = nullptr);
 
 }  // namespace serosa::surface

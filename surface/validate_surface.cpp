@@ -23,8 +23,8 @@ bool is_outward_face_of(const Tri& f, const Tet& t) {
 std::vector<std::string> validate_surface(const SurfaceMesh& s, const TetMesh& mesh) {
   std::vector<std::string> errs;
   const std::size_t f = s.faces.size();
-  if (s.face_tet.size() != f || s.face_group.size() != f) {
-    errs.push_back("faces, face_tet and face_group differ in size");
+  if (s.face_tet.size() != f || s.face_group.size() != f || s.face_cut.size() != f) {
+    errs.push_back("faces, face_tet, face_group and face_cut differ in size");
     return errs;
   }
   if (s.topology_version != mesh.topology_version)
@@ -56,6 +56,7 @@ std::vector<std::string> validate_surface(const SurfaceMesh& s, const TetMesh& m
       errs.push_back(name + ": tet " + std::to_string(t) + " does not exist");
       continue;
     }
+    if (s.face_cut[i] > 1) errs.push_back(name + ": face_cut is neither 0 nor 1");
     if (mesh.group[static_cast<std::size_t>(t)] != s.face_group[i])
       errs.push_back(name + ": group differs from its tet's");
     for (std::int32_t v : s.faces[i])

@@ -104,6 +104,16 @@ inline std::multiset<FaceRecord> reference_boundary(const TetMesh& m) {
   return out;
 }
 
+/// (oriented face up to rotation, group, face_cut): the cut flags two extractions must agree on.
+using CutRecord = std::tuple<Tri, std::uint16_t, std::uint8_t>;
+
+inline std::multiset<CutRecord> cut_records(const SurfaceMesh& s) {
+  std::multiset<CutRecord> out;
+  for (std::int32_t i = 0; i < s.num_faces(); ++i)
+    out.emplace(canonical_rotation(s.faces[i]), s.face_group[i], s.face_cut[i]);
+  return out;
+}
+
 inline std::multiset<FaceRecord> records(const SurfaceMesh& s) {
   std::multiset<FaceRecord> out;
   for (std::int32_t i = 0; i < s.num_faces(); ++i)

@@ -16,6 +16,7 @@
 namespace serosa::surface {
 namespace {
 
+using testing::cut_records;
 using testing::grid_mesh;
 using testing::orient_positive;
 using testing::records;
@@ -74,9 +75,11 @@ TopologyDelta random_delta(std::mt19937& rng, const TetMesh& m, int ngroups) {
   return d;
 }
 
-void expect_same_as_full(const SurfaceMesh& s, const TetMesh& m, int step) {
-  const SurfaceMesh full = extract_surface(m);
+void expect_same_as_full(const SurfaceMesh& s, const TetMesh& m, int step,
+                         const OriginalSurface* original = nullptr) {
+  const SurfaceMesh full = original ? extract_surface(m, *original) : extract_surface(m);
   ASSERT_EQ(records(s), records(full)) << "step " << step;
+  ASSERT_EQ(cut_records(s), cut_records(full)) << "step " << step;
   ASSERT_EQ(s.groups.size(), full.groups.size()) << "step " << step;
   for (std::size_t g = 0; g < s.groups.size(); ++g) {
     ASSERT_EQ(s.groups[g].group, full.groups[g].group) << "step " << step;
@@ -86,18 +89,43 @@ void expect_same_as_full(const SurfaceMesh& s, const TetMesh& m, int step) {
   ASSERT_TRUE(errs.empty()) << "step " << step << ": " << errs.front();
 }
 
+/// Slots not listed in `changed` hold the same face as before (the contract SurfaceBvh relies on).
+void expect_unlisted_slots_unchanged(const SurfaceMesh& before, const SurfaceMesh& after,
+                                     const std::vector<std::int32_t>& changed, int step) {
+  ASSERT_TRUE(std::is_sorted(changed.begin(), changed.end()));
+  ASSERT_EQ(std::adjacent_find(changed.begin(), changed.end()), changed.end());
+  std::vector<char> listed(static_cast<std::size_t>(after.num_faces()), 0);
+  for (std::int32_t p : changed) {
+    ASSERT_GE(p, 0);
+    ASSERT_LT(p, after.num_faces());
+    listed[static_cast<std::size_t>(p)] = 1;
+  }
+  for (std::int32_t i = 0; i < after.num_faces(); ++i) {
+    if (listed[static_cast<std::size_t>(i)]) continue;
+    ASSERT_LT(i, before.num_faces()) << "step " << step << ": new slot " << i << " not listed";
+    ASSERT_EQ(after.faces[i], before.faces[i]) << "step " << step << " slot " << i;
+    ASSERT_EQ(after.face_tet[i], before.face_tet[i]) << "step " << step << " slot " << i;
+    ASSERT_EQ(after.face_group[i], before.face_group[i]) << "step " << step << " slot " << i;
+    ASSERT_EQ(after.face_cut[i], before.face_cut[i]) << "step " << step << " slot " << i;
+  }
+}
+
 TEST(UpdateSurface, EqualsFullExtractionAfterThousandsOfRandomDeltas) {
   for (unsigned seed : {1u, 2u, 3u}) {
     std::mt19937 rng(seed);
     const int ngroups = 2 + static_cast<int>(seed);
     TetMesh m = grid_mesh(4, 4, 3, ngroups);
     SurfaceMesh s = extract_surface(m);
+    const OriginalSurface original(m, s);
     FaceTable table = build_face_table(m, s);
+    std::vector<std::int32_t> changed;
     for (int step = 0; step < 1000; ++step) {
       TopologyDelta d = random_delta(rng, m, ngroups);
       apply(m, d);
-      update_surface(s, table, m, d);
-      expect_same_as_full(s, m, step);
+      const SurfaceMesh before = s;
+      update_surface(s, table, m, d, &original, &changed);
+      expect_unlisted_slots_unchanged(before, s, changed, step);
+      expect_same_as_full(s, m, step, &original);
       if (step % 100 == 0) {
         ASSERT_EQ(table.tets, m.tets);
       }
