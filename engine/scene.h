@@ -196,6 +196,16 @@ struct HeadlessSettings {
   std::int64_t steps = 1000;  ///< steps of `serosa headless` without --steps; >= 1
 };
 
+/// What trainee metrics compare against (app's metrics stage).
+struct MetricsSettings {
+  /// The planned cut line, a polyline in the scene frame, m ((k) points, k = 0 or k >= 2).
+  /// Empty: no cut-deviation metric.
+  std::vector<Vec3> planned_cut_m;
+  /// Half-width of the tolerance band around the planned cut line, m; > 0. Tets cut farther
+  /// than this from the line count as collateral cut volume.
+  double cut_band_m = 0.003;
+};
+
 /// A loaded, validated scene. Read-only after load.
 struct Scene {
   std::filesystem::path file;  ///< the scene file as given (errors name it)
@@ -207,6 +217,7 @@ struct Scene {
   RecordSettings record;
   CuttingSettings cutting;
   HeadlessSettings headless;
+  MetricsSettings metrics;
 
   /// Index of the tool named `name` in `tools`, or nullopt.
   [[nodiscard]] std::optional<std::size_t> tool_index(std::string_view name) const;

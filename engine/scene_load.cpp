@@ -119,8 +119,9 @@ class Loader {
 
     Scene scene;
     scene.file = m_file;
-    check_keys(root, "",
-               {"scene", "organ", "solver", "render", "tool", "record", "cutting", "headless"});
+    check_keys(
+        root, "",
+        {"scene", "organ", "solver", "render", "tool", "record", "cutting", "headless", "metrics"});
 
     const toml::node* effects_node = nullptr;
     if (const auto* t = opt_table(root, "scene", "")) {
@@ -134,6 +135,7 @@ class Loader {
     if (const auto* t = opt_table(root, "record", "")) read_record(*t, scene.record);
     if (const auto* t = opt_table(root, "cutting", "")) read_cutting(*t, scene.cutting);
     if (const auto* t = opt_table(root, "headless", "")) read_headless(*t, scene.headless);
+    if (const auto* t = opt_table(root, "metrics", "")) read_metrics(*t, scene.metrics);
     check_dependencies(scene, effects_node);
     return scene;
   }
@@ -622,6 +624,23 @@ class Loader {
     if (const auto* n = t.get("steps")) {
       h.steps = ranged_int(*n, sub(p, "steps"), 1, std::numeric_limits<std::int64_t>::max(),
                            "a number of solver steps >= 1");
+    }
+  }
+
+  void read_metrics(const toml::table& t, MetricsSettings& m) const {
+    const std::string p = "metrics";
+    check_keys(t, p, {"planned_cut", "cut_band"});
+    if (const auto* n = t.get("planned_cut")) {
+      const std::string expected = "a polyline [[x, y, z], [x, y, z], ...] of >= 2 points in m";
+      const auto* a = n->as_array();
+      if (a == nullptr || a->size() < 2)
+        fail(*n, sub(p, "planned_cut"), "not a polyline", expected);
+      for (std::size_t i = 0; i < a->size(); ++i)
+        m.planned_cut_m.push_back(vec3((*a)[i], at(sub(p, "planned_cut"), i), expected));
+    }
+    if (const auto* n = t.get("cut_band")) {
+      m.cut_band_m = ranged(*n, sub(p, "cut_band"), 0.0, true,
+                            std::numeric_limits<double>::infinity(), false, "a distance > 0 in m");
     }
   }
 
