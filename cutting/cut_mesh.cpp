@@ -34,24 +34,30 @@
 //    the polygon is cloned: the original stays with the negative side, the clone goes to the
 //    positive side (paper convention).
 // 5. Complete or partial. A crossing edge gets a cut point iff the point lies inside the polygon
-//    (a property of the edge, so every tet around it agrees). A straddling tet is "complete" when
-//    its whole section lies in the polygon: every crossing edge's point and every coplanar node
-//    inside. The crack opens only where this is sure to stay on the blade: a cut point gets two
-//    nodes iff every tet around its edge is complete (else one, welded); a coplanar node is
-//    cloned iff it is inside the polygon, every straddling tet around it is complete, every
-//    coplanar face around it has all three nodes inside, no flat tet holds it, and both sides
-//    use it (no orphaned node). An opened face then always has all its nodes inside the polygon.
-//    Complete tets use the patterns of point 2 with these (paired or welded) nodes. A straddling
-//    tet that is not complete but has cut points (the polygon's boundary crosses it: the blade
-//    ends inside it) is split WITHOUT opening: each face is triangulated by the same rule as the
-//    patterns (cutting/subdivide.h split_face: a point joined to the opposite node, or a corner
-//    triangle and a quad cut through its smallest id) and coned from a Steiner point at the
-//    tet's centroid. The mesh stays welded around the crack's front.
-//    Stated plainly: the crack stops at the last complete tets, up to one element short of the
-//    polygon's edge. The paper's partial patterns that follow the polygon's edge inside a tet
-//    (face points where the blade's edge crosses a face, a point at the blade's tip inside a
-//    tet, and the "end cases" where the blade crosses a face without cutting its edges) are NOT
-//    implemented; a tet the blade enters without cutting any of its edges is left whole.
+//    grown by tol (a property of the edge, so every tet around it agrees); it opens (two nodes)
+//    iff it lies inside by more than tol and no "pinned" tet (below) holds the edge. A coplanar
+//    node is cloned iff it lies inside by more than tol, no pinned tet holds it, every coplanar
+//    face around it lies inside, no flat tet holds it, and both sides use it. A straddling tet is
+//    complete when its whole section (the polygon Sigma of its cut points and coplanar nodes)
+//    lies in the grown polygon; it takes the patterns of point 2. Otherwise the blade's edge
+//    ends inside it (partial cut; the paper's end cases), and it is cut exactly along
+//    S = Sigma ∩ blade:
+//      - face points: where the blade's outline crosses the section's side in a tet face (the
+//        "blade crosses a face without cutting its edges" case), one welded node each, computed
+//        once per face (keyed by the face) so both tets sharing the face agree;
+//      - tip points: the blade's corners strictly inside Sigma, one welded node each;
+//      - Sigma is triangulated with S's outline as constraints (cutting/section_triangulation.h)
+//        plus an opened pair of nodes at S's centroid joined to S's corners, so the crack opens
+//        over all of S and closes exactly on the blade's outline;
+//      - each side's piece (the tet clipped by the plane, convex) is coned from its own Steiner
+//        point over its boundary: the section triangles and the face parts (faces without face
+//        points split by split_face, the patterns' rule; faces with face points fanned from their
+//        smallest node on that side, the same in both tets sharing the face).
+//    A straddling tet whose section side along a coplanar EDGE is crossed by the blade's outline
+//    cannot stop the crack there (the edge would need a point every tet around it agrees on): it
+//    is "pinned", split the same way but with every node welded, and the crack stops at its
+//    neighbours (the one remaining case where the crack stops short of the polygon's edge).
+//    A straddling tet the blade does not meet is left whole.
 // 6. Output: the touched tets (cut, or one-sided tets that take a clone) are removed, their
 //    pieces added with the same group, each piece oriented positively by its rest volume.
 #include "cutting/cut_mesh.h"
@@ -61,11 +67,14 @@
 #include <unordered_map>
 
 #include "cutting/patterns.h"
+#include "cutting/section_triangulation.h"
 #include "cutting/subdivide.h"
 #include "cutting/weld_map.h"
 
 namespace serosa::cutting {
 namespace {
+
+using V2 = Eigen::Vector2d;
 
 // Faces of a tet as local node triples.
 constexpr std::array<std::array<int, 3>, 4> kFaces{{{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}}};
@@ -73,22 +82,17 @@ constexpr std::array<std::array<int, 3>, 4> kFaces{{{1, 2, 3}, {0, 3, 2}, {0, 1,
 struct NodeInfo {
   double phi = 0.0;  ///< signed distance to the plane, m
   Sign sign = Sign::kZero;
-  bool inside = false;  ///< coplanar node inside the polygon (grown by tol)
+  double margin = 0.0;  ///< coplanar node: inside margin in the polygon, m
+  bool inside = false;  ///< coplanar node inside the polygon grown by tol
+  bool strict = false;  ///< coplanar node inside the polygon by more than tol
 };
 
 struct EdgeInfo {
   double t = 0.0;       ///< cut point parameter from min id to max id
   bool inside = false;  ///< cut point inside the polygon (grown by tol): the edge is split
-  bool open = false;    ///< inside and every tet around it complete: two nodes
+  bool strict = false;  ///< cut point inside by more than tol: may open
+  bool open = false;    ///< strict and no pinned tet around it: two nodes
   std::vector<std::int32_t> tets;  ///< candidate indices of the tets around it
-};
-
-struct TetInfo {
-  std::array<Sign, 4> sign{};
-  int code = 0;
-  bool straddles = false;   ///< has a + and a - node
-  bool complete = false;    ///< straddles and its whole section lies in the polygon
-  bool has_points = false;  ///< straddles and some crossing edge's cut point is inside
 };
 
 // A point of a piece as a combination of original nodes (the weights apply() uses).
@@ -106,11 +110,38 @@ struct Combo {
     w[count] = weight;
     ++count;
   }
+  void add(const Combo& o, double scale) {
+    for (int k = 0; k < o.count; ++k) add(o.nodes[k], o.w[k] * scale);
+  }
   [[nodiscard]] Vec3 rest(const TetMesh& m) const {
     Vec3 r = Vec3::Zero();
     for (int k = 0; k < count; ++k) r += w[k] * m.rest[nodes[k]];
     return r;
   }
+  [[nodiscard]] Vec3 cur(const TetMesh& m) const {
+    Vec3 r = Vec3::Zero();
+    for (int k = 0; k < count; ++k) r += w[k] * m.x[nodes[k]];
+    return r;
+  }
+  [[nodiscard]] NodeParent parent() const {
+    NodeParent p;
+    p.count = static_cast<std::uint8_t>(count);
+    for (int k = 0; k < count; ++k) {
+      p.nodes[k] = nodes[k];
+      p.weights[k] = w[k];
+    }
+    return p;
+  }
+};
+
+struct TetInfo {
+  std::array<Sign, 4> sign{};
+  int code = 0;
+  bool straddles = false;  ///< has a + and a - node
+  bool complete = false;   ///< straddles and its whole section lies in the polygon
+  bool pinned = false;     ///< partial, but the crack cannot stop inside it: split welded
+  bool interacts = false;  ///< partial: the blade meets its section (else left whole)
+  Combo apex;              ///< partial, not pinned: the cone apex on the crack's front
 };
 
 void tet_box(const TetMesh& m, const Tet& t, Vec3& lo, Vec3& hi) {
@@ -121,16 +152,40 @@ void tet_box(const TetMesh& m, const Tet& t, Vec3& lo, Vec3& hi) {
   }
 }
 
+// A face point: where the blade's outline crosses the section's side in one tet face.
+struct FacePoint {
+  double s = 0.0;  ///< parameter from the side's first endpoint (smaller label) to the second
+  Combo combo;
+  std::int32_t id = -1;  ///< its (welded) node, created on first use
+};
+struct FaceEntry {
+  std::vector<FacePoint> points;  ///< by increasing s
+};
+struct FaceKeyHash {
+  std::size_t operator()(const std::array<std::int32_t, 3>& k) const {
+    std::uint64_t h = 1469598103934665603ull;
+    for (std::int32_t v : k) h = (h ^ static_cast<std::uint32_t>(v)) * 1099511628211ull;
+    return static_cast<std::size_t>(h);
+  }
+};
+
+// A vertex of a tet's section: a coplanar node or a cut point on a crossing edge.
+struct SecVert {
+  std::uint64_t label = 0;  ///< edge_key(a, a) for node a, edge_key(a, b) for edge (a, b)
+  std::array<std::int32_t, 2> support{-1, -1};  ///< node a (and b), global ids
+  Combo combo;
+  V2 p2 = V2::Zero();   ///< in-plane coordinates, m
+  bool inside = false;  ///< inside the polygon grown by tol
+};
+
 // Everything one cut needs while it builds the delta.
 class Cutter {
  public:
   Cutter(const TetMesh& mesh, const ConvexPolygon& blade, const CutOptions& options,
          const TetBoxQuery& query)
-      : m_mesh(mesh),
-        m_blade(blade),
-        m_options(options),
-        m_query(query),
-        m_weld(mesh.num_nodes()) {}
+      : m_mesh(mesh), m_blade(blade), m_options(options), m_query(query), m_weld(mesh.num_nodes()) {
+    for (const Vec3& p : blade.points()) m_blade2.push_back(blade.to_plane(p));
+  }
 
   CutResult run() {
     if (!find_candidates()) return std::move(m_result);
@@ -186,17 +241,31 @@ class Cutter {
       if (!info.straddles) continue;
       // Geometrically complete: every cut point and coplanar node inside the polygon.
       bool complete = true;
+      std::array<int, 2> zeros{-1, -1};
+      int nz = 0;
       for (int i = 0; i < 4; ++i) {
-        if (info.sign[i] == Sign::kZero) complete = complete && m_nodes[t[i]].inside;
+        if (info.sign[i] == Sign::kZero) {
+          complete = complete && m_nodes[t[i]].inside;
+          zeros[static_cast<std::size_t>(nz++)] = i;
+        }
         for (int j = i + 1; j < 4; ++j) {
           if (static_cast<int>(info.sign[i]) * static_cast<int>(info.sign[j]) >= 0) continue;
           EdgeInfo& e = edge(t[i], t[j]);
           e.tets.push_back(static_cast<std::int32_t>(ci));
           complete = complete && e.inside;
-          info.has_points = info.has_points || e.inside;
         }
       }
       info.complete = complete;
+      // Pinned: the outline crosses the section's side along a coplanar edge.
+      if (!complete && nz == 2) {
+        const std::int32_t a = t[zeros[0]], b = t[zeros[1]];
+        const NodeInfo &na = m_nodes[a], &nb = m_nodes[b];
+        if (!(na.inside && nb.inside)) {
+          const V2 pa = m_blade.to_plane(m_mesh.x[a]), pb = m_blade.to_plane(m_mesh.x[b]);
+          info.pinned = !crossings(pa, pb).empty() || na.strict || nb.strict;
+        }
+      }
+      if (!complete) analyse_partial(t, info);
     }
   }
 
@@ -206,7 +275,11 @@ class Cutter {
       NodeInfo& n = it->second;
       n.phi = m_blade.signed_distance(m_mesh.x[id]);
       n.sign = n.phi > m_tol ? Sign::kPos : n.phi < -m_tol ? Sign::kNeg : Sign::kZero;
-      n.inside = n.sign == Sign::kZero && m_blade.contains_projection(m_mesh.x[id], m_tol);
+      if (n.sign == Sign::kZero) {
+        n.margin = m_blade.inside_margin(m_mesh.x[id]);
+        n.inside = n.margin >= -m_tol;
+        n.strict = n.margin > m_tol;
+      }
     }
     return it->second;
   }
@@ -218,17 +291,46 @@ class Cutter {
       const double plo = m_nodes[lo].phi, phi_hi = m_nodes[hi].phi;
       it->second.t = plo / (plo - phi_hi);
       const Vec3 p = m_mesh.x[lo] + it->second.t * (m_mesh.x[hi] - m_mesh.x[lo]);
-      it->second.inside = m_blade.contains_projection(p, m_tol);
+      const double margin = m_blade.inside_margin(p);
+      it->second.inside = margin >= -m_tol;
+      it->second.strict = margin > m_tol;
     }
     return it->second;
   }
 
-  // A cut point opens (two nodes) iff every tet around its edge is complete.
+  // Parameters s in (0, 1) where the blade's outline crosses the 2D segment [u, w], more than
+  // tol from its ends and from each other, ascending.
+  std::vector<double> crossings(const V2& u, const V2& w) const {
+    std::vector<double> out;
+    const V2 d = w - u;
+    const double len = d.norm();
+    if (!(len > 2.0 * m_tol)) return out;
+    const std::size_t k = m_blade2.size();
+    for (std::size_t i = 0; i < k; ++i) {
+      const V2& b0 = m_blade2[i];
+      const V2 e = m_blade2[(i + 1) % k] - b0;
+      const double den = d.x() * e.y() - d.y() * e.x();
+      if (std::abs(den) <= 1e-14 * len * e.norm()) continue;  // parallel
+      const V2 r0 = b0 - u;
+      const double s = (r0.x() * e.y() - r0.y() * e.x()) / den;
+      const double r = (r0.x() * d.y() - r0.y() * d.x()) / den;
+      if (r < -1e-12 || r > 1.0 + 1e-12) continue;
+      if (s * len <= m_tol || (1.0 - s) * len <= m_tol) continue;
+      out.push_back(s);
+    }
+    std::sort(out.begin(), out.end());
+    std::vector<double> merged;
+    for (double s : out)
+      if (merged.empty() || (s - merged.back()) * len > m_tol) merged.push_back(s);
+    return merged;
+  }
+
+  // An edge opens iff its cut point is strictly inside and no pinned tet holds it.
   void decide_edges() {
     for (auto& [key, e] : m_edges) {
-      e.open = e.inside;
+      e.open = e.strict;
       for (std::int32_t ci : e.tets)
-        e.open = e.open && m_tets[static_cast<std::size_t>(ci)].complete;
+        e.open = e.open && !m_tets[static_cast<std::size_t>(ci)].pinned;
     }
   }
 
@@ -236,7 +338,7 @@ class Cutter {
   void decide_clones() {
     std::vector<std::int32_t> zero_nodes;
     for (const auto& [id, tets] : m_zero_tets)
-      if (m_nodes[id].inside) zero_nodes.push_back(id);
+      if (m_nodes[id].strict) zero_nodes.push_back(id);
     std::sort(zero_nodes.begin(), zero_nodes.end());
     for (std::int32_t a : zero_nodes) {
       bool ok = true, pos_user = false, neg_user = false;
@@ -244,7 +346,7 @@ class Cutter {
         const TetInfo& info = m_tets[static_cast<std::size_t>(ci)];
         const Tet& t = m_mesh.tets[m_cands[static_cast<std::size_t>(ci)]];
         if (info.straddles) {
-          ok = ok && info.complete;
+          ok = ok && !info.pinned;
           pos_user = neg_user = true;
           continue;
         }
@@ -269,18 +371,26 @@ class Cutter {
     }
   }
 
+  // Id of original node v on side pos (its clone on the positive side).
+  std::int32_t node_id(std::int32_t v, bool pos) const {
+    if (pos)
+      if (auto cl = m_weld.find_clone(v)) return *cl;
+    return v;
+  }
+
   // Resolves one pattern label of tet `t` (canonical order `perm`) on side `pos`.
   std::int32_t resolve(const Tet& t, const CaseEntry& c, std::uint8_t label, bool pos,
                        Combo& combo) {
     if (!is_edge_label(label)) {
       const std::int32_t v = t[c.perm[label]];
       combo.add(v, 1.0);
-      if (pos)
-        if (auto cl = m_weld.find_clone(v)) return *cl;
-      return v;
+      return node_id(v, pos);
     }
     const auto& en = kEdgeNodes[label - 4];
-    const std::int32_t a = t[c.perm[en[0]]], b = t[c.perm[en[1]]];
+    return edge_point_id(t[c.perm[en[0]]], t[c.perm[en[1]]], pos, combo);
+  }
+
+  std::int32_t edge_point_id(std::int32_t a, std::int32_t b, bool pos, Combo& combo) {
     const std::int32_t lo = std::min(a, b), hi = std::max(a, b);
     const EdgeInfo& e = m_edges[edge_key(a, b)];
     combo.add(lo, 1.0 - e.t);
@@ -289,9 +399,10 @@ class Cutter {
     return pos ? pair.pos : pair.neg;
   }
 
-  void emit_tet(std::array<std::int32_t, 4> ids, std::array<Combo, 4> combos, std::uint16_t g) {
-    const double vol = signed_volume(combos[0].rest(m_mesh), combos[1].rest(m_mesh),
-                                     combos[2].rest(m_mesh), combos[3].rest(m_mesh));
+  void emit_tet(std::array<std::int32_t, 4> ids, const std::array<const Combo*, 4>& combos,
+                std::uint16_t g) {
+    const double vol = signed_volume(combos[0]->rest(m_mesh), combos[1]->rest(m_mesh),
+                                     combos[2]->rest(m_mesh), combos[3]->rest(m_mesh));
     if (vol < 0.0) std::swap(ids[2], ids[3]);
     if (!(std::abs(vol) > 0.0)) ++m_result.stats.degenerate_tets;
     m_result.delta.added_tets.push_back({ids[0], ids[1], ids[2], ids[3]});
@@ -307,7 +418,8 @@ class Cutter {
     for (int k = 0; k < n; ++k) ids[k] = resolve(t, c, prim.points[k], pos, combos[k]);
     PrimitiveSplit split;
     if (prim.kind == PrimitiveKind::kTet) {
-      emit_tet({ids[0], ids[1], ids[2], ids[3]}, {combos[0], combos[1], combos[2], combos[3]}, g);
+      emit_tet({ids[0], ids[1], ids[2], ids[3]}, {&combos[0], &combos[1], &combos[2], &combos[3]},
+               g);
       return;
     }
     if (prim.kind == PrimitiveKind::kPyramid) {
@@ -317,58 +429,398 @@ class Cutter {
       if (split.steiner) {
         // Mean of the six nodes, through the original tet's nodes.
         Combo mean;
-        for (int k = 0; k < 6; ++k)
-          for (int j = 0; j < combos[k].count; ++j)
-            mean.add(combos[k].nodes[j], combos[k].w[j] / 6.0);
-        NodeParent p;
-        p.count = static_cast<std::uint8_t>(mean.count);
-        for (int j = 0; j < mean.count; ++j) {
-          p.nodes[j] = mean.nodes[j];
-          p.weights[j] = mean.w[j];
-        }
-        ids[6] = m_weld.add_point(p);
+        for (int k = 0; k < 6; ++k) mean.add(combos[k], 1.0 / 6.0);
+        ids[6] = m_weld.add_point(mean.parent());
         combos[6] = mean;
         ++m_result.stats.steiner_points;
       }
     }
     for (const LocalTet& lt : split.tets)
       emit_tet({ids[lt[0]], ids[lt[1]], ids[lt[2]], ids[lt[3]]},
-               {combos[lt[0]], combos[lt[1]], combos[lt[2]], combos[lt[3]]}, g);
+               {&combos[lt[0]], &combos[lt[1]], &combos[lt[2]], &combos[lt[3]]}, g);
   }
 
-  // A straddling tet the polygon's boundary crosses: its faces split at the (welded) cut points
-  // by split_face, coned from a Steiner point at the centroid.
-  void emit_partial(const Tet& t, std::uint16_t g) {
-    Combo centre;
-    for (int k = 0; k < 4; ++k) centre.add(t[k], 0.25);
-    NodeParent p;
-    p.count = 4;
-    for (int k = 0; k < 4; ++k) {
-      p.nodes[k] = t[k];
-      p.weights[k] = 0.25;
+  // ---- partial cuts -------------------------------------------------------------------------
+
+  // The section of straddling tet t: its vertices, in counter-clockwise order in the plane.
+  std::vector<SecVert> section(const Tet& t, const TetInfo& info) {
+    std::vector<SecVert> sv;
+    for (int i = 0; i < 4; ++i) {
+      if (info.sign[i] == Sign::kZero) {
+        SecVert v;
+        v.label = edge_key(t[i], t[i]);
+        v.support = {t[i], -1};
+        v.combo.add(t[i], 1.0);
+        v.inside = m_nodes[t[i]].inside;
+        sv.push_back(v);
+      }
+      for (int j = i + 1; j < 4; ++j) {
+        if (static_cast<int>(info.sign[i]) * static_cast<int>(info.sign[j]) >= 0) continue;
+        const EdgeInfo& e = m_edges[edge_key(t[i], t[j])];
+        SecVert v;
+        v.label = edge_key(t[i], t[j]);
+        v.support = {t[i], t[j]};
+        v.combo.add(std::min(t[i], t[j]), 1.0 - e.t);
+        v.combo.add(std::max(t[i], t[j]), e.t);
+        v.inside = e.inside;
+        sv.push_back(v);
+      }
     }
-    const std::int32_t apex = m_weld.add_point(p);
+    V2 c = V2::Zero();
+    for (SecVert& v : sv) {
+      v.p2 = m_blade.to_plane(v.combo.cur(m_mesh));
+      c += v.p2;
+    }
+    c /= static_cast<double>(sv.size());
+    std::sort(sv.begin(), sv.end(), [&](const SecVert& a, const SecVert& b) {
+      return std::atan2(a.p2.y() - c.y(), a.p2.x() - c.x()) <
+             std::atan2(b.p2.y() - c.y(), b.p2.x() - c.x());
+    });
+    return sv;
+  }
+
+  // Sorted node ids of the face holding section vertices u and w; {-1,..} entries when they
+  // share only an edge (two coplanar nodes); {-2,-2,-2} when they share no face.
+  static std::array<std::int32_t, 3> face_key_of(const SecVert& u, const SecVert& w) {
+    std::array<std::int32_t, 4> ids{u.support[0], u.support[1], w.support[0], w.support[1]};
+    std::sort(ids.begin(), ids.end());
+    std::array<std::int32_t, 3> key{-1, -1, -1};
+    int n = 0;
+    for (std::int32_t v : ids)
+      if (v >= 0 && (n == 0 || key[static_cast<std::size_t>(n - 1)] != v)) {
+        if (n == 3) return {-2, -2, -2};
+        key[static_cast<std::size_t>(n++)] = v;
+      }
+    if (n < 3) return {-1, -1, -1};
+    return key;
+  }
+
+  // Face points of the section's side (u, w) in a tet face, computed once per face from the
+  // face's own data (so both tets sharing it agree), ordered from the smaller label.
+  FaceEntry& face_points(const std::array<std::int32_t, 3>& key, const SecVert& u,
+                         const SecVert& w) {
+    auto [it, fresh] = m_faces.try_emplace(key);
+    if (fresh && !(u.inside && w.inside)) {
+      const SecVert& a = u.label < w.label ? u : w;
+      const SecVert& b = u.label < w.label ? w : u;
+      for (double s : crossings(a.p2, b.p2)) {
+        FacePoint fp;
+        fp.s = s;
+        fp.combo.add(a.combo, 1.0 - s);
+        fp.combo.add(b.combo, s);
+        it->second.points.push_back(fp);
+      }
+    }
+    return it->second;
+  }
+
+  std::int32_t face_point_id(FacePoint& fp) {
+    if (fp.id < 0) {
+      fp.id = m_weld.add_point(fp.combo.parent());
+      ++m_result.stats.face_points;
+    }
+    return fp.id;
+  }
+
+  // A straddling tet that is not complete: finds the face points on its faces, whether the
+  // blade meets it at all, and where the crack's front runs inside it: S = section ∩ blade is
+  // opened by coning every piece from one apex on the front (the midpoint of a single chord, or
+  // the blade's corner where two chords meet), so the crack is exactly the fan from the apex
+  // over S's sides on the tet's faces. Fronts that no single point sees (two chords apart, or
+  // two of the blade's corners inside) pin the tet.
+  void analyse_partial(const Tet& t, TetInfo& info) {
+    const std::vector<SecVert> sv = section(t, info);
+    const std::size_t ns = sv.size();
+    struct SPoint {
+      V2 p2;
+      Combo combo;
+      bool boundary = true;
+    };
+    std::vector<SPoint> sp;  // S's corners
+    double diam = 0.0;
+    for (std::size_t i = 0; i < ns; ++i)
+      for (std::size_t j = i + 1; j < ns; ++j) diam = std::max(diam, (sv[i].p2 - sv[j].p2).norm());
+    for (std::size_t i = 0; i < ns; ++i) {
+      const SecVert& u = sv[i];
+      const SecVert& w = sv[(i + 1) % ns];
+      if (u.inside) {
+        sp.push_back({u.p2, u.combo, true});
+        info.interacts = true;
+      }
+      const auto key = face_key_of(u, w);
+      if (key[0] == -2) {
+        info.pinned = true;  // unordered section (a sliver): no opening here
+        continue;
+      }
+      if (key[0] == -1) continue;  // along a coplanar edge (pinned in classify when crossed)
+      const FaceEntry& fe = face_points(key, u, w);
+      const SecVert& a = u.label < w.label ? u : w;
+      const SecVert& b = u.label < w.label ? w : u;
+      for (const FacePoint& fp : fe.points) {
+        sp.push_back({a.p2 + fp.s * (b.p2 - a.p2), fp.combo, true});
+        info.interacts = true;
+      }
+    }
+    for (std::size_t k = 0; k < m_blade2.size(); ++k) {
+      double margin = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < ns; ++i) {
+        const V2 e = sv[(i + 1) % ns].p2 - sv[i].p2;
+        const V2 q = m_blade2[k] - sv[i].p2;
+        margin = std::min(margin, (e.x() * q.y() - e.y() * q.x()) / e.norm());
+      }
+      if (margin > m_tol) sp.push_back({m_blade2[k], barycentric(t, m_blade.points()[k]), false});
+    }
+    if (info.pinned || !info.interacts) return;
+    // S's corners counter-clockwise; its sides on the section's boundary ("runs") or across it
+    // (the front).
+    V2 c = V2::Zero();
+    for (const SPoint& p : sp) c += p.p2;
+    c /= static_cast<double>(sp.size());
+    std::sort(sp.begin(), sp.end(), [&](const SPoint& a, const SPoint& b) {
+      return std::atan2(a.p2.y() - c.y(), a.p2.x() - c.x()) <
+             std::atan2(b.p2.y() - c.y(), b.p2.x() - c.x());
+    });
+    const std::size_t n = sp.size();
+    double area = 0.0;
+    for (std::size_t k = 0; k < n; ++k) area += area2d(c, sp[k].p2, sp[(k + 1) % n].p2);
+    if (n < 3 || !(area > m_tol * diam)) {
+      info.pinned = true;
+      return;
+    }
+    auto on_section_boundary = [&](const V2& q) {
+      for (std::size_t i = 0; i < ns; ++i) {
+        const V2 e = sv[(i + 1) % ns].p2 - sv[i].p2;
+        const double l2 = e.squaredNorm();
+        const double s = std::clamp(e.dot(q - sv[i].p2) / l2, 0.0, 1.0);
+        if ((sv[i].p2 + s * e - q).norm() <= 1e-9 * diam) return true;
+      }
+      return false;
+    };
+    std::vector<char> front(n, 0);
+    std::size_t fronts = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const SPoint &p = sp[k], &q = sp[(k + 1) % n];
+      front[k] = !(p.boundary && q.boundary && on_section_boundary(0.5 * (p.p2 + q.p2)));
+      fronts += front[k] ? 1 : 0;
+    }
+    // One chain of front sides: its start is a front side after a run.
+    std::size_t chains = 0, first = 0;
+    for (std::size_t k = 0; k < n; ++k)
+      if (front[k] && !front[(k + n - 1) % n]) {
+        ++chains;
+        first = k;
+      }
+    if (chains != 1 || fronts > 2) {
+      info.pinned = true;
+      return;
+    }
+    info.apex = Combo{};
+    if (fronts == 1) {
+      info.apex.add(sp[first].combo, 0.5);
+      info.apex.add(sp[(first + 1) % n].combo, 0.5);
+    } else {
+      const SPoint& mid = sp[(first + 1) % n];
+      if (mid.boundary) {
+        info.pinned = true;
+        return;
+      }
+      info.apex = mid.combo;
+    }
+  }
+
+  // Barycentric combination of tet t's nodes giving point p (current positions).
+  Combo barycentric(const Tet& t, const Vec3& p) const {
+    const Vec3 &a = m_mesh.x[t[0]], &b = m_mesh.x[t[1]], &c = m_mesh.x[t[2]], &d = m_mesh.x[t[3]];
+    const double v = signed_volume(a, b, c, d);
+    std::array<double, 4> w{signed_volume(p, b, c, d) / v, signed_volume(a, p, c, d) / v,
+                            signed_volume(a, b, p, d) / v, 0.0};
+    w[3] = 1.0 - w[0] - w[1] - w[2];
+    Combo out;
+    for (int k = 0; k < 4; ++k) out.add(t[k], w[static_cast<std::size_t>(k)]);
+    return out;
+  }
+
+  // A partial (or pinned) tet: every face triangulated by the face rule, coned from the apex.
+  void emit_partial(const Tet& t, const TetInfo& info, std::uint16_t g) {
+    Combo apex = info.apex;
+    if (info.pinned) {
+      apex = Combo{};
+      for (int k = 0; k < 4; ++k) apex.add(t[k], 0.25);
+    }
+    const std::int32_t aid = m_weld.add_point(apex.parent());
     ++m_result.stats.steiner_points;
-    for (const auto& f : kFaces) {
-      std::array<std::int32_t, 6> ids{t[f[0]], t[f[1]], t[f[2]], -1, -1, -1};
-      std::array<Combo, 6> combos{};
-      for (int k = 0; k < 3; ++k) combos[k].add(t[f[k]], 1.0);
-      for (int k = 0; k < 3; ++k) {
-        const std::int32_t a = t[f[k]], b = t[f[(k + 1) % 3]];
-        const auto it = m_edges.find(edge_key(a, b));
-        if (it == m_edges.end() || !it->second.inside) continue;
-        const EdgeInfo& e = it->second;
-        ids[3 + k] = m_weld.edge_point(a, b, e.t, e.open).pos;  // never open here
-        combos[3 + k].add(std::min(a, b), 1.0 - e.t);
-        combos[3 + k].add(std::max(a, b), e.t);
+    for (const auto& f : kFaces) emit_face(t, info, f, aid, apex, g);
+  }
+
+  // One point of a face's triangulation: ids on the positive and negative side.
+  struct FPoint {
+    Combo combo;
+    std::int32_t pos = -1, neg = -1;
+    Sign sign = Sign::kZero;  ///< original nodes: their sign; points on the plane: kZero
+    V2 uv = V2::Zero();       ///< affine coordinates in the face (weights of its 2nd, 3rd node)
+  };
+
+  // Tet face f of a partial tet, triangulated so that both tets sharing it agree, coned from the
+  // apex (aid, apex). Faces on one side: whole. Crossed faces without face points: split_face
+  // (the patterns' rule) at the cut points that exist. Crossed faces with face points: the
+  // constrained triangulation (cutting/section_triangulation.h) of the face's nodes, existing cut
+  // points and face points, in affine coordinates from the face's sorted node ids, with the
+  // section side's parts inside the blade as constraints.
+  void emit_face(const Tet& t, const TetInfo& info, const std::array<int, 3>& f, std::int32_t aid,
+                 const Combo& apex, std::uint16_t g) {
+    std::array<Sign, 3> sg{info.sign[f[0]], info.sign[f[1]], info.sign[f[2]]};
+    const bool has_pos = std::count(sg.begin(), sg.end(), Sign::kPos) > 0;
+    const bool has_neg = std::count(sg.begin(), sg.end(), Sign::kNeg) > 0;
+    auto node_point = [&](int k) {
+      FPoint p;
+      const std::int32_t v = t[f[k]];
+      p.combo.add(v, 1.0);
+      p.pos = node_id(v, true);
+      p.neg = v;
+      p.sign = sg[k];
+      return p;
+    };
+    auto cone = [&](const FPoint& a, const FPoint& b, const FPoint& c, bool pos) {
+      emit_tet({aid, pos ? a.pos : a.neg, pos ? b.pos : b.neg, pos ? c.pos : c.neg},
+               {&apex, &a.combo, &b.combo, &c.combo}, g);
+    };
+    // Side of a triangle from its original nodes: +1, -1, or 0 when it crosses the plane.
+    auto tri_side = [](const FPoint& a, const FPoint& b, const FPoint& c) {
+      bool p = false, n = false;
+      for (const FPoint* q : {&a, &b, &c}) {
+        p = p || q->sign == Sign::kPos;
+        n = n || q->sign == Sign::kNeg;
       }
-      const FaceSplit fs = split_face(ids);
-      for (int k = 0; k < fs.count; ++k) {
-        const auto& tr = fs.tris[k];
-        emit_tet({ids[tr[0]], ids[tr[1]], ids[tr[2]], apex},
-                 {combos[tr[0]], combos[tr[1]], combos[tr[2]], centre}, g);
+      return p && n ? 0 : p ? 1 : -1;
+    };
+    auto emit_tri = [&](const FPoint& a, const FPoint& b, const FPoint& c) {
+      const int side = tri_side(a, b, c);
+      if (side == 0) {  // across the plane: only welded points may lie on it
+        for (const FPoint* q : {&a, &b, &c})
+          if (q->pos != q->neg) ++m_result.stats.degenerate_tets;
+      }
+      cone(a, b, c, side >= 0);
+    };
+    if (!(has_pos && has_neg)) {  // the whole face on one side
+      emit_tri(node_point(0), node_point(1), node_point(2));
+      return;
+    }
+    // Cut points of the face's crossing edges that exist (inside the polygon).
+    std::array<FPoint, 6> fp{node_point(0), node_point(1), node_point(2), {}, {}, {}};
+    std::array<bool, 3> has_edge{false, false, false};
+    for (int k = 0; k < 3; ++k) {
+      const int i = f[k], j = f[(k + 1) % 3];
+      if (static_cast<int>(info.sign[i]) * static_cast<int>(info.sign[j]) >= 0) continue;
+      const EdgeInfo& e = m_edges[edge_key(t[i], t[j])];
+      if (!e.inside) continue;
+      has_edge[k] = true;
+      FPoint& p = fp[static_cast<std::size_t>(3 + k)];
+      p.pos = edge_point_id(t[i], t[j], true, p.combo);
+      Combo unused;
+      p.neg = edge_point_id(t[i], t[j], false, unused);
+    }
+    std::array<std::int32_t, 3> key{t[f[0]], t[f[1]], t[f[2]]};
+    std::sort(key.begin(), key.end());
+    const auto fit = m_faces.find(key);
+    if (fit == m_faces.end() || fit->second.points.empty()) {
+      // split_face with this side's ids, once per side; triangles across the plane from the
+      // positive call.
+      for (const bool pos : {true, false}) {
+        std::array<std::int32_t, 6> ids{-1, -1, -1, -1, -1, -1};
+        for (int k = 0; k < 6; ++k)
+          if (k < 3 || has_edge[static_cast<std::size_t>(k - 3)])
+            ids[static_cast<std::size_t>(k)] =
+                pos ? fp[static_cast<std::size_t>(k)].pos : fp[static_cast<std::size_t>(k)].neg;
+        const FaceSplit fs = split_face(ids);
+        for (int k = 0; k < fs.count; ++k) {
+          const auto& tr = fs.tris[static_cast<std::size_t>(k)];
+          const FPoint &a = fp[tr[0]], &b = fp[tr[1]], &c = fp[tr[2]];
+          const int side = tri_side(a, b, c);
+          if (side == (pos ? 1 : -1) || (pos && side == 0)) emit_tri(a, b, c);
+        }
+      }
+      return;
+    }
+    // With face points: affine coordinates from the sorted ids.
+    std::vector<FPoint> pts;
+    for (int k = 0; k < 6; ++k)
+      if (k < 3 || has_edge[static_cast<std::size_t>(k - 3)])
+        pts.push_back(fp[static_cast<std::size_t>(k)]);
+    // The section side's endpoints (coplanar nodes or cut points) and its face points.
+    std::vector<std::pair<std::uint64_t, Combo>> ends;  // (label, combo)
+    for (int k = 0; k < 3; ++k) {
+      const int i = f[k], j = f[(k + 1) % 3];
+      if (sg[static_cast<std::size_t>(k)] == Sign::kZero) {
+        Combo cz;
+        cz.add(t[i], 1.0);
+        ends.emplace_back(edge_key(t[i], t[i]), cz);
+      }
+      if (static_cast<int>(info.sign[i]) * static_cast<int>(info.sign[j]) < 0) {
+        const EdgeInfo& e = m_edges[edge_key(t[i], t[j])];
+        Combo ce;
+        ce.add(std::min(t[i], t[j]), 1.0 - e.t);
+        ce.add(std::max(t[i], t[j]), e.t);
+        ends.emplace_back(edge_key(t[i], t[j]), ce);
       }
     }
+    if (ends.size() != 2) {
+      ++m_result.stats.degenerate_tets;
+      return;
+    }
+    if (ends[1].first < ends[0].first) std::swap(ends[0], ends[1]);
+    // Points along the side, from the smaller label: index into pts or -1 (a missing cut point).
+    auto find_point = [&](const Combo& c) {
+      for (std::size_t k = 0; k < pts.size(); ++k) {
+        const Combo& q = pts[k].combo;
+        bool same = q.count == c.count;
+        for (int l = 0; l < c.count && same; ++l) {
+          bool found = false;
+          for (int m = 0; m < q.count; ++m)
+            found = found || (q.nodes[m] == c.nodes[l] && q.w[m] == c.w[l]);
+          same = found;
+        }
+        if (same) return static_cast<int>(k);
+      }
+      return -1;
+    };
+    std::vector<int> along{find_point(ends[0].second)};
+    std::vector<Combo> along_combo{ends[0].second};
+    for (FacePoint& q : fit->second.points) {
+      FPoint p;
+      p.combo = q.combo;
+      p.pos = p.neg = face_point_id(q);
+      along.push_back(static_cast<int>(pts.size()));
+      along_combo.push_back(q.combo);
+      pts.push_back(p);
+    }
+    along.push_back(find_point(ends[1].second));
+    along_combo.push_back(ends[1].second);
+    for (FPoint& p : pts) {
+      double w1 = 0.0, w2 = 0.0;
+      for (int l = 0; l < p.combo.count; ++l) {
+        if (p.combo.nodes[l] == key[1]) w1 += p.combo.w[l];
+        if (p.combo.nodes[l] == key[2]) w2 += p.combo.w[l];
+      }
+      p.uv = V2(w1, w2);
+    }
+    std::vector<std::array<int, 2>> constraints;
+    for (std::size_t k = 0; k + 1 < along.size(); ++k) {
+      if (along[k] < 0 || along[k + 1] < 0) continue;
+      Combo mid;
+      mid.add(along_combo[k], 0.5);
+      mid.add(along_combo[k + 1], 0.5);
+      if (m_blade.inside_margin(mid.cur(m_mesh)) >= 0.0)
+        constraints.push_back({along[k], along[k + 1]});
+    }
+    std::vector<V2> uv;
+    for (const FPoint& p : pts) uv.push_back(p.uv);
+    const auto tris = triangulate_section(uv, constraints, 1e-10);
+    double area = 0.0;
+    for (const auto& tr : tris) {
+      area += area2d(uv[tr[0]], uv[tr[1]], uv[tr[2]]);
+      emit_tri(pts[tr[0]], pts[tr[1]], pts[tr[2]]);
+    }
+    if (!(std::abs(area - 0.5) <= 1e-9)) ++m_result.stats.degenerate_tets;
   }
 
   // Pieces of every touched tet, in ascending tet id.
@@ -381,10 +833,11 @@ class Cutter {
       const Tet& t = m_mesh.tets[ti];
       const CaseEntry& c = case_table()[info.code];
       if (info.straddles && !info.complete) {
-        if (!info.has_points) continue;  // the blade misses its edges: left whole
+        if (!info.interacts) continue;  // the blade misses it: left whole
         ++st.tets_partial;
+        st.tets_pinned += info.pinned ? 1 : 0;
         d.removed_tets.push_back(ti);
-        emit_partial(t, m_mesh.group[ti]);
+        emit_partial(t, info, m_mesh.group[ti]);
         continue;
       }
       if (info.straddles) {
@@ -420,10 +873,13 @@ class Cutter {
   WeldMap m_weld;
   CutResult m_result;
   double m_tol = 0.0;
+  std::vector<V2> m_blade2;           ///< the blade's corners in plane coordinates, m
   std::vector<std::int32_t> m_cands;  ///< candidate tet ids, ascending
   std::vector<TetInfo> m_tets;        ///< per candidate
   std::unordered_map<std::int32_t, NodeInfo> m_nodes;
   std::unordered_map<std::uint64_t, EdgeInfo> m_edges;  ///< crossing edges of straddling tets
+  std::unordered_map<std::array<std::int32_t, 3>, FaceEntry, FaceKeyHash>
+      m_faces;  ///< sorted face ids -> face points of its section side
   std::unordered_map<std::int32_t, std::vector<std::int32_t>>
       m_zero_tets;  ///< coplanar node -> tets
 };

@@ -105,6 +105,7 @@ CutCheckReport check_cut(const TetMesh& before, const TetMesh& after, const Conv
                  blade.contains_projection(*p, tol);
     if (on_blade) {
       ++rep.boundary_faces_on_blade;
+      rep.blade_face_area_m2 += 0.5 * (b - a).cross(c - a).norm();
       continue;
     }
     bool on_old = false;

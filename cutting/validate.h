@@ -37,10 +37,11 @@ struct CutCheckReport {
   std::int64_t boundary_faces_kept = 0;      ///< boundary faces present before, unchanged
   std::int64_t boundary_faces_on_old = 0;    ///< new faces lying on the old surface
   std::int64_t boundary_faces_on_blade = 0;  ///< new faces lying on the blade polygon
-  double min_quality = 0.0;                  ///< smallest mean-ratio quality after the cut
-  std::int32_t components = 0;               ///< connected pieces after (expect_separated only)
-  double positive_volume_m3 = 0.0;           ///< rest volume of the positive pieces (idem)
-  double clipped_volume_m3 = 0.0;            ///< exact positive clipped volume of before (idem)
+  double blade_face_area_m2 = 0.0;  ///< their total area (current positions): both crack sides
+  double min_quality = 0.0;         ///< smallest mean-ratio quality after the cut
+  std::int32_t components = 0;      ///< connected pieces after (expect_separated only)
+  double positive_volume_m3 = 0.0;  ///< rest volume of the positive pieces (idem)
+  double clipped_volume_m3 = 0.0;   ///< exact positive clipped volume of before (idem)
 };
 
 /// Checks `after` = `before` cut by `blade` (geometry in current positions x; volumes in rest):
