@@ -1,0 +1,75 @@
+#include "haptics/force_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace serosa::haptics {
+namespace {
+
+Vec3 v3(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+}  // namespace
+
+void ForceRenderer::reset() noexcept {
+  m_have_prev = false;
+  for (auto& f : m_last) f.setZero();
+}
+
+void ForceRenderer::set_model(const ContactModel& m, double now_s) noexcept {
+  if (m.step == 0) return;
+  if (m_have_cur) {
+    m_prev = m_cur;
+    m_have_prev = true;
+    m_blend_len_s = std::clamp(now_s - m_last_model_s, m_p.blend_min_s, m_p.blend_max_s);
+  } else {
+    m_have_prev = false;
+  }
+  m_cur = m;
+  m_have_cur = true;
+  m_blend_start_s = now_s;
+  m_last_model_s = now_s;
+}
+
+Vec3 ForceRenderer::field_force(const ContactModel& m, std::size_t tool, const Vec3& x) {
+  const ToolContact& t = m.tools[tool];
+  Vec3 f = Vec3::Zero();
+  if (t.coupled) f += m.coupling_stiffness_Npm * (v3(t.sim_tip_m) - x);
+  const std::uint32_t n = std::min<std::uint32_t>(t.n_contacts, kMaxContacts);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const ContactPlane& c = t.contacts[i];
+    const Vec3 nrm = v3(c.normal);
+    const double depth = (v3(c.point_m) - x).dot(nrm);
+    if (depth > 0.0 || std::isnan(depth)) f += c.stiffness_Npm * depth * nrm;
+  }
+  return f;
+}
+
+bool ForceRenderer::render(std::size_t tool, const Vec3& x, double now_s, double dt_s,
+                           Vec3& out) noexcept {
+  Vec3 f = Vec3::Zero();
+  if (m_have_cur) {
+    f = field_force(m_cur, tool, x);
+    if (m_have_prev) {
+      const double a = std::clamp((now_s - m_blend_start_s) / m_blend_len_s, 0.0, 1.0);
+      if (a < 1.0) f = a * f + (1.0 - a) * field_force(m_prev, tool, x);
+    }
+  }
+  if (!f.allFinite() || !x.allFinite()) {
+    m_last[tool].setZero();
+    out.setZero();
+    return false;
+  }
+  // Clamp to the rated maximum.
+  const double mag = f.norm();
+  if (mag > m_p.rated_force_N) f *= m_p.rated_force_N / mag;
+  // Slew limit against the previous output.
+  const double max_step = m_p.slew_N_per_s * std::clamp(dt_s, 0.0, 2e-3);
+  const Vec3 step = f - m_last[tool];
+  const double s = step.norm();
+  if (s > max_step) f = m_last[tool] + step * (max_step / s);
+  m_last[tool] = f;
+  out = f;
+  return true;
+}
+
+}  // namespace serosa::haptics

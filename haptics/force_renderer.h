@@ -1,0 +1,69 @@
+// ForceRenderer: turns the solver's ContactModel into a smooth, bounded tip force at 1 kHz.
+//
+//   F_raw(x) = k_c (sim_tip - x)                       virtual coupling (when the tool is coupled)
+//            + sum_i k_i max(0, (p_i - x) . n_i) n_i     local contact planes
+// evaluated at the device proxy x every tick, so contact stiffness is rendered at 1 kHz with the
+// latest hand position while the solver runs at its own rate. When a new model arrives, the
+// rendered force blends linearly from the previous model to the new one over the last observed
+// solver period (clamped to [blend_min_s, blend_max_s]). The result is then
+//   1. zeroed when any term is NaN or infinite (and the history reset),
+//   2. clamped in magnitude to rated_force_N,
+//   3. slew limited: |F(k) - F(k-1)| <= slew_N_per_s * dt per tick (default 1000 N/s, i.e. at
+//      most 1 N per 1 ms tick), so a cut or a contact change never steps the handle force.
+// Safety zeroing (unplug, stall, missing model) bypasses the slew limit: zero is immediate, and
+// after reset() the force ramps back from zero at the slew limit.
+#pragma once
+
+#include <array>
+#include <cstddef>
+
+#include "engine/math.h"
+#include "haptics/contact_model.h"
+
+namespace serosa::haptics {
+
+struct ForceRendererParams {
+  double rated_force_N = 8.0;    ///< maximum tip force magnitude per handle, N
+  double slew_N_per_s = 1000.0;  ///< maximum rate of change of the rendered force, N/s
+  double blend_min_s = 1e-3;     ///< shortest blend between two models, s
+  double blend_max_s = 50e-3;    ///< longest blend between two models, s
+};
+
+class ForceRenderer {
+ public:
+  explicit ForceRenderer(const ForceRendererParams& p = {}) : m_p(p) {}
+
+  /// Forget the last output and any blend in progress (the current model stays): the next force
+  /// starts from zero and ramps at the slew limit.
+  void reset() noexcept;
+  /// A new model (m.step differs from the current one) arrived at now_s.
+  void set_model(const ContactModel& m, double now_s) noexcept;
+  /// True once a model with step != 0 was set.
+  [[nodiscard]] bool has_model() const noexcept { return m_have_cur; }
+
+  /// Unfiltered force of model m on tool `tool` at proxy x (N); NaN propagates.
+  [[nodiscard]] static Vec3 field_force(const ContactModel& m, std::size_t tool, const Vec3& x);
+
+  /// Rendered force for `tool` at proxy x and time now_s, dt_s after the previous tick. Returns
+  /// false and writes zero when the force is not finite (the caller counts it); otherwise the
+  /// blended, clamped, slew-limited force.
+  bool render(std::size_t tool, const Vec3& x, double now_s, double dt_s, Vec3& out) noexcept;
+
+  /// Sets the last output of a tool to zero (a safety zero outside render()).
+  void zero_output(std::size_t tool) noexcept { m_last[tool].setZero(); }
+
+  [[nodiscard]] const ForceRendererParams& params() const noexcept { return m_p; }
+
+ private:
+  ForceRendererParams m_p;
+  ContactModel m_prev{};
+  ContactModel m_cur{};
+  bool m_have_prev = false;
+  bool m_have_cur = false;
+  double m_blend_start_s = 0.0;
+  double m_blend_len_s = 1e-3;
+  double m_last_model_s = 0.0;
+  std::array<Vec3, kHandles> m_last{Vec3::Zero(), Vec3::Zero()};
+};
+
+}  // namespace serosa::haptics

@@ -1,0 +1,258 @@
+#include "haptics/haptic_loop.h"
+
+#include <spdlog/spdlog.h>
+#include <time.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace serosa::haptics {
+namespace {
+
+constexpr double kEventWindowS = 20e-3;  // force steps are tracked this long after an event
+
+void cpu_relax() noexcept {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#endif
+}
+
+double clamp_abs(double v, double limit) { return std::clamp(v, -limit, limit); }
+
+bool finite(const JointEffort& e) {
+  return std::isfinite(e.pitch_Nm) && std::isfinite(e.yaw_Nm) && std::isfinite(e.roll_Nm) &&
+         std::isfinite(e.insertion_N) && std::isfinite(e.jaw_Nm);
+}
+
+}  // namespace
+
+HapticLoop::HapticLoop(Device& device, const ContactModelChannel& model, const HapticLoopConfig& c)
+    : m_device(device),
+      m_model(model),
+      m_c(c),
+      m_renderer(c.force),
+      m_monitor(c.monitor),
+      m_tel(std::make_unique<LoopTelemetry>()) {
+  m_tel->period_s = c.period_s;
+}
+
+HapticLoop::~HapticLoop() { stop(); }
+
+void HapticLoop::start() {
+  if (m_thread.joinable()) return;
+  m_stop.store(false);
+  if (m_c.gap_monitor) m_monitor.start();
+  m_thread = std::thread([this] { run(); });
+}
+
+void HapticLoop::stop() {
+  m_stop.store(true);
+  if (m_thread.joinable()) m_thread.join();
+  m_monitor.stop();
+  m_tel->monitor_gaps = m_monitor.gaps();
+}
+
+void HapticLoop::send_zero() noexcept {
+  DeviceCommand cmd;
+  cmd.tick = m_ticks;
+  cmd.state_sequence = m_sample.sequence;
+  cmd.enable = false;
+  m_device.command(cmd);
+}
+
+void HapticLoop::run() {
+  // Set-up, before the periodic part: scheduling, pinning, one log line each.
+  const bool rt = m_c.realtime && try_realtime(m_c.priority);
+  const bool pinned = m_c.cpu >= 0 && pin_to_cpu(m_c.cpu);
+  m_tel->realtime = rt;
+  m_tel->cpu = pinned ? m_c.cpu : -1;
+  if (m_c.realtime && !rt) {
+    spdlog::warn("haptics: SCHED_FIFO refused; the 1 kHz loop runs at normal priority");
+  } else if (rt) {
+    spdlog::info("haptics: 1 kHz loop on SCHED_FIFO priority {}", m_c.priority);
+  }
+  if (m_c.cpu >= 0 && !pinned) spdlog::warn("haptics: could not pin the loop to core {}", m_c.cpu);
+
+  const auto period = static_cast<std::int64_t>(std::llround(m_c.period_s * 1e9));
+  const auto spin = static_cast<std::int64_t>(std::llround(m_c.spin_s * 1e9));
+  std::int64_t next = monotonic_ns() + period;
+  while (!m_stop.load(std::memory_order_relaxed)) {
+    // Sleep to just before the deadline, then spin to it.
+    const std::int64_t wake = next - spin;
+    timespec ts{static_cast<time_t>(wake / 1'000'000'000), static_cast<long>(wake % 1'000'000'000)};
+    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+    }
+    std::int64_t now = monotonic_ns();
+    while (now < next) {
+      cpu_relax();
+      now = monotonic_ns();
+    }
+    tick(now);
+    next += period;
+    // Late past the next deadline: skip the missed ones (no replay), resume one period on.
+    const std::int64_t after = monotonic_ns();
+    if (after > next) {
+      const std::int64_t missed = (after - next) / period + 1;
+      m_tel->missed_deadlines += static_cast<std::uint64_t>(missed);
+      next += missed * period;
+    }
+  }
+  send_zero();
+}
+
+void HapticLoop::tick(std::int64_t now_ns) noexcept {
+  LoopTelemetry& tel = *m_tel;
+  const double now = static_cast<double>(now_ns) * 1e-9;
+  const auto period_ns = static_cast<std::int64_t>(std::llround(m_c.period_s * 1e9));
+  double dt = m_c.period_s;
+  bool gap = false;
+
+  // 1. Timing: period, late ticks (platform stall or own overrun), gaps past the watchdog.
+  if (m_ticks > 0) {
+    const std::int64_t p = now_ns - m_last_tick_ns;
+    tel.record_period(p);
+    dt = static_cast<double>(p) * 1e-9;
+    const auto late_ns = static_cast<std::int64_t>(m_c.late_threshold_s * 1e9);
+    if (p > period_ns + late_ns) {
+      ++tel.late_ticks;
+      if (m_monitor.saw_gap(m_last_tick_ns, now_ns, (p - period_ns) / 2)) {
+        ++tel.platform_stalls;
+      } else {
+        ++tel.loop_overruns;
+      }
+    }
+    if (dt > m_c.watchdog_s) {
+      gap = true;
+      ++tel.gaps;
+    }
+  }
+  m_last_tick_ns = now_ns;
+  ++m_ticks;
+  tel.ticks = m_ticks;
+
+  // 2. Newest device sample.
+  DeviceSample s;
+  if (m_device.poll(now, s)) {
+    m_sample = s;
+    m_have_sample = true;
+    m_sample_time_s = now;
+    ++tel.device_samples;
+  }
+
+  // 3. Newest model (only copied when the solver published a new one).
+  const std::uint64_t version = m_model.version();
+  if (version != m_model_version) {
+    ContactModel m;
+    if (m_model.try_load(m)) {
+      m_model_version = version;
+      if (m.step != 0 && m.step != m_model_step) {
+        m_model_step = m.step;
+        m_model_time_s = now;
+        m_renderer.set_model(m, now);
+        ++tel.models;
+        if (m_events_seen &&
+            (m.cut_events != m_cut_events || m.contact_events != m_contact_events)) {
+          ForceEvent& e = tel.events[tel.n_events % LoopTelemetry::kEvents];
+          e.time_s = now;
+          e.kind = (m.cut_events != m_cut_events ? 1u : 0u) |
+                   (m.contact_events != m_contact_events ? 2u : 0u);
+          e.max_step_N = 0.0;
+          ++tel.n_events;
+          m_event_until_s = now + kEventWindowS;
+        }
+        m_events_seen = true;
+        m_cut_events = m.cut_events;
+        m_contact_events = m.contact_events;
+      }
+    }
+  }
+
+  // 4. Safety gates, then the force.
+  ZeroReason zero = ZeroReason::kNone;
+  if (gap) {
+    zero = ZeroReason::kGap;
+  } else if (!m_device.connected()) {
+    zero = ZeroReason::kUnplugged;
+  } else if (!m_have_sample || now - m_sample_time_s > m_c.device_timeout_s) {
+    zero = ZeroReason::kDeviceStale;
+  } else if (!m_renderer.has_model() || now - m_model_time_s > m_c.model_timeout_s) {
+    zero = ZeroReason::kNoModel;
+  }
+
+  DeviceCommand cmd;
+  cmd.tick = m_ticks;
+  cmd.state_sequence = m_sample.sequence;
+  std::array<Vec3, kHandles> force{Vec3::Zero(), Vec3::Zero()};
+  if (zero == ZeroReason::kNone) {
+    const double max_step = m_c.force.slew_N_per_s * std::clamp(dt, 0.0, 2e-3);
+    for (std::size_t h = 0; h < kHandles && zero == ZeroReason::kNone; ++h) {
+      const auto& tip = m_sample.pose[h].tip_m;
+      const Vec3 proxy(tip[0], tip[1], tip[2]);
+      Vec3 f;
+      if (!m_renderer.render(h, proxy, now, dt, f)) {
+        zero = ZeroReason::kNotFinite;
+        break;
+      }
+      if ((f - m_prev_force[h]).norm() >= max_step * (1.0 - 1e-9) && max_step > 0.0) {
+        ++tel.slew_limited_ticks;
+      }
+      JointEffort e = tip_to_joint(m_c.trocars[h], m_sample.joints[h], f);
+      e.pitch_Nm = clamp_abs(e.pitch_Nm, m_c.max_joint_torque_Nm);
+      e.yaw_Nm = clamp_abs(e.yaw_Nm, m_c.max_joint_torque_Nm);
+      e.roll_Nm = clamp_abs(e.roll_Nm, m_c.max_roll_torque_Nm);
+      e.insertion_N = clamp_abs(e.insertion_N, m_c.force.rated_force_N);
+      e.jaw_Nm = clamp_abs(e.jaw_Nm, m_c.max_jaw_torque_Nm);
+      if (!finite(e)) {
+        zero = ZeroReason::kNotFinite;
+        break;
+      }
+      cmd.effort[h] = e;
+      cmd.tip_force_N[h] = f;
+      force[h] = f;
+    }
+  }
+  if (zero != ZeroReason::kNone) {
+    cmd.enable = false;
+    cmd.effort = {};
+    cmd.tip_force_N = {Vec3::Zero(), Vec3::Zero()};
+    force = {Vec3::Zero(), Vec3::Zero()};
+    m_renderer.reset();  // the model stays; the force ramps back from zero afterwards
+    ++tel.zero_ticks[static_cast<std::size_t>(zero)];
+  } else {
+    cmd.enable = true;
+  }
+
+  // 5. Force steps after contact and cut events.
+  if (now <= m_event_until_s && tel.n_events > 0) {
+    ForceEvent& e = tel.events[(tel.n_events - 1) % LoopTelemetry::kEvents];
+    for (std::size_t h = 0; h < kHandles; ++h) {
+      e.max_step_N = std::max(e.max_step_N, (force[h] - m_prev_force[h]).norm());
+    }
+  }
+  m_prev_force = force;
+
+  // 6. Out: device command, tool states for the solver, live status.
+  m_device.command(cmd);
+  if (m_have_sample) {
+    for (std::size_t h = 0; h < kHandles; ++h) {
+      ToolState t = m_sample.pose[h];
+      t.tick = m_ticks;
+      t.time_s = now;
+      t.buttons = m_sample.buttons[h];
+      m_tools[h].store(t);
+    }
+  }
+  LoopStatus st;
+  st.tick = m_ticks;
+  st.time_s = now;
+  st.zero_reason = static_cast<std::uint32_t>(zero);
+  st.enabled = cmd.enable ? 1u : 0u;
+  for (std::size_t h = 0; h < kHandles; ++h) {
+    st.tip_force_N[h] = {force[h].x(), force[h].y(), force[h].z()};
+  }
+  st.device_sequence = m_sample.sequence;
+  m_status.store(st);
+  ++m_command_seq;
+}
+
+}  // namespace serosa::haptics
