@@ -11,6 +11,7 @@
 #include "engine/topology_delta.h"
 #include "surface/cut_faces.h"
 #include "surface/extract_surface.h"
+#include "surface/surface_bvh.h"
 #include "surface/surface_normals.h"
 #include "surface/update_surface.h"
 #include "surface_fixtures.h"
@@ -62,6 +63,8 @@ TEST(OneSetOfNodes, DeformedAndSubdividedSurfaceReadsTheMechanicalNodes) {
   const OriginalSurface original(m, s);
   FaceTable table = build_face_table(m, s);
   const double h = 0.01;
+  SurfaceBvh bvh;
+  std::vector<std::int32_t> changed;
   for (int step = 0; step < 8; ++step) {
     // Deform: a rigid motion plus noise, applied to the mechanical nodes only.
     const Mat3 rot = rotation(0.1 * u(rng), Vec3(u(rng), u(rng), 1.0));
@@ -80,11 +83,24 @@ TEST(OneSetOfNodes, DeformedAndSubdividedSurfaceReadsTheMechanicalNodes) {
                                         c + half * a + half * b, c - half * a + half * b});
     cutting::CutResult cut = cutting::cut_mesh(m, blade);
     apply(m, cut.delta);
-    update_surface(s, table, m, cut.delta, &original);
+    update_surface(s, table, m, cut.delta, &original, &changed);
     RenderVertices r;
     compute_render_vertices(s, m.x, {}, r);
     expect_surface_is_mechanical(s, m, r);
     if (::testing::Test::HasFatalFailure()) return;
+    // The collision BVH, updated locally, finds every surface node exactly where TetMesh::x
+    // has it: distance 0 on a face that holds it.
+    if (step == 0) {
+      bvh.build(s, m.x);
+    } else {
+      bvh.update(s, changed, m.x);
+    }
+    for (const Tri& f : s.faces)
+      for (std::int32_t v : f) {
+        const auto hit = bvh.closest_point(m.x, m.x[static_cast<std::size_t>(v)]);
+        ASSERT_TRUE(hit.has_value());
+        ASSERT_EQ(hit->distance, 0.0) << "node " << v;
+      }
     // Every node a cut added and the surface uses sits where its parents put it: x is the
     // weighted sum of the parents' x (no copy of an older position anywhere).
     const std::int32_t first_new =
