@@ -302,6 +302,8 @@ void OffscreenContext::bind_framebuffer() {
   glViewport(0, 0, width_, height_);
 }
 
+void OffscreenContext::finish() { glFinish(); }
+
 Image OffscreenContext::read_image() {
   // Resolve the multisampled colour into the single-sampled target.
   glBindFramebuffer(GL_READ_FRAMEBUFFER, draw_fbo_);

@@ -48,6 +48,8 @@ class OffscreenContext {
   /// Resolves multisampling and reads the framebuffer back (glReadPixels), rows flipped so that
   /// the first row is the top of the picture.
   [[nodiscard]] Image read_image();
+  /// Waits until every GL command issued so far has executed (glFinish): for timing draws.
+  void finish();
 
   [[nodiscard]] int width() const { return width_; }
   [[nodiscard]] int height() const { return height_; }

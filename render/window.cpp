@@ -21,6 +21,10 @@ int glfw_key(Key k) {
       return GLFW_KEY_UP;
     case Key::kDown:
       return GLFW_KEY_DOWN;
+    case Key::kO:
+      return GLFW_KEY_O;
+    case Key::kH:
+      return GLFW_KEY_H;
   }
   return GLFW_KEY_UNKNOWN;
 }
@@ -84,6 +88,24 @@ bool Window::pressed(Key key) {
   const bool edge = down && !was;
   was = down;
   return edge;
+}
+
+void Window::cursor(float& x, float& y) const {
+  double cx = 0.0;
+  double cy = 0.0;
+  glfwGetCursorPos(m_window, &cx, &cy);
+  int ww = 0, wh = 0, fw = 0, fh = 0;
+  glfwGetWindowSize(m_window, &ww, &wh);
+  glfwGetFramebufferSize(m_window, &fw, &fh);
+  // Window coordinates to framebuffer pixels (they differ on high-DPI screens).
+  const double sx = ww > 0 ? static_cast<double>(fw) / ww : 1.0;
+  const double sy = wh > 0 ? static_cast<double>(fh) / wh : 1.0;
+  x = static_cast<float>(cx * sx);
+  y = static_cast<float>(cy * sy);
+}
+
+bool Window::mouse_down() const {
+  return glfwGetMouseButton(m_window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
 }
 
 void Window::set_title(const std::string& title) { glfwSetWindowTitle(m_window, title.c_str()); }

@@ -9,7 +9,8 @@ struct GLFWwindow;
 namespace serosa::render {
 
 /// Keys a session reacts to (GLFW key codes stay inside render/).
-enum class Key { kEscape, kSpace, kV, kUp, kDown };
+/// Space: pause; V: next view; Up/Down: tessellation; O: 0/30 degree scope; H: overlay on/off.
+enum class Key { kEscape, kSpace, kV, kUp, kDown, kO, kH };
 
 class Window {
  public:
@@ -37,10 +38,15 @@ class Window {
   /// True when `key` went down since the previous call for that key.
   [[nodiscard]] bool pressed(Key key);
   void set_title(const std::string& title);
+  /// The pointer's position in framebuffer pixels (origin top left; outside the window it may be
+  /// negative or beyond the size).
+  void cursor(float& x, float& y) const;
+  /// True while the primary mouse button is held.
+  [[nodiscard]] bool mouse_down() const;
 
  private:
   GLFWwindow* m_window = nullptr;
-  bool m_down[5] = {};
+  bool m_down[7] = {};
 };
 
 }  // namespace serosa::render

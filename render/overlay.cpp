@@ -1,0 +1,307 @@
+// Overlay (see overlay.h): ImGui layout and a minimal OpenGL 3 renderer for ImDrawData.
+#include "render/overlay.h"
+
+#include <epoxy/gl.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <array>
+#include <cfloat>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <vector>
+
+#include "render/gl_program.h"
+
+namespace serosa::render {
+namespace {
+
+const char* const kOverlayVertex = R"(#version 410 core
+layout(location = 0) in vec2 a_pos;    // pixels, origin top left
+layout(location = 1) in vec2 a_uv;
+layout(location = 2) in vec4 a_color;  // sRGB, normalised bytes
+uniform vec2 u_size;                   // framebuffer size, pixels
+out vec2 v_uv;
+out vec4 v_color;
+void main() {
+  v_uv = a_uv;
+  v_color = a_color;
+  gl_Position = vec4(2.0 * a_pos.x / u_size.x - 1.0, 1.0 - 2.0 * a_pos.y / u_size.y, 0.0, 1.0);
+}
+)";
+
+const char* const kOverlayFragment = R"(#version 410 core
+in vec2 v_uv;
+in vec4 v_color;
+uniform sampler2D u_font;
+out vec4 frag_color;
+void main() { frag_color = v_color * texture(u_font, v_uv); }
+)";
+
+constexpr std::array<SnapshotOptions::View, 3> kViews{SnapshotOptions::View::kVisual,
+                                                      SnapshotOptions::View::kCollision,
+                                                      SnapshotOptions::View::kMechanical};
+
+std::array<float, 4> last_item_rect() {
+  const ImVec2 lo = ImGui::GetItemRectMin();
+  const ImVec2 hi = ImGui::GetItemRectMax();
+  return {lo.x, lo.y, hi.x, hi.y};
+}
+
+ImTextureID texture_id(GLuint tex) {
+  return reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(tex));
+}
+
+GLuint gl_texture(ImTextureID id) {
+  return static_cast<GLuint>(reinterpret_cast<std::uintptr_t>(id));
+}
+
+// "m:ss.s" for the timeline.
+void format_time(double s, char* out, std::size_t size) {
+  s = std::max(s, 0.0);
+  const int minutes = static_cast<int>(s / 60.0);
+  std::snprintf(out, size, "%d:%04.1f", minutes, s - 60.0 * minutes);
+}
+
+}  // namespace
+
+const char* view_name(SnapshotOptions::View view) {
+  switch (view) {
+    case SnapshotOptions::View::kVisual:
+      return "visual";
+    case SnapshotOptions::View::kCollision:
+      return "collision";
+    case SnapshotOptions::View::kMechanical:
+      return "mechanical";
+  }
+  return "?";
+}
+
+Overlay::Overlay()
+    : program_(std::make_unique<GlProgram>(
+          std::vector<ShaderSource>{{GL_VERTEX_SHADER, kOverlayVertex, "overlay vertex"},
+                                    {GL_FRAGMENT_SHADER, kOverlayFragment, "overlay fragment"}})) {
+  IMGUI_CHECKVERSION();
+  ImGuiContext* previous = ImGui::GetCurrentContext();
+  imgui_ = ImGui::CreateContext();
+  ImGui::SetCurrentContext(imgui_);
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;  // no imgui.ini next to the trainee's working directory
+  io.LogFilename = nullptr;
+  io.BackendRendererName = "serosa_gl41";
+  ImGui::StyleColorsDark();
+  ImGuiStyle& style = ImGui::GetStyle();
+  style.WindowRounding = 4.0f;
+  style.WindowBorderSize = 0.0f;
+
+  // The font atlas as an RGBA texture.
+  unsigned char* pixels = nullptr;
+  int w = 0;
+  int h = 0;
+  io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+  glGenTextures(1, &font_tex_);
+  glBindTexture(GL_TEXTURE_2D, font_tex_);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, pixels);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  io.Fonts->SetTexID(texture_id(font_tex_));
+
+  // ImDrawVert: pos (2 floats), uv (2 floats), col (4 bytes).
+  glGenVertexArrays(1, &vao_);
+  glGenBuffers(1, &vbo_);
+  glGenBuffers(1, &ibo_);
+  glBindVertexArray(vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, vbo_);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo_);
+  const auto stride = static_cast<GLsizei>(sizeof(ImDrawVert));
+  const auto offset = [](std::size_t bytes) {
+    return reinterpret_cast<const void*>(static_cast<std::uintptr_t>(bytes));
+  };
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, stride, offset(offsetof(ImDrawVert, pos)));
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, stride, offset(offsetof(ImDrawVert, uv)));
+  glEnableVertexAttribArray(2);
+  glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, stride, offset(offsetof(ImDrawVert, col)));
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  if (previous != nullptr) ImGui::SetCurrentContext(previous);
+}
+
+Overlay::~Overlay() {
+  glDeleteTextures(1, &font_tex_);
+  const std::array<GLuint, 2> bufs{vbo_, ibo_};
+  glDeleteBuffers(static_cast<GLsizei>(bufs.size()), bufs.data());
+  glDeleteVertexArrays(1, &vao_);
+  if (ImGui::GetCurrentContext() == imgui_) ImGui::SetCurrentContext(nullptr);
+  ImGui::DestroyContext(imgui_);
+}
+
+OverlayResult Overlay::draw(const OverlayData& data, const SnapshotOptions& options, int width,
+                            int height, const OverlayInput& input) {
+  OverlayResult result;
+  if (!data.visible || width <= 0 || height <= 0) return result;
+  ImGui::SetCurrentContext(imgui_);
+  ImGuiIO& io = ImGui::GetIO();
+  io.DisplaySize = ImVec2(static_cast<float>(width), static_cast<float>(height));
+  io.DisplayFramebufferScale = ImVec2(1.0f, 1.0f);
+  io.DeltaTime = std::max(input.dt_s, 1e-4f);
+  io.MousePos = input.mouse_x >= 0.0f && input.mouse_y >= 0.0f
+                    ? ImVec2(input.mouse_x, input.mouse_y)
+                    : ImVec2(-FLT_MAX, -FLT_MAX);
+  if (first_frame_ || (data.replay && !replay_shown_)) {
+    // Auto-sized windows measure their contents on their first frame and show from the second:
+    // lay out one throw-away frame (no input) when a panel appears, so that every picture is
+    // complete.
+    io.MousePos = ImVec2(-FLT_MAX, -FLT_MAX);
+    io.MouseDown[0] = false;
+    ImGui::NewFrame();
+    (void)layout(data, options, width, height);
+    ImGui::EndFrame();
+    first_frame_ = false;
+    io.MousePos = input.mouse_x >= 0.0f && input.mouse_y >= 0.0f
+                      ? ImVec2(input.mouse_x, input.mouse_y)
+                      : ImVec2(-FLT_MAX, -FLT_MAX);
+  }
+  replay_shown_ = data.replay;
+  io.MouseDown[0] = input.mouse_down;
+  ImGui::NewFrame();
+  result = layout(data, options, width, height);
+  result.wants_mouse = io.WantCaptureMouse;
+  ImGui::Render();
+  render_draw_data();
+  return result;
+}
+
+OverlayResult Overlay::layout(const OverlayData& data, const SnapshotOptions& options, int width,
+                              int height) {
+  OverlayResult result;
+
+  const ImGuiWindowFlags panel = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+                                 ImGuiWindowFlags_AlwaysAutoResize |
+                                 ImGuiWindowFlags_NoSavedSettings |
+                                 ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav;
+  // Statistics, top left.
+  ImGui::SetNextWindowPos(ImVec2(10.0f, 10.0f), ImGuiCond_Always);
+  ImGui::SetNextWindowBgAlpha(0.55f);
+  if (ImGui::Begin("Statistics", nullptr, panel)) {
+    ImGui::Text("t = %.2f s%s%s", data.sim_time_s, data.paused ? "  [paused]" : "",
+                data.slow_motion ? "  [slow motion]" : "");
+    ImGui::Text("FEM %.2f ms/step  (%.0f steps/s)", data.fem_ms_per_step, data.solver_rate_hz);
+    if (data.haptic_rate_hz > 0.0) {
+      ImGui::Text("haptics %.0f Hz", data.haptic_rate_hz);
+    } else {
+      ImGui::TextDisabled("haptics off");
+    }
+    ImGui::Text("cuts %lld", static_cast<long long>(data.cuts));
+    int view = 0;
+    for (std::size_t i = 0; i < kViews.size(); ++i)
+      if (kViews[i] == options.view) view = static_cast<int>(i);
+    ImGui::SetNextItemWidth(110.0f);
+    if (ImGui::Combo("view", &view, "visual\0collision\0mechanical\0")) {
+      result.view = kViews[static_cast<std::size_t>(std::clamp(view, 0, 2))];
+    }
+    int level = options.tessellation;
+    ImGui::SetNextItemWidth(110.0f);
+    if (ImGui::SliderInt("tessellation", &level, 1, 16)) result.tessellation = level;
+    const ImVec2 pos = ImGui::GetWindowPos();
+    const ImVec2 size = ImGui::GetWindowSize();
+    result.stats_rect = {pos.x, pos.y, pos.x + size.x, pos.y + size.y};
+  }
+  ImGui::End();
+
+  // Replay timeline, along the bottom.
+  if (data.replay) {
+    const float margin = 10.0f;
+    ImGui::SetNextWindowPos(ImVec2(margin, static_cast<float>(height) - margin), ImGuiCond_Always,
+                            ImVec2(0.0f, 1.0f));
+    ImGui::SetNextWindowSize(ImVec2(static_cast<float>(width) - 2.0f * margin, 0.0f),
+                             ImGuiCond_Always);
+    ImGui::SetNextWindowBgAlpha(0.55f);
+    const ImGuiWindowFlags bar = panel & ~ImGuiWindowFlags_AlwaysAutoResize;
+    if (ImGui::Begin("Replay", nullptr, bar)) {
+      if (ImGui::Button(data.paused ? " Play  " : " Pause ")) result.toggle_pause = true;
+      result.pause_button = last_item_rect();
+      ImGui::SameLine();
+      char now[32];
+      char total[32];
+      format_time(data.replay_position_s, now, sizeof now);
+      format_time(data.replay_duration_s, total, sizeof total);
+      char label[80];
+      std::snprintf(label, sizeof label, "%s / %s", now, total);
+      const double duration = std::max(data.replay_duration_s, 1e-6);
+      auto position =
+          static_cast<float>(std::clamp(data.replay_position_s, 0.0, duration) / duration);
+      ImGui::SetNextItemWidth(-1.0f);
+      if (ImGui::SliderFloat("##timeline", &position, 0.0f, 1.0f, label,
+                             ImGuiSliderFlags_AlwaysClamp)) {
+        result.seek_s = static_cast<double>(position) * duration;
+      }
+      result.timeline = last_item_rect();
+    }
+    ImGui::End();
+  }
+  return result;
+}
+
+void Overlay::render_draw_data() {
+  const ImDrawData* dd = ImGui::GetDrawData();
+  if (dd == nullptr || dd->CmdListsCount == 0) return;
+  const float w = dd->DisplaySize.x;
+  const float h = dd->DisplaySize.y;
+  glEnable(GL_BLEND);
+  glBlendEquation(GL_FUNC_ADD);
+  // Colour blends over the picture; alpha (the coverage read back by tests) takes the maximum.
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_DEPTH_TEST);
+  glEnable(GL_SCISSOR_TEST);
+  glUseProgram(program_->id());
+  glUniform2f(program_->uniform("u_size"), w, h);
+  glUniform1i(program_->uniform("u_font"), 0);
+  glActiveTexture(GL_TEXTURE0);
+  glBindVertexArray(vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, vbo_);
+  const ImVec2 origin = dd->DisplayPos;
+  for (int n = 0; n < dd->CmdListsCount; ++n) {
+    const ImDrawList* list = dd->CmdLists[n];
+    glBufferData(
+        GL_ARRAY_BUFFER,
+        static_cast<GLsizeiptr>(list->VtxBuffer.Size) * static_cast<GLsizeiptr>(sizeof(ImDrawVert)),
+        list->VtxBuffer.Data, GL_STREAM_DRAW);
+    glBufferData(
+        GL_ELEMENT_ARRAY_BUFFER,
+        static_cast<GLsizeiptr>(list->IdxBuffer.Size) * static_cast<GLsizeiptr>(sizeof(ImDrawIdx)),
+        list->IdxBuffer.Data, GL_STREAM_DRAW);
+    for (int c = 0; c < list->CmdBuffer.Size; ++c) {
+      const ImDrawCmd& cmd = list->CmdBuffer[c];
+      if (cmd.UserCallback != nullptr) continue;  // the overlay adds none
+      const float x0 = cmd.ClipRect.x - origin.x;
+      const float y0 = cmd.ClipRect.y - origin.y;
+      const float x1 = cmd.ClipRect.z - origin.x;
+      const float y1 = cmd.ClipRect.w - origin.y;
+      if (x1 <= x0 || y1 <= y0) continue;
+      // GL's scissor origin is the bottom left.
+      glScissor(static_cast<GLint>(x0), static_cast<GLint>(h - y1), static_cast<GLsizei>(x1 - x0),
+                static_cast<GLsizei>(y1 - y0));
+      glBindTexture(GL_TEXTURE_2D, gl_texture(cmd.GetTexID()));
+      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(cmd.ElemCount),
+                     sizeof(ImDrawIdx) == 2 ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT,
+                     reinterpret_cast<const void*>(
+                         static_cast<std::uintptr_t>(cmd.IdxOffset * sizeof(ImDrawIdx))));
+    }
+  }
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  glUseProgram(0);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_BLEND);
+  glEnable(GL_DEPTH_TEST);
+}
+
+}  // namespace serosa::render

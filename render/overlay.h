@@ -1,0 +1,77 @@
+// Overlay: the Dear ImGui heads-up display over the endoscope view (solver and haptic rates, cut
+// count, view and tessellation, and for instructors the replay timeline), drawn with the
+// project's own small OpenGL 3 renderer for ImGui's draw lists (no ImGui backend needed).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <optional>
+
+#include "render/render_frame.h"
+#include "render/snapshot_options.h"
+
+struct ImGuiContext;
+
+namespace serosa::render {
+
+class GlProgram;
+
+/// Pointer input for the overlay, in framebuffer pixels (origin top left).
+struct OverlayInput {
+  float mouse_x = -1.0f;      ///< pixels; negative: no pointer over the picture
+  float mouse_y = -1.0f;      ///< pixels
+  bool mouse_down = false;    ///< the primary button is held
+  float dt_s = 1.0f / 60.0f;  ///< wall time since the previous overlay frame, s (> 0)
+};
+
+/// What the user asked for through the overlay this frame, and where its controls are (pixels,
+/// {x0, y0, x1, y1}; zero when not shown) so that callers and tests can aim at them.
+struct OverlayResult {
+  bool toggle_pause = false;                  ///< the replay's pause/play button was clicked
+  std::optional<double> seek_s;               ///< the timeline was dragged to this position, s
+  std::optional<SnapshotOptions::View> view;  ///< another view was picked
+  std::optional<int> tessellation;            ///< another tessellation level was picked
+  bool wants_mouse = false;  ///< the pointer is over the overlay (do not use it for the scene)
+  std::array<float, 4> stats_rect{};    ///< the statistics panel
+  std::array<float, 4> pause_button{};  ///< the replay's pause/play button
+  std::array<float, 4> timeline{};      ///< the replay's timeline slider
+};
+
+/// Owns an ImGui context and the GL objects that draw it. Construct, use and destroy it with the
+/// same OpenGL 4.1+ context current (the window's or an OffscreenContext). ImGui keeps one
+/// current context per process: use one Overlay at a time (each draw makes its own current).
+class Overlay {
+ public:
+  /// @throws std::runtime_error with the driver's log on a GLSL error
+  Overlay();
+  ~Overlay();
+  Overlay(const Overlay&) = delete;
+  Overlay& operator=(const Overlay&) = delete;
+  Overlay(Overlay&&) = delete;
+  Overlay& operator=(Overlay&&) = delete;
+
+  /// Lays out and draws the overlay for `data` over the bound framebuffer (width x height
+  /// pixels; the viewport must cover it). Nothing is drawn when data.visible is false.
+  OverlayResult draw(const OverlayData& data, const SnapshotOptions& options, int width, int height,
+                     const OverlayInput& input);
+
+ private:
+  OverlayResult layout(const OverlayData& data, const SnapshotOptions& options, int width,
+                       int height);
+  void render_draw_data();
+
+  ImGuiContext* imgui_ = nullptr;
+  std::unique_ptr<GlProgram> program_;
+  unsigned int vao_ = 0;
+  unsigned int vbo_ = 0;
+  unsigned int ibo_ = 0;
+  unsigned int font_tex_ = 0;
+  bool first_frame_ = true;
+  bool replay_shown_ = false;  // the replay panel was laid out last frame
+};
+
+/// The views' names as the overlay and the window title show them: "visual", "collision",
+/// "mechanical".
+[[nodiscard]] const char* view_name(SnapshotOptions::View view);
+
+}  // namespace serosa::render

@@ -1,0 +1,168 @@
+// The ImGui overlay through EGL: it draws its panels where it says, shows the replay timeline
+// only in replays, and turns clicks on its controls into actions (pause, seek, view). Pictures
+// go to <build>/test-output/render/.
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "render/frame_renderer.h"
+#include "render/gl_context.h"
+#include "render/overlay.h"
+#include "render/png_writer.h"
+#include "render/render_fixtures.h"
+
+namespace serosa::render {
+namespace {
+
+class OverlayTest : public ::testing::Test {
+ protected:
+  static constexpr int kW = 480;
+  static constexpr int kH = 320;
+  void SetUp() override {
+    try {
+      ctx_ = std::make_unique<OffscreenContext>(kW, kH);
+      fixtures::pin_gl_driver();
+      renderer_ = std::make_unique<FrameRenderer>();
+      overlay_ = std::make_unique<Overlay>();
+    } catch (const std::exception& e) {
+      FAIL() << e.what();
+    }
+    frame_ = fixtures::frame_of(fixtures::icosphere(2, 0.02f));
+    frame_.group_names = {"", "appendix"};
+    options_.width = kW;
+    options_.height = kH;
+    options_.fit_camera = true;
+  }
+  void TearDown() override {
+    overlay_.reset();
+    renderer_.reset();
+    ctx_.reset();
+  }
+
+  // Draws the frame and, when `data` is given, the overlay over it; reads the picture back.
+  Image shoot(const OverlayData* data, const OverlayInput& input, OverlayResult* result,
+              const char* png) {
+    ctx_->bind_framebuffer();
+    renderer_->draw(frame_, options_, kW, kH);
+    if (data != nullptr) {
+      const OverlayResult r = overlay_->draw(*data, options_, kW, kH, input);
+      if (result != nullptr) *result = r;
+    }
+    Image img = ctx_->read_image();
+    if (png != nullptr) write_png(img, fixtures::output_path(png));
+    return img;
+  }
+
+  // Pixels inside `rect` (x0, y0, x1, y1) whose colour differs by more than 24 in some channel.
+  static std::size_t changed_in(const Image& a, const Image& b, const std::array<float, 4>& r) {
+    std::size_t n = 0;
+    for (int y = std::max(0, static_cast<int>(r[1])); y < std::min(kH, static_cast<int>(r[3]));
+         ++y) {
+      for (int x = std::max(0, static_cast<int>(r[0])); x < std::min(kW, static_cast<int>(r[2]));
+           ++x) {
+        const auto p = a.at(x, y);
+        const auto q = b.at(x, y);
+        for (int k = 0; k < 3; ++k) {
+          if (std::abs(p[k] - q[k]) > 24) {
+            ++n;
+            break;
+          }
+        }
+      }
+    }
+    return n;
+  }
+
+  std::unique_ptr<OffscreenContext> ctx_;
+  std::unique_ptr<FrameRenderer> renderer_;
+  std::unique_ptr<Overlay> overlay_;
+  RenderFrame frame_;
+  SnapshotOptions options_;
+};
+
+TEST_F(OverlayTest, StatisticsPanelAndReplayTimelineShowWhereTheySay) {
+  const Image plain = shoot(nullptr, {}, nullptr, "overlay_none.png");
+  OverlayData d;
+  d.sim_time_s = 12.5;
+  d.fem_ms_per_step = 3.2;
+  d.solver_rate_hz = 200.0;
+  d.cuts = 2;
+  OverlayResult r;
+  const Image stats = shoot(&d, {}, &r, "overlay_stats.png");
+  // A panel of a sensible size in the top left, with text and background drawn into it.
+  EXPECT_LT(r.stats_rect[0], 20.0f);
+  EXPECT_LT(r.stats_rect[1], 20.0f);
+  EXPECT_GT(r.stats_rect[2] - r.stats_rect[0], 100.0f);
+  EXPECT_GT(r.stats_rect[3] - r.stats_rect[1], 50.0f);
+  const double area = static_cast<double>(r.stats_rect[2] - r.stats_rect[0]) *
+                      static_cast<double>(r.stats_rect[3] - r.stats_rect[1]);
+  const std::size_t in_panel = changed_in(plain, stats, r.stats_rect);
+  EXPECT_GT(static_cast<double>(in_panel), 0.2 * area);
+  // Outside it nothing changed.
+  const std::array<float, 4> rest{r.stats_rect[2] + 2.0f, 0.0f, static_cast<float>(kW),
+                                  static_cast<float>(kH)};
+  EXPECT_EQ(changed_in(plain, stats, rest), 0u);
+  // No timeline outside replays.
+  EXPECT_EQ(r.timeline[2], 0.0f);
+
+  d.replay = true;
+  d.replay_duration_s = 60.0;
+  d.replay_position_s = 15.0;
+  const Image replay = shoot(&d, {}, &r, "overlay_replay.png");
+  ASSERT_GT(r.timeline[2], r.timeline[0] + 200.0f);  // spans most of the width
+  EXPECT_GT(r.timeline[1], 0.7f * kH);               // along the bottom
+  EXPECT_GT(changed_in(plain, replay, r.timeline), 1000u);
+  EXPECT_GT(r.pause_button[2], r.pause_button[0]);
+  // Hidden: nothing drawn.
+  d.visible = false;
+  const Image hidden = shoot(&d, {}, &r, nullptr);
+  EXPECT_EQ(changed_in(plain, hidden, {0.0f, 0.0f, kW, kH}), 0u);
+}
+
+TEST_F(OverlayTest, ClicksBecomeActions) {
+  OverlayData d;
+  d.replay = true;
+  d.replay_duration_s = 40.0;
+  d.replay_position_s = 10.0;
+  OverlayResult r;
+  shoot(&d, {}, &r, nullptr);  // lay out once to learn where the controls are
+  const auto centre = [](const std::array<float, 4>& rect) {
+    return std::array<float, 2>{0.5f * (rect[0] + rect[2]), 0.5f * (rect[1] + rect[3])};
+  };
+  // Pause: press and release on the button.
+  const auto pb = centre(r.pause_button);
+  OverlayInput in;
+  in.mouse_x = pb[0];
+  in.mouse_y = pb[1];
+  shoot(&d, in, &r, nullptr);  // hover
+  in.mouse_down = true;
+  shoot(&d, in, &r, nullptr);
+  EXPECT_FALSE(r.toggle_pause);
+  EXPECT_TRUE(r.wants_mouse);
+  in.mouse_down = false;
+  shoot(&d, in, &r, nullptr);
+  EXPECT_TRUE(r.toggle_pause);
+
+  // Seek: press at three quarters of the timeline.
+  const float x = r.timeline[0] + 0.75f * (r.timeline[2] - r.timeline[0]);
+  in.mouse_x = x;
+  in.mouse_y = centre(r.timeline)[1];
+  shoot(&d, in, &r, nullptr);
+  in.mouse_down = true;
+  shoot(&d, in, &r, nullptr);
+  ASSERT_TRUE(r.seek_s.has_value());
+  EXPECT_NEAR(*r.seek_s, 30.0, 2.0);
+  in.mouse_down = false;
+  shoot(&d, in, &r, nullptr);
+
+  // Away from the overlay the pointer is the scene's.
+  in.mouse_x = 0.5f * kW;
+  in.mouse_y = 0.4f * kH;
+  shoot(&d, in, &r, nullptr);
+  EXPECT_FALSE(r.wants_mouse);
+  EXPECT_FALSE(r.toggle_pause);
+  EXPECT_FALSE(r.seek_s.has_value());
+}
+
+}  // namespace
+}  // namespace serosa::render
