@@ -37,7 +37,7 @@ class FaceArrays {
     s_.face_cut[d] = s_.face_cut[f];
     t_.key_at[d] = t_.key_at[f];
     touch(to);
-    t_.faces.find(t_.key_at[d])->second.pos = to;
+    t_.faces.find(t_.key_at[d])->pos = to;
   }
 
   // Index of group g's range, inserting an empty one in order when absent.
@@ -125,17 +125,17 @@ FaceTable build_face_table(const TetMesh& mesh, const SurfaceMesh& s) {
   t.faces.reserve(mesh.tets.size() * 5 / 2);
   for (std::int32_t i = 0; i < mesh.num_tets(); ++i)
     for (int l = 0; l < 4; ++l) {
-      Entry& e = t.faces[face_key(mesh.tets[static_cast<std::size_t>(i)], l)];
+      Entry& e = t.faces.get_or_insert(face_key(mesh.tets[static_cast<std::size_t>(i)], l));
       ++e.count;
       e.code_sum += std::int64_t{i} * 4 + l;
     }
   t.key_at.resize(s.faces.size());
   for (std::size_t i = 0; i < s.faces.size(); ++i) {
     t.key_at[i] = key_of(s.faces[i]);
-    auto it = t.faces.find(t.key_at[i]);
-    require(it != t.faces.end() && it->second.count == 1 && it->second.pos < 0,
+    Entry* e = t.faces.find(t.key_at[i]);
+    require(e != nullptr && e->count == 1 && e->pos < 0,
             "face " + std::to_string(i) + " is not a boundary face of the mesh");
-    it->second.pos = static_cast<std::int32_t>(i);
+    e->pos = static_cast<std::int32_t>(i);
   }
   return t;
 }
@@ -161,7 +161,9 @@ void update_surface(SurfaceMesh& s, FaceTable& table, const TetMesh& after, cons
   for (std::int32_t r : d.removed_tets)
     for (int l = 0; l < 4; ++l) {
       const WideKey k = face_key(tets[static_cast<std::size_t>(r)], l);
-      Entry& e = table.faces.find(k)->second;
+      Entry* found = table.faces.find(k);
+      require(found != nullptr, "removed tet " + std::to_string(r) + " has a face the table lacks");
+      Entry& e = *found;
       --e.count;
       e.code_sum -= std::int64_t{r} * 4 + l;
       touched.push_back(k);
@@ -179,7 +181,7 @@ void update_surface(SurfaceMesh& s, FaceTable& table, const TetMesh& after, cons
     const Tet t = tets[static_cast<std::size_t>(from)];
     for (int l = 0; l < 4; ++l) {
       const WideKey k = face_key(t, l);
-      table.faces.find(k)->second.code_sum += (std::int64_t{to} - from) * 4;
+      table.faces.find(k)->code_sum += (std::int64_t{to} - from) * 4;
       touched.push_back(k);
     }
     tets[static_cast<std::size_t>(to)] = t;
@@ -191,7 +193,7 @@ void update_surface(SurfaceMesh& s, FaceTable& table, const TetMesh& after, cons
     const std::int32_t slot = d.slot_of_added[k];
     for (int l = 0; l < 4; ++l) {
       const WideKey key = face_key(d.added_tets[k], l);
-      Entry& e = table.faces[key];
+      Entry& e = table.faces.get_or_insert(key);
       ++e.count;
       e.code_sum += std::int64_t{slot} * 4 + l;
       touched.push_back(key);
@@ -203,8 +205,7 @@ void update_surface(SurfaceMesh& s, FaceTable& table, const TetMesh& after, cons
   touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
   FaceArrays arrays(s, table, changed_slots);
   for (const WideKey& key : touched) {
-    auto it = table.faces.find(key);
-    Entry& e = it->second;
+    Entry& e = *table.faces.find(key);
     if (e.count == 1) {
       const auto tet = static_cast<std::int32_t>(e.code_sum >> 2);
       const auto l = static_cast<int>(e.code_sum & 3);
@@ -233,7 +234,7 @@ void update_surface(SurfaceMesh& s, FaceTable& table, const TetMesh& after, cons
         e.pos = -1;
         arrays.remove(p);
       }
-      if (e.count == 0) table.faces.erase(it);
+      if (e.count == 0) table.faces.erase(key);
     }
   }
   std::erase_if(s.groups, [](const GroupRange& r) { return r.count == 0; });

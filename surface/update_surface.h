@@ -4,36 +4,23 @@
 #pragma once
 
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include "engine/tet_mesh.h"
 #include "engine/topology_delta.h"
 #include "surface/cut_faces.h"
 #include "surface/face_key.h"
+#include "surface/face_map.h"
 #include "surface/surface_mesh.h"
 
 namespace serosa::surface {
 
-struct WideKeyHash {
-  std::size_t operator()(const WideKey& k) const noexcept {
-    std::uint64_t z = k.hi * 0x9E3779B97F4A7C15ull ^ (std::uint64_t{k.lo} + 0x632BE59BD9B4E019ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;  // splitmix64 finaliser
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return static_cast<std::size_t>(z ^ (z >> 31));
-  }
-};
-
 /// The surface consumer's private bookkeeping (the SurfaceMesh itself stays plain data to copy and
 /// publish). Holds node ids only, never positions.
 struct FaceTable {
-  struct Entry {
-    std::int32_t count = 0;     ///< tets using the face (1: boundary, 2: interior, 3+: invalid)
-    std::int32_t pos = -1;      ///< index in SurfaceMesh::faces, -1 when not there
-    std::int64_t code_sum = 0;  ///< sum of 4 tet + l over its uses: the owner when count == 1
-  };
-  std::unordered_map<WideKey, Entry, WideKeyHash> faces;  ///< every face of every tet
-  std::vector<WideKey> key_at;                            ///< (f) key of each SurfaceMesh face
+  using Entry = FaceEntry;
+  FaceMap faces;                ///< every face of every tet
+  std::vector<WideKey> key_at;  ///< (f) key of each SurfaceMesh face
   /// (m) the tets' node ids, kept in step with the mesh: a delta names removed tets by id only,
   /// and apply() has overwritten them by the time the consumer runs.
   std::vector<Tet> tets;
