@@ -1,8 +1,10 @@
-// GapMonitor: a thread that reads CLOCK_MONOTONIC in a tight loop (spin mode) or every poll_us
-// (poll mode) and records every interval longer than threshold_s: times when this thread did not
-// run at all. The host of these VMs pauses guests now and then (2-20 ms measured); when the 1 kHz
-// loop is late and the monitor saw a gap over the same interval, the lateness was the platform's
-// (a stall), otherwise it was the loop's own overrun. Lock-free: gaps go into a fixed ring.
+// GapMonitor: a thread that reads CLOCK_MONOTONIC every poll_s (poll mode, default 100 us, at a
+// SCHED_FIFO priority below the loop's, on the loop's core) or in a tight loop (poll_s = 0, spin
+// mode: costs a whole core) and records every interval longer than threshold_s: times when this
+// thread did not run at all. The host of these VMs pauses guests now and then (2-20 ms measured);
+// when the 1 kHz loop is late and the monitor saw a gap over the same interval, the lateness was
+// the platform's (a stall), otherwise it was the loop's own overrun. Lock-free: gaps go into a
+// fixed ring.
 #pragma once
 
 #include <array>
@@ -14,7 +16,7 @@ namespace serosa::haptics {
 
 struct GapMonitorConfig {
   double threshold_s = 0.5e-3;  ///< an interval longer than this (beyond the poll sleep) is a gap
-  double poll_s = 0.0;          ///< 0: spin; > 0: sleep this long between clock reads
+  double poll_s = 100e-6;       ///< 0: spin; > 0: sleep this long between clock reads
   bool realtime = true;         ///< try SCHED_FIFO (priority below the loop's)
   int cpu = -1;                 ///< pin to this core (-1: no pinning)
 };

@@ -17,6 +17,12 @@ void cpu_relax() noexcept {
 #endif
 }
 
+GapMonitorConfig monitor_config(const HapticLoopConfig& c) {
+  GapMonitorConfig m = c.monitor;
+  if (m.cpu < 0) m.cpu = c.cpu;  // watch the loop's own core: a paused vCPU stalls both
+  return m;
+}
+
 double clamp_abs(double v, double limit) { return std::clamp(v, -limit, limit); }
 
 bool finite(const JointEffort& e) {
@@ -31,7 +37,7 @@ HapticLoop::HapticLoop(Device& device, const ContactModelChannel& model, const H
       m_model(model),
       m_c(c),
       m_renderer(c.force),
-      m_monitor(c.monitor),
+      m_monitor(monitor_config(c)),
       m_tel(std::make_unique<LoopTelemetry>()) {
   m_tel->period_s = c.period_s;
 }
@@ -102,6 +108,7 @@ void HapticLoop::run() {
 
 void HapticLoop::tick(std::int64_t now_ns) noexcept {
   LoopTelemetry& tel = *m_tel;
+  const std::int64_t work_start_ns = monotonic_ns();
   const double now = static_cast<double>(now_ns) * 1e-9;
   const auto period_ns = static_cast<std::int64_t>(std::llround(m_c.period_s * 1e9));
   double dt = m_c.period_s;
@@ -115,10 +122,12 @@ void HapticLoop::tick(std::int64_t now_ns) noexcept {
     const auto late_ns = static_cast<std::int64_t>(m_c.late_threshold_s * 1e9);
     if (p > period_ns + late_ns) {
       ++tel.late_ticks;
-      if (m_monitor.saw_gap(m_last_tick_ns, now_ns, (p - period_ns) / 2)) {
-        ++tel.platform_stalls;
+      if (m_last_work_ns > period_ns / 2) {
+        ++tel.loop_overruns;  // the previous tick itself took too long
+      } else if (m_monitor.saw_gap(m_last_tick_ns, now_ns, (p - period_ns) / 2)) {
+        ++tel.platform_stalls;  // the monitor thread did not run either
       } else {
-        ++tel.loop_overruns;
+        ++tel.sched_delays;
       }
     }
     if (dt > m_c.watchdog_s) {
@@ -253,6 +262,8 @@ void HapticLoop::tick(std::int64_t now_ns) noexcept {
   st.device_sequence = m_sample.sequence;
   m_status.store(st);
   ++m_command_seq;
+  m_last_work_ns = monotonic_ns() - work_start_ns;
+  tel.max_tick_work_ns = std::max(tel.max_tick_work_ns, static_cast<std::uint64_t>(m_last_work_ns));
 }
 
 }  // namespace serosa::haptics

@@ -50,7 +50,8 @@ struct HapticLoopConfig {
   std::array<Trocar, kHandles> trocars{};  ///< per handle port geometry
   ForceRendererParams force{};             ///< includes rated_force_N and the slew limit
   bool gap_monitor = true;                 ///< run a GapMonitor to classify late ticks
-  GapMonitorConfig monitor{};
+  GapMonitorConfig monitor{};  ///< by default it polls every 100 us on the loop's own core
+                               ///< (cpu = -1 here: follow HapticLoopConfig::cpu)
 };
 
 /// Live summary, published every tick (Seqlock).
@@ -122,6 +123,7 @@ class HapticLoop {
   double m_event_until_s = -1.0;
   std::array<Vec3, kHandles> m_prev_force{Vec3::Zero(), Vec3::Zero()};
   std::uint64_t m_command_seq = 0;
+  std::int64_t m_last_work_ns = 0;  // time spent inside the previous tick
 };
 
 }  // namespace serosa::haptics

@@ -59,6 +59,8 @@ void LoopTelemetry::write_json(std::ostream& os) const {
      << ",\"jitter_p99_s\":" << jitter_percentile(0.99) << ",\"jitter_max_s\":" << max_jitter_s()
      << ",\"missed_deadlines\":" << missed_deadlines << ",\"late_ticks\":" << late_ticks
      << ",\"platform_stalls\":" << platform_stalls << ",\"loop_overruns\":" << loop_overruns
+     << ",\"sched_delays\":" << sched_delays
+     << ",\"max_tick_work_s\":" << static_cast<double>(max_tick_work_ns) * 1e-9
      << ",\"gaps\":" << gaps << ",\"monitor_gaps\":" << monitor_gaps
      << ",\"slew_limited_ticks\":" << slew_limited_ticks << ",\"device_samples\":" << device_samples
      << ",\"models\":" << models << ",\"zero_ticks\":{";

@@ -39,7 +39,11 @@ struct LoopTelemetry {
   std::uint64_t missed_deadlines = 0;    ///< deadlines skipped (not replayed) after late wake-ups
   std::uint64_t late_ticks = 0;          ///< periods longer than period + late_threshold
   std::uint64_t platform_stalls = 0;     ///< late ticks during which the gap monitor stalled too
-  std::uint64_t loop_overruns = 0;       ///< late ticks the gap monitor did not see: the loop's own
+  std::uint64_t loop_overruns = 0;       ///< late ticks after the loop's own tick ran > period/2
+  std::uint64_t sched_delays = 0;        ///< late ticks explained by neither (the loop was
+                                         ///< runnable but not run: IRQs, kernel, vCPU preemption
+                                         ///< the monitor missed)
+  std::uint64_t max_tick_work_ns = 0;    ///< longest time spent inside one tick
   std::uint64_t gaps = 0;                ///< periods beyond the watchdog (state reset, zero force)
   std::uint64_t monitor_gaps = 0;        ///< gaps the monitor thread itself observed
   std::uint64_t slew_limited_ticks = 0;  ///< ticks where the slew limit bounded the force

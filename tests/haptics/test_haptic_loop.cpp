@@ -256,7 +256,7 @@ TEST(HapticLoop, GapGivesZeroForceNoReplayAndRampsBack) {
   EXPECT_NEAR(prev, 2.0, 1e-9);
 }
 
-TEST(HapticLoop, LateTicksAreToldApartByTheGapMonitor) {
+TEST(HapticLoop, LateTicksAreToldApart) {
   FakeDevice dev;
   ContactModelChannel ch(contact_model(1, 200.0));
   HapticLoop loop(dev, ch, tick_config());
@@ -265,12 +265,21 @@ TEST(HapticLoop, LateTicksAreToldApartByTheGapMonitor) {
   loop.gap_monitor().inject_gap(t - kMs + 100'000, t + 4 * kMs);
   t += 4 * kMs;
   loop.tick(t);
-  // A late tick the monitor did not see: the loop's own overrun.
+  // Late, with a short previous tick and no monitor gap: a scheduling delay.
   t += 3 * kMs / 2;
   loop.tick(t);
-  EXPECT_EQ(loop.telemetry().late_ticks, 2u);
-  EXPECT_EQ(loop.telemetry().platform_stalls, 1u);
-  EXPECT_EQ(loop.telemetry().loop_overruns, 1u);
+  // The loop's own tick takes 3 ms (its device read blocks): the next tick is an overrun.
+  t += kMs;
+  dev.stall_next_poll_ms(3);
+  loop.tick(t);
+  t += 4 * kMs;
+  loop.tick(t);
+  const LoopTelemetry& tel = loop.telemetry();
+  EXPECT_EQ(tel.late_ticks, 3u);
+  EXPECT_EQ(tel.platform_stalls, 1u);
+  EXPECT_EQ(tel.sched_delays, 1u);
+  EXPECT_EQ(tel.loop_overruns, 1u);
+  EXPECT_GE(tel.max_tick_work_ns, 3'000'000u);
 }
 
 TEST(HapticLoop, ForceStepAtCutEventsIsRecordedAndBounded) {

@@ -137,7 +137,7 @@ TEST(UsbRigEmulated, NormalTransfersAndForceCommands) {
   std::this_thread::sleep_for(std::chrono::milliseconds(20));
   const EmulatedRigStats later = rig.stats();
   EXPECT_FALSE(later.motors_on);
-  EXPECT_GE(later.last_force_time_s + 2e-3, later.last_force_time_s);
+  EXPECT_GE(later.watchdog_trips, 1u);
 }
 
 TEST(UsbRigEmulated, MalformedPacketsAreRejectedAndCounted) {
