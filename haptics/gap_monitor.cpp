@@ -68,7 +68,7 @@ void GapMonitor::run() {
 bool GapMonitor::saw_gap(std::int64_t from_ns, std::int64_t to_ns,
                          std::int64_t min_overlap_ns) const noexcept {
   const std::uint64_t n = m_count.load(std::memory_order_acquire);
-  const std::uint64_t look = std::min<std::uint64_t>(n, 16);
+  const std::uint64_t look = std::min<std::uint64_t>(n, 64);
   for (std::uint64_t k = 0; k < look; ++k) {
     const std::uint64_t i = (n - 1 - k) % kRing;
     const std::int64_t s = m_start[i].load(std::memory_order_relaxed);

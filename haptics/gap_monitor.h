@@ -15,10 +15,10 @@
 namespace serosa::haptics {
 
 struct GapMonitorConfig {
-  double threshold_s = 0.5e-3;  ///< an interval longer than this (beyond the poll sleep) is a gap
-  double poll_s = 100e-6;       ///< 0: spin; > 0: sleep this long between clock reads
-  bool realtime = true;         ///< try SCHED_FIFO (priority below the loop's)
-  int cpu = -1;                 ///< pin to this core (-1: no pinning)
+  double threshold_s = 0.15e-3;  ///< an interval longer than this (beyond the poll sleep) is a gap
+  double poll_s = 100e-6;        ///< 0: spin; > 0: sleep this long between clock reads
+  bool realtime = true;          ///< try SCHED_FIFO (priority below the loop's)
+  int cpu = -1;                  ///< pin to this core (-1: no pinning)
 };
 
 class GapMonitor {

@@ -55,7 +55,31 @@ void HapticLoop::stop() {
   m_stop.store(true);
   if (m_thread.joinable()) m_thread.join();
   m_monitor.stop();
+  classify_pending(0, true);
   m_tel->monitor_gaps = m_monitor.gaps();
+}
+
+void HapticLoop::classify_pending(std::int64_t now_ns, bool all) noexcept {
+  const auto period_ns = static_cast<std::int64_t>(std::llround(m_c.period_s * 1e9));
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < m_n_pending; ++i) {
+    const LateInterval& l = m_pending[i];
+    if (!all && now_ns - l.to_ns < 2 * period_ns) {
+      m_pending[kept++] = l;
+      continue;
+    }
+    // A platform stall that made the loop late by `late` froze the monitor for at least
+    // late + spin (the monitor, below the loop on the same core, is blocked during the spin
+    // anyway); the loop's ordinary spin alone blocks it for only about spin.
+    const std::int64_t late = l.to_ns - l.from_ns - period_ns;
+    const auto spin_ns = static_cast<std::int64_t>(m_c.spin_s * 1e9);
+    if (m_monitor.saw_gap(l.from_ns, l.to_ns, late + spin_ns * 3 / 4)) {
+      ++m_tel->platform_stalls;  // the monitor thread did not run either
+    } else {
+      ++m_tel->sched_delays;
+    }
+  }
+  m_n_pending = kept;
 }
 
 void HapticLoop::send_zero() noexcept {
@@ -124,10 +148,12 @@ void HapticLoop::tick(std::int64_t now_ns) noexcept {
       ++tel.late_ticks;
       if (m_last_work_ns > period_ns / 2) {
         ++tel.loop_overruns;  // the previous tick itself took too long
-      } else if (m_monitor.saw_gap(m_last_tick_ns, now_ns, (p - period_ns) / 2)) {
-        ++tel.platform_stalls;  // the monitor thread did not run either
+      } else if (m_n_pending < m_pending.size()) {
+        // Classified a little later: a monitor on this core records its gap only once the loop
+        // lets it run again.
+        m_pending[m_n_pending++] = {m_last_tick_ns, now_ns};
       } else {
-        ++tel.sched_delays;
+        ++tel.sched_delays;  // more late ticks at once than slots: counted unexplained
       }
     }
     if (dt > m_c.watchdog_s) {
@@ -135,6 +161,7 @@ void HapticLoop::tick(std::int64_t now_ns) noexcept {
       ++tel.gaps;
     }
   }
+  classify_pending(now_ns, false);
   m_last_tick_ns = now_ns;
   ++m_ticks;
   tel.ticks = m_ticks;

@@ -74,7 +74,8 @@ class HapticLoop {
 
   /// Starts the thread (and the gap monitor). Logs once whether SCHED_FIFO and pinning held.
   void start();
-  /// Stops the thread; the device's last command is motors off.
+  /// Stops the thread; the device's last command is motors off. Late ticks still awaiting
+  /// classification are classified here.
   void stop();
   [[nodiscard]] bool running() const noexcept { return m_thread.joinable(); }
 
@@ -96,6 +97,7 @@ class HapticLoop {
  private:
   void run();
   void send_zero() noexcept;
+  void classify_pending(std::int64_t now_ns, bool all) noexcept;
 
   Device& m_device;
   const ContactModelChannel& m_model;
@@ -124,6 +126,12 @@ class HapticLoop {
   std::array<Vec3, kHandles> m_prev_force{Vec3::Zero(), Vec3::Zero()};
   std::uint64_t m_command_seq = 0;
   std::int64_t m_last_work_ns = 0;  // time spent inside the previous tick
+  struct LateInterval {
+    std::int64_t from_ns = 0;
+    std::int64_t to_ns = 0;
+  };
+  std::array<LateInterval, 16> m_pending{};  // late ticks awaiting classification
+  std::size_t m_n_pending = 0;
 };
 
 }  // namespace serosa::haptics

@@ -274,6 +274,7 @@ TEST(HapticLoop, LateTicksAreToldApart) {
   loop.tick(t);
   t += 4 * kMs;
   loop.tick(t);
+  drive(loop, t + kMs, 3);  // stall classification settles two periods later
   const LoopTelemetry& tel = loop.telemetry();
   EXPECT_EQ(tel.late_ticks, 3u);
   EXPECT_EQ(tel.platform_stalls, 1u);
