@@ -77,6 +77,8 @@ void HapticLoop::classify_pending(std::int64_t now_ns, bool all) noexcept {
       ++m_tel->platform_stalls;  // the monitor thread did not run either
     } else {
       ++m_tel->sched_delays;
+      m_tel->record_clean(l.to_ns - l.from_ns);
+      if (l.has_next) m_tel->record_clean(l.next_ns);
     }
   }
   m_n_pending = kept;
@@ -142,6 +144,7 @@ void HapticLoop::tick(std::int64_t now_ns) noexcept {
   if (m_ticks > 0) {
     const std::int64_t p = now_ns - m_last_tick_ns;
     tel.record_period(p);
+    bool held = false;  // held back from the stall-free histogram until classified
     dt = static_cast<double>(p) * 1e-9;
     const auto late_ns = static_cast<std::int64_t>(m_c.late_threshold_s * 1e9);
     if (p > period_ns + late_ns) {
@@ -151,11 +154,17 @@ void HapticLoop::tick(std::int64_t now_ns) noexcept {
       } else if (m_n_pending < m_pending.size()) {
         // Classified a little later: a monitor on this core records its gap only once the loop
         // lets it run again.
-        m_pending[m_n_pending++] = {m_last_tick_ns, now_ns};
+        m_pending[m_n_pending++] = {m_last_tick_ns, now_ns, 0, false};
+        held = true;
       } else {
         ++tel.sched_delays;  // more late ticks at once than slots: counted unexplained
       }
+    } else if (m_n_pending > 0 && m_pending[m_n_pending - 1].to_ns == m_last_tick_ns) {
+      m_pending[m_n_pending - 1].next_ns = p;
+      m_pending[m_n_pending - 1].has_next = true;
+      held = true;
     }
+    if (!held) tel.record_clean(p);
     if (dt > m_c.watchdog_s) {
       gap = true;
       ++tel.gaps;

@@ -129,6 +129,8 @@ class HapticLoop {
   struct LateInterval {
     std::int64_t from_ns = 0;
     std::int64_t to_ns = 0;
+    std::int64_t next_ns = 0;  // the period after it (short when deadlines catch up)
+    bool has_next = false;
   };
   std::array<LateInterval, 16> m_pending{};  // late ticks awaiting classification
   std::size_t m_n_pending = 0;

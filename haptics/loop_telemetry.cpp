@@ -14,6 +14,13 @@ void LoopTelemetry::record_period(std::int64_t ns) noexcept {
   max_period_ns = std::max(max_period_ns, static_cast<std::uint64_t>(ns));
 }
 
+void LoopTelemetry::record_clean(std::int64_t ns) noexcept {
+  if (ns < 0) ns = 0;
+  const auto us = static_cast<std::size_t>(ns / 1000);
+  ++clean_hist[std::min(us, kBins - 1)];
+  ++clean_periods;
+}
+
 double LoopTelemetry::period_percentile(double p) const noexcept {
   if (periods == 0) return 0.0;
   const auto target = static_cast<std::uint64_t>(std::ceil(std::clamp(p, 0.0, 1.0) * periods));
@@ -25,17 +32,19 @@ double LoopTelemetry::period_percentile(double p) const noexcept {
   return static_cast<double>(kBins) * 1e-6;
 }
 
-double LoopTelemetry::jitter_percentile(double p) const noexcept {
-  if (periods == 0) return 0.0;
+double LoopTelemetry::jitter_percentile(double p, bool without_stalls) const noexcept {
+  const auto& hist = without_stalls ? clean_hist : period_hist;
+  const std::uint64_t count = without_stalls ? clean_periods : periods;
+  if (count == 0) return 0.0;
   // Histogram of |bin centre - nominal| in 1 us steps.
   const auto nominal_us = static_cast<std::int64_t>(std::llround(period_s * 1e6));
   std::vector<std::uint64_t> jit(kBins + 1, 0);  // not on the loop thread
   for (std::size_t i = 0; i < kBins; ++i) {
     const auto d = static_cast<std::size_t>(std::llabs(static_cast<std::int64_t>(i) - nominal_us));
-    jit[std::min(d, kBins)] += period_hist[i];
+    jit[std::min(d, kBins)] += hist[i];
   }
   const auto target = std::max<std::uint64_t>(
-      1, static_cast<std::uint64_t>(std::ceil(std::clamp(p, 0.0, 1.0) * periods)));
+      1, static_cast<std::uint64_t>(std::ceil(std::clamp(p, 0.0, 1.0) * count)));
   std::uint64_t acc = 0;
   for (std::size_t i = 0; i <= kBins; ++i) {
     acc += jit[i];
@@ -57,6 +66,7 @@ void LoopTelemetry::write_json(std::ostream& os) const {
      << ",\"period_p50_s\":" << period_percentile(0.5)
      << ",\"jitter_p50_s\":" << jitter_percentile(0.5)
      << ",\"jitter_p99_s\":" << jitter_percentile(0.99) << ",\"jitter_max_s\":" << max_jitter_s()
+     << ",\"jitter_p99_without_stalls_s\":" << jitter_percentile(0.99, true)
      << ",\"missed_deadlines\":" << missed_deadlines << ",\"late_ticks\":" << late_ticks
      << ",\"platform_stalls\":" << platform_stalls << ",\"loop_overruns\":" << loop_overruns
      << ",\"sched_delays\":" << sched_delays

@@ -33,9 +33,13 @@ struct LoopTelemetry {
 
   double period_s = 1e-3;                          ///< nominal period
   std::array<std::uint64_t, kBins> period_hist{};  ///< tick periods, 1 us bins (last: >= 5 ms)
-  std::uint64_t ticks = 0;                         ///< ticks run
-  std::uint64_t periods = 0;                       ///< periods recorded (ticks - 1)
-  std::uint64_t max_period_ns = 0;                 ///< longest period seen
+  /// Same, without the two periods around each platform stall (the late one and the short one
+  /// after it): the loop's own timing quality with the host's pauses set apart.
+  std::array<std::uint64_t, kBins> clean_hist{};
+  std::uint64_t clean_periods = 0;
+  std::uint64_t ticks = 0;               ///< ticks run
+  std::uint64_t periods = 0;             ///< periods recorded (ticks - 1)
+  std::uint64_t max_period_ns = 0;       ///< longest period seen
   std::uint64_t missed_deadlines = 0;    ///< deadlines skipped (not replayed) after late wake-ups
   std::uint64_t late_ticks = 0;          ///< periods longer than period + late_threshold
   std::uint64_t platform_stalls = 0;     ///< late ticks during which the gap monitor stalled too
@@ -56,10 +60,11 @@ struct LoopTelemetry {
   int cpu = -1;                ///< pinned core, -1 if not pinned
 
   void record_period(std::int64_t ns) noexcept;
+  void record_clean(std::int64_t ns) noexcept;
   /// Percentile p in [0,1] of the tick period, s (bin resolution 1 us). 0 when empty.
   [[nodiscard]] double period_percentile(double p) const noexcept;
-  /// Percentile p of |period - nominal|, s.
-  [[nodiscard]] double jitter_percentile(double p) const noexcept;
+  /// Percentile p of |period - nominal|, s; over all periods, or without platform stalls.
+  [[nodiscard]] double jitter_percentile(double p, bool without_stalls = false) const noexcept;
   /// Largest |period - nominal| seen, s.
   [[nodiscard]] double max_jitter_s() const noexcept;
   /// Writes a JSON object (no trailing newline).

@@ -72,6 +72,7 @@ void report(benchmark::State& state, const LoopTelemetry& t) {
   state.counters["p50_jitter_us"] = t.jitter_percentile(0.5) * 1e6;
   state.counters["p99_jitter_us"] = t.jitter_percentile(0.99) * 1e6;
   state.counters["max_jitter_us"] = t.max_jitter_s() * 1e6;
+  state.counters["p99_nostall_us"] = t.jitter_percentile(0.99, true) * 1e6;
   state.counters["missed"] = static_cast<double>(t.missed_deadlines);
   state.counters["late"] = static_cast<double>(t.late_ticks);
   state.counters["plat_stalls"] = static_cast<double>(t.platform_stalls);
