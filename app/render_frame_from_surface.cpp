@@ -3,29 +3,89 @@
 #include <algorithm>
 #include <array>
 
-#include "render/vertex_normals.h"
+#include "render/camera.h"
+#include "surface/surface_normals.h"
 
 namespace serosa::app {
+namespace {
+
+std::array<float, 3> to_float(const std::array<double, 3>& a) {
+  return {static_cast<float>(a[0]), static_cast<float>(a[1]), static_cast<float>(a[2])};
+}
+
+std::array<float, 4> to_float(const std::array<double, 4>& a) {
+  return {static_cast<float>(a[0]), static_cast<float>(a[1]), static_cast<float>(a[2]),
+          static_cast<float>(a[3])};
+}
+
+// Unique tet edges (e x 2), sorted.
+void tet_edges(const TetMesh& mesh, std::vector<std::uint32_t>& out) {
+  out.clear();
+  std::vector<std::array<std::uint32_t, 2>> e;
+  e.reserve(6 * mesh.tets.size());
+  for (const Tet& t : mesh.tets)
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) {
+        auto u = static_cast<std::uint32_t>(t[a]), v = static_cast<std::uint32_t>(t[b]);
+        e.push_back({std::min(u, v), std::max(u, v)});
+      }
+  std::sort(e.begin(), e.end());
+  e.erase(std::unique(e.begin(), e.end()), e.end());
+  out.reserve(2 * e.size());
+  for (const auto& [u, v] : e) {
+    out.push_back(u);
+    out.push_back(v);
+  }
+}
+
+}  // namespace
 
 void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
                        const std::map<int, std::string>& group_names, bool with_edges,
                        render::RenderFrame& frame) {
-  const std::size_t n = mesh.x.size();
-  frame.pos.resize(3 * n);
+  const std::size_t f = surface.faces.size();
+  // Wound flags: from the surface when it has them (sized like its faces).
+  std::vector<std::uint8_t> cut = surface.face_cut;
+  if (cut.size() != f) cut.assign(f, 0);
+
+  // Render vertices with split normals (the surface module's rule needs sized flags).
+  surface::SurfaceMesh flagged;
+  const surface::SurfaceMesh* s = &surface;
+  if (surface.face_cut.size() != f) {
+    flagged = surface;
+    flagged.face_cut = cut;
+    s = &flagged;
+  }
+  surface::RenderVertices rv;
+  surface::compute_render_vertices(*s, mesh.x, surface::NormalOptions{}, rv);
+
+  const std::size_t n = with_edges ? mesh.x.size() : 0;  // node prefix for the tet edges
+  const std::size_t v = rv.node.size();
+  frame.pos.resize(3 * (n + v));
+  frame.nrm.assign(3 * (n + v), 0.0f);
   for (std::size_t i = 0; i < n; ++i)
     for (int k = 0; k < 3; ++k) frame.pos[3 * i + k] = static_cast<float>(mesh.x[i][k]);
-
-  const std::size_t f = surface.faces.size();
+  for (std::size_t i = 0; i < v; ++i) {
+    const Vec3& p = mesh.x[static_cast<std::size_t>(rv.node[i])];
+    for (int k = 0; k < 3; ++k) {
+      frame.pos[3 * (n + i) + k] = static_cast<float>(p[k]);
+      frame.nrm[3 * (n + i) + k] = static_cast<float>(rv.normal[i][k]);
+    }
+  }
   frame.tri.resize(3 * f);
   for (std::size_t i = 0; i < f; ++i)
     for (int k = 0; k < 3; ++k)
-      frame.tri[3 * i + k] = static_cast<std::uint32_t>(surface.faces[i][k]);
+      frame.tri[3 * i + k] =
+          static_cast<std::uint32_t>(n + static_cast<std::size_t>(rv.tris[i][k]));
   frame.tri_group = surface.face_group;
-  frame.tri_cut.assign(f, 0);
+  frame.tri_cut = std::move(cut);
+
   // Tet edges change only with the topology: keep them across frames otherwise.
   const bool edges_stale =
       frame.edges.empty() || frame.topology_version != surface.topology_version;
   frame.topology_version = surface.topology_version;
+  if (!with_edges) frame.edges.clear();
+  if (with_edges && edges_stale) tet_edges(mesh, frame.edges);
 
   frame.group_names.clear();
   if (!group_names.empty()) {
@@ -33,28 +93,42 @@ void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
     for (const auto& [id, name] : group_names)
       if (id >= 0) frame.group_names[static_cast<std::size_t>(id)] = name;
   }
+}
 
-  if (!with_edges) frame.edges.clear();
-  if (with_edges && edges_stale) {
-    frame.edges.clear();
-    // Unique tet edges, sorted.
-    std::vector<std::array<std::uint32_t, 2>> e;
-    e.reserve(6 * mesh.tets.size());
-    for (const Tet& t : mesh.tets)
-      for (int a = 0; a < 4; ++a)
-        for (int b = a + 1; b < 4; ++b) {
-          auto u = static_cast<std::uint32_t>(t[a]), v = static_cast<std::uint32_t>(t[b]);
-          e.push_back({std::min(u, v), std::max(u, v)});
-        }
-    std::sort(e.begin(), e.end());
-    e.erase(std::unique(e.begin(), e.end()), e.end());
-    frame.edges.reserve(2 * e.size());
-    for (const auto& [u, v] : e) {
-      frame.edges.push_back(u);
-      frame.edges.push_back(v);
+void fill_render_tools(const Scene& scene, const SimState& state, render::RenderFrame& frame) {
+  frame.tools.clear();
+  for (std::size_t i = 0; i < scene.tools.size() && i < state.tools.size(); ++i) {
+    const Tool& tool = scene.tools[i];
+    if (tool.kind == ToolKind::kEndoscope) continue;
+    const ToolState& in = state.tools[i];
+    render::RenderTool t;
+    t.kind = tool.kind == ToolKind::kScissors ? render::RenderTool::Kind::kScissors
+                                              : render::RenderTool::Kind::kGrasper;
+    t.tip = to_float(in.tip_m);
+    t.quat_wxyz = to_float(in.quat_wxyz);
+    t.jaw_rad = std::clamp(static_cast<float>(in.jaw_rad), 0.0f, 3.14159265f);
+    if (tool.trocar_m) {
+      t.has_trocar = true;
+      t.trocar = {static_cast<float>(tool.trocar_m->x()), static_cast<float>(tool.trocar_m->y()),
+                  static_cast<float>(tool.trocar_m->z())};
     }
+    frame.tools.push_back(t);
   }
-  frame.nrm = render::compute_vertex_normals(frame.pos, frame.tri);
+}
+
+std::optional<render::Camera> endoscope_view(const Scene& scene, const SimState& state,
+                                             float scope_angle_deg) {
+  for (std::size_t i = 0; i < scene.tools.size() && i < state.tools.size(); ++i) {
+    if (scene.tools[i].kind != ToolKind::kEndoscope) continue;
+    const ToolState& in = state.tools[i];
+    // An endoscope no device has posed yet (the default state) has no view.
+    if (in.tip_m == std::array<double, 3>{0.0, 0.0, 0.0} &&
+        in.quat_wxyz == std::array<double, 4>{1.0, 0.0, 0.0, 0.0})
+      return std::nullopt;
+    return render::endoscope_camera(to_float(in.tip_m), to_float(in.quat_wxyz), scope_angle_deg,
+                                    70.0f);
+  }
+  return std::nullopt;
 }
 
 }  // namespace serosa::app

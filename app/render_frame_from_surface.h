@@ -1,22 +1,41 @@
-// Fills the renderer's plain RenderFrame from the mechanical mesh and its boundary surface: the
-// surface references mechanical node ids, so positions come straight from TetMesh::x.
+// Fills the renderer's plain RenderFrame from the simulation: the boundary surface (with the
+// surface module's split normals and wound flags), the tet edges for the mechanical view, the
+// instruments and the endoscope's camera.
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 
+#include "engine/scene.h"
+#include "engine/sim_state.h"
 #include "engine/tet_mesh.h"
 #include "render/render_frame.h"
 #include "surface/surface_mesh.h"
 
 namespace serosa::app {
 
-/// pos = all nodes' current positions (float, m); tri, tri_group from the surface; tri_cut all 0
-/// until the surface flags cut faces; normals area-weighted; group names by id; tet edges for the
-/// mechanical view when `with_edges` (recomputed only when the topology version changed). The
-/// camera is left for the caller (or auto_camera).
+/// Surface part of the frame. Render vertices come from surface::compute_render_vertices: normals
+/// are area-weighted and split across cut edges, creases and groups, so a wound's rim is sharp.
+/// With `with_edges`: pos = all TetMesh nodes (n, unlit, for the tet edges of the mechanical view)
+/// followed by the render vertices; without: the render vertices only. tri indexes the render
+/// vertices; tri_group and tri_cut (the wound) come from the surface (tri_cut all 0 when the
+/// surface has no flags). Group names by id. Tet edges are recomputed only when the topology
+/// version changed. topology_version = the surface's. The camera, tools and overlay are left.
 void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
                        const std::map<int, std::string>& group_names, bool with_edges,
                        render::RenderFrame& frame);
+
+/// frame.tools: one RenderTool per scene tool of kind scissors or grasper, posed by its latest
+/// consumed input (state.tools, scene order), with the scene's trocar when given. Endoscopes are
+/// cameras, not drawn.
+void fill_render_tools(const Scene& scene, const SimState& state, render::RenderFrame& frame);
+
+/// The camera of the scene's first endoscope tool, posed by its latest input (a scope of
+/// `scope_angle_deg`, 70 degree field of view), or nullopt when the scene has no endoscope or no
+/// device has posed it yet (its input still the default: tip at the origin, identity rotation).
+[[nodiscard]] std::optional<render::Camera> endoscope_view(const Scene& scene,
+                                                           const SimState& state,
+                                                           float scope_angle_deg = 0.0f);
 
 }  // namespace serosa::app

@@ -3,94 +3,263 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
+#include <exception>
+#include <optional>
 #include <string>
+#include <thread>
 
 #include "app/assemble_state.h"
 #include "app/compose.h"
 #include "app/render_frame_from_surface.h"
 #include "engine/scene.h"
+#include "engine/triple_buffer.h"
 #include "render/camera.h"
 #include "render/frame_renderer.h"
+#include "render/overlay.h"
+#include "render/png_writer.h"
 #include "render/window.h"
+#include "surface/cut_faces.h"
 #include "surface/extract_surface.h"
 
 namespace serosa::app {
+namespace {
 
-int run_session(const std::filesystem::path& scene_path, double seconds) {
-  using Clock = std::chrono::steady_clock;
+using Clock = std::chrono::steady_clock;
+
+// Set by the SIGINT/SIGTERM handler, read by the window loop. A signal handler can reach no
+// other state, so this one flag is process-wide; run_session clears it on entry.
+std::atomic<bool> g_interrupted{false};
+static_assert(std::atomic<bool>::is_always_lock_free);
+
+extern "C" void on_interrupt(int /*signal*/) { g_interrupted.store(true); }
+
+// Installs the handler for the session's lifetime and restores the previous one after.
+class InterruptGuard {
+ public:
+  InterruptGuard() {
+    g_interrupted.store(false);
+    m_int = std::signal(SIGINT, on_interrupt);
+    m_term = std::signal(SIGTERM, on_interrupt);
+  }
+  ~InterruptGuard() {
+    std::signal(SIGINT, m_int == SIG_ERR ? SIG_DFL : m_int);
+    std::signal(SIGTERM, m_term == SIG_ERR ? SIG_DFL : m_term);
+  }
+  InterruptGuard(const InterruptGuard&) = delete;
+  InterruptGuard& operator=(const InterruptGuard&) = delete;
+
+ private:
+  void (*m_int)(int) = SIG_DFL;
+  void (*m_term)(int) = SIG_DFL;
+};
+
+// What the window thread tells the solver thread.
+struct Control {
+  std::atomic<bool> paused{false};
+  std::atomic<float> scope_angle_deg{0.0f};
+  std::atomic<bool> finished{false};  // set by the solver thread when it stops (error or stop)
+};
+
+// The solver thread: fixed dt, paced to real time, one published frame per step.
+class SolverLoop {
+ public:
+  SolverLoop(const Scene& scene, AssembledScene& assembled, Composition& comp, float aspect,
+             TripleBuffer<render::RenderFrame>& frames, Control& control)
+      : m_scene(scene),
+        m_state(assembled.state),
+        m_comp(comp),
+        m_names(assembled.group_names()),
+        m_aspect(aspect),
+        m_frames(frames),
+        m_control(control) {}
+
+  void run(const std::stop_token& stop) {
+    try {
+      loop(stop);
+    } catch (...) {
+      m_error = std::current_exception();
+    }
+    m_control.finished.store(true);
+  }
+
+  [[nodiscard]] std::exception_ptr error() const { return m_error; }
+
+ private:
+  void loop(const std::stop_token& stop) {
+    // The uncut boundary: the reference that tells wound faces from original ones.
+    m_original = surface::OriginalSurface(m_state.mesh, surface::extract_surface(m_state.mesh));
+    m_surface = surface::extract_surface(m_state.mesh, m_original);
+    publish();
+    const auto dt = std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(m_scene.settings.dt_s));
+    auto next = Clock::now();
+    auto rate_start = next;
+    int rate_steps = 0;
+    while (!stop.stop_requested()) {
+      if (m_control.paused.load()) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        next = Clock::now();
+        publish();  // the overlay shows the pause; the scope may have turned
+        continue;
+      }
+      const auto t0 = Clock::now();
+      m_comp.runner->step(m_state);
+      const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+      m_step_ms = m_step_ms == 0.0 ? ms : 0.9 * m_step_ms + 0.1 * ms;
+      ++rate_steps;
+      const auto now = Clock::now();
+      if (now - rate_start >= std::chrono::seconds(1)) {
+        m_rate_hz = rate_steps / std::chrono::duration<double>(now - rate_start).count();
+        rate_start = now;
+        rate_steps = 0;
+      }
+      publish();
+      // Real-time pacing: sleep to the next step's start; more than 0.1 s behind, drop the debt
+      // (slow motion rather than a catch-up spiral).
+      next += dt;
+      const auto after = Clock::now();
+      m_slow = after > next;
+      if (after > next + std::chrono::milliseconds(100)) next = after;
+      if (!m_slow) std::this_thread::sleep_until(next);
+    }
+  }
+
+  void publish() {
+    if (m_surface.topology_version != m_state.mesh.topology_version) {
+      m_surface = surface::extract_surface(m_state.mesh, m_original);
+      ++m_cuts;
+    }
+    render::RenderFrame& f = m_frames.back();
+    fill_render_frame(m_state.mesh, m_surface, m_names, true, f);
+    fill_render_tools(m_scene, m_state, f);
+    std::optional<render::Camera> cam =
+        endoscope_view(m_scene, m_state, m_control.scope_angle_deg.load());
+    if (!cam) {
+      // No endoscope: a fixed camera fitted to the organs at the start.
+      if (!m_fitted) m_fitted = render::auto_camera(f, m_aspect);
+      cam = m_fitted;
+    }
+    f.camera = *cam;
+    render::OverlayData& o = f.overlay;
+    o.sim_time_s = m_state.time_s;
+    o.fem_ms_per_step = m_step_ms;
+    o.solver_rate_hz = m_rate_hz;
+    o.haptic_rate_hz = 0.0;  // no haptic loop in this session yet
+    o.cuts = m_cuts;
+    o.paused = m_control.paused.load();
+    o.slow_motion = m_slow;
+    m_frames.publish();
+  }
+
+  const Scene& m_scene;
+  SimState& m_state;
+  Composition& m_comp;
+  std::map<int, std::string> m_names;
+  float m_aspect;
+  TripleBuffer<render::RenderFrame>& m_frames;
+  Control& m_control;
+  surface::OriginalSurface m_original;
+  surface::SurfaceMesh m_surface;
+  std::optional<render::Camera> m_fitted;
+  double m_step_ms = 0.0;
+  double m_rate_hz = 0.0;
+  std::int64_t m_cuts = 0;
+  bool m_slow = false;
+  std::exception_ptr m_error;
+};
+
+}  // namespace
+
+int run_session(const std::filesystem::path& scene_path, double seconds,
+                const std::filesystem::path& snapshot) {
   const Scene scene = load_scene(scene_path);
   AssembledScene assembled = assemble_state(scene);
   Composition comp = compose(scene, assembled);
-  SimState& state = assembled.state;
   for (Effect e : comp.unavailable)
     spdlog::warn("effect '{}' is not implemented in this build: not simulated", effect_name(e));
 
+  const InterruptGuard interrupts;
   render::Window window(scene.render.width, scene.render.height, "Serosa");
   render::FrameRenderer renderer;
+  render::Overlay overlay;
   render::SnapshotOptions options;
   options.tessellation = scene.render.tessellation;
   options.shape_factor = static_cast<float>(scene.render.shape_factor);
-  const auto names = assembled.group_names();
-  const bool need_edges = true;
+  bool show_overlay = true;
 
-  surface::SurfaceMesh surf = surface::extract_surface(state.mesh);
-  render::RenderFrame frame;
-  fill_render_frame(state.mesh, surf, names, need_edges, frame);
-  frame.camera = render::auto_camera(
-      frame, static_cast<float>(window.width()) / static_cast<float>(std::max(window.height(), 1)));
-  const render::Camera camera = frame.camera;
+  TripleBuffer<render::RenderFrame> frames;
+  Control control;
+  SolverLoop loop(
+      scene, assembled, comp,
+      static_cast<float>(window.width()) / static_cast<float>(std::max(window.height(), 1)), frames,
+      control);
+  {
+    // Declared last: stopped and joined first when the scope ends, also on an exception.
+    std::jthread solver([&loop](const std::stop_token& stop) { loop.run(stop); });
 
-  const double dt = scene.settings.dt_s;
-  const auto start = Clock::now();
-  auto last = start;
-  double owed_s = 0.0;  // simulated time the solver is behind the wall clock
-  bool paused = false;
-  int view = 0;
-  double step_ms = 0.0;
-  while (!window.should_close()) {
-    window.poll_events();
-    if (window.pressed(render::Key::kEscape)) window.close();
-    if (window.pressed(render::Key::kSpace)) paused = !paused;
-    if (window.pressed(render::Key::kV)) view = (view + 1) % 3;
-    if (window.pressed(render::Key::kUp))
-      options.tessellation = std::min(options.tessellation + 1, 16);
-    if (window.pressed(render::Key::kDown))
-      options.tessellation = std::max(options.tessellation - 1, 1);
-    options.view = static_cast<render::SnapshotOptions::View>(view);
+    const auto start = Clock::now();
+    auto last = start;
+    std::int64_t frames_drawn = 0;
+    while (!window.should_close() && !g_interrupted.load() && !control.finished.load()) {
+      window.poll_events();
+      if (window.pressed(render::Key::kEscape)) window.close();
+      if (window.pressed(render::Key::kSpace)) control.paused.store(!control.paused.load());
+      if (window.pressed(render::Key::kV))
+        options.view =
+            static_cast<render::SnapshotOptions::View>((static_cast<int>(options.view) + 1) % 3);
+      if (window.pressed(render::Key::kUp))
+        options.tessellation = std::min(options.tessellation + 1, 16);
+      if (window.pressed(render::Key::kDown))
+        options.tessellation = std::max(options.tessellation - 1, 1);
+      if (window.pressed(render::Key::kO))
+        control.scope_angle_deg.store(control.scope_angle_deg.load() > 0.0f ? 0.0f : 30.0f);
+      if (window.pressed(render::Key::kH)) show_overlay = !show_overlay;
 
-    const auto now = Clock::now();
-    if (seconds > 0.0 && std::chrono::duration<double>(now - start).count() > seconds) break;
-    owed_s = paused ? 0.0 : owed_s + std::chrono::duration<double>(now - last).count();
-    last = now;
-    int steps = 0;
-    const auto s0 = Clock::now();
-    while (owed_s >= dt && steps < 8) {
-      comp.runner->step(state);
-      owed_s -= dt;
-      ++steps;
+      frames.take();  // the newest frame, if the solver published one since
+      const render::RenderFrame& frame = frames.front();
+      const int w = window.width();
+      const int h = window.height();
+      window.bind_framebuffer();
+      renderer.draw(frame, options, w, h);
+
+      const auto now = Clock::now();
+      render::OverlayInput input;
+      window.cursor(input.mouse_x, input.mouse_y);
+      input.mouse_down = window.mouse_down();
+      input.dt_s = std::chrono::duration<float>(now - last).count();
+      last = now;
+      render::OverlayData shown = frame.overlay;
+      shown.visible = show_overlay;
+      const render::OverlayResult r = overlay.draw(shown, options, w, h, input);
+      if (r.view) options.view = *r.view;
+      if (r.tessellation) options.tessellation = *r.tessellation;
+      const bool last_frame =
+          seconds > 0.0 && std::chrono::duration<double>(now - start).count() > seconds;
+      if (!snapshot.empty() && (last_frame || window.should_close() || g_interrupted.load()))
+        render::write_png(window.read_image(), snapshot);
+      window.swap_buffers();
+      ++frames_drawn;
+
+      char title[160];
+      std::snprintf(title, sizeof title, "Serosa  t=%.2f s  FEM %.2f ms/step  %s  tess %d%s%s",
+                    frame.overlay.sim_time_s, frame.overlay.fem_ms_per_step,
+                    render::view_name(options.view), options.tessellation,
+                    frame.overlay.paused ? "  [paused]" : "",
+                    frame.overlay.slow_motion ? "  [slow motion]" : "");
+      window.set_title(title);
+      if (last_frame) break;
     }
-    const bool slow = owed_s >= dt;
-    if (slow) owed_s = 0.0;  // drop what cannot be caught up: slow motion, not a spiral
-    if (steps > 0)
-      step_ms = std::chrono::duration<double, std::milli>(Clock::now() - s0).count() / steps;
-
-    if (surf.topology_version != state.mesh.topology_version)
-      surf = surface::extract_surface(state.mesh);
-    fill_render_frame(state.mesh, surf, names, need_edges, frame);
-    frame.camera = camera;
-    window.bind_framebuffer();
-    renderer.draw(frame, options, window.width(), window.height());
-    window.swap_buffers();
-
-    char title[160];
-    static constexpr const char* kViews[] = {"visual", "collision", "mechanical"};
-    std::snprintf(title, sizeof title, "Serosa  t=%.2f s  FEM %.2f ms/step  %s  tess %d%s%s",
-                  state.time_s, step_ms, kViews[view], options.tessellation,
-                  paused ? "  [paused]" : "", slow ? "  [slow motion]" : "");
-    window.set_title(title);
+    solver.request_stop();
+    solver.join();
+    const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+    spdlog::info("session: {} frames drawn in {:.1f} s, simulated {:.2f} s{}", frames_drawn, wall,
+                 assembled.state.time_s, g_interrupted.load() ? " (interrupted)" : "");
   }
+  if (loop.error()) std::rethrow_exception(loop.error());
   return 0;
 }
 

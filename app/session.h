@@ -5,12 +5,22 @@
 
 namespace serosa::app {
 
-/// Opens a window on the scene and runs it in real time until the window closes (or after
-/// `seconds` of wall time when > 0). Keys: Space pause, V cycle the views (visual, collision,
-/// mechanical), Up/Down tessellation level, Esc quit. Scripted tools follow their paths; rig and
-/// mouse input join with the haptics issue. Returns the exit code.
-/// This first session runs solver and drawing on one thread, stepping as many solver steps per
-/// frame as wall time asks (at most 8, then it runs slow-motion and says so in the title).
-int run_session(const std::filesystem::path& scene, double seconds);
+/// Opens a window on the scene and runs it in real time until the window closes, Ctrl-C (SIGINT
+/// or SIGTERM) arrives, or `seconds` of wall time passed (when > 0). Returns the exit code.
+///
+/// Threads: the solver runs on its own thread at the scene's fixed dt, paced to real time (when
+/// a step takes longer than dt it runs in slow motion and says so), and after every step
+/// publishes a RenderFrame (surface, tet edges, tools, endoscope camera, overlay data) through a
+/// TripleBuffer; it never waits for drawing. The calling (main) thread owns the window and its
+/// GL context (GLFW requires the main thread): it takes the newest frame whenever it draws,
+/// uploading positions every frame and indices only when the topology version changed.
+///
+/// Keys: Space pause, V cycle the views (visual, collision, mechanical), Up/Down tessellation
+/// level, O toggle a 0/30 degree scope, H hide/show the overlay, Esc quit. The overlay's view
+/// and tessellation controls work with the mouse. Scripted tools follow their paths; rig and
+/// mouse input join with the haptics issue.
+/// When `snapshot` is not empty, the last picture drawn is also written there as a PNG.
+int run_session(const std::filesystem::path& scene, double seconds,
+                const std::filesystem::path& snapshot = {});
 
 }  // namespace serosa::app

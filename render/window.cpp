@@ -4,7 +4,9 @@
 // epoxy before GLFW, so GLFW includes no GL header of its own.
 #include <GLFW/glfw3.h>
 
+#include <cstring>
 #include <stdexcept>
+#include <vector>
 
 namespace serosa::render {
 namespace {
@@ -106,6 +108,24 @@ void Window::cursor(float& x, float& y) const {
 
 bool Window::mouse_down() const {
   return glfwGetMouseButton(m_window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+}
+
+Image Window::read_image() {
+  Image img;
+  img.width = width();
+  img.height = height();
+  const std::size_t row = 4 * static_cast<std::size_t>(img.width);
+  std::vector<std::uint8_t> bottom_up(row * static_cast<std::size_t>(img.height));
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  glReadBuffer(GL_BACK);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, img.width, img.height, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
+  img.rgba.resize(bottom_up.size());
+  for (std::size_t y = 0; y < static_cast<std::size_t>(img.height); ++y) {
+    std::memcpy(img.rgba.data() + y * row,
+                bottom_up.data() + (static_cast<std::size_t>(img.height) - 1 - y) * row, row);
+  }
+  return img;
 }
 
 void Window::set_title(const std::string& title) { glfwSetWindowTitle(m_window, title.c_str()); }

@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "render/image.h"
+
 struct GLFWwindow;
 
 namespace serosa::render {
@@ -38,6 +40,8 @@ class Window {
   /// True when `key` went down since the previous call for that key.
   [[nodiscard]] bool pressed(Key key);
   void set_title(const std::string& title);
+  /// Reads back the back buffer (what was drawn since the last swap), first row at the top.
+  [[nodiscard]] Image read_image();
   /// The pointer's position in framebuffer pixels (origin top left; outside the window it may be
   /// negative or beyond the size).
   void cursor(float& x, float& y) const;
