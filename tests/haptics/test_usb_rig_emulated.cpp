@@ -133,7 +133,15 @@ TEST(UsbRigEmulated, NormalTransfersAndForceCommands) {
   EXPECT_EQ(st.last_force.flags & kForceEnable, kForceEnable);
   EXPECT_EQ(st.last_force.handles[0].pitch_torque, 2500);
   EXPECT_EQ(st.last_force.handles[1].insertion_force, -1500);
-  // No more commands: the firmware watchdog turns the motors off (2 ms).
+  // No more commands: the firmware watchdog turns the motors off 2 ms after the last packet.
+  for (int i = 0; i < 2000; ++i) {
+    const double now = monotonic_s();
+    const EmulatedRigStats w = rig.stats();
+    if (now - w.last_force_time_s > 2e-3 + 1e-4) {
+      ASSERT_FALSE(w.motors_on) << (now - w.last_force_time_s) * 1e3 << " ms after the last packet";
+    }
+    if (!w.motors_on) break;
+  }
   std::this_thread::sleep_for(std::chrono::milliseconds(20));
   const EmulatedRigStats later = rig.stats();
   EXPECT_FALSE(later.motors_on);
