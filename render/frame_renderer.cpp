@@ -165,6 +165,7 @@ void FrameRenderer::upload_topology(const RenderFrame& frame) {
   glBindBuffer(GL_TEXTURE_BUFFER, 0);
 
   uploaded_ = true;
+  ++topology_uploads_;
   topology_version_ = frame.topology_version;
   tri_count_ = t;
   line_count_ = lines.size() / 2;

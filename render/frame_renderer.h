@@ -35,6 +35,9 @@ class FrameRenderer {
   /// @throws std::invalid_argument when validate(frame) reports a problem
   void draw(const RenderFrame& frame, const SnapshotOptions& options, int width, int height);
 
+  /// How many times indices and materials were uploaded so far (statistics and tests).
+  [[nodiscard]] std::uint64_t topology_uploads() const { return topology_uploads_; }
+
  private:
   void upload_topology(const RenderFrame& frame);
   void draw_tools(const RenderFrame& frame, const float* view_proj, const float* eye,
@@ -68,6 +71,7 @@ class FrameRenderer {
   int max_texture_buffer_ = 65536;  // texels
   // What the index buffers hold now.
   bool uploaded_ = false;
+  std::uint64_t topology_uploads_ = 0;
   std::uint64_t topology_version_ = 0;
   std::size_t tri_count_ = 0;    // triangles
   std::size_t line_count_ = 0;   // line segments (tet edges, or triangle edges when none)
