@@ -1,0 +1,108 @@
+// Rendering benchmarks (docs/BENCHMARKS.md "Rendering"):
+//  - BM_FrameTime: one frame of the visual view (Phong tessellation, 640 x 480, 4x MSAA) through
+//    EGL, against the tessellation level (1..6) and the surface size (icospheres of 20 * 4^k
+//    triangles). The GL renderer is whatever EGL gives: Mesa llvmpipe (CPU) on the dev VM; the
+//    benchmark's label names it.
+//  - BM_PhongAccuracy: how far the tessellated surface is from the true sphere that a coarse
+//    icosphere with exact (radial) normals approximates, against the level; computed on the CPU
+//    with the shader's formula (render/phong_tessellation.h). BM_RefinedAccuracy gives the same
+//    for flat, finer icospheres of equal triangle counts, for comparison.
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <string>
+
+#include "render/frame_renderer.h"
+#include "render/gl_context.h"
+#include "render/phong_tessellation.h"
+#include "tests/render/render_fixtures.h"
+
+namespace serosa::render {
+namespace {
+
+constexpr int kWidth = 640;
+constexpr int kHeight = 480;
+
+// One EGL context per process (see gl_context.h), made on first use.
+OffscreenContext& context() {
+  static const std::unique_ptr<OffscreenContext> ctx =
+      std::make_unique<OffscreenContext>(kWidth, kHeight, 4);
+  return *ctx;
+}
+
+void BM_FrameTime(benchmark::State& state) {
+  const int level = static_cast<int>(state.range(0));
+  const int subdiv = static_cast<int>(state.range(1));
+  OffscreenContext& ctx = context();
+  ctx.make_current();
+  ctx.resize(kWidth, kHeight);
+  RenderFrame f = fixtures::frame_of(fixtures::icosphere(subdiv, 0.02f));
+  f.group_names = {"", "appendix"};
+  SnapshotOptions o;
+  o.width = kWidth;
+  o.height = kHeight;
+  o.tessellation = level;
+  o.fit_camera = true;
+  FrameRenderer r;
+  ctx.bind_framebuffer();
+  r.draw(f, o, kWidth, kHeight);  // warm-up: uploads indices, compiles the pipeline
+  ctx.finish();
+  for (auto _ : state) {
+    ctx.bind_framebuffer();
+    r.draw(f, o, kWidth, kHeight);
+    ctx.finish();
+  }
+  const double t = static_cast<double>(f.num_triangles());
+  state.counters["triangles"] = t;
+  state.counters["drawn_triangles"] = t * level * level;
+  state.SetLabel(ctx.gl_renderer());
+}
+BENCHMARK(BM_FrameTime)
+    ->ArgsProduct({{1, 2, 3, 4, 5, 6}, {0, 1, 2, 3, 4}})
+    ->ArgNames({"level", "subdiv"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// Sphere of radius 1 from icosphere(subdiv) with radial normals, tessellated at `level`.
+void BM_PhongAccuracy(benchmark::State& state) {
+  const int level = static_cast<int>(state.range(0));
+  const int subdiv = static_cast<int>(state.range(1));
+  const auto s = fixtures::icosphere(subdiv, 1.0f);
+  const std::vector<float> nrm = s.pos;  // radial: the true sphere's normals
+  TriMesh m;
+  for (auto _ : state) {
+    m = phong_tessellate(s.pos, nrm, s.tri, level, 0.75f);
+    benchmark::DoNotOptimize(m.pos.data());
+  }
+  const SphereDistance d = distance_to_sphere(m, 1.0);
+  const SphereDistance flat = distance_to_sphere(phong_tessellate(s.pos, nrm, s.tri, 1, 0.0f), 1.0);
+  state.counters["triangles"] = static_cast<double>(m.tri.size() / 3);
+  state.counters["max_dist_rel"] = d.max_m;  // relative to the radius
+  state.counters["mean_dist_rel"] = d.mean_m;
+  state.counters["flat_max_dist_rel"] = flat.max_m;
+}
+BENCHMARK(BM_PhongAccuracy)
+    ->ArgsProduct({{1, 2, 3, 4, 5, 6}, {0, 1, 2}})
+    ->ArgNames({"level", "subdiv"})
+    ->Unit(benchmark::kMicrosecond);
+
+// Flat icospheres: the reference a finer mesh gives for the same triangle count.
+void BM_RefinedAccuracy(benchmark::State& state) {
+  const int subdiv = static_cast<int>(state.range(0));
+  fixtures::Surface s;
+  for (auto _ : state) {
+    s = fixtures::icosphere(subdiv, 1.0f);
+    benchmark::DoNotOptimize(s.pos.data());
+  }
+  TriMesh m{s.pos, s.tri};
+  const SphereDistance d = distance_to_sphere(m, 1.0);
+  state.counters["triangles"] = static_cast<double>(s.tri.size() / 3);
+  state.counters["max_dist_rel"] = d.max_m;
+  state.counters["mean_dist_rel"] = d.mean_m;
+}
+BENCHMARK(BM_RefinedAccuracy)->DenseRange(0, 4)->ArgName("subdiv")->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace serosa::render
+
+BENCHMARK_MAIN();
