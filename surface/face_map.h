@@ -41,6 +41,10 @@ class FaceMap {
   FaceEntry& get_or_insert(const WideKey& k);
   /// Removes k; false when absent.
   bool erase(const WideKey& k);
+  /// Hints the CPU to load k's home slot (no effect on the contents).
+  void prefetch(const WideKey& k) const {
+    if (!slots_.empty()) __builtin_prefetch(&slots_[home(k)]);
+  }
   [[nodiscard]] std::size_t size() const { return size_; }
   [[nodiscard]] bool empty() const { return size_ == 0; }
 

@@ -157,17 +157,22 @@ void update_surface(SurfaceMesh& s, FaceTable& table, const TetMesh& after, cons
   touched.reserve(4 * (removed + added + d.moved_tets.size()));
   std::vector<Tet>& tets = table.tets;
 
+  // The table is large and cold (the solver ran since the last update): each step below first
+  // computes its keys and prefetches their slots, so the cache misses overlap.
+
   // 1. Removed tets (old ids, nodes from the mirror): one use less of each face.
   for (std::int32_t r : d.removed_tets)
     for (int l = 0; l < 4; ++l) {
-      const WideKey k = face_key(tets[static_cast<std::size_t>(r)], l);
-      Entry* found = table.faces.find(k);
-      require(found != nullptr, "removed tet " + std::to_string(r) + " has a face the table lacks");
-      Entry& e = *found;
-      --e.count;
-      e.code_sum -= std::int64_t{r} * 4 + l;
-      touched.push_back(k);
+      touched.push_back(face_key(tets[static_cast<std::size_t>(r)], l));
+      table.faces.prefetch(touched.back());
     }
+  for (std::size_t i = 0; i < 4 * removed; ++i) {
+    const std::int32_t r = d.removed_tets[i / 4];
+    Entry* found = table.faces.find(touched[i]);
+    require(found != nullptr, "removed tet " + std::to_string(r) + " has a face the table lacks");
+    --found->count;
+    found->code_sum -= std::int64_t{r} * 4 + static_cast<std::int64_t>(i % 4);
+  }
 
   // 2. Mirror apply(): added tets into reused slots or appended, then the moves.
   for (std::size_t k = 0; k < added; ++k) {
@@ -189,23 +194,27 @@ void update_surface(SurfaceMesh& s, FaceTable& table, const TetMesh& after, cons
   tets.resize(after.tets.size());
 
   // 3. Added tets (final ids): one use more of each face.
-  for (std::size_t k = 0; k < added; ++k) {
-    const std::int32_t slot = d.slot_of_added[k];
+  const std::size_t first_added = touched.size();
+  for (std::size_t k = 0; k < added; ++k)
     for (int l = 0; l < 4; ++l) {
-      const WideKey key = face_key(d.added_tets[k], l);
-      Entry& e = table.faces.get_or_insert(key);
-      ++e.count;
-      e.code_sum += std::int64_t{slot} * 4 + l;
-      touched.push_back(key);
+      touched.push_back(face_key(d.added_tets[k], l));
+      table.faces.prefetch(touched.back());
     }
+  for (std::size_t i = 0; i < 4 * added; ++i) {
+    Entry& e = table.faces.get_or_insert(touched[first_added + i]);
+    ++e.count;
+    e.code_sum += std::int64_t{d.slot_of_added[i / 4]} * 4 + static_cast<std::int64_t>(i % 4);
   }
 
-  // 4. Reconcile each touched face with the surface arrays.
-  std::sort(touched.begin(), touched.end());
-  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  // 4. Reconcile each touched face with the surface arrays, in the order touched (deterministic).
+  // A key touched twice is reconciled twice, harmlessly: the second pass finds the face already
+  // in place (count 1), already out (count 2), or erased (count 0).
+  for (const WideKey& key : touched) table.faces.prefetch(key);
   FaceArrays arrays(s, table, changed_slots);
   for (const WideKey& key : touched) {
-    Entry& e = *table.faces.find(key);
+    Entry* found = table.faces.find(key);
+    if (found == nullptr) continue;  // erased by an earlier pass over the same key
+    Entry& e = *found;
     if (e.count == 1) {
       const auto tet = static_cast<std::int32_t>(e.code_sum >> 2);
       const auto l = static_cast<int>(e.code_sum & 3);
