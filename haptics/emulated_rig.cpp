@@ -118,6 +118,22 @@ struct EmulatedRig::Impl {
     UMockdevIoctlData* arg = umockdev_ioctl_client_get_arg(client);
     const double now = monotonic_s();
     if (unplugged) {
+      // Like the kernel after a disconnect (CAP_REAP_AFTER_DISCONNECT): the URBs still queued
+      // can be reaped, killed with -ESHUTDOWN; then every ioctl fails with ENODEV.
+      if (req == USBDEVFS_REAPURB || req == USBDEVFS_REAPURBNDELAY) {
+        for (auto* q : {&discarded, &completed_out, &pending_in}) {
+          if (q->empty()) continue;
+          UMockdevIoctlData* u = q->front();
+          q->pop_front();
+          auto* urb = reinterpret_cast<usbdevfs_urb*>(u->data);
+          if (q == &pending_in) {
+            urb->actual_length = 0;
+            urb->status = -ESHUTDOWN;
+          }
+          complete_reap(client, arg, u);
+          return TRUE;
+        }
+      }
       umockdev_ioctl_client_complete(client, -1, ENODEV);
       return TRUE;
     }
@@ -350,8 +366,7 @@ void EmulatedRig::unplug() {
   {
     std::lock_guard<std::mutex> lock(m->mu);
     if (m->unplugged) return;
-    m->unplugged = true;  // from now on every ioctl fails with ENODEV, like a vanished device
-    m->drop_all();
+    m->unplugged = true;  // from now on ioctls fail with ENODEV, like a vanished device
   }
   umockdev_testbed_uevent(m->tb, kSysPath, "remove");
   umockdev_testbed_remove_device(m->tb, kSysPath);
@@ -362,6 +377,7 @@ void EmulatedRig::replug() {
   {
     std::lock_guard<std::mutex> lock(m->mu);
     if (!m->unplugged) return;
+    m->drop_all();  // URBs of the old session nobody reaped
     m->unplugged = false;
     m->halted = false;
     m->next_due = 0.0;
