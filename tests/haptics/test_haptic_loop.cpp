@@ -71,6 +71,25 @@ TEST(ForceRenderer, ContactClampAndSlew) {
   EXPECT_NEAR(f.norm(), 3.0, 1e-12);
 }
 
+TEST(ForceRenderer, VirtualCouplingPullsTowardsTheSimulatedTool) {
+  ContactModel m;
+  m.step = 1;
+  m.coupling_stiffness_Npm = 250.0;
+  m.tools[0].coupled = 1;
+  m.tools[0].sim_tip_m = {0.01, -0.02, 0.1};  // the solver's tool lags the hand
+  const Vec3 x(0.0, 0.0, 0.1);
+  const Vec3 f = ForceRenderer::field_force(m, 0, x);
+  EXPECT_NEAR((f - Vec3(2.5, -5.0, 0.0)).norm(), 0.0, 1e-12);
+  // Uncoupled tools feel nothing from it.
+  EXPECT_EQ(ForceRenderer::field_force(m, 1, x).norm(), 0.0);
+  // Coupling and contact add up.
+  m.tools[0].n_contacts = 1;
+  m.tools[0].contacts[0].point_m = {0.0, 0.0, 0.09};
+  m.tools[0].contacts[0].normal = {0.0, 0.0, -1.0};
+  m.tools[0].contacts[0].stiffness_Npm = 100.0;
+  EXPECT_NEAR((ForceRenderer::field_force(m, 0, x) - Vec3(2.5, -5.0, -1.0)).norm(), 0.0, 1e-12);
+}
+
 TEST(ForceRenderer, NaNGivesZero) {
   ForceRenderer r;
   ContactModel m = contact_model(1, std::numeric_limits<double>::quiet_NaN());
