@@ -374,6 +374,21 @@ TEST(HapticLoopThread, MedianPeriodIsOneMillisecond) {
   EXPECT_NE(os.str().find("\"jitter_p99_s\""), std::string::npos);
 }
 
+TEST(HapticLoopThread, RefusedRealtimeFallsBackAndRuns) {
+  FakeDevice dev;
+  ContactModelChannel ch(contact_model(1, 200.0));
+  HapticLoopConfig c;
+  c.gap_monitor = false;
+  c.priority = 1000;  // out of SCHED_FIFO's range: refused even for root
+  HapticLoop loop(dev, ch, c);
+  loop.start();
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  loop.stop();
+  EXPECT_FALSE(loop.telemetry().realtime);
+  EXPECT_GT(loop.telemetry().ticks, 20u);
+  EXPECT_GT(dev.count(), 20u);
+}
+
 TEST(HapticLoopThread, StallGivesZeroThenResumesWithoutReplay) {
   FakeDevice dev;
   ContactModelChannel ch(contact_model(1, 200.0));
