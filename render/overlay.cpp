@@ -198,6 +198,12 @@ OverlayResult Overlay::layout(const OverlayData& data, const SnapshotOptions& op
       ImGui::TextDisabled("haptics off");
     }
     ImGui::Text("cuts %lld", static_cast<long long>(data.cuts));
+    if (!data.metrics.empty()) {
+      ImGui::Separator();
+      for (const OverlayMetric& m : data.metrics)
+        ImGui::Text("%s %.3g %s", m.name.c_str(), m.value, m.unit.c_str());
+      ImGui::Separator();
+    }
     int view = 0;
     for (std::size_t i = 0; i < kViews.size(); ++i)
       if (kViews[i] == options.view) view = static_cast<int>(i);

@@ -35,6 +35,14 @@ struct RenderTool {
   float jaw_rad = 0.0f;  ///< jaw opening angle between the two jaws, rad, [0, pi]
 };
 
+/// One named number the overlay lists (instructor metrics: cut length, time in contact, force
+/// peaks ...), e.g. {"max force", 1.8, "N"}.
+struct OverlayMetric {
+  std::string name;
+  double value = 0.0;
+  std::string unit;  ///< SI unit symbol, may be empty
+};
+
 /// What the overlay shows (plain data; drawn by Overlay, render/overlay.h). Negative or zero
 /// rates mean "not running" and are shown as such.
 struct OverlayData {
@@ -48,8 +56,9 @@ struct OverlayData {
   bool slow_motion = false;      ///< the solver cannot keep up with real time
   /// Replay timeline (instructors): shown when `replay` is true.
   bool replay = false;
-  double replay_position_s = 0.0;  ///< position in the recording, s
-  double replay_duration_s = 0.0;  ///< length of the recording, s
+  double replay_position_s = 0.0;      ///< position in the recording, s
+  double replay_duration_s = 0.0;      ///< length of the recording, s
+  std::vector<OverlayMetric> metrics;  ///< listed under the statistics, in this order
 };
 
 /// One frame to draw: the organs' boundary surface (and optionally the tet edges), the camera.

@@ -113,6 +113,13 @@ TEST_F(OverlayTest, StatisticsPanelAndReplayTimelineShowWhereTheySay) {
   EXPECT_GT(r.timeline[1], 0.7f * kH);               // along the bottom
   EXPECT_GT(changed_in(plain, replay, r.timeline), 1000u);
   EXPECT_GT(r.pause_button[2], r.pause_button[0]);
+  // Instructor metrics make the panel taller, one line each.
+  const float plain_height = r.stats_rect[3] - r.stats_rect[1];
+  d.metrics = {{"max force", 1.8, "N"}, {"cut length", 0.012, "m"}, {"contact time", 3.5, "s"}};
+  shoot(&d, {}, &r, nullptr);  // an auto-sized panel takes its new size on the next frame
+  const Image metrics = shoot(&d, {}, &r, "overlay_metrics.png");
+  EXPECT_GT(r.stats_rect[3] - r.stats_rect[1], plain_height + 3 * 10.0f);
+  EXPECT_GT(changed_in(replay, metrics, r.stats_rect), 200u);
   // Hidden: nothing drawn.
   d.visible = false;
   const Image hidden = shoot(&d, {}, &r, nullptr);
