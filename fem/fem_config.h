@@ -38,6 +38,10 @@ struct SolverSettings {
   double tolerance = 1e-6;   ///< CG: stop when ||r|| <= tolerance * ||b|| (relative residual)
   int max_iterations = 100;  ///< CG iteration cap; the step reports converged = false past it
   bool warm_start = true;    ///< CG: start from the previous step's dv instead of 0
+  /// CG: apply A per tet without assembling it (fem/system_matrix.h SystemOperator) instead of
+  /// filling the CSR matrix every step. CHOLMOD always assembles. Off by default: assembled CG
+  /// measured faster (docs/BENCHMARKS.md "FEM").
+  bool matrix_free = false;
 };
 
 /// The whole FEM model. Const after the stage is built.

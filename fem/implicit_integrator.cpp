@@ -20,6 +20,7 @@ void ImplicitIntegrator::rebuild_solver_structure(const TetMesh& mesh) {
   m_dv.resize(n3, 0.0);
   m_fe.resize(4 * static_cast<std::size_t>(mesh.num_tets()));
   m_rot.resize(static_cast<std::size_t>(mesh.num_tets()), Mat3::Identity());
+  m_rg.resize(4 * static_cast<std::size_t>(mesh.num_tets()));
   m_analyzed = false;
   m_rest_factored = false;
   if (m_config.solver.kind != SolverKind::pcg) m_analyzed = m_cholmod.analyze(m_a);
@@ -72,21 +73,30 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
   const std::int32_t m = mesh.num_tets();
   StepStatus st;
 
-  // 1. Rotations, warm-started from the last step.
-  st.inverted_tets = update_rotations(mesh, m_el, m_q, m_rot, kRotationMaxIterations);
-
-  // 2. Per-tet forces f_el(x) - (beta + dt) K_R v.
-#pragma omp parallel for schedule(static) if (m >= kParallelMin)
+  // 1-2. Per tet: rotation (warm-started from the last step), rotated gradients R b_a, and the
+  // corner forces f_el(x) - (beta + dt) K_R v.
+  int inverted = 0;
+#pragma omp parallel for schedule(static) reduction(+ : inverted) if (m >= kParallelMin)
   for (std::int32_t t = 0; t < m; ++t) {
     const auto ut = static_cast<std::size_t>(t);
     const TetElement& e = m_el.elements[ut];
     std::span<Vec3, 4> out(m_fe.data() + 4 * ut, 4);
     if (!e.active()) {
-      for (Vec3& f : out) f.setZero();
+      m_rot[ut].setIdentity();
+      for (std::size_t c = 0; c < 4; ++c) {
+        out[c].setZero();
+        m_rg[4 * ut + c].setZero();
+      }
       continue;
     }
-    element_forces(e, m_rot[ut], mesh.tets[ut], mesh.x, mesh.v, e.beta_s + dt_s, out);
+    const Tet& nd = mesh.tets[ut];
+    const Mat3 f = nodal_gradient(e, mesh.x[nd[0]], mesh.x[nd[1]], mesh.x[nd[2]], mesh.x[nd[3]]);
+    if (f.determinant() <= 0.0) ++inverted;
+    m_rot[ut] = robust_rotation(f, m_q[ut], kRotationMaxIterations);
+    for (std::size_t c = 0; c < 4; ++c) m_rg[4 * ut + c] = m_rot[ut] * e.grad[c];
+    element_forces(e, m_rot[ut], nd, mesh.x, mesh.v, e.beta_s + dt_s, out);
   }
+  st.inverted_tets = inverted;
 
   // 3. Right-hand side b_i = dt (f_ext_i + m_i g - c_i v_i + sum_e f_e,i), 0 on constrained nodes.
   const Vec3 g = m_config.gravity_on ? m_config.gravity_mps2 : Vec3::Zero();
@@ -105,18 +115,30 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
     for (int c = 0; c < 3; ++c) m_rhs[3 * ui + static_cast<std::size_t>(c)] = b[c];
   }
 
-  // 4. A = M + dt C + dt^2 K_R.
-  fill_system(mesh, m_el, m_pattern, m_rot, dt_s, m_a);
-
-  // 5. Solve A dv = b.
+  // 4-5. Solve A dv = b, A = M + dt C + dt^2 K_R: assembled (CHOLMOD always, CG unless
+  // matrix_free) or applied matrix-free (fem/system_matrix.h).
   if (!m_config.solver.warm_start) std::fill(m_dv.begin(), m_dv.end(), 0.0);
+  const bool cg_matrix_free =
+      m_config.solver.matrix_free && m_config.solver.kind != SolverKind::cholmod;
+  MatVec apply_a;
+  if (cg_matrix_free) {
+    prepare_operator(mesh, m_el, dt_s, m_op);
+    apply_a = [this, &mesh](std::span<const double> x, std::span<double> y) {
+      apply_operator(mesh, m_el, m_pattern, m_rg, m_op, x, y);
+    };
+  } else {
+    fill_system(mesh, m_el, m_pattern, m_rg, dt_s, m_a);
+    apply_a = [this](std::span<const double> x, std::span<double> y) {
+      multiply_system(m_pattern, m_a, x, y);
+    };
+  }
   SolveStatus ss;
   if (m_config.solver.kind == SolverKind::cholmod) {
     if (!m_analyzed) m_analyzed = m_cholmod.analyze(m_a);
     if (m_analyzed && m_cholmod.factorize(m_a)) {
       ss = m_cholmod.solve(m_rhs, m_dv);
       // Residual of the direct solve, for the status: ||b - A dv|| / ||b||.
-      multiply(m_a, m_dv, m_pcg.r);
+      apply_a(m_dv, m_pcg.r);
       for (std::size_t i = 0; i < m_rhs.size(); ++i) m_pcg.r[i] = m_rhs[i] - m_pcg.r[i];
       const double rr = dot(m_pcg.r, m_pcg.r);
       const double bn = std::sqrt(dot(m_rhs, m_rhs));
@@ -129,26 +151,35 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
       ss.converged = false;
       ss.finite = false;
     }
-  } else if (m_config.solver.kind == SolverKind::pcg_cholmod) {
-    // Rest-state factor as preconditioner: P = M + dt C_0 + dt^2 K_0 (same pattern as A).
-    if (!m_rest_factored || m_rest_dt_s != dt_s) {
-      m_identity.assign(static_cast<std::size_t>(m), Mat3::Identity());
-      m_a_rest = m_a;
-      fill_system(mesh, m_el, m_pattern, m_identity, dt_s, m_a_rest);
-      if (!m_analyzed) m_analyzed = m_cholmod.analyze(m_a_rest);
-      m_rest_factored = m_analyzed && m_cholmod.factorize(m_a_rest);
-      m_rest_dt_s = dt_s;
-    }
-    const Preconditioner precond =
-        m_rest_factored ? Preconditioner([this](std::span<const double> r, std::span<double> z) {
-          m_cholmod.solve(r, z);
-        })
-                        : jacobi(m_a, m_pcg);
-    ss = pcg(m_a, m_rhs, m_dv, m_config.solver.tolerance, m_config.solver.max_iterations, precond,
-             m_pcg);
   } else {
-    ss = pcg(m_a, m_rhs, m_dv, m_config.solver.tolerance, m_config.solver.max_iterations,
-             jacobi(m_a, m_pcg), m_pcg);
+    Preconditioner precond;
+    if (m_config.solver.kind == SolverKind::pcg_cholmod) {
+      // Rest-state factor as preconditioner: P = M + dt C_0 + dt^2 K_0 (same pattern as A).
+      if (!m_rest_factored || m_rest_dt_s != dt_s) {
+        m_rg_rest.resize(4 * static_cast<std::size_t>(m));
+        for (std::size_t t = 0; t < static_cast<std::size_t>(m); ++t)
+          for (std::size_t c = 0; c < 4; ++c) m_rg_rest[4 * t + c] = m_el.elements[t].grad[c];
+        m_a_rest = m_a;
+        fill_system(mesh, m_el, m_pattern, m_rg_rest, dt_s, m_a_rest);
+        if (!m_analyzed) m_analyzed = m_cholmod.analyze(m_a_rest);
+        m_rest_factored = m_analyzed && m_cholmod.factorize(m_a_rest);
+        m_rest_dt_s = dt_s;
+      }
+      if (m_rest_factored)
+        precond.apply = [this](std::span<const double> r, std::span<double> z) {
+          m_cholmod.solve(r, z);
+        };
+    }
+    if (!precond.apply) {
+      m_pcg.inv_diag.resize(m_rhs.size());
+      if (cg_matrix_free)
+        operator_inverse_diagonal(m_el, m_pattern, m_rg, m_op, m_pcg.inv_diag);
+      else
+        precond = jacobi(m_a, m_pcg);
+      precond.inv_diag = m_pcg.inv_diag;
+    }
+    ss = pcg(apply_a, m_rhs, m_dv, m_config.solver.tolerance, m_config.solver.max_iterations,
+             precond, m_pcg);
   }
   st.converged = ss.converged;
   st.iterations = ss.iterations;

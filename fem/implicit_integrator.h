@@ -75,6 +75,8 @@ class ImplicitIntegrator {
   CsrMatrix m_a;              // (3n x 3n) system matrix
   std::vector<Quat> m_q;      // (m) per-tet rotation, warm start of the next step
   std::vector<Mat3> m_rot;    // (m) R_e of the current step
+  std::vector<Vec3> m_rg;     // (4m) rotated gradients R_e b_a of the current step, 1/m
+  SystemOperator m_op;        // matrix-free system (solver.matrix_free)
   std::vector<Vec3> m_fe;     // (4m) per-tet corner forces of the right-hand side, N
   std::vector<double> m_rhs;  // (3n) b = dt (...), N s
   std::vector<double> m_dv;   // (3n) velocity change, m/s (CG warm start)
@@ -83,7 +85,7 @@ class ImplicitIntegrator {
   bool m_analyzed = false;
   // pcg_cholmod: the rest-state system (R = I) and the dt its factor was computed for.
   CsrMatrix m_a_rest;
-  std::vector<Mat3> m_identity;  // (m) identity rotations
+  std::vector<Vec3> m_rg_rest;  // (4m) unrotated gradients b_a
   double m_rest_dt_s = -1.0;
   bool m_rest_factored = false;
 };

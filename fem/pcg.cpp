@@ -1,38 +1,44 @@
 #include "fem/pcg.h"
-#include "fem/parallel.h"
 
 #include <array>
 #include <cmath>
+#include <cstddef>
+
+#include "fem/parallel.h"
 
 namespace serosa::fem {
 namespace {
 
-constexpr int kChunks = 64;  // fixed: makes dot() independent of the thread count
+constexpr int kChunks = 64;  // fixed: makes the sums independent of the thread count
 
-void axpy(double alpha, std::span<const double> x, std::span<double> y) {
-  const auto n = static_cast<std::ptrdiff_t>(y.size());
+// Runs body(lo, hi, sums) over kChunks fixed chunks of [0, n) (in parallel when n is large) and
+// returns the K per-chunk sums added in chunk order.
+template <int K, class Body>
+std::array<double, K> chunked(std::ptrdiff_t n, const Body& body) {
+  std::array<std::array<double, K>, kChunks> part{};
 #pragma omp parallel for schedule(static) if (n >= kParallelMin)
-  for (std::ptrdiff_t i = 0; i < n; ++i)
-    y[static_cast<std::size_t>(i)] += alpha * x[static_cast<std::size_t>(i)];
+  for (int c = 0; c < kChunks; ++c) {
+    std::array<double, K> s{};
+    body(n * c / kChunks, n * (c + 1) / kChunks, s);
+    part[static_cast<std::size_t>(c)] = s;
+  }
+  std::array<double, K> total{};
+  for (const auto& p : part)
+    for (std::size_t k = 0; k < static_cast<std::size_t>(K); ++k) total[k] += p[k];
+  return total;
 }
 
 }  // namespace
 
 double dot(std::span<const double> x, std::span<const double> y) {
-  const auto n = static_cast<std::ptrdiff_t>(x.size());
-  std::array<double, kChunks> part{};
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
-  for (int c = 0; c < kChunks; ++c) {
-    const std::ptrdiff_t lo = n * c / kChunks;
-    const std::ptrdiff_t hi = n * (c + 1) / kChunks;
-    double s = 0.0;
-    for (std::ptrdiff_t i = lo; i < hi; ++i)
-      s += x[static_cast<std::size_t>(i)] * y[static_cast<std::size_t>(i)];
-    part[static_cast<std::size_t>(c)] = s;
-  }
-  double s = 0.0;
-  for (double v : part) s += v;
-  return s;
+  const double* xp = x.data();
+  const double* yp = y.data();
+  return chunked<1>(static_cast<std::ptrdiff_t>(x.size()),
+                    [&](std::ptrdiff_t lo, std::ptrdiff_t hi, std::array<double, 1>& s) {
+                      double acc = 0.0;
+                      for (std::ptrdiff_t i = lo; i < hi; ++i) acc += xp[i] * yp[i];
+                      s[0] = acc;
+                    })[0];
 }
 
 Preconditioner jacobi(const CsrMatrix& a, PcgScratch& s) {
@@ -46,23 +52,37 @@ Preconditioner jacobi(const CsrMatrix& a, PcgScratch& s) {
         s.inv_diag[static_cast<std::size_t>(r)] = d > 0.0 ? 1.0 / d : 1.0;
         break;
       }
-  return [&s](std::span<const double> r, std::span<double> z) {
-    const auto n = static_cast<std::ptrdiff_t>(r.size());
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
-    for (std::ptrdiff_t i = 0; i < n; ++i)
-      z[static_cast<std::size_t>(i)] =
-          s.inv_diag[static_cast<std::size_t>(i)] * r[static_cast<std::size_t>(i)];
-  };
+  return Preconditioner{s.inv_diag, {}};
 }
 
 SolveStatus pcg(const CsrMatrix& a, std::span<const double> b, std::span<double> x,
                 double tolerance, int max_iterations, const Preconditioner& precond,
-                PcgScratch& s) {
-  const auto n = static_cast<std::size_t>(a.rows);
-  s.r.resize(n);
-  s.z.resize(n);
-  s.p.resize(n);
-  s.ap.resize(n);
+                PcgScratch& scratch) {
+  return pcg([&a](std::span<const double> in, std::span<double> out) { multiply(a, in, out); }, b,
+             x, tolerance, max_iterations, precond, scratch);
+}
+
+SolveStatus pcg(const MatVec& a, std::span<const double> b, std::span<double> x, double tolerance,
+                int max_iterations, const Preconditioner& precond, PcgScratch& s) {
+  const auto n = static_cast<std::ptrdiff_t>(b.size());
+  const auto un = static_cast<std::size_t>(n);
+  s.r.resize(un);
+  s.z.resize(un);
+  s.p.resize(un);
+  s.ap.resize(un);
+  double* xp = x.data();
+  const double* bp = b.data();
+  double* rp = s.r.data();
+  double* zp = s.z.data();
+  double* pp = s.p.data();
+  double* app = s.ap.data();
+  const bool jac = !precond.apply;
+  const double* dp = precond.inv_diag.data();
+  if (jac && precond.inv_diag.size() != un) {
+    SolveStatus bad;
+    bad.finite = false;
+    return bad;
+  }
   SolveStatus st;
   const double bnorm = std::sqrt(dot(b, b));
   if (!std::isfinite(bnorm)) {
@@ -74,52 +94,74 @@ SolveStatus pcg(const CsrMatrix& a, std::span<const double> b, std::span<double>
     st.converged = true;
     return st;
   }
-  // r = b - A x
-  multiply(a, x, s.r);
-#pragma omp parallel for schedule(static) if (static_cast <std::ptrdiff_t>(n) >= kParallelMin)
-  for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(n); ++i)
-    s.r[static_cast<std::size_t>(i)] =
-        b[static_cast<std::size_t>(i)] - s.r[static_cast<std::size_t>(i)];
-  double rnorm = std::sqrt(dot(s.r, s.r));
-  // phi(x0) = -x0.(b + r0) / 2; a warm start worse than zero (phi > 0): start from zero.
-  double phi0 = 0.0;
-  for (std::size_t i = 0; i < n; ++i) phi0 -= 0.5 * x[i] * (b[i] + s.r[i]);
-  if (!(phi0 <= 0.0)) {
+  // phi(x) = x.(A x)/2 - b.x = -x.(b + r)/2 with r = b - A x.
+  const auto phi_of = [&]() {
+    return chunked<1>(n, [&](std::ptrdiff_t lo, std::ptrdiff_t hi, std::array<double, 1>& acc) {
+      double v = 0.0;
+      for (std::ptrdiff_t i = lo; i < hi; ++i) v -= 0.5 * xp[i] * (bp[i] + rp[i]);
+      acc[0] = v;
+    })[0];
+  };
+  // r = b - A x; a warm start worse than zero (phi > 0): start from zero.
+  a(x, s.r);
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
+  for (std::ptrdiff_t i = 0; i < n; ++i) rp[i] = bp[i] - rp[i];
+  if (!(phi_of() <= 0.0)) {
     std::fill(x.begin(), x.end(), 0.0);
     std::copy(b.begin(), b.end(), s.r.begin());
-    rnorm = bnorm;
   }
-  precond(s.r, s.z);
-  std::copy(s.z.begin(), s.z.end(), s.p.begin());
-  double rz = dot(s.r, s.z);
+  // z = P^{-1} r, p = z, r.r, r.z
+  if (!jac) precond.apply(s.r, s.z);
+  auto sums = chunked<2>(n, [&](std::ptrdiff_t lo, std::ptrdiff_t hi, std::array<double, 2>& acc) {
+    double rr = 0.0, rz = 0.0;
+    for (std::ptrdiff_t i = lo; i < hi; ++i) {
+      if (jac) zp[i] = dp[i] * rp[i];
+      pp[i] = zp[i];
+      rr += rp[i] * rp[i];
+      rz += rp[i] * zp[i];
+    }
+    acc = {rr, rz};
+  });
+  double rnorm = std::sqrt(sums[0]);
+  double rz = sums[1];
   int it = 0;
   while (rnorm > tolerance * bnorm && it < max_iterations) {
-    multiply(a, s.p, s.ap);
+    a(s.p, s.ap);
     const double pap = dot(s.p, s.ap);
     if (!(pap > 0.0)) break;  // A not SPD along p (or NaN): stop, report unconverged
     const double alpha = rz / pap;
-    axpy(alpha, s.p, x);
-    axpy(-alpha, s.ap, s.r);
-    rnorm = std::sqrt(dot(s.r, s.r));
+    // x += alpha p; r -= alpha A p; Jacobi: z = D^{-1} r; sums r.r, r.z
+    sums = chunked<2>(n, [&](std::ptrdiff_t lo, std::ptrdiff_t hi, std::array<double, 2>& acc) {
+      double rr = 0.0, rzl = 0.0;
+      for (std::ptrdiff_t i = lo; i < hi; ++i) {
+        xp[i] += alpha * pp[i];
+        rp[i] -= alpha * app[i];
+        rr += rp[i] * rp[i];
+        if (jac) {
+          zp[i] = dp[i] * rp[i];
+          rzl += rp[i] * zp[i];
+        }
+      }
+      acc = {rr, rzl};
+    });
+    rnorm = std::sqrt(sums[0]);
     ++it;
     if (!std::isfinite(rnorm)) break;
-    if (rnorm <= tolerance * bnorm) break;
-    precond(s.r, s.z);
-    const double rz_new = dot(s.r, s.z);
+    if (rnorm <= tolerance * bnorm || it >= max_iterations) break;
+    double rz_new = sums[1];
+    if (!jac) {
+      precond.apply(s.r, s.z);
+      rz_new = dot(s.r, s.z);
+    }
     const double beta = rz_new / rz;
     rz = rz_new;
-#pragma omp parallel for schedule(static) if (static_cast <std::ptrdiff_t>(n) >= kParallelMin)
-    for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(n); ++i)
-      s.p[static_cast<std::size_t>(i)] =
-          s.z[static_cast<std::size_t>(i)] + beta * s.p[static_cast<std::size_t>(i)];
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
+    for (std::ptrdiff_t i = 0; i < n; ++i) pp[i] = zp[i] + beta * pp[i];
   }
   st.iterations = it;
   st.residual = rnorm / bnorm;
-  // phi(x) = x.(A x)/2 - b.x = -x.(b + r)/2 with r = b - A x (r is the recurrence residual).
-  double phi = 0.0;
-  for (std::size_t i = 0; i < n; ++i) phi -= 0.5 * x[i] * (b[i] + s.r[i]);
-  st.energy = phi;
-  st.finite = std::isfinite(rnorm) && std::isfinite(phi);
+  st.energy = phi_of();
+  st.finite = std::isfinite(rnorm) && std::isfinite(st.energy);
   st.converged = st.finite && rnorm <= tolerance * bnorm;
   return st;
 }

@@ -1,5 +1,6 @@
 #include "fem/rotation.h"
 
+#include <Eigen/LU>
 #include <Eigen/SVD>
 #include <cmath>
 
@@ -21,6 +22,56 @@ bool extract_rotation(const Mat3& f, Quat& q, int max_iter) {
   return false;
 }
 
+namespace {
+
+// q <- exp(omega) q for a rotation vector omega (rad). Below 0.05 rad a truncated expansion,
+// renormalized, saves the sincos: the angle is off by O(w^3), which changes the length of a step
+// but not the fixed point (torque = 0) the iteration converges to.
+void rotate_left(const Vec3& omega, double w, Quat& q) {
+  if (w < 0.05) {
+    const Quat dq(1.0 - w * w / 8.0, 0.5 * omega.x(), 0.5 * omega.y(), 0.5 * omega.z());
+    q = dq * q;
+  } else {
+    q = Quat(Eigen::AngleAxisd(w, omega / w)) * q;
+  }
+  q.normalize();
+}
+
+}  // namespace
+
+bool newton_rotation(const Mat3& f, Quat& q, int max_iter) {
+  for (int it = 0; it < max_iter; ++it) {
+    const Mat3 r = q.toRotationMatrix();
+    const Vec3 torque =
+        r.col(0).cross(f.col(0)) + r.col(1).cross(f.col(1)) + r.col(2).cross(f.col(2));
+    const double trace = r.col(0).dot(f.col(0)) + r.col(1).dot(f.col(1)) + r.col(2).dot(f.col(2));
+    const Vec3 muller = torque / (std::abs(trace) + 1.0e-9);  // Müller et al. 2016
+    // Müller's step is 2/3 of Newton's near the answer: when it is this small, so is the error.
+    const double wm = muller.norm();
+    if (!(wm >= 0.5e-9)) return wm < 0.5e-9;  // converged (NaN input: keep q, not converged)
+    // H = tr(A) I - sym(A), A = F R^T (symmetric); Newton step if positive definite (Sylvester).
+    const Mat3 a = f * r.transpose();
+    const double h00 = trace - a(0, 0), h11 = trace - a(1, 1), h22 = trace - a(2, 2);
+    const double h01 = -0.5 * (a(0, 1) + a(1, 0)), h12 = -0.5 * (a(1, 2) + a(2, 1));
+    const double h02 = -0.5 * (a(0, 2) + a(2, 0));
+    // Adjugate (symmetric) and determinant.
+    const double c00 = h11 * h22 - h12 * h12, c01 = h02 * h12 - h01 * h22;
+    const double c02 = h01 * h12 - h02 * h11, c11 = h00 * h22 - h02 * h02;
+    const double c12 = h01 * h02 - h00 * h12, c22 = h00 * h11 - h01 * h01;
+    const double det = h00 * c00 + h01 * c01 + h02 * c02;
+    Vec3 omega = muller;
+    if (h00 > 0.0 && c22 > 0.0 && det > 1e-12 * trace * trace * trace) {
+      const Vec3 newton = Vec3(c00 * torque[0] + c01 * torque[1] + c02 * torque[2],
+                               c01 * torque[0] + c11 * torque[1] + c12 * torque[2],
+                               c02 * torque[0] + c12 * torque[1] + c22 * torque[2]) /
+                          det;
+      if (newton.allFinite() && newton.norm() < 0.5) omega = newton;
+    }
+    rotate_left(omega, omega.norm(), q);
+  }
+  return false;
+}
+
 Mat3 polar_rotation_svd(const Mat3& f) {
   const Eigen::JacobiSVD<Mat3> svd(f, Eigen::ComputeFullU | Eigen::ComputeFullV);
   Mat3 u = svd.matrixU();
@@ -36,7 +87,7 @@ Mat3 polar_rotation_svd(const Mat3& f) {
 namespace serosa::fem {
 
 Mat3 robust_rotation(const Mat3& f, Quat& q, int max_iter) {
-  if (extract_rotation(f, q, max_iter)) return q.toRotationMatrix();
+  if (newton_rotation(f, q, max_iter)) return q.toRotationMatrix();
   const Mat3 r = polar_rotation_svd(f);
   if (!r.allFinite()) {  // NaN in F: keep the last rotation
     return q.toRotationMatrix();

@@ -31,10 +31,19 @@ inline constexpr int kRotationMaxIterations = 20;
 /// but barely at all when F is nearly flat (s_j + s_k << tr). Hence the fallback below.
 bool extract_rotation(const Mat3& f, Quat& q, int max_iter = kRotationMaxIterations);
 
+/// Newton's method on the same objective, warm-started from q like extract_rotation(). With
+/// A = F R^T, the gradient of tr(R^T F) over left rotations exp(w) R is the torque
+/// t = sum_i r_i x f_i and its Hessian is -(tr(A) I - sym(A)); where that 3x3 matrix is positive
+/// definite (every non-inverted F near its rotation), the step w = (tr(A) I - sym(A))^{-1} t
+/// converges quadratically (1-2 iterations per solver step from a warm start instead of ~10 for
+/// Müller's scalar step, which is tr(A) I in place of the matrix). Elsewhere (inverted or far from
+/// the answer) it takes Müller's step, which always ascends. Same fixed point, same return value.
+bool newton_rotation(const Mat3& f, Quat& q, int max_iter = kRotationMaxIterations);
+
 /// Irving et al. 2004: reflection-free polar rotation of F (3 x 3) from its SVD.
 [[nodiscard]] Mat3 polar_rotation_svd(const Mat3& f);
 
-/// What the solver uses per tet and step: extract_rotation() warm-started from q with at most
+/// What the solver uses per tet and step: newton_rotation() warm-started from q with at most
 /// max_iter iterations; if it has not converged by then (nearly flat or freshly inverted tets),
 /// the SVD answer instead. q is updated to the returned rotation.
 Mat3 robust_rotation(const Mat3& f, Quat& q, int max_iter = kRotationMaxIterations);

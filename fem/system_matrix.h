@@ -40,9 +40,46 @@ void build_pattern(const TetMesh& mesh, SystemPattern& pattern, CsrMatrix& a);
   return mesh.fixed[i] != 0 || !(el.node_mass[i] > 0.0);
 }
 
-/// Fills A's values: A = M + dt C + dt^2 K_R with C = alpha M + beta K_R, K_R = R K R^T.
-/// rot: (m) per-tet rotation R (identity gives the linear, rest-state system).
+/// Rotated shape-function gradients rg (4m): rg[4e + a] = R_e b_a (1/m), what both the assembled
+/// and the matrix-free system need: R K_ab R^T = V (lambda ra rb^T + mu rb ra^T + mu (ra.rb) I).
+/// rot: (m); identity rotations give the rest-state (linear) system.
+void rotated_gradients(const FemElements& el, std::span<const Mat3> rot, std::span<Vec3> rg);
+
+/// Fills A's values: A = M + dt C + dt^2 K_R with C = alpha M + beta K_R, K_R = R K R^T, from the
+/// rotated gradients rg (4m, rotated_gradients()).
 void fill_system(const TetMesh& mesh, const FemElements& el, const SystemPattern& pattern,
-                 std::span<const Mat3> rot, double dt_s, CsrMatrix& a);
+                 std::span<const Vec3> rg, double dt_s, CsrMatrix& a);
+
+/// y = A x for a matrix built by build_pattern() (x, y: (3n)). Exploits its layout: a node's three
+/// rows share their columns, which come in triples, so one column index is read per 3x3 block
+/// (a blocked SpMV on the CSR arrays CHOLMOD reads). Parallel over nodes.
+void multiply_system(const SystemPattern& pattern, const CsrMatrix& a, std::span<const double> x,
+                     std::span<double> y);
+
+/// The same A without assembling it (matrix-free):
+///   A x = D x + sum_e s_e R_e K_e R_e^T x,  D = diag(m_i + dt c_i),  s_e = dt^2 + dt beta_e,
+/// evaluated per tet through the stress like the elastic forces: with H_e = sum_b x_b rb^T,
+/// (K_R x)_a = V sigma(sym H_e) ra. Two passes, both conflict-free in parallel: per tet its four
+/// corner forces, then per node the sum over its incident corners (pattern.incident). Rows and
+/// columns of constrained nodes are the identity times their diagonal, as in fill_system().
+struct SystemOperator {
+  std::vector<double> diag;        ///< (n) D_i (constrained: m_i, or 1 if massless)
+  std::vector<std::uint8_t> free;  ///< (n) 1 where the node takes part in the solve
+  std::vector<double> tet_scale;   ///< (m) (dt^2 + dt beta_e) V_e, s^2 m^3 (0: inactive)
+  std::vector<Vec3> corner;        ///< (4m) scratch: s_e (K_R,e x)_a per corner
+};
+
+/// Per-step data of the operator (masses, constraints, scales) for time step dt_s.
+void prepare_operator(const TetMesh& mesh, const FemElements& el, double dt_s, SystemOperator& op);
+
+/// y = A x, matrix-free. rg: (4m) rotated gradients; x, y: (3n).
+void apply_operator(const TetMesh& mesh, const FemElements& el, const SystemPattern& pattern,
+                    std::span<const Vec3> rg, SystemOperator& op, std::span<const double> x,
+                    std::span<double> y);
+
+/// inv_diag (3n) = 1 / diag(A) of the matrix-free operator (Jacobi preconditioner).
+void operator_inverse_diagonal(const FemElements& el, const SystemPattern& pattern,
+                               std::span<const Vec3> rg, const SystemOperator& op,
+                               std::span<double> inv_diag);
 
 }  // namespace serosa::fem
