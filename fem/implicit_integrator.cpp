@@ -92,7 +92,7 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
     const Tet& nd = mesh.tets[ut];
     const Mat3 f = nodal_gradient(e, mesh.x[nd[0]], mesh.x[nd[1]], mesh.x[nd[2]], mesh.x[nd[3]]);
     if (f.determinant() <= 0.0) ++inverted;
-    m_rot[ut] = robust_rotation(f, m_q[ut], kRotationMaxIterations);
+    m_rot[ut] = robust_rotation(f, m_q[ut], kRotationMaxIterations, kStepRotationTolerance);
     for (std::size_t c = 0; c < 4; ++c) m_rg[4 * ut + c] = m_rot[ut] * e.grad[c];
     element_forces(e, m_rot[ut], nd, mesh.x, mesh.v, e.beta_s + dt_s, out);
   }

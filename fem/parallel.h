@@ -8,6 +8,6 @@
 namespace serosa::fem {
 
 /// Minimum loop length (rows, nodes, tets) worth a parallel region.
-inline constexpr std::ptrdiff_t kParallelMin = 8192;
+inline constexpr std::ptrdiff_t kParallelMin = 1024;
 
 }  // namespace serosa::fem

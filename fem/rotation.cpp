@@ -39,7 +39,7 @@ void rotate_left(const Vec3& omega, double w, Quat& q) {
 
 }  // namespace
 
-bool newton_rotation(const Mat3& f, Quat& q, int max_iter) {
+bool newton_rotation(const Mat3& f, Quat& q, int max_iter, double tolerance) {
   for (int it = 0; it < max_iter; ++it) {
     const Mat3 r = q.toRotationMatrix();
     const Vec3 torque =
@@ -48,7 +48,7 @@ bool newton_rotation(const Mat3& f, Quat& q, int max_iter) {
     const Vec3 muller = torque / (std::abs(trace) + 1.0e-9);  // Müller et al. 2016
     // Müller's step is 2/3 of Newton's near the answer: when it is this small, so is the error.
     const double wm = muller.norm();
-    if (!(wm >= 0.5e-9)) return wm < 0.5e-9;  // converged (NaN input: keep q, not converged)
+    if (!(wm >= tolerance)) return wm < tolerance;  // converged (NaN input: keep q, not converged)
     // H = tr(A) I - sym(A), A = F R^T (symmetric); Newton step if positive definite (Sylvester).
     const Mat3 a = f * r.transpose();
     const double h00 = trace - a(0, 0), h11 = trace - a(1, 1), h22 = trace - a(2, 2);
@@ -86,8 +86,8 @@ Mat3 polar_rotation_svd(const Mat3& f) {
 
 namespace serosa::fem {
 
-Mat3 robust_rotation(const Mat3& f, Quat& q, int max_iter) {
-  if (newton_rotation(f, q, max_iter)) return q.toRotationMatrix();
+Mat3 robust_rotation(const Mat3& f, Quat& q, int max_iter, double tolerance) {
+  if (newton_rotation(f, q, max_iter, tolerance)) return q.toRotationMatrix();
   const Mat3 r = polar_rotation_svd(f);
   if (!r.allFinite()) {  // NaN in F: keep the last rotation
     return q.toRotationMatrix();

@@ -38,7 +38,9 @@ bool extract_rotation(const Mat3& f, Quat& q, int max_iter = kRotationMaxIterati
 /// converges quadratically (1-2 iterations per solver step from a warm start instead of ~10 for
 /// Müller's scalar step, which is tr(A) I in place of the matrix). Elsewhere (inverted or far from
 /// the answer) it takes Müller's step, which always ascends. Same fixed point, same return value.
-bool newton_rotation(const Mat3& f, Quat& q, int max_iter = kRotationMaxIterations);
+/// Stops when Müller's step is below `tolerance` rad (the Newton error is about 2/3 of it).
+bool newton_rotation(const Mat3& f, Quat& q, int max_iter = kRotationMaxIterations,
+                     double tolerance = 1e-9);
 
 /// Irving et al. 2004: reflection-free polar rotation of F (3 x 3) from its SVD.
 [[nodiscard]] Mat3 polar_rotation_svd(const Mat3& f);
@@ -46,6 +48,12 @@ bool newton_rotation(const Mat3& f, Quat& q, int max_iter = kRotationMaxIteratio
 /// What the solver uses per tet and step: newton_rotation() warm-started from q with at most
 /// max_iter iterations; if it has not converged by then (nearly flat or freshly inverted tets),
 /// the SVD answer instead. q is updated to the returned rotation.
-Mat3 robust_rotation(const Mat3& f, Quat& q, int max_iter = kRotationMaxIterations);
+Mat3 robust_rotation(const Mat3& f, Quat& q, int max_iter = kRotationMaxIterations,
+                     double tolerance = 1e-9);
+
+/// Rotation tolerance of the implicit step, rad: a 1e-7 rad error in R_e changes the elastic
+/// force by ~1e-7 of the element's stress scale, far below any CG tolerance used; it saves one
+/// Newton iteration per tet and step against 1e-9.
+inline constexpr double kStepRotationTolerance = 1e-7;
 
 }  // namespace serosa::fem
