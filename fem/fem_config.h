@@ -28,8 +28,8 @@ struct FemMaterial {
 enum class SolverKind : std::uint8_t {
   pcg,          ///< conjugate gradient, Jacobi preconditioned, OpenMP
   cholmod,      ///< CHOLMOD supernodal Cholesky, numeric factorization every step
-  pcg_cholmod,  ///< CG preconditioned by a CHOLMOD factor of the rest-state system (factored
-                ///< on the first step after a topology change; not yet in the background)
+  pcg_cholmod,  ///< CG preconditioned by a CHOLMOD factor of the rest-state system, factored in
+                ///< a background thread after each topology change (Jacobi until ready)
 };
 
 /// Linear solver settings of the implicit step.
@@ -42,6 +42,11 @@ struct SolverSettings {
   /// filling the CSR matrix every step. CHOLMOD always assembles. Off by default: assembled CG
   /// measured faster (docs/BENCHMARKS.md "FEM").
   bool matrix_free = false;
+  /// pcg_cholmod: factor in a background thread (true) or on the step that needs it (false).
+  bool background_factor = true;
+  /// pcg_cholmod: the background factorization starts this many ms late. For tests that need
+  /// "the factor is not ready yet" deterministically; 0 otherwise.
+  int factor_delay_ms = 0;
 };
 
 /// The whole FEM model. Const after the stage is built.

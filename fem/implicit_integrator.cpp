@@ -22,8 +22,8 @@ void ImplicitIntegrator::rebuild_solver_structure(const TetMesh& mesh) {
   m_rot.resize(static_cast<std::size_t>(mesh.num_tets()), Mat3::Identity());
   m_rg.resize(4 * static_cast<std::size_t>(mesh.num_tets()));
   m_analyzed = false;
-  m_rest_factored = false;
-  if (m_config.solver.kind != SolverKind::pcg) m_analyzed = m_cholmod.analyze(m_a);
+  ++m_structure;
+  if (m_config.solver.kind == SolverKind::cholmod) m_analyzed = m_cholmod.analyze(m_a);
 }
 
 void ImplicitIntegrator::rebuild(TetMesh& mesh) {
@@ -154,21 +154,28 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
   } else {
     Preconditioner precond;
     if (m_config.solver.kind == SolverKind::pcg_cholmod) {
-      // Rest-state factor as preconditioner: P = M + dt C_0 + dt^2 K_0 (same pattern as A).
-      if (!m_rest_factored || m_rest_dt_s != dt_s) {
+      // Rest-state factor P = M + dt C_0 + dt^2 K_0 as preconditioner, computed in the background
+      // (fem/background_factor.h): until it is ready for this structure, Jacobi; after a dt
+      // change, the old factor until the new one is ready.
+      m_factor.poll();
+      CholmodSolver* factor = m_factor.factor_for(m_structure);
+      if ((factor == nullptr || m_factor.factor_dt() != dt_s) &&
+          !m_factor.requested(m_structure, dt_s)) {
         m_rg_rest.resize(4 * static_cast<std::size_t>(m));
         for (std::size_t t = 0; t < static_cast<std::size_t>(m); ++t)
           for (std::size_t c = 0; c < 4; ++c) m_rg_rest[4 * t + c] = m_el.elements[t].grad[c];
-        m_a_rest = m_a;
-        fill_system(mesh, m_el, m_pattern, m_rg_rest, dt_s, m_a_rest);
-        if (!m_analyzed) m_analyzed = m_cholmod.analyze(m_a_rest);
-        m_rest_factored = m_analyzed && m_cholmod.factorize(m_a_rest);
-        m_rest_dt_s = dt_s;
+        CsrMatrix rest = m_a;
+        fill_system(mesh, m_el, m_pattern, m_rg_rest, dt_s, rest);
+        m_factor.request(std::move(rest), m_structure, dt_s, m_config.solver.factor_delay_ms);
+        if (!m_config.solver.background_factor) m_factor.wait();
+        factor = m_factor.factor_for(m_structure);
       }
-      if (m_rest_factored)
-        precond.apply = [this](std::span<const double> r, std::span<double> z) {
-          m_cholmod.solve(r, z);
+      if (factor != nullptr)
+        precond.apply = [factor](std::span<const double> r, std::span<double> z) {
+          factor->solve(r, z);
         };
+      else
+        st.factor_pending = true;
     }
     if (!precond.apply) {
       m_pcg.inv_diag.resize(m_rhs.size());

@@ -14,8 +14,8 @@
 // Solvers (FemConfig::solver.kind): Jacobi PCG on the assembled matrix (warm-started from the
 // previous dv); CHOLMOD (symbolic analysis once per topology version, numeric factorization
 // every step); or PCG preconditioned by a CHOLMOD factor of the rest-state matrix
-// M + dt C + dt^2 K (R = I), factored once per topology version and dt. That factor is computed
-// synchronously on the first step after a topology change (NOT yet in a background thread). A step
+// M + dt C + dt^2 K (R = I), factored once per topology version and dt in a background thread
+// (fem/background_factor.h): steps never wait for it (Jacobi until it is ready). A step
 // whose solution is not finite, or diverged (the quadratic phi(dv) = dv^T A dv / 2 - b^T dv it
 // minimizes is above phi(0) = 0), is not applied: the mesh is left untouched and the status says
 // so. An unconverged but finite and reduced CG result (iteration cap reached) is applied and
@@ -28,6 +28,7 @@
 
 #include "engine/tet_mesh.h"
 #include "engine/topology_delta.h"
+#include "fem/background_factor.h"
 #include "fem/cholmod_solver.h"
 #include "fem/csr_matrix.h"
 #include "fem/fem_config.h"
@@ -43,6 +44,9 @@ struct StepStatus {
   int iterations = 0;      ///< CG iterations (0 for CHOLMOD)
   double residual = 0.0;   ///< relative residual ||b - A dv|| / ||b|| of the linear solve
   int inverted_tets = 0;   ///< tets with det F <= 0 at the start of the step
+  /// pcg_cholmod: the rest-state factor for this topology was not ready yet (being computed in
+  /// the background), so CG ran with Jacobi instead; the step did not wait.
+  bool factor_pending = false;
 };
 
 class ImplicitIntegrator {
@@ -60,6 +64,10 @@ class ImplicitIntegrator {
   /// Advances mesh.x and mesh.v by dt_s. f_ext: (n) external node forces, N, or empty. Gravity
   /// (config) is added to it. Rebuilds first if the mesh's topology_version changed unseen.
   StepStatus step(TetMesh& mesh, double dt_s, std::span<const Vec3> f_ext = {});
+
+  /// pcg_cholmod: blocks until the background factorization (if any) is done. Tests and shutdown
+  /// only; steps never call it.
+  void wait_for_background() { m_factor.wait(); }
 
   [[nodiscard]] const FemConfig& config() const { return m_config; }
   [[nodiscard]] const FemElements& elements() const { return m_el; }
@@ -81,13 +89,13 @@ class ImplicitIntegrator {
   std::vector<double> m_rhs;  // (3n) b = dt (...), N s
   std::vector<double> m_dv;   // (3n) velocity change, m/s (CG warm start)
   PcgScratch m_pcg;
-  CholmodSolver m_cholmod;  // cholmod: factor of A; pcg_cholmod: factor of the rest-state A
+  CholmodSolver m_cholmod;  // cholmod: factor of A
   bool m_analyzed = false;
-  // pcg_cholmod: the rest-state system (R = I) and the dt its factor was computed for.
-  CsrMatrix m_a_rest;
+  // pcg_cholmod: the factor of the rest-state system (R = I), computed in the background for
+  // each matrix structure (m_structure counts rebuilds of the pattern).
+  BackgroundFactor m_factor;
+  std::uint64_t m_structure = 0;
   std::vector<Vec3> m_rg_rest;  // (4m) unrotated gradients b_a
-  double m_rest_dt_s = -1.0;
-  bool m_rest_factored = false;
 };
 
 }  // namespace serosa::fem
