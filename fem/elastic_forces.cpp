@@ -27,12 +27,14 @@ int update_rotations(const TetMesh& mesh, const FemElements& el, std::span<Quat>
 }
 
 void element_forces(const TetElement& e, const Mat3& r, const Tet& tet, std::span<const Vec3> x,
-                    std::span<const Vec3> v, double k_v, std::span<Vec3, 4> out) {
+                    std::span<const Vec3> v, double k_v, std::span<Vec3, 4> out,
+                    const Mat3* plastic) {
   const Mat3 f = nodal_gradient(e, x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]]);
   Mat3 g = r.transpose() * f - Mat3::Identity();
   if (k_v != 0.0)
     g += k_v * (r.transpose() * nodal_gradient(e, v[tet[0]], v[tet[1]], v[tet[2]], v[tet[3]]));
-  const Mat3 eps = 0.5 * (g + g.transpose());
+  Mat3 eps = 0.5 * (g + g.transpose());
+  if (plastic != nullptr) eps -= *plastic;
   // P = -V R sigma: f_a = P b_a
   const Mat3 p = -e.volume_m3 * (r * linear_stress(e, eps));
   for (std::size_t a = 0; a < 4; ++a) out[a] = p * e.grad[a];

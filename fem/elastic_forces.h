@@ -23,8 +23,10 @@ int update_rotations(const TetMesh& mesh, const FemElements& el, std::span<Quat>
 /// Element force on its 4 nodes with a velocity (stiffness-damping) term folded in:
 ///   f_a = -V R sigma(sym(R^T F) - I + k_v sym(R^T F_v)) b_a,  F_v = sum_b v_b b_b^T
 /// i.e. -R K (R^T x - x0) - k_v R K R^T v. out: (4) forces on the tet's corners, N.
+/// plastic: the tet's plastic strain eps_p (symmetric), subtracted from the strain; or null.
 void element_forces(const TetElement& e, const Mat3& r, const Tet& tet, std::span<const Vec3> x,
-                    std::span<const Vec3> v, double k_v, std::span<Vec3, 4> out);
+                    std::span<const Vec3> v, double k_v, std::span<Vec3, 4> out,
+                    const Mat3* plastic = nullptr);
 
 /// Total elastic forces f (n) = sum_e -R_e K_e (R_e^T x - x0), N, for the given rotations (m).
 /// Serial reference for tests and tools (the step gathers in parallel).

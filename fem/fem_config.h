@@ -49,11 +49,24 @@ struct SolverSettings {
   int factor_delay_ms = 0;
 };
 
+/// Plastic flow (Müller & Gross 2004, section 5), the "plasticity" effect. Per tet, the plastic
+/// strain eps_p (symmetric 3x3) is subtracted from the corotated strain before the stress:
+/// sigma(sym(R^T F) - I - eps_p). After each step, with the elastic strain
+/// eps_e = sym(R^T F) - I - eps_p: if |eps_e|_F > yield, eps_p += min(dt creep, 1) eps_e; then if
+/// |eps_p|_F > max, eps_p is scaled back to norm max.
+struct PlasticitySettings {
+  bool on = false;           ///< the scene lists the "plasticity" effect
+  double yield = 0.05;       ///< elastic limit, Frobenius norm of the elastic strain (1)
+  double creep_per_s = 0.5;  ///< creep rate, 1/s
+  double max = 0.3;          ///< cap on the plastic strain's Frobenius norm (1)
+};
+
 /// The whole FEM model. Const after the stage is built.
 struct FemConfig {
   std::map<std::uint16_t, FemMaterial> materials;  ///< per group (Gmsh physical tag)
   FemMaterial default_material;                    ///< for groups not in `materials`
   SolverSettings solver;
+  PlasticitySettings plasticity;
   bool gravity_on = true;                     ///< the "gravity" effect
   Vec3 gravity_mps2 = Vec3(0.0, -9.81, 0.0);  ///< gravitational acceleration g, m/s^2
 

@@ -31,6 +31,7 @@ void ImplicitIntegrator::rebuild(TetMesh& mesh) {
   build_elements(mesh, m_config, m_el);
   mesh.mass = m_el.node_mass;
   m_q.assign(static_cast<std::size_t>(mesh.num_tets()), Quat::Identity());
+  m_plastic.clear();
   m_dv.assign(3 * static_cast<std::size_t>(mesh.num_nodes()), 0.0);
   m_rot.assign(static_cast<std::size_t>(mesh.num_tets()), Mat3::Identity());
   rebuild_solver_structure(mesh);
@@ -57,6 +58,17 @@ void ImplicitIntegrator::update(TetMesh& mesh, const TopologyDelta& delta) {
   for (const auto& [from, to] : delta.moved_tets)
     m_q[static_cast<std::size_t>(to)] = m_q[static_cast<std::size_t>(from)];
   m_q.resize(static_cast<std::size_t>(mesh.num_tets()));
+  // Plastic strain follows the same slots; new tets start without any.
+  if (!m_plastic.empty()) {
+    for (std::int32_t slot : delta.slot_of_added) {
+      if (static_cast<std::size_t>(slot) >= m_plastic.size())
+        m_plastic.resize(static_cast<std::size_t>(slot) + 1);
+      m_plastic[static_cast<std::size_t>(slot)].setZero();
+    }
+    for (const auto& [from, to] : delta.moved_tets)
+      m_plastic[static_cast<std::size_t>(to)] = m_plastic[static_cast<std::size_t>(from)];
+    m_plastic.resize(static_cast<std::size_t>(mesh.num_tets()), Mat3::Zero());
+  }
   m_rot.resize(static_cast<std::size_t>(mesh.num_tets()), Mat3::Identity());
   // New nodes: no warm start.
   m_dv.resize(3 * static_cast<std::size_t>(mesh.num_nodes()), 0.0);
@@ -73,6 +85,8 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
   const std::int32_t m = mesh.num_tets();
   StepStatus st;
 
+  const bool plastic = m_config.plasticity.on;
+  if (plastic) m_plastic.resize(static_cast<std::size_t>(m), Mat3::Zero());
   // 1-2. Per tet: rotation (warm-started from the last step), rotated gradients R b_a, and the
   // corner forces f_el(x) - (beta + dt) K_R v.
   int inverted = 0;
@@ -94,7 +108,8 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
     if (f.determinant() <= 0.0) ++inverted;
     m_rot[ut] = robust_rotation(f, m_q[ut], kRotationMaxIterations, kStepRotationTolerance);
     for (std::size_t c = 0; c < 4; ++c) m_rg[4 * ut + c] = m_rot[ut] * e.grad[c];
-    element_forces(e, m_rot[ut], nd, mesh.x, mesh.v, e.beta_s + dt_s, out);
+    element_forces(e, m_rot[ut], nd, mesh.x, mesh.v, e.beta_s + dt_s, out,
+                   plastic ? &m_plastic[ut] : nullptr);
   }
   st.inverted_tets = inverted;
 
@@ -211,8 +226,29 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
     mesh.v[ui] += Vec3(m_dv[3 * ui], m_dv[3 * ui + 1], m_dv[3 * ui + 2]);
     mesh.x[ui] += dt_s * mesh.v[ui];
   }
+  if (plastic) update_plasticity(mesh, dt_s);
   st.applied = true;
   return st;
+}
+
+void ImplicitIntegrator::update_plasticity(const TetMesh& mesh, double dt_s) {
+  const PlasticitySettings& p = m_config.plasticity;
+  const double rate = std::min(dt_s * p.creep_per_s, 1.0);
+  const auto m = static_cast<std::ptrdiff_t>(mesh.num_tets());
+#pragma omp parallel for schedule(static) if (m >= kParallelMin)
+  for (std::ptrdiff_t t = 0; t < m; ++t) {
+    const auto ut = static_cast<std::size_t>(t);
+    const TetElement& e = m_el.elements[ut];
+    if (!e.active()) continue;
+    const Tet& nd = mesh.tets[ut];
+    const Mat3 f = nodal_gradient(e, mesh.x[nd[0]], mesh.x[nd[1]], mesh.x[nd[2]], mesh.x[nd[3]]);
+    const Mat3 g = m_rot[ut].transpose() * f;  // rotation of this step (frozen over it)
+    Mat3& ep = m_plastic[ut];
+    const Mat3 elastic = 0.5 * (g + g.transpose()) - Mat3::Identity() - ep;
+    if (elastic.norm() > p.yield) ep += rate * elastic;
+    const double norm = ep.norm();
+    if (norm > p.max) ep *= p.max / norm;
+  }
 }
 
 }  // namespace serosa::fem

@@ -70,24 +70,28 @@ class ImplicitIntegrator {
   void wait_for_background() { m_factor.wait(); }
 
   [[nodiscard]] const FemConfig& config() const { return m_config; }
+  /// (m) per-tet plastic strain (plasticity on; empty before the first step or when off).
+  [[nodiscard]] std::span<const Mat3> plastic_strain() const { return m_plastic; }
   [[nodiscard]] const FemElements& elements() const { return m_el; }
   [[nodiscard]] std::span<const Mat3> rotations() const { return m_rot; }
   [[nodiscard]] const CsrMatrix& matrix() const { return m_a; }
 
  private:
   void rebuild_solver_structure(const TetMesh& mesh);
+  void update_plasticity(const TetMesh& mesh, double dt_s);
 
   const FemConfig m_config;
   FemElements m_el;
   SystemPattern m_pattern;
-  CsrMatrix m_a;              // (3n x 3n) system matrix
-  std::vector<Quat> m_q;      // (m) per-tet rotation, warm start of the next step
-  std::vector<Mat3> m_rot;    // (m) R_e of the current step
-  std::vector<Vec3> m_rg;     // (4m) rotated gradients R_e b_a of the current step, 1/m
-  SystemOperator m_op;        // matrix-free system (solver.matrix_free)
-  std::vector<Vec3> m_fe;     // (4m) per-tet corner forces of the right-hand side, N
-  std::vector<double> m_rhs;  // (3n) b = dt (...), N s
-  std::vector<double> m_dv;   // (3n) velocity change, m/s (CG warm start)
+  CsrMatrix m_a;                // (3n x 3n) system matrix
+  std::vector<Quat> m_q;        // (m) per-tet rotation, warm start of the next step
+  std::vector<Mat3> m_rot;      // (m) R_e of the current step
+  std::vector<Vec3> m_rg;       // (4m) rotated gradients R_e b_a of the current step, 1/m
+  std::vector<Mat3> m_plastic;  // (m) plastic strain eps_p (plasticity on), 1
+  SystemOperator m_op;          // matrix-free system (solver.matrix_free)
+  std::vector<Vec3> m_fe;       // (4m) per-tet corner forces of the right-hand side, N
+  std::vector<double> m_rhs;    // (3n) b = dt (...), N s
+  std::vector<double> m_dv;     // (3n) velocity change, m/s (CG warm start)
   PcgScratch m_pcg;
   CholmodSolver m_cholmod;  // cholmod: factor of A
   bool m_analyzed = false;
