@@ -10,8 +10,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
+#include "engine/mesh_io.h"
 #include "fem_fixtures.h"
 
 namespace serosa::fem {
@@ -266,6 +268,41 @@ TEST(Benchmark, DISABLED_BoxStepTimes) {
       std::printf("box tets=%d solver=%d: %.2f ms/step (%.0f steps/s), sag after %d steps %.4f\n",
                   m.num_tets(), static_cast<int>(kind), ms, 1000.0 / ms, steps + 1, sag);
     }
+  }
+}
+
+}  // namespace
+}  // namespace serosa::fem
+
+namespace serosa::fem {
+namespace {
+
+// The bundled validation beams (assets/README.md: 0.1 x 0.01 x 0.01 m, 10x1x1 / 20x2x2 / 40x4x4
+// cubes of 6 tets), clamped at x = 0, E = 5 MPa, nu = 0.3, rho = 1000 (config/beam.toml): the
+// static sag approaches Euler-Bernoulli's 2.94 mm monotonically with refinement. Linear tets lock
+// in bending, so 4 cells across (beam_fine) stay ~20% short; the 10% bound is checked on the
+// finer structured beam above.
+TEST(Cantilever, BundledBeamsConvergeTowardsEulerBernoulli) {
+  FemConfig cfg = beam_config(SolverKind::cholmod);
+  cfg.default_material.young_pa = 5e6;
+  const double length = 0.1, thick = 0.01;
+  const double q = 1000.0 * 9.81 * thick * thick;
+  const double w_eb = q * std::pow(length, 4) / (8.0 * 5e6 * std::pow(thick, 4) / 12.0);
+  double prev_err = 1.0;
+  for (const char* name : {"beam_xcoarse.msh", "beam_coarse.msh", "beam_fine.msh"}) {
+    TetMesh m = read_mesh(std::string(SEROSA_SOURCE_DIR) + "/assets/" + name);
+    m.fill_node_state();
+    for (std::size_t i = 0; i < m.rest.size(); ++i) m.fixed[i] = m.rest[i].x() < 1e-9 ? 1 : 0;
+    ImplicitIntegrator integ(cfg);
+    for (int s = 0; s < 4; ++s) ASSERT_TRUE(integ.step(m, 100.0).applied);
+    const double sag = tip_sag(m, length);
+    const double err = std::abs(sag - w_eb) / w_eb;
+    std::printf("%s tets=%d sag=%.4e EB=%.4e error=%.1f%%\n", name, m.num_tets(), sag, w_eb,
+                100.0 * err);
+    EXPECT_GT(sag, 0.0);
+    EXPECT_LT(sag, w_eb);  // linear tets are too stiff, never too soft
+    EXPECT_LT(err, prev_err);
+    prev_err = err;
   }
 }
 
