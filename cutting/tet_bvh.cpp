@@ -1,112 +1,311 @@
 #include "cutting/tet_bvh.h"
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
+#include <string>
 
 namespace serosa::cutting {
 namespace {
 
-constexpr std::int32_t kLeafSize = 4;
+constexpr std::size_t kLeafSize = 4;
+constexpr std::size_t kMaxLeaf = 8;
 
-void tet_bounds(const TetMesh& m, std::int32_t ti, Vec3& lo, Vec3& hi) {
+Vec3 centroid(const TetMesh& m, std::int32_t ti) {
   const Tet& t = m.tets[ti];
-  lo = hi = m.x[t[0]];
-  for (int k = 1; k < 4; ++k) {
-    lo = lo.cwiseMin(m.x[t[k]]);
-    hi = hi.cwiseMax(m.x[t[k]]);
-  }
+  return (m.x[t[0]] + m.x[t[1]] + m.x[t[2]] + m.x[t[3]]) / 4.0;
 }
+
+double half_area(const Vec3& lo, const Vec3& hi) {
+  const Vec3 d = (hi - lo).cwiseMax(Vec3::Zero());
+  return d.x() * d.y() + d.y() * d.z() + d.z() * d.x();
+}
+
+const Vec3 kEmptyLo = Vec3::Constant(std::numeric_limits<double>::infinity());
+const Vec3 kEmptyHi = Vec3::Constant(-std::numeric_limits<double>::infinity());
 
 }  // namespace
 
 TetBvh::TetBvh(const TetMesh& mesh) {
   const std::int32_t m = mesh.num_tets();
-  m_order.resize(static_cast<std::size_t>(m));
-  std::iota(m_order.begin(), m_order.end(), 0);
+  m_lo.resize(static_cast<std::size_t>(m));
+  m_hi.resize(static_cast<std::size_t>(m));
+  m_leaf_of.assign(static_cast<std::size_t>(m), -1);
   std::vector<Vec3> centroids(static_cast<std::size_t>(m));
   for (std::int32_t i = 0; i < m; ++i) {
-    const Tet& t = mesh.tets[i];
-    centroids[i] = (mesh.x[t[0]] + mesh.x[t[1]] + mesh.x[t[2]] + mesh.x[t[3]]) / 4.0;
+    set_box(mesh, i);
+    centroids[static_cast<std::size_t>(i)] = centroid(mesh, i);
   }
-  if (m > 0) build(mesh, centroids, 0, m);
-  m_lo.resize(m_order.size());
-  m_hi.resize(m_order.size());
-  for (std::size_t i = 0; i < m_order.size(); ++i) tet_bounds(mesh, m_order[i], m_lo[i], m_hi[i]);
+  std::vector<std::int32_t> order(static_cast<std::size_t>(m));
+  std::iota(order.begin(), order.end(), 0);
+  build(mesh, centroids, order, 0, m, -1);
 }
 
-std::int32_t TetBvh::build(const TetMesh& mesh, std::vector<Vec3>& centroids, std::int32_t begin,
-                           std::int32_t end) {
+void TetBvh::set_box(const TetMesh& mesh, std::int32_t ti) {
+  const Tet& t = mesh.tets[ti];
+  Vec3 lo = mesh.x[t[0]], hi = mesh.x[t[0]];
+  for (int k = 1; k < 4; ++k) {
+    lo = lo.cwiseMin(mesh.x[t[k]]);
+    hi = hi.cwiseMax(mesh.x[t[k]]);
+  }
+  m_lo[static_cast<std::size_t>(ti)] = lo;
+  m_hi[static_cast<std::size_t>(ti)] = hi;
+}
+
+std::int32_t TetBvh::build(const TetMesh& mesh, const std::vector<Vec3>& centroids,
+                           std::vector<std::int32_t>& order, std::int32_t begin, std::int32_t end,
+                           std::int32_t parent) {
   const auto id = static_cast<std::int32_t>(m_nodes.size());
   m_nodes.emplace_back();
-  Vec3 lo, hi, clo, chi;
-  tet_bounds(mesh, m_order[begin], lo, hi);
-  clo = chi = centroids[m_order[begin]];
-  for (std::int32_t i = begin; i < end; ++i) {
-    Vec3 a, b;
-    tet_bounds(mesh, m_order[i], a, b);
-    lo = lo.cwiseMin(a);
-    hi = hi.cwiseMax(b);
-    clo = clo.cwiseMin(centroids[m_order[i]]);
-    chi = chi.cwiseMax(centroids[m_order[i]]);
-  }
-  m_nodes[id].lo = lo;
-  m_nodes[id].hi = hi;
-  if (end - begin <= kLeafSize) {
-    m_nodes[id].first = begin;
-    m_nodes[id].count = end - begin;
+  m_nodes[id].parent = parent;
+  if (static_cast<std::size_t>(end - begin) <= kLeafSize) {
+    m_nodes[id].tets.assign(order.begin() + begin, order.begin() + end);
+    for (std::int32_t t : m_nodes[id].tets) m_leaf_of[static_cast<std::size_t>(t)] = id;
+    refit_leaf(id);
     return id;
+  }
+  Vec3 clo = centroids[static_cast<std::size_t>(order[begin])], chi = clo;
+  for (std::int32_t i = begin; i < end; ++i) {
+    clo = clo.cwiseMin(centroids[static_cast<std::size_t>(order[i])]);
+    chi = chi.cwiseMax(centroids[static_cast<std::size_t>(order[i])]);
   }
   int axis = 0;
   (chi - clo).maxCoeff(&axis);
   const std::int32_t mid = begin + (end - begin) / 2;
-  std::nth_element(m_order.begin() + begin, m_order.begin() + mid, m_order.begin() + end,
+  std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
                    [&](std::int32_t a, std::int32_t b) {
-                     return centroids[a][axis] < centroids[b][axis] ||
-                            (centroids[a][axis] == centroids[b][axis] && a < b);
+                     const double ca = centroids[static_cast<std::size_t>(a)][axis];
+                     const double cb = centroids[static_cast<std::size_t>(b)][axis];
+                     return ca < cb || (ca == cb && a < b);
                    });
-  const std::int32_t left = build(mesh, centroids, begin, mid);
-  const std::int32_t right = build(mesh, centroids, mid, end);
-  m_nodes[id].first = left;
-  m_nodes[id].right = right;
-  m_nodes[id].count = 0;
+  const std::int32_t left = build(mesh, centroids, order, begin, mid, id);
+  const std::int32_t right = build(mesh, centroids, order, mid, end, id);
+  Node& n = m_nodes[id];
+  n.left = left;
+  n.right = right;
+  n.lo = m_nodes[left].lo.cwiseMin(m_nodes[right].lo);
+  n.hi = m_nodes[left].hi.cwiseMax(m_nodes[right].hi);
   return id;
+}
+
+void TetBvh::refit_leaf(std::int32_t node) {
+  Node& n = m_nodes[node];
+  n.lo = kEmptyLo;
+  n.hi = kEmptyHi;
+  for (std::int32_t t : n.tets) {
+    n.lo = n.lo.cwiseMin(m_lo[static_cast<std::size_t>(t)]);
+    n.hi = n.hi.cwiseMax(m_hi[static_cast<std::size_t>(t)]);
+  }
+}
+
+void TetBvh::refit_up(std::int32_t node) {
+  for (std::int32_t p = m_nodes[node].parent; p >= 0; p = m_nodes[p].parent) {
+    Node& n = m_nodes[p];
+    const Vec3 lo = m_nodes[n.left].lo.cwiseMin(m_nodes[n.right].lo);
+    const Vec3 hi = m_nodes[n.left].hi.cwiseMax(m_nodes[n.right].hi);
+    if (lo == n.lo && hi == n.hi) break;  // nothing above changes
+    n.lo = lo;
+    n.hi = hi;
+  }
 }
 
 void TetBvh::refit(const TetMesh& mesh) {
   if (mesh.num_tets() != num_tets())
     throw std::invalid_argument("TetBvh::refit: the mesh has " + std::to_string(mesh.num_tets()) +
                                 " tets, the BVH " + std::to_string(num_tets()) +
-                                " (topology changed: rebuild)");
+                                " (a cut was applied: call update() first)");
+  for (std::int32_t i = 0; i < num_tets(); ++i) set_box(mesh, i);
   for (std::size_t k = m_nodes.size(); k-- > 0;) {  // children come after their parent
     Node& n = m_nodes[k];
-    if (n.count > 0) {
-      for (std::int32_t i = n.first; i < n.first + n.count; ++i) {
-        tet_bounds(mesh, m_order[i], m_lo[i], m_hi[i]);
-        n.lo = i == n.first ? m_lo[i] : Vec3(n.lo.cwiseMin(m_lo[i]));
-        n.hi = i == n.first ? m_hi[i] : Vec3(n.hi.cwiseMax(m_hi[i]));
-      }
+    if (n.left < 0) {
+      refit_leaf(static_cast<std::int32_t>(k));
     } else {
-      n.lo = m_nodes[n.first].lo.cwiseMin(m_nodes[n.right].lo);
-      n.hi = m_nodes[n.first].hi.cwiseMax(m_nodes[n.right].hi);
+      n.lo = m_nodes[n.left].lo.cwiseMin(m_nodes[n.right].lo);
+      n.hi = m_nodes[n.left].hi.cwiseMax(m_nodes[n.right].hi);
     }
   }
 }
 
+std::int32_t TetBvh::choose_leaf(std::int32_t tet) const {
+  const Vec3& lo = m_lo[static_cast<std::size_t>(tet)];
+  const Vec3& hi = m_hi[static_cast<std::size_t>(tet)];
+  std::int32_t k = 0;
+  while (m_nodes[k].left >= 0) {
+    const Node& n = m_nodes[k];
+    const Node& a = m_nodes[n.left];
+    const Node& b = m_nodes[n.right];
+    const double ga = half_area(a.lo.cwiseMin(lo), a.hi.cwiseMax(hi)) - half_area(a.lo, a.hi);
+    const double gb = half_area(b.lo.cwiseMin(lo), b.hi.cwiseMax(hi)) - half_area(b.lo, b.hi);
+    k = ga <= gb ? n.left : n.right;
+  }
+  return k;
+}
+
+void TetBvh::remove_from_leaf(std::int32_t tet) {
+  std::vector<std::int32_t>& v = m_nodes[m_leaf_of[static_cast<std::size_t>(tet)]].tets;
+  const auto it = std::find(v.begin(), v.end(), tet);
+  if (it != v.end()) {
+    *it = v.back();
+    v.pop_back();
+  }
+}
+
+void TetBvh::split_leaf(const TetMesh& mesh, std::int32_t node) {
+  std::vector<std::int32_t> tets = std::move(m_nodes[node].tets);
+  m_nodes[node].tets.clear();
+  std::vector<Vec3> c;
+  Vec3 clo = kEmptyLo, chi = kEmptyHi;
+  for (std::int32_t t : tets) {
+    c.push_back(centroid(mesh, t));
+    clo = clo.cwiseMin(c.back());
+    chi = chi.cwiseMax(c.back());
+  }
+  int axis = 0;
+  (chi - clo).maxCoeff(&axis);
+  std::vector<std::size_t> idx(tets.size());
+  std::iota(idx.begin(), idx.end(), 0);
+  std::sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) {
+    return c[a][axis] < c[b][axis] || (c[a][axis] == c[b][axis] && tets[a] < tets[b]);
+  });
+  const auto left = static_cast<std::int32_t>(m_nodes.size());
+  m_nodes.emplace_back();
+  m_nodes.emplace_back();
+  const std::int32_t right = left + 1;
+  for (std::size_t k = 0; k < idx.size(); ++k) {
+    const std::int32_t leaf = k < idx.size() / 2 ? left : right;
+    m_nodes[leaf].tets.push_back(tets[idx[k]]);
+    m_leaf_of[static_cast<std::size_t>(tets[idx[k]])] = leaf;
+  }
+  m_nodes[left].parent = m_nodes[right].parent = node;
+  m_nodes[node].left = left;
+  m_nodes[node].right = right;
+  refit_leaf(left);
+  refit_leaf(right);
+  m_nodes[node].lo = m_nodes[left].lo.cwiseMin(m_nodes[right].lo);
+  m_nodes[node].hi = m_nodes[left].hi.cwiseMax(m_nodes[right].hi);
+}
+
+void TetBvh::update(const TetMesh& mesh, const TopologyDelta& d) {
+  const auto m_before = static_cast<std::int32_t>(m_lo.size());
+  const auto added = static_cast<std::int32_t>(d.added_tets.size());
+  const auto removed = static_cast<std::int32_t>(d.removed_tets.size());
+  if (mesh.num_tets() != m_before + added - removed ||
+      d.slot_of_added.size() != d.added_tets.size())
+    throw std::invalid_argument(
+        "TetBvh::update: the delta does not match (BVH has " + std::to_string(m_before) +
+        " tets, the mesh " + std::to_string(mesh.num_tets()) + ", the delta adds " +
+        std::to_string(added) + " and removes " + std::to_string(removed) + "; was it applied?)");
+  if (m_nodes.empty()) {
+    *this = TetBvh(mesh);
+    return;
+  }
+  std::vector<std::int32_t> dirty;
+  const std::int32_t reuse = std::min(added, removed);
+  // Reused slots: the same leaf, a new box.
+  for (std::int32_t k = 0; k < reuse; ++k) {
+    const std::int32_t slot = d.removed_tets[static_cast<std::size_t>(k)];
+    set_box(mesh, slot);
+    dirty.push_back(m_leaf_of[static_cast<std::size_t>(slot)]);
+  }
+  // Appended tets: into the leaf their box enlarges least.
+  for (std::int32_t k = reuse; k < added; ++k) {
+    const std::int32_t id = d.slot_of_added[static_cast<std::size_t>(k)];
+    m_lo.resize(static_cast<std::size_t>(id) + 1);
+    m_hi.resize(static_cast<std::size_t>(id) + 1);
+    m_leaf_of.resize(static_cast<std::size_t>(id) + 1, -1);
+    set_box(mesh, id);
+    const std::int32_t leaf = choose_leaf(id);
+    m_nodes[leaf].tets.push_back(id);
+    m_leaf_of[static_cast<std::size_t>(id)] = leaf;
+    // Grow the path now so the next choice sees this tet.
+    m_nodes[leaf].lo = m_nodes[leaf].lo.cwiseMin(m_lo[static_cast<std::size_t>(id)]);
+    m_nodes[leaf].hi = m_nodes[leaf].hi.cwiseMax(m_hi[static_cast<std::size_t>(id)]);
+    refit_up(leaf);
+    if (m_nodes[leaf].tets.size() > kMaxLeaf) split_leaf(mesh, leaf);
+  }
+  // Leftover holes, as apply() fills them: the last tet moves down, keeping its leaf.
+  std::int32_t count = m_before + (added - reuse);
+  for (std::int32_t k = removed; k-- > reuse;) {
+    const std::int32_t hole = d.removed_tets[static_cast<std::size_t>(k)];
+    const std::int32_t last = count - 1;
+    dirty.push_back(m_leaf_of[static_cast<std::size_t>(hole)]);
+    remove_from_leaf(hole);
+    if (hole != last) {
+      const std::int32_t leaf = m_leaf_of[static_cast<std::size_t>(last)];
+      std::vector<std::int32_t>& v = m_nodes[leaf].tets;
+      std::replace(v.begin(), v.end(), last, hole);
+      m_leaf_of[static_cast<std::size_t>(hole)] = leaf;
+      m_lo[static_cast<std::size_t>(hole)] = m_lo[static_cast<std::size_t>(last)];
+      m_hi[static_cast<std::size_t>(hole)] = m_hi[static_cast<std::size_t>(last)];
+    }
+    --count;
+  }
+  m_lo.resize(static_cast<std::size_t>(count));
+  m_hi.resize(static_cast<std::size_t>(count));
+  m_leaf_of.resize(static_cast<std::size_t>(count));
+  std::sort(dirty.begin(), dirty.end());
+  dirty.erase(std::unique(dirty.begin(), dirty.end()), dirty.end());
+  for (std::int32_t node : dirty) {
+    if (m_nodes[node].left < 0) {
+      refit_leaf(node);
+    } else {  // a leaf split meanwhile
+      Node& n = m_nodes[node];
+      n.lo = m_nodes[n.left].lo.cwiseMin(m_nodes[n.right].lo);
+      n.hi = m_nodes[n.left].hi.cwiseMax(m_nodes[n.right].hi);
+    }
+    // Walk up without the early exit: a box may shrink as well as grow.
+    for (std::int32_t p = m_nodes[node].parent; p >= 0; p = m_nodes[p].parent) {
+      Node& n = m_nodes[p];
+      n.lo = m_nodes[n.left].lo.cwiseMin(m_nodes[n.right].lo);
+      n.hi = m_nodes[n.left].hi.cwiseMax(m_nodes[n.right].hi);
+    }
+  }
+}
+
+std::int32_t TetBvh::depth() const {
+  std::int32_t best = 0;
+  for (std::size_t k = 0; k < m_nodes.size(); ++k) {
+    if (m_nodes[k].left >= 0) continue;
+    std::int32_t d = 0;
+    for (std::int32_t p = m_nodes[k].parent; p >= 0; p = m_nodes[p].parent) ++d;
+    best = std::max(best, d);
+  }
+  return best;
+}
+
 void TetBvh::query(const Vec3& lo, const Vec3& hi, std::vector<std::int32_t>& out) const {
   if (m_nodes.empty()) return;
-  std::vector<std::int32_t> stack{0};
-  while (!stack.empty()) {
-    const Node& n = m_nodes[stack.back()];
-    stack.pop_back();
+  std::int32_t stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = m_nodes[stack[--top]];
     if (!((n.lo.array() <= hi.array()).all() && (n.hi.array() >= lo.array()).all())) continue;
-    if (n.count > 0) {
-      for (std::int32_t i = n.first; i < n.first + n.count; ++i)
-        if ((m_lo[i].array() <= hi.array()).all() && (m_hi[i].array() >= lo.array()).all())
-          out.push_back(m_order[i]);
-    } else {
-      stack.push_back(n.first);
-      stack.push_back(n.right);
+    if (n.left < 0) {
+      for (std::int32_t t : n.tets)
+        if ((m_lo[static_cast<std::size_t>(t)].array() <= hi.array()).all() &&
+            (m_hi[static_cast<std::size_t>(t)].array() >= lo.array()).all())
+          out.push_back(t);
+    } else if (top + 2 <= 128) {
+      stack[top++] = n.left;
+      stack[top++] = n.right;
+    } else {  // deeper than any balanced tree: fall back to a heap stack
+      std::vector<std::int32_t> more{n.left, n.right};
+      while (!more.empty()) {
+        const Node& q = m_nodes[more.back()];
+        more.pop_back();
+        if (!((q.lo.array() <= hi.array()).all() && (q.hi.array() >= lo.array()).all())) continue;
+        if (q.left < 0) {
+          for (std::int32_t t : q.tets)
+            if ((m_lo[static_cast<std::size_t>(t)].array() <= hi.array()).all() &&
+                (m_hi[static_cast<std::size_t>(t)].array() >= lo.array()).all())
+              out.push_back(t);
+        } else {
+          more.push_back(q.left);
+          more.push_back(q.right);
+        }
+      }
     }
   }
 }

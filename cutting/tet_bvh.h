@@ -1,5 +1,6 @@
 // TetBvh: a bounding-volume hierarchy over the tets of a mesh in current positions, the
-// candidate search of cut_mesh. Refitted between steps (same topology); rebuilt after a cut.
+// candidate search of cut_mesh. Refitted between steps (same topology); updated locally after a
+// cut (the cost follows the tets the cut touched, not the mesh size).
 #pragma once
 
 #include <cstdint>
@@ -8,6 +9,7 @@
 #include "cutting/cut_mesh.h"
 #include "engine/math.h"
 #include "engine/tet_mesh.h"
+#include "engine/topology_delta.h"
 
 namespace serosa::cutting {
 
@@ -17,9 +19,17 @@ class TetBvh {
   /// centroids, up to 4 tets per leaf). O(m log m).
   explicit TetBvh(const TetMesh& mesh);
 
-  /// Recomputes every box for moved nodes (same tets as at build). O(m). Throws
-  /// std::invalid_argument when the tet count changed (a cut happened: rebuild instead).
+  /// Recomputes every box for moved nodes (same tets as at build or last update). O(m). Throws
+  /// std::invalid_argument when the tet count differs (a cut was applied without update()).
   void refit(const TetMesh& mesh);
+
+  /// Follows one applied cut: `mesh` is the mesh after apply(mesh, delta), `delta` the delta
+  /// apply() filled (slot_of_added, moved_tets). Boxes of the changed tets are set, new tets go
+  /// into the leaf their box grows least (a leaf over 8 tets splits), moved tets keep their
+  /// leaf under their new id, and only the changed leaves and their ancestors are refitted:
+  /// O(changed tets x depth), independent of the mesh size. Throws std::invalid_argument when
+  /// the delta does not match (the BVH must be at delta.version_before's tet count).
+  void update(const TetMesh& mesh, const TopologyDelta& delta);
 
   /// Appends the ids of exactly the tets whose boxes meet [lo, hi] (m), as brute_force_query.
   void query(const Vec3& lo, const Vec3& hi, std::vector<std::int32_t>& out) const;
@@ -27,21 +37,31 @@ class TetBvh {
   /// This BVH as cut_mesh's candidate search (the BVH must outlive the returned function).
   [[nodiscard]] TetBoxQuery as_query() const;
 
-  [[nodiscard]] std::int32_t num_tets() const { return static_cast<std::int32_t>(m_order.size()); }
+  [[nodiscard]] std::int32_t num_tets() const { return static_cast<std::int32_t>(m_lo.size()); }
+  /// Depth of the deepest leaf (root = 0); for tests and benchmarks.
+  [[nodiscard]] std::int32_t depth() const;
 
  private:
   struct Node {
     Vec3 lo, hi;
-    std::int32_t first = 0;   ///< leaf: first index into m_order; inner: left child
-    std::int32_t count = 0;   ///< leaf: number of tets; inner: 0
-    std::int32_t right = -1;  ///< inner: right child
+    std::int32_t left = -1;  ///< inner: children (leaf: -1)
+    std::int32_t right = -1;
+    std::int32_t parent = -1;
+    std::vector<std::int32_t> tets;  ///< leaf: tet ids
   };
-  std::int32_t build(const TetMesh& mesh, std::vector<Vec3>& centroids, std::int32_t begin,
-                     std::int32_t end);
+  std::int32_t build(const TetMesh& mesh, const std::vector<Vec3>& centroids,
+                     std::vector<std::int32_t>& order, std::int32_t begin, std::int32_t end,
+                     std::int32_t parent);
+  void set_box(const TetMesh& mesh, std::int32_t tet);
+  void refit_leaf(std::int32_t node);
+  void refit_up(std::int32_t node);
+  void split_leaf(const TetMesh& mesh, std::int32_t node);
+  std::int32_t choose_leaf(std::int32_t tet) const;
+  void remove_from_leaf(std::int32_t tet);
 
-  std::vector<Node> m_nodes;          ///< preorder: children after their parent
-  std::vector<std::int32_t> m_order;  ///< (m) tet ids, leaves' ranges
-  std::vector<Vec3> m_lo, m_hi;       ///< (m) box of the tet at each m_order slot, m
+  std::vector<Node> m_nodes;            ///< children always after their parent
+  std::vector<Vec3> m_lo, m_hi;         ///< (m) box of each tet, m
+  std::vector<std::int32_t> m_leaf_of;  ///< (m) leaf node holding each tet
 };
 
 }  // namespace serosa::cutting
