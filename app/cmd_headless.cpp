@@ -1,13 +1,28 @@
 // serosa headless SCENE [--steps N] [--path TOOLPATH.csv] [--record OUT.lapr]
 //                       [--export-final OUT.msh] [--report OUT.json] [--frames DIR]
+//                       [--golden GOLDEN.json [--update-golden]] [--validate-cuts]
+// Exit codes: 0 done; 1 bad input; 3 the report differs from the golden (or it is missing).
+// Ctrl-C or SIGTERM stops after the current step with the recording closed and the report written.
+#include <atomic>
+#include <csignal>
 #include <cstdio>
 #include <memory>
 
 #include "app/command.h"
+#include "app/golden.h"
 #include "app/headless.h"
 #include "engine/input_error.h"
 
 namespace serosa::app {
+namespace {
+
+// Ctrl-C (SIGINT) or SIGTERM ends the run after the current step, cleanly: the recording is
+// closed and the report written. A signal handler can only reach a flag with static storage.
+std::atomic<bool> g_stop_requested{false};  // NOLINT: the one signal flag
+
+extern "C" void request_stop(int /*signal*/) { g_stop_requested.store(true); }
+
+}  // namespace
 
 void add_headless_command(CLI::App& app, Action& action) {
   auto opts = std::make_shared<HeadlessOptions>();
@@ -17,6 +32,8 @@ void add_headless_command(CLI::App& app, Action& action) {
   auto final_msh = std::make_shared<std::string>();
   auto report = std::make_shared<std::string>();
   auto frames = std::make_shared<std::string>();
+  auto golden = std::make_shared<std::string>();
+  auto update_golden = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand("headless", "Run a scene without window or device");
   cmd->add_option("scene", opts->scene, "Scene TOML file")->required();
   cmd->add_option("--steps", *steps, "Solver steps (default: the scene's headless.steps)");
@@ -25,23 +42,41 @@ void add_headless_command(CLI::App& app, Action& action) {
   cmd->add_option("--export-final", *final_msh, "Write the final state as Gmsh 2.2");
   cmd->add_option("--report", *report, "Write the JSON report here (also printed)");
   cmd->add_option("--frames", *frames, "Write PNG pictures of the run into this folder");
+  cmd->add_option("--golden", *golden,
+                  "Compare the report with this golden report (exit 3 on a difference beyond "
+                  "the tolerances, or when it is missing)");
+  cmd->add_flag("--update-golden", *update_golden, "Write the report as the --golden file");
+  cmd->add_flag("--validate-cuts", opts->validate_cuts,
+                "Check every cut's invariants (slow; the report lists any problem)");
   cmd->add_option("--frame-count", opts->frame_count, "Pictures over the run (with --frames)")
       ->check(CLI::Range(1, 100000));
-  cmd->callback([&action, opts, record, steps, path, final_msh, report, frames] {
-    action = [opts, record, steps, path, final_msh, report, frames] {
-      if (!record->empty())
-        throw InputError(*record, 0, "recording (.lapr) is not implemented in this build yet",
-                         "a run without --record");
-      if (*steps >= 0) opts->steps = *steps;
-      if (!path->empty()) opts->tool_path = *path;
-      if (!final_msh->empty()) opts->export_final = *final_msh;
-      if (!report->empty()) opts->report = *report;
-      if (!frames->empty()) opts->frames = *frames;
-      const auto json = run_headless(*opts);
-      std::printf("%s\n", json.dump(2).c_str());
-      return 0;
-    };
-  });
+  cmd->callback(
+      [&action, opts, record, steps, path, final_msh, report, frames, golden, update_golden] {
+        action = [opts, record, steps, path, final_msh, report, frames, golden, update_golden] {
+          if (*update_golden && golden->empty())
+            throw InputError("--update-golden", 0, "needs --golden FILE", "--golden FILE");
+          if (!record->empty()) opts->record = *record;
+          opts->stop = &g_stop_requested;
+          std::signal(SIGINT, request_stop);
+          std::signal(SIGTERM, request_stop);
+          if (*steps >= 0) opts->steps = *steps;
+          if (!path->empty()) opts->tool_path = *path;
+          if (!final_msh->empty()) opts->export_final = *final_msh;
+          if (!report->empty()) opts->report = *report;
+          if (!frames->empty()) opts->frames = *frames;
+          const auto json = run_headless(*opts);
+          std::printf("%s\n", json.dump(2).c_str());
+          if (golden->empty()) return 0;
+          const GoldenComparison g = check_golden(json, *golden, *update_golden);
+          for (const std::string& n : g.notes) std::fprintf(stderr, "note: %s\n", n.c_str());
+          for (const std::string& f : g.failures)
+            std::fprintf(stderr, "golden mismatch: %s\n", f.c_str());
+          if (!g.ok()) return 3;
+          std::fprintf(stderr, "%s %s\n",
+                       *update_golden ? "golden written:" : "golden matches:", golden->c_str());
+          return 0;
+        };
+      });
 }
 
 }  // namespace serosa::app

@@ -16,5 +16,6 @@ void add_check_command(CLI::App& app, Action& action);
 void add_surface_command(CLI::App& app, Action& action);
 void add_headless_command(CLI::App& app, Action& action);
 void add_run_command(CLI::App& app, Action& action);
+void add_replay_command(CLI::App& app, Action& action);
 
 }  // namespace serosa::app

@@ -2,7 +2,13 @@
 
 #include <algorithm>
 
+#include "app/cutting_stage.h"
+#include "app/metrics_stage.h"
 #include "app/script_tool_stage.h"
+#include "app/surface_stage.h"
+#include "app/tissue_stress.h"
+#include "app/tool_contact_stage.h"
+#include "engine/sim_state.h"
 #include "fem/fem_stage.h"
 
 namespace serosa::app {
@@ -42,27 +48,97 @@ fem::FemConfig fem_config(const Scene& scene, const AssembledScene& assembled) {
   return c;
 }
 
+LameTable lame_table(const Scene& scene, const AssembledScene& assembled) {
+  LameTable t;
+  for (const auto& [g, info] : assembled.groups)
+    t.groups[static_cast<std::uint16_t>(g)] = lame(assembled.material(scene, g));
+  if (!scene.organs.empty()) t.fallback = lame(scene.organs.front().material);
+  return t;
+}
+
 }  // namespace
 
-Composition compose(const Scene& scene, const AssembledScene& assembled) {
+Composition compose(const Scene& scene, const AssembledScene& assembled, ComposeOptions options) {
   Composition c;
   c.runner = std::make_unique<Runner>(scene.settings.dt_s);
   const auto listed = [&](Effect e) { return scene.settings.has(e); };
 
+  // Construct only what is listed; then hand the stages to the runner in pipeline order:
+  // tools -> contact -> FEM -> cuts -> surface -> metrics (record is added by the caller).
+  std::unique_ptr<fem::FemStage> fem_stage;
+  if (listed(Effect::kFem))
+    fem_stage = std::make_unique<fem::FemStage>(fem_config(scene, assembled));
+  std::unique_ptr<SurfaceStage> surface_stage;
+  if (listed(Effect::kSurface)) surface_stage = std::make_unique<SurfaceStage>();
+  std::unique_ptr<CuttingStage> cutting_stage;
+  if (listed(Effect::kCutting)) {
+    CuttingStageOptions co;
+    co.validate = options.validate_cuts;
+    cutting_stage = std::make_unique<CuttingStage>(scene, co);
+  }
+  std::unique_ptr<ToolContactStage> contact_stage;
+  if (listed(Effect::kContact))
+    contact_stage = std::make_unique<ToolContactStage>(scene, lame_table(scene, assembled),
+                                                       fem_stage.get(), surface_stage.get());
+  std::unique_ptr<MetricsStage> metrics_stage;
+  if (fem_stage)
+    metrics_stage =
+        std::make_unique<MetricsStage>(scene, lame_table(scene, assembled), contact_stage.get());
+
   // take tool states
-  if (std::any_of(scene.tools.begin(), scene.tools.end(),
-                  [](const Tool& t) { return t.device.kind == DeviceKind::kScript; })) {
+  if (options.tool_input) {
+    c.tool_input = options.tool_input.get();
+    c.runner->add(std::move(options.tool_input));
+  } else if (std::any_of(scene.tools.begin(), scene.tools.end(),
+                         [](const Tool& t) { return t.device.kind == DeviceKind::kScript; })) {
     auto tools = std::make_unique<ScriptToolStage>(scene);
     c.tools = tools.get();
     c.runner->add(std::move(tools));
   }
+  // contact
+  if (contact_stage) {
+    c.contact = contact_stage.get();
+    c.runner->add(std::move(contact_stage));
+    c.built.push_back(Effect::kContact);
+  }
   // FEM (gravity is one of its terms)
-  if (listed(Effect::kFem)) {
-    auto stage = std::make_unique<fem::FemStage>(fem_config(scene, assembled));
-    c.fem = stage.get();
-    c.runner->add(std::move(stage));
+  if (fem_stage) {
+    c.fem = fem_stage.get();
+    c.runner->add(std::move(fem_stage));
     c.built.push_back(Effect::kFem);
     if (listed(Effect::kGravity)) c.folded.push_back(Effect::kGravity);
+  }
+  // cuts (between FEM steps), then the surface they change
+  if (cutting_stage) {
+    c.cutting = cutting_stage.get();
+    c.runner->add(std::move(cutting_stage));
+    c.built.push_back(Effect::kCutting);
+  }
+  if (surface_stage) {
+    c.surface = surface_stage.get();
+    c.runner->add(std::move(surface_stage));
+    c.built.push_back(Effect::kSurface);
+  }
+  if (metrics_stage) {
+    c.metrics = metrics_stage.get();
+    c.runner->add(std::move(metrics_stage));
+  }
+  // Every consumer of topology updates itself from the cut's delta.
+  if (c.cutting) {
+    if (c.fem) {
+      fem::FemStage* f = c.fem;
+      c.cutting->add_listener(
+          [f](SimState& s, const CutApplied& cut) { f->on_topology_change(s, *cut.delta); });
+    }
+    if (c.surface) {
+      SurfaceStage* sf = c.surface;
+      c.cutting->add_listener(
+          [sf](SimState& s, const CutApplied& cut) { sf->on_topology_change(s.mesh, *cut.delta); });
+    }
+    if (c.metrics) {
+      MetricsStage* m = c.metrics;
+      c.cutting->add_listener([m](SimState&, const CutApplied& cut) { m->on_cut(cut); });
+    }
   }
   if (listed(Effect::kRender)) c.folded.push_back(Effect::kRender);
 

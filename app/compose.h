@@ -17,6 +17,19 @@ class FemStage;
 namespace serosa::app {
 
 class ScriptToolStage;
+class CuttingStage;
+class SurfaceStage;
+class ToolContactStage;
+class MetricsStage;
+
+/// How to compose, beyond what the scene says.
+struct ComposeOptions {
+  /// Replaces the scripted "tools" stage as the source of tool inputs (replay feeds recorded
+  /// inputs this way). Null: tools driven by a script get a ScriptToolStage.
+  std::unique_ptr<Stage> tool_input;
+  /// Check every cut's invariants (cutting/validate.h); costly, for tests.
+  bool validate_cuts = false;
+};
 
 /// The runner with its stages, plus non-owning handles to the stages app needs to talk to.
 struct Composition {
@@ -26,12 +39,18 @@ struct Composition {
   /// Listed effects that need no stage of their own in a headless run: "gravity" is a term of
   /// the FEM stage, "render" is drawn by the headless command when frames are asked for.
   std::vector<Effect> folded;
-  ScriptToolStage* tools = nullptr;  ///< null when no tool is scripted
-  fem::FemStage* fem = nullptr;      ///< null unless "fem" is listed
+  ScriptToolStage* tools = nullptr;     ///< null when no tool is scripted
+  fem::FemStage* fem = nullptr;         ///< null unless "fem" is listed
+  CuttingStage* cutting = nullptr;      ///< null unless "cutting" is listed
+  SurfaceStage* surface = nullptr;      ///< null unless "surface" is listed
+  ToolContactStage* contact = nullptr;  ///< null unless "contact" is listed
+  MetricsStage* metrics = nullptr;      ///< built with "fem" (stress needs it)
+  Stage* tool_input = nullptr;          ///< ComposeOptions::tool_input once handed to the runner
 };
 
 /// Builds the stages for `scene` in the pipeline order of DESIGN.md (tools -> contact -> FEM ->
 /// cuts -> surface -> metrics -> publish -> record), only for listed effects.
-[[nodiscard]] Composition compose(const Scene& scene, const AssembledScene& assembled);
+[[nodiscard]] Composition compose(const Scene& scene, const AssembledScene& assembled,
+                                  ComposeOptions options = {});
 
 }  // namespace serosa::app

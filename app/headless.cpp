@@ -3,19 +3,29 @@
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 #include <memory>
 
 #include "app/assemble_state.h"
 #include "app/compose.h"
+#include "app/cutting_stage.h"
+#include "app/metrics_stage.h"
+#include "app/record_stage.h"
 #include "app/render_frame_from_surface.h"
 #include "app/script_tool_stage.h"
+#include "app/surface_stage.h"
+#include "app/tool_contact_stage.h"
 #include "app/version.h"
 #include "engine/input_error.h"
 #include "engine/mesh_check.h"
 #include "engine/mesh_io.h"
+#include "engine/recording_writer.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"
 #include "fem/fem_stage.h"
@@ -92,7 +102,57 @@ Json mesh_json(const TetMesh& mesh) {
   return j;
 }
 
+std::string read_text(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 }  // namespace
+
+recording::Header recording_header(const Scene& scene, std::int64_t steps) {
+  recording::Header h;
+  h.set("serosa", std::string(version_string()));
+  h.set("scene_path", std::filesystem::absolute(scene.file).lexically_normal().string());
+  h.set("scene_text", read_text(scene.file));
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", scene.settings.dt_s);
+  h.set("dt_s", buf);
+  h.set("hash_every", std::to_string(scene.record.hash_every));
+  std::string names;
+  for (const Tool& t : scene.tools) {
+    if (!names.empty()) names.push_back(',');
+    names.append(t.name);
+  }
+  h.set("tools", names);
+  h.set("steps_planned", std::to_string(steps));
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  h.set("created_utc", buf);
+  return h;
+}
+
+Json cutting_json(const Composition& comp) {
+  Json j = Json::object();
+  if (comp.cutting) {
+    const CuttingStageStats& c = comp.cutting->stats();
+    j = {{"sweeps", c.sweeps},
+         {"cuts", c.cuts},
+         {"tets_removed", c.tets_removed},
+         {"tets_added", c.tets_added},
+         {"nodes_added", c.nodes_added},
+         {"degenerate_tets", c.degenerate_tets}};
+    if (c.validated > 0) {
+      j["validated"] = c.validated;
+      j["invalid"] = c.invalid;
+      j["problems"] = c.problems;
+    }
+  }
+  return j;
+}
 
 Json run_headless(const HeadlessOptions& options) {
   const auto wall0 = std::chrono::steady_clock::now();
@@ -103,12 +163,30 @@ Json run_headless(const HeadlessOptions& options) {
     for (Tool& t : scene.tools)
       if (t.device.kind == DeviceKind::kScript) t.device.script = *options.tool_path;
   }
-  AssembledScene assembled = assemble_state(scene);
-  Composition comp = compose(scene, assembled);
-  SimState& state = assembled.state;
-
   const std::int64_t steps = options.steps.value_or(scene.headless.steps);
   if (steps < 0) throw InputError("--steps", 0, "negative step count", ">= 0");
+  AssembledScene assembled = assemble_state(scene);
+  ComposeOptions compose_options;
+  compose_options.validate_cuts = options.validate_cuts;
+  Composition comp = compose(scene, assembled, std::move(compose_options));
+  SimState& state = assembled.state;
+  // Record: the last stage, after everything the step changed.
+  std::unique_ptr<recording::RecordingWriter> writer;
+  const std::optional<std::filesystem::path> record_path =
+      options.record ? options.record : scene.record.path;
+  if (record_path) {
+    try {
+      writer = std::make_unique<recording::RecordingWriter>(*record_path,
+                                                            recording_header(scene, steps));
+    } catch (const std::runtime_error& e) {
+      throw InputError(record_path->string(), 0, e.what(), "a writable path");
+    }
+    comp.runner->add(std::make_unique<RecordStage>(*writer, scene.record.hash_every));
+    comp.built.push_back(Effect::kRecord);
+    comp.unavailable.erase(
+        std::remove(comp.unavailable.begin(), comp.unavailable.end(), Effect::kRecord),
+        comp.unavailable.end());
+  }
   for (Effect e : comp.unavailable)
     spdlog::warn("effect '{}' is listed by {} but not implemented in this build: not simulated",
                  effect_name(e), scene.file.string());
@@ -145,10 +223,25 @@ Json run_headless(const HeadlessOptions& options) {
   const bool bar = options.progress && isatty(STDERR_FILENO);
   const auto sim0 = std::chrono::steady_clock::now();
   maybe_picture(0);
+  std::int64_t taken = 0;
   for (std::int64_t i = 0; i < steps; ++i) {
+    if (options.stop && options.stop->load()) break;
     comp.runner->step(state);
+    ++taken;
     maybe_picture(i + 1);
     if (bar && ((i + 1) % 10 == 0 || i + 1 == steps)) progress_bar(i + 1, steps);
+  }
+  if (bar && taken < steps) std::fputc('\n', stderr);
+  report["steps_taken"] = taken;
+  if (taken < steps) report["interrupted"] = true;
+  if (writer) {
+    writer->close(static_cast<std::uint64_t>(taken));
+    const auto ws = writer->stats();
+    report["recording"] = {{"file", writer->path().string()},
+                           {"steps", ws.steps},
+                           {"chunks", ws.chunks},
+                           {"bytes", ws.bytes},
+                           {"hash_every", scene.record.hash_every}};
   }
   const double sim_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - sim0).count();
@@ -162,6 +255,21 @@ Json run_headless(const HeadlessOptions& options) {
   report["stepping_time_s"] = sim_s;
   report["mesh_final"] = mesh_json(state.mesh);
   report["state_hash"] = hex(state_hash(state));
+  if (comp.cutting) report["cutting"] = cutting_json(comp);
+  if (comp.metrics) report["metrics"] = comp.metrics->report();
+  if (comp.contact) {
+    const auto held = comp.contact->grasped_counts();
+    for (std::size_t i = 0; i < scene.tools.size() && i < held.size(); ++i)
+      if (scene.tools[i].kind == ToolKind::kGrasper)
+        report["contact"]["held_nodes"][scene.tools[i].name] = held[i];
+  }
+  if (comp.surface) {
+    const auto& ss = comp.surface->stats();
+    report["surface"] = {{"faces", comp.surface->surface().num_faces()},
+                         {"rebuilds", ss.rebuilds},
+                         {"updates", ss.updates},
+                         {"failed_updates", ss.failed_updates}};
+  }
   if (comp.fem) {
     const auto& st = comp.fem->stats();
     report["fem"] = {{"steps", st.steps},

@@ -2,13 +2,19 @@
 // a report, the final mesh and pictures on request (shared/DESIGN.md, `serosa headless`).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
 
 #include <nlohmann/json.hpp>
 
+#include "engine/recording_format.h"
+#include "engine/scene.h"
+
 namespace serosa::app {
+
+struct Composition;
 
 struct HeadlessOptions {
   std::filesystem::path scene;                        ///< scene TOML
@@ -19,7 +25,18 @@ struct HeadlessOptions {
   std::optional<std::filesystem::path> frames;        ///< folder for PNG pictures
   int frame_count = 5;   ///< pictures spread over the run (first and last included), with --frames
   bool progress = true;  ///< progress bar on stderr when it is a terminal
+  std::optional<std::filesystem::path> record;  ///< .lapr recording of the run
+  bool validate_cuts = false;  ///< check every cut's invariants (cutting/validate.h); costly
+  /// Set (from a signal handler, another thread) to stop after the current step; the run then
+  /// ends cleanly: recording closed, report written with "interrupted": true.
+  const std::atomic<bool>* stop = nullptr;
 };
+
+/// The header of a recording of `scene` (engine/recording_format.h lists the keys).
+[[nodiscard]] recording::Header recording_header(const Scene& scene, std::int64_t steps);
+
+/// The report's "cutting" object (empty without a cutting stage).
+[[nodiscard]] nlohmann::json cutting_json(const Composition& comp);
 
 /// Runs the scene and returns the report (also written to options.report when set). Throws
 /// InputError on bad input (scene, meshes, tool paths).

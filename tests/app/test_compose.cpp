@@ -41,8 +41,13 @@ TEST(Compose, OnlyListedEffectsAreBuilt) {
   const AssembledScene a = assemble_state(scene);
   const Composition c = compose(scene, a);
   ASSERT_NE(c.fem, nullptr);
-  EXPECT_EQ(c.runner->num_stages(), 1u);
+  // FEM, and the metrics it feeds (peak stress); nothing else.
+  ASSERT_EQ(c.runner->num_stages(), 2u);
   EXPECT_EQ(c.runner->timings()[0].name, "fem");
+  EXPECT_EQ(c.runner->timings()[1].name, "metrics");
+  EXPECT_EQ(c.cutting, nullptr);
+  EXPECT_EQ(c.surface, nullptr);
+  EXPECT_EQ(c.contact, nullptr);
   ASSERT_EQ(c.built.size(), 1u);
   EXPECT_EQ(c.built[0], Effect::kFem);
   EXPECT_TRUE(c.folded.empty());  // no gravity listed: not folded into FEM either

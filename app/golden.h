@@ -1,0 +1,33 @@
+// Headless regression: compare a run's report with a golden report (docs/headless-report.md).
+//
+// Tolerances: counts and flags (steps, tets, nodes, cuts, tets added, degenerate tets, rejected
+// FEM steps, mesh validity) must be equal; the rest volume within 1e-9 relative; every metric
+// within 1e-3 relative or its absolute floor (time 1e-9 s, lengths 1e-6 m, volumes 1e-12 m^3,
+// forces 1e-4 N, stress 1 Pa); timings are never compared; the state hash is only noted when it
+// differs (it is exact for the same binary and thread count, not across compilers or CPUs).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace serosa::app {
+
+struct GoldenComparison {
+  std::vector<std::string> failures;  ///< "key: golden G, got R (tolerance T)"
+  std::vector<std::string> notes;     ///< differences that do not fail (state hash)
+  [[nodiscard]] bool ok() const { return failures.empty(); }
+};
+
+/// Compares `report` with `golden` (both as run_headless writes them).
+[[nodiscard]] GoldenComparison compare_golden(const nlohmann::json& report,
+                                              const nlohmann::json& golden);
+
+/// Reads the golden file and compares; a missing or unreadable golden is a failure, unless
+/// `update` is set: then the report is written as the new golden and the comparison is empty.
+[[nodiscard]] GoldenComparison check_golden(const nlohmann::json& report,
+                                            const std::filesystem::path& golden, bool update);
+
+}  // namespace serosa::app

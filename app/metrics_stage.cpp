@@ -1,0 +1,97 @@
+#include "app/metrics_stage.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "app/cutting_stage.h"
+#include "app/tool_contact_stage.h"
+#include "app/tool_geometry.h"
+#include "engine/sim_state.h"
+
+namespace serosa::app {
+
+double distance_to_polyline(const Vec3& p, const std::vector<Vec3>& line) {
+  if (line.empty()) return 0.0;
+  if (line.size() == 1) return (p - line[0]).norm();
+  double d = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i + 1 < line.size(); ++i)
+    d = std::min(d, distance_to_segment(p, line[i], line[i + 1]));
+  return d;
+}
+
+MetricsStage::MetricsStage(const Scene& scene, LameTable lame, const ToolContactStage* contact,
+                           std::int64_t stress_every)
+    : m_planned(scene.metrics.planned_cut_m),
+      m_band(scene.metrics.cut_band_m),
+      m_lame(std::move(lame)),
+      m_contact(contact),
+      m_stress_every(std::max<std::int64_t>(stress_every, 1)) {
+  for (const Tool& t : scene.tools) m_names.push_back(t.name);
+  const std::size_t k = m_names.size();
+  m_path.assign(k, 0.0);
+  m_last_tip.assign(k, Vec3::Zero());
+  m_force_max.assign(k, 0.0);
+  m_force_sum.assign(k, 0.0);
+  m_force_steps.assign(k, 0);
+}
+
+void MetricsStage::step(const StepContext& ctx, SimState& state) {
+  m_time = ctx.time_s + ctx.dt_s;
+  const std::size_t k = std::min(m_names.size(), state.tools.size());
+  for (std::size_t i = 0; i < k; ++i) {
+    const Vec3 tip(state.tools[i].tip_m[0], state.tools[i].tip_m[1], state.tools[i].tip_m[2]);
+    if (m_have_last) m_path[i] += (tip - m_last_tip[i]).norm();
+    m_last_tip[i] = tip;
+  }
+  m_have_last = true;
+  if (m_contact) {
+    const auto& f = m_contact->tool_forces();
+    for (std::size_t i = 0; i < k && i < f.size(); ++i) {
+      const double mag = f[i].norm();
+      if (!(mag > 0.0)) continue;
+      m_force_max[i] = std::max(m_force_max[i], mag);
+      m_force_sum[i] += mag;
+      ++m_force_steps[i];
+    }
+  }
+  if (static_cast<std::int64_t>(ctx.step) % m_stress_every == 0)
+    m_peak_stress = std::max(m_peak_stress, peak_von_mises_pa(state.mesh, m_lame));
+}
+
+void MetricsStage::on_cut(const CutApplied& cut) {
+  for (std::size_t i = 0; i < cut.removed_volumes_m3.size(); ++i) {
+    const double v = cut.removed_volumes_m3[i];
+    m_cut_volume += v;
+    ++m_cut_tets;
+    if (m_planned.empty()) continue;
+    const double d = distance_to_polyline(cut.removed_centroids_m[i], m_planned);
+    m_dev_weighted += v * d;
+    m_dev_max = std::max(m_dev_max, d);
+    if (d > m_band) m_collateral += v;
+  }
+}
+
+nlohmann::json MetricsStage::report() const {
+  nlohmann::json j;
+  j["time_s"] = m_time;
+  for (std::size_t i = 0; i < m_names.size(); ++i) {
+    j["path_length_m"][m_names[i]] = m_path[i];
+    if (m_contact) {
+      j["force_max_n"][m_names[i]] = m_force_max[i];
+      j["force_mean_n"][m_names[i]] =
+          m_force_steps[i] > 0 ? m_force_sum[i] / static_cast<double>(m_force_steps[i]) : 0.0;
+    }
+  }
+  j["peak_stress_pa"] = m_peak_stress;
+  j["cut"]["tets"] = m_cut_tets;
+  j["cut"]["volume_m3"] = m_cut_volume;
+  if (!m_planned.empty()) {
+    j["cut"]["deviation_mean_m"] = deviation_mean_m();
+    j["cut"]["deviation_max_m"] = m_dev_max;
+    j["cut"]["collateral_m3"] = m_collateral;
+    j["cut"]["band_m"] = m_band;
+  }
+  return j;
+}
+
+}  // namespace serosa::app

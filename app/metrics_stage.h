@@ -1,0 +1,78 @@
+// The "metrics" stage (after surface): what trainees and instructors are scored on.
+//
+//   time_s                  simulated time of the run, s
+//   path_length_m[tool]     sum of |tip(k) - tip(k-1)| over consumed inputs, m
+//   cut.deviation_mean_m    rest-volume-weighted mean distance of the cut tets' centroids (at
+//                           the moment of the cut) from the scene's planned cut line, m
+//   cut.deviation_max_m     their largest distance, m
+//   cut.volume_m3           rest volume of every tet a blade cut, m^3
+//   cut.collateral_m3       the part of it farther than cut_band from the planned line, m^3
+//   force_max_n / force_mean_n [tool]  magnitude of the tool's force on the tissue (contact and
+//                           grasp, app/tool_contact_stage.h): largest, and mean over the steps
+//                           in which it touched the tissue, N
+//   peak_stress_pa          largest von Mises stress over tets and steps (app/tissue_stress.h)
+// Without a planned cut line the deviation and collateral entries are absent (the volume stays).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/tissue_stress.h"
+#include "engine/math.h"
+#include "engine/scene.h"
+#include "engine/stage.h"
+
+namespace serosa::app {
+
+struct CutApplied;
+class ToolContactStage;
+
+/// Distance from p to the polyline (k >= 1 points), m.
+[[nodiscard]] double distance_to_polyline(const Vec3& p, const std::vector<Vec3>& line);
+
+class MetricsStage final : public Stage {
+ public:
+  /// contact may be null (no forces). stress_every: peak stress is sampled every that many steps
+  /// (1 = every step).
+  MetricsStage(const Scene& scene, LameTable lame, const ToolContactStage* contact,
+               std::int64_t stress_every = 1);
+
+  [[nodiscard]] std::string_view name() const noexcept override { return "metrics"; }
+  void step(const StepContext& ctx, SimState& state) override;
+  /// Called by the cutting stage for every cut (through compose's listener).
+  void on_cut(const CutApplied& cut);
+
+  [[nodiscard]] nlohmann::json report() const;
+
+  [[nodiscard]] double path_length_m(std::size_t tool) const { return m_path[tool]; }
+  [[nodiscard]] double peak_stress_pa() const noexcept { return m_peak_stress; }
+  [[nodiscard]] double cut_volume_m3() const noexcept { return m_cut_volume; }
+  [[nodiscard]] double collateral_m3() const noexcept { return m_collateral; }
+  [[nodiscard]] double deviation_max_m() const noexcept { return m_dev_max; }
+  [[nodiscard]] double deviation_mean_m() const noexcept {
+    return m_cut_volume > 0.0 ? m_dev_weighted / m_cut_volume : 0.0;
+  }
+
+ private:
+  std::vector<std::string> m_names;
+  std::vector<Vec3> m_planned;
+  double m_band;
+  LameTable m_lame;
+  const ToolContactStage* m_contact;
+  std::int64_t m_stress_every;
+  double m_time = 0.0;
+  std::vector<double> m_path;    // (tools)
+  std::vector<Vec3> m_last_tip;  // (tools)
+  bool m_have_last = false;
+  std::vector<double> m_force_max, m_force_sum;  // (tools)
+  std::vector<std::int64_t> m_force_steps;       // (tools)
+  double m_peak_stress = 0.0;
+  double m_cut_volume = 0.0, m_collateral = 0.0, m_dev_weighted = 0.0, m_dev_max = 0.0;
+  std::int64_t m_cut_tets = 0;
+};
+
+}  // namespace serosa::app

@@ -1,0 +1,73 @@
+// The "record" stage (last in the pipeline): hands the recording writer the tool inputs the
+// solver consumed this step and, every `hash_every` steps, the state hash; and its mirror for
+// replay, which feeds recorded inputs back ("tools" position) and checks the hashes (last).
+//
+// Both hash at the same point: after every other stage of step k, before the runner advances
+// the step counter (so the hash covers time and step k as they were during the step).
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "engine/recording_writer.h"
+#include "engine/stage.h"
+#include "engine/tool_state.h"
+
+namespace serosa::app {
+
+/// Whether step k's hash is recorded: every hash_every-th step (k + 1 a multiple of it).
+[[nodiscard]] inline bool hashed_step(std::uint64_t k, std::int64_t hash_every) {
+  return hash_every > 0 && (k + 1) % static_cast<std::uint64_t>(hash_every) == 0;
+}
+
+class RecordStage final : public Stage {
+ public:
+  RecordStage(recording::RecordingWriter& writer, std::int64_t hash_every)
+      : m_writer(writer), m_hash_every(hash_every) {}
+  [[nodiscard]] std::string_view name() const noexcept override { return "record"; }
+  void step(const StepContext& ctx, SimState& state) override;
+
+ private:
+  recording::RecordingWriter& m_writer;
+  std::int64_t m_hash_every;
+};
+
+/// Replay's "tools" stage: state.tools = the inputs recorded for this step.
+class ReplayInputStage final : public Stage {
+ public:
+  explicit ReplayInputStage(const std::vector<std::vector<ToolState>>& inputs) : m_inputs(inputs) {}
+  [[nodiscard]] std::string_view name() const noexcept override { return "tools"; }
+  /// Throws std::out_of_range past the recorded steps (the replay loop stops before).
+  void step(const StepContext& ctx, SimState& state) override;
+
+ private:
+  const std::vector<std::vector<ToolState>>& m_inputs;
+};
+
+/// Replay's check: compares the state hash with the recorded one at every recorded step.
+class VerifyStage final : public Stage {
+ public:
+  explicit VerifyStage(const std::map<std::uint64_t, std::uint64_t>& hashes) : m_hashes(hashes) {}
+  [[nodiscard]] std::string_view name() const noexcept override { return "verify"; }
+  void step(const StepContext& ctx, SimState& state) override;
+
+  struct Divergence {
+    std::uint64_t step = 0;
+    std::uint64_t recorded = 0;
+    std::uint64_t replayed = 0;
+  };
+  [[nodiscard]] const std::optional<Divergence>& divergence() const noexcept {
+    return m_divergence;
+  }
+  [[nodiscard]] std::uint64_t checked() const noexcept { return m_checked; }
+
+ private:
+  const std::map<std::uint64_t, std::uint64_t>& m_hashes;
+  std::optional<Divergence> m_divergence;  // the first one
+  std::uint64_t m_checked = 0;
+};
+
+}  // namespace serosa::app

@@ -1,0 +1,39 @@
+// Instructor replay of a .lapr recording (shared/DESIGN.md `serosa replay`): rebuilds the scene
+// from the text in the recording's header, feeds the recorded tool inputs back step by step and,
+// with verify, checks every recorded state hash. A damaged recording replays up to its last good
+// chunk; the result says where it stopped.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace serosa::app {
+
+struct ReplayOptions {
+  std::filesystem::path recording;              ///< the .lapr file
+  bool verify = false;                          ///< check every recorded state hash
+  std::optional<std::filesystem::path> frames;  ///< folder for PNG pictures
+  int frame_count = 5;                          ///< pictures over the replay, with frames
+  std::optional<std::filesystem::path> report;  ///< JSON report
+  bool progress = true;                         ///< progress bar on a terminal
+};
+
+struct ReplayResult {
+  nlohmann::json report;
+  std::uint64_t steps = 0;           ///< steps replayed
+  std::uint64_t hashes_checked = 0;  ///< recorded hashes compared (verify)
+  /// The first step whose state hash differs from the recording's (verify), if any.
+  std::optional<std::uint64_t> diverged_at;
+  std::string damage;    ///< empty, or where and why reading the recording stopped
+  bool corrupt = false;  ///< the damage is corruption, not a run cut short
+};
+
+/// Replays the recording. Throws InputError when the file is not a usable recording (missing,
+/// wrong magic or version, damaged header, scene unreadable, tool count differs from the scene).
+[[nodiscard]] ReplayResult run_replay(const ReplayOptions& options);
+
+}  // namespace serosa::app

@@ -1,0 +1,182 @@
+#include "app/tool_contact_stage.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "app/surface_stage.h"
+#include "app/tool_geometry.h"
+#include "engine/sim_state.h"
+#include "fem/fem_stage.h"
+#include "surface/extract_surface.h"
+
+namespace serosa::app {
+namespace {
+
+Vec3 closest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return a + t * ab;
+}
+
+Mat3 frame_matrix(const ToolFrame& f) {
+  Mat3 r;
+  r.col(0) = f.side;
+  r.col(1) = f.pin;
+  r.col(2) = f.forward;
+  return r;
+}
+
+}  // namespace
+
+ToolContactStage::ToolContactStage(const Scene& scene, LameTable lame, fem::FemStage* fem,
+                                   const SurfaceStage* surface)
+    : m_lame(std::move(lame)), m_fem(fem), m_surface(surface) {
+  for (const Tool& t : scene.tools) {
+    m_kinds.push_back(t.kind);
+    m_trocars.push_back(t.trocar_m);
+  }
+  m_grasps.resize(scene.tools.size());
+  m_tool_force.assign(scene.tools.size(), Vec3::Zero());
+}
+
+std::vector<std::size_t> ToolContactStage::grasped_counts() const {
+  std::vector<std::size_t> c;
+  for (const Grasp& g : m_grasps) c.push_back(g.nodes.size());
+  return c;
+}
+
+void ToolContactStage::refresh_boundary(const SimState& state) {
+  if (m_boundary_version == state.mesh.topology_version) return;
+  const bool fresh = m_surface != nullptr &&
+                     m_surface->surface().topology_version == state.mesh.topology_version &&
+                     !m_surface->surface().faces.empty();
+  const surface::SurfaceMesh own =
+      fresh ? surface::SurfaceMesh{} : surface::extract_surface(state.mesh);
+  const surface::SurfaceMesh& s = fresh ? m_surface->surface() : own;
+  std::vector<std::uint8_t> on(static_cast<std::size_t>(state.mesh.num_nodes()), 0);
+  for (const Tri& f : s.faces)
+    for (std::int32_t n : f) on[static_cast<std::size_t>(n)] = 1;
+  m_boundary.clear();
+  for (std::size_t i = 0; i < on.size(); ++i)
+    if (on[i]) m_boundary.push_back(static_cast<std::int32_t>(i));
+  m_boundary_version = state.mesh.topology_version;
+}
+
+void ToolContactStage::grab(SimState& state, std::size_t tool, Grasp& g) {
+  const ToolFrame f = tool_frame(state.tools[tool]);
+  const double tan_half = std::tan(0.5 * std::min(g.widest_rad, 3.0));
+  const Mat3 rt = frame_matrix(f).transpose();
+  g.nodes.clear();
+  g.local.clear();
+  g.was_fixed.clear();
+  for (std::int32_t n : m_boundary) {
+    const auto un = static_cast<std::size_t>(n);
+    const Vec3 l = rt * (state.mesh.x[un] - f.hinge);  // (side, pin, forward)
+    if (l.z() < 0.0 || l.z() > kJawLength) continue;
+    if (std::abs(l.y()) > kGraspHalfWidth) continue;
+    if (std::abs(l.x()) > l.z() * tan_half + kJawRadius) continue;
+    g.nodes.push_back(n);
+    g.local.push_back(l);
+    g.was_fixed.push_back(state.mesh.fixed[un]);
+  }
+  g.holding = true;
+}
+
+void ToolContactStage::release(SimState& state, Grasp& g) {
+  for (std::size_t k = 0; k < g.nodes.size(); ++k) {
+    const auto un = static_cast<std::size_t>(g.nodes[k]);
+    if (un < state.mesh.fixed.size()) state.mesh.fixed[un] = g.was_fixed[k];
+  }
+  g.nodes.clear();
+  g.local.clear();
+  g.was_fixed.clear();
+  g.holding = false;
+  g.widest_rad = 0.0;
+}
+
+void ToolContactStage::step(const StepContext& ctx, SimState& state) {
+  TetMesh& mesh = state.mesh;
+  const auto n = static_cast<std::size_t>(mesh.num_nodes());
+  refresh_boundary(state);
+  m_force.assign(n, Vec3::Zero());
+  m_contacts = 0;
+  bool any_force = false;
+
+  for (std::size_t i = 0; i < m_kinds.size() && i < state.tools.size(); ++i) {
+    const ToolState& ts = state.tools[i];
+    m_tool_force[i].setZero();
+    if (m_kinds[i] == ToolKind::kEndoscope) continue;
+    const ToolFrame f = tool_frame(ts);
+    Grasp& g = m_grasps[i];
+
+    // Grasping: grab on closing past the threshold, let go on opening past it.
+    if (m_kinds[i] == ToolKind::kGrasper) {
+      if (!g.holding) {
+        g.widest_rad = std::max(g.widest_rad, ts.jaw_rad);
+        if (ts.jaw_rad < kGraspCloseRad && g.widest_rad >= kGraspCloseRad) grab(state, i, g);
+      } else if (ts.jaw_rad > kGraspCloseRad + kGraspHysteresisRad) {
+        release(state, g);
+        g.widest_rad = ts.jaw_rad;
+      }
+      if (g.holding && !g.nodes.empty()) {
+        // The tissue's pull on the held nodes, measured before they move with the jaws.
+        m_flag.assign(n, 0);
+        for (std::int32_t k : g.nodes) m_flag[static_cast<std::size_t>(k)] = 1;
+        std::vector<Vec3> pull(n, Vec3::Zero());
+        add_elastic_forces(mesh, m_lame, m_flag, pull);
+        Vec3 total = Vec3::Zero();
+        for (std::int32_t k : g.nodes) total += pull[static_cast<std::size_t>(k)];
+        m_tool_force[i] = -total;  // the tool pulls against the tissue
+        // Move the held nodes with the jaws (Dirichlet: FEM keeps them where put).
+        const Mat3 r = frame_matrix(f);
+        for (std::size_t k = 0; k < g.nodes.size(); ++k) {
+          const auto un = static_cast<std::size_t>(g.nodes[k]);
+          const Vec3 target = f.hinge + r * g.local[k];
+          mesh.v[un] = (target - mesh.x[un]) / ctx.dt_s;
+          mesh.x[un] = target;
+          mesh.fixed[un] = 1;
+        }
+      }
+    }
+
+    // Contact: shaft always; grasper jaws while holding nothing.
+    struct Capsule {
+      Vec3 a, b;
+      double r;
+    };
+    std::vector<Capsule> caps;
+    const Vec3 back = m_trocars[i] ? *m_trocars[i] : Vec3(f.hinge - 0.1 * f.forward);
+    caps.push_back({back, f.hinge, kShaftRadius});
+    if (m_kinds[i] == ToolKind::kGrasper && !g.holding)
+      for (int k = 0; k < 2; ++k) caps.push_back({f.hinge, jaw_tip(f, ts.jaw_rad, k), kJawRadius});
+    for (std::int32_t node : m_boundary) {
+      const auto un = static_cast<std::size_t>(node);
+      if (mesh.fixed[un] != 0 || !(mesh.mass[un] > 0.0)) continue;
+      for (const Capsule& c : caps) {
+        const Vec3 q = closest_on_segment(mesh.x[un], c.a, c.b);
+        const Vec3 d = mesh.x[un] - q;
+        const double dist = d.norm();
+        if (dist >= c.r) continue;
+        const double depth = c.r - dist;
+        const Vec3 dir = dist > 1e-12 ? Vec3(d / dist) : f.pin;
+        const double k =
+            std::min(kContactStiffness, kContactBeta * mesh.mass[un] / (ctx.dt_s * ctx.dt_s));
+        const Vec3 fc = k * depth * dir;
+        m_force[un] += fc;
+        m_tool_force[i] += fc;
+        ++m_contacts;
+        any_force = true;
+      }
+    }
+  }
+  if (m_fem) {
+    if (any_force) {
+      m_fem->set_external_forces(m_force);
+    } else {
+      m_fem->set_external_forces({});
+    }
+  }
+}
+
+}  // namespace serosa::app

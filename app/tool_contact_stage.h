@@ -1,0 +1,85 @@
+// The "contact" stage (before FEM): what the tools do to the tissue by touching it.
+//
+// - Contact: each tool's shaft (trocar -> jaw hinge, or 10 cm back along the shaft without a
+//   trocar; radius kShaftRadius) and, for a grasper that holds nothing, its jaws (hinge -> jaw
+//   tips, radius kJawRadius) are capsules; a surface node inside one is pushed out along the
+//   shortest way by a penalty force k * depth, capped at beta * m / dt^2 * depth so that the
+//   explicit force cannot overshoot the implicit step. Forces go to FEM as external forces.
+//   Scissor blades do not push: closing, they cut (cutting stage).
+// - Grasping: when a grasper's jaws close past kGraspCloseRad, the surface nodes between its jaws
+//   (inside the wedge of its widest opening since it last let go, within kGraspHalfWidth of the
+//   jaw plane) are grabbed: held to the jaws through an infinitely stiff spring (Dirichlet nodes
+//   that move with the tool). Opening past kGraspCloseRad + kGraspHysteresisRad lets go and
+//   restores their original Dirichlet flags. The grasp force is the tissue's elastic pull on the
+//   grabbed nodes (app/tissue_stress.h).
+// Each tool's total force on the tissue (N) is kept for metrics and the haptic model.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "app/tissue_stress.h"
+#include "engine/math.h"
+#include "engine/scene.h"
+#include "engine/stage.h"
+
+namespace serosa::fem {
+class FemStage;
+}
+
+namespace serosa::app {
+
+class SurfaceStage;
+
+inline constexpr double kJawRadius = 0.001;          ///< m
+inline constexpr double kContactStiffness = 200.0;   ///< N/m per node
+inline constexpr double kContactBeta = 0.5;          ///< cap: beta m / dt^2
+inline constexpr double kGraspCloseRad = 0.2;        ///< rad
+inline constexpr double kGraspHysteresisRad = 0.05;  ///< rad
+inline constexpr double kGraspHalfWidth = 0.003;     ///< m
+
+class ToolContactStage final : public Stage {
+ public:
+  /// fem and surface may be null (no forces applied / boundary taken from the mesh itself).
+  ToolContactStage(const Scene& scene, LameTable lame, fem::FemStage* fem,
+                   const SurfaceStage* surface);
+
+  [[nodiscard]] std::string_view name() const noexcept override { return "contact"; }
+  void step(const StepContext& ctx, SimState& state) override;
+
+  /// (tools) force each tool exerted on the tissue in the last step, N (scene tool order).
+  [[nodiscard]] const std::vector<Vec3>& tool_forces() const noexcept { return m_tool_force; }
+  /// (tools) number of nodes each tool holds (graspers).
+  [[nodiscard]] std::vector<std::size_t> grasped_counts() const;
+  /// Nodes pushed by contact in the last step, over all tools.
+  [[nodiscard]] std::int64_t contacts() const noexcept { return m_contacts; }
+
+ private:
+  struct Grasp {
+    std::vector<std::int32_t> nodes;  // grabbed node ids
+    std::vector<Vec3> local;          // their positions in the tool frame at the grab, m
+    std::vector<std::uint8_t> was_fixed;
+    bool holding = false;
+    double widest_rad = 0.0;  // widest opening since the last release
+  };
+  void refresh_boundary(const SimState& state);
+  void grab(SimState& state, std::size_t tool, Grasp& g);
+  void release(SimState& state, Grasp& g);
+
+  std::vector<ToolKind> m_kinds;
+  std::vector<std::optional<Vec3>> m_trocars;
+  LameTable m_lame;
+  fem::FemStage* m_fem;
+  const SurfaceStage* m_surface;
+  std::vector<Grasp> m_grasps;           // (tools)
+  std::vector<std::int32_t> m_boundary;  // surface node ids
+  std::uint64_t m_boundary_version = ~0ull;
+  std::vector<Vec3> m_force;         // (n) external forces of this step
+  std::vector<std::uint8_t> m_flag;  // (n) scratch
+  std::vector<Vec3> m_tool_force;    // (tools)
+  std::int64_t m_contacts = 0;
+};
+
+}  // namespace serosa::app

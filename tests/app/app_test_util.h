@@ -1,0 +1,46 @@
+// Helpers shared by the app tests: output folders and running the built `serosa` executable.
+#pragma once
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+namespace serosa::app::testing {
+
+namespace fs = std::filesystem;
+
+inline fs::path out_dir(const std::string& name) {
+  const fs::path d = fs::path(SEROSA_BINARY_DIR) / "test-output" / "app" / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+inline fs::path source(const std::string& rel) { return fs::path(SEROSA_SOURCE_DIR) / rel; }
+
+inline fs::path serosa_exe() { return fs::path(SEROSA_BINARY_DIR) / "app" / "serosa"; }
+
+struct CliResult {
+  int code = -1;
+  std::string out;  ///< stdout and stderr together
+};
+
+/// Runs `serosa ARGS` (a shell command line tail), capturing stdout and stderr.
+inline CliResult run_serosa(const std::string& args) {
+  std::string cmd = "'";
+  cmd.append(serosa_exe().string()).append("' ").append(args).append(" 2>&1");
+  CliResult r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (pipe == nullptr) return r;
+  std::array<char, 4096> buf{};
+  std::size_t n = 0;
+  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+  const int status = pclose(pipe);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+}  // namespace serosa::app::testing

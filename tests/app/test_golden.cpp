@@ -1,0 +1,95 @@
+// Headless regression against a golden report: stated tolerances, a missing golden fails unless
+// --update-golden, the CLI exits 3 on a mismatch.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "app/golden.h"
+#include "app_test_util.h"
+
+namespace serosa::app {
+namespace {
+
+using namespace serosa::app::testing;
+using Json = nlohmann::json;
+
+Json sample() {
+  return Json::parse(R"({
+    "steps": 10, "steps_taken": 10, "simulated_time_s": 0.05, "state_hash": "00ff",
+    "mesh_final": {"tets": 100, "nodes": 40, "valid": true, "rest_volume_m3": 2.0e-6},
+    "cutting": {"cuts": 3, "tets_added": 30, "degenerate_tets": 0},
+    "metrics": {"time_s": 0.05, "peak_stress_pa": 1000.0,
+                "path_length_m": {"scissors": 0.02},
+                "cut": {"volume_m3": 1.0e-7, "deviation_max_m": 0.001}},
+    "time_per_stage_ms": {"fem": 3.0}
+  })");
+}
+
+TEST(Golden, EqualReportsMatch) {
+  const GoldenComparison c = compare_golden(sample(), sample());
+  EXPECT_TRUE(c.ok());
+  EXPECT_TRUE(c.notes.empty());
+}
+
+TEST(Golden, CountsMustBeEqual) {
+  Json r = sample();
+  r["mesh_final"]["tets"] = 101;
+  const GoldenComparison c = compare_golden(r, sample());
+  ASSERT_EQ(c.failures.size(), 1u);
+  EXPECT_NE(c.failures[0].find("/mesh_final/tets: golden 100, got 101"), std::string::npos)
+      << c.failures[0];
+}
+
+TEST(Golden, MetricsWithinToleranceMatchAndBeyondFail) {
+  Json r = sample();
+  r["metrics"]["peak_stress_pa"] = 1000.9;                // < 1e-3 relative (1 Pa)
+  r["metrics"]["path_length_m"]["scissors"] = 0.0200005;  // within 1e-3 relative
+  EXPECT_TRUE(compare_golden(r, sample()).ok());
+  r["metrics"]["cut"]["deviation_max_m"] = 0.0012;
+  const GoldenComparison c = compare_golden(r, sample());
+  ASSERT_EQ(c.failures.size(), 1u);
+  EXPECT_NE(c.failures[0].find("/metrics/cut/deviation_max_m"), std::string::npos);
+  // A metric missing from the report fails too.
+  Json m = sample();
+  m["metrics"].erase("peak_stress_pa");
+  EXPECT_FALSE(compare_golden(m, sample()).ok());
+}
+
+TEST(Golden, TimingsAreIgnoredAndHashIsOnlyNoted) {
+  Json r = sample();
+  r["time_per_stage_ms"]["fem"] = 300.0;
+  r["state_hash"] = "0100";
+  const GoldenComparison c = compare_golden(r, sample());
+  EXPECT_TRUE(c.ok());
+  EXPECT_EQ(c.notes.size(), 1u);
+}
+
+TEST(Golden, MissingGoldenFailsUnlessUpdating) {
+  const fs::path dir = out_dir("golden_unit");
+  const GoldenComparison missing = check_golden(sample(), dir / "g.json", false);
+  ASSERT_FALSE(missing.ok());
+  EXPECT_NE(missing.failures[0].find("missing"), std::string::npos);
+  EXPECT_TRUE(check_golden(sample(), dir / "g.json", true).ok());
+  EXPECT_TRUE(check_golden(sample(), dir / "g.json", false).ok());
+  std::ofstream(dir / "bad.json") << "{not json";
+  EXPECT_FALSE(check_golden(sample(), dir / "bad.json", false).ok());
+}
+
+TEST(Golden, CliExitsThreeOnMismatchOrMissingGolden) {
+  const fs::path dir = out_dir("golden_cli");
+  const std::string run = "headless '" + source("config/beam.toml").string() + "' --steps 3 ";
+  const std::string golden = "--golden '" + (dir / "beam.json").string() + "'";
+  EXPECT_EQ(run_serosa(run + golden).code, 3);
+  const CliResult write = run_serosa(run + golden + " --update-golden");
+  EXPECT_EQ(write.code, 0) << write.out;
+  const CliResult same = run_serosa(run + golden);
+  EXPECT_EQ(same.code, 0) << same.out;
+  EXPECT_NE(same.out.find("golden matches"), std::string::npos) << same.out;
+  const CliResult longer =
+      run_serosa("headless '" + source("config/beam.toml").string() + "' --steps 4 " + golden);
+  EXPECT_EQ(longer.code, 3) << longer.out;
+  EXPECT_NE(longer.out.find("golden mismatch: /steps"), std::string::npos) << longer.out;
+}
+
+}  // namespace
+}  // namespace serosa::app

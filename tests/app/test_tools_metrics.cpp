@@ -1,0 +1,202 @@
+// Tools acting on tissue and the metrics they are scored by: stress and elastic forces against
+// closed forms, a grasper that grabs, lifts and lets go, a shaft pressing on a beam, two tools at
+// once, and metrics of a scripted run.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <random>
+
+#include "app/assemble_state.h"
+#include "app/compose.h"
+#include "app/metrics_stage.h"
+#include "app/tissue_stress.h"
+#include "app/tool_contact_stage.h"
+#include "app/tool_geometry.h"
+#include "app_test_util.h"
+#include "engine/scene.h"
+#include "engine/sim_state.h"
+
+namespace serosa::app {
+namespace {
+
+using namespace serosa::app::testing;
+
+TetMesh one_tet() {
+  TetMesh m;
+  m.add_node(Vec3(0, 0, 0));
+  m.add_node(Vec3(1, 0, 0));
+  m.add_node(Vec3(0, 1, 0));
+  m.add_node(Vec3(0, 0, 1));
+  m.add_tet({0, 1, 2, 3}, 1);
+  m.fill_node_state();
+  return m;
+}
+
+TEST(TissueStress, RigidMotionIsStressFreeAndStretchMatchesClosedForm) {
+  Material mat;
+  mat.young_pa = 1e4;
+  mat.poisson = 0.3;
+  const Lame l = lame(mat);
+  TetMesh m = one_tet();
+  const Mat3 r = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  for (std::size_t i = 0; i < 4; ++i) m.x[i] = r * m.rest[i] + Vec3(0.1, -2, 3);
+  EXPECT_LT(von_mises_pa(m, 0, l), 1e-9 * mat.young_pa);
+  LameTable table;
+  table.fallback = l;
+  std::vector<std::uint8_t> all(4, 1);
+  std::vector<Vec3> f(4, Vec3::Zero());
+  add_elastic_forces(m, table, all, f);
+  for (const Vec3& fi : f) EXPECT_LT(fi.norm(), 1e-9 * mat.young_pa);
+  // Uniaxial stretch F = diag(1 + e, 1, 1): von Mises of S = |S11 - S22| = 2 mu E11.
+  const double e = 0.02;
+  for (std::size_t i = 0; i < 4; ++i)
+    m.x[i] = Vec3((1 + e) * m.rest[i].x(), m.rest[i].y(), m.rest[i].z());
+  const double e11 = 0.5 * ((1 + e) * (1 + e) - 1);
+  EXPECT_NEAR(von_mises_pa(m, 0, l), 2 * l.mu * e11, 1e-9 * mat.young_pa);
+  // Forces sum to zero (no net force from internal stress) and pull the stretched node back.
+  std::fill(f.begin(), f.end(), Vec3::Zero());
+  add_elastic_forces(m, table, all, f);
+  Vec3 sum = Vec3::Zero();
+  for (const Vec3& fi : f) sum += fi;
+  EXPECT_LT(sum.norm(), 1e-9 * mat.young_pa);
+  EXPECT_LT(f[1].x(), 0.0);
+}
+
+TEST(Metrics, DistanceToPolylineMatchesDenseSampling) {
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 50; ++trial) {
+    std::vector<Vec3> line;
+    for (int k = 0; k < 4; ++k) line.emplace_back(u(rng), u(rng), u(rng));
+    const Vec3 p(u(rng), u(rng), u(rng));
+    double best = 1e9;
+    for (std::size_t i = 0; i + 1 < line.size(); ++i)
+      for (int s = 0; s <= 2000; ++s)
+        best = std::min(best, (p - (line[i] + (s / 2000.0) * (line[i + 1] - line[i]))).norm());
+    const double d = distance_to_polyline(p, line);
+    EXPECT_LE(d, best + 1e-12);
+    EXPECT_GE(d, best - 2e-3);
+  }
+}
+
+TEST(ToolGeometry, JawsOpenSymmetricallyAboutTheShaft) {
+  ToolState t;
+  t.tip_m = {0.01, 0.02, 0.03};
+  const Eigen::Quaterniond q(Eigen::AngleAxisd(0.4, Vec3(0.3, 1, 0).normalized()));
+  t.quat_wxyz = {q.w(), q.x(), q.y(), q.z()};
+  const ToolFrame f = tool_frame(t);
+  EXPECT_NEAR((f.tip - f.hinge).norm(), kJawLength, 1e-15);
+  EXPECT_NEAR(f.forward.dot(f.side), 0.0, 1e-15);
+  EXPECT_NEAR(f.side.cross(f.pin).dot(f.forward), 1.0, 1e-12);
+  // Closed jaws end at the tip; open ones at +-jaw/2 from the shaft, in the jaw plane.
+  EXPECT_NEAR((jaw_tip(f, 0.0, 0) - f.tip).norm(), 0.0, 1e-15);
+  const Vec3 a = jaw_tip(f, 0.8, 0) - f.hinge, b = jaw_tip(f, 0.8, 1) - f.hinge;
+  EXPECT_NEAR(std::acos(a.dot(b) / (a.norm() * b.norm())), 0.8, 1e-12);
+  EXPECT_NEAR(a.dot(f.pin), 0.0, 1e-15);
+}
+
+// A beam scene (10 cm along +x, fixed at x = 0) with the given tools and a script.
+struct BeamRun {
+  Scene scene;
+  AssembledScene assembled;
+  Composition comp;
+};
+std::unique_ptr<BeamRun> beam_with_tools(const fs::path& dir, const std::string& effects,
+                                         const std::string& tools, const std::string& csv) {
+  std::ofstream(dir / "path.csv") << "t,tool,px,py,pz,qw,qx,qy,qz,jaw\n" << csv;
+  std::string toml =
+      "[scene]\ndt = 0.005\neffects = [" + effects + "]\n[[organ]]\nname = \"beam\"\n";
+  toml.append("mesh = \"").append(source("assets/beam_coarse.msh").string()).append("\"\n");
+  toml.append("young = 2e4\npoisson = 0.3\ndensity = 1000\n");
+  toml.append(
+      "fixed = { box = [[-0.001, -1, -1], [0.0001, 1, 1]] }\n[solver]\nkind = \"cholmod\"\n");
+  toml.append(tools);
+  const fs::path p = dir / "scene.toml";
+  std::ofstream(p) << toml;
+  auto run = std::make_unique<BeamRun>();
+  run->scene = load_scene(p);
+  run->assembled = assemble_state(run->scene);
+  run->comp = compose(run->scene, run->assembled);
+  return run;
+}
+
+std::int32_t tip_node(const TetMesh& m) {
+  std::int32_t tip = 0;
+  for (std::int32_t i = 0; i < m.num_nodes(); ++i)
+    if (m.rest[static_cast<std::size_t>(i)].x() + 1e-3 * m.rest[static_cast<std::size_t>(i)].y() >
+        m.rest[static_cast<std::size_t>(tip)].x() +
+            1e-3 * m.rest[static_cast<std::size_t>(tip)].y())
+      tip = i;
+  return tip;
+}
+
+// Grasper pointing down (-y) onto the beam's free end: local z = -y, local x = +x, pin = +z.
+// Quaternion of that frame: rotation about x by +90 degrees.
+const std::string kDown = "0.7071067811865476,0.7071067811865476,0,0";
+
+TEST(Grasper, GrabsLiftsAndLetsGo) {
+  const fs::path dir = out_dir("grasper");
+  // Jaw tips 3 mm into the beam (top at y = 5 mm) near its end; open, close, lift 5 mm, open.
+  const std::string csv =
+      "0.00,grasper,0.095,0.002,0," + kDown + ",0.9\n" + "0.02,grasper,0.095,0.002,0," + kDown +
+      ",0.9\n" + "0.05,grasper,0.095,0.002,0," + kDown + ",0.0\n" + "0.15,grasper,0.095,0.007,0," +
+      kDown + ",0.0\n" + "0.20,grasper,0.095,0.007,0," + kDown + ",0.9\n";
+  const std::string tool =
+      "[[tool]]\nname = \"grasper\"\nkind = \"grasper\"\ndevice = \"script:path.csv\"\n";
+  auto run = beam_with_tools(dir, "\"fem\", \"surface\", \"contact\"", tool, csv);
+  ASSERT_NE(run->comp.contact, nullptr);
+  SimState& s = run->assembled.state;
+  const std::vector<std::uint8_t> fixed0 = s.mesh.fixed;
+  const std::int32_t tip = tip_node(s.mesh);
+  const double y0 = s.mesh.x[static_cast<std::size_t>(tip)].y();
+  run->comp.runner->run(s, 30);  // t = 0.15: closed and lifted
+  const std::size_t held = run->comp.contact->grasped_counts()[0];
+  EXPECT_GE(held, 3u);  // the beam's top nodes at x = 9, 9.5 and 10 cm
+  EXPECT_GT(s.mesh.x[static_cast<std::size_t>(tip)].y(), y0 + 0.002);  // the end came up
+  EXPECT_GT(run->comp.contact->tool_forces()[0].y(), 0.0);             // it pulls the tissue up
+  run->comp.runner->run(s, 12);                                        // t = 0.21: opened
+  EXPECT_EQ(run->comp.contact->grasped_counts()[0], 0u);
+  EXPECT_EQ(s.mesh.fixed, fixed0);
+  const auto m = run->comp.metrics->report();
+  EXPECT_NEAR(m["path_length_m"]["grasper"].get<double>(), 0.005, 1e-9);
+  EXPECT_GT(m["force_max_n"]["grasper"].get<double>(), 0.0);
+  EXPECT_GT(m["peak_stress_pa"].get<double>(), 0.0);
+}
+
+TEST(Contact, ShaftPressesTheBeamDownAndTwoToolsActAtOnce) {
+  const fs::path dir = out_dir("contact");
+  // A closed grasper held still, its shaft (radius 2.5 mm) lying across the top of the beam
+  // (y = 5 mm) at x = 8 cm, 1 mm deep, pointing along -z (jaws beyond the beam); scissors held
+  // clear of it at the same time.
+  const std::string along_minus_z = "0,0,1,0";
+  const std::string csv = "0,left,0.08,0.0065,-0.025," + along_minus_z + ",0\n" +
+                          "0,right,0.05,0.05,0," + kDown + ",0\n";
+  const std::string tools =
+      "[[tool]]\nname = \"left\"\nkind = \"grasper\"\ndevice = \"script:path.csv\"\n"
+      "trocar = [0.08, 0.0065, 0.2]\n"
+      "[[tool]]\nname = \"right\"\nkind = \"scissors\"\ndevice = \"script:path.csv\"\n";
+  auto pressed = beam_with_tools(dir, "\"fem\", \"surface\", \"contact\"", tools, csv);
+  SimState& s = pressed->assembled.state;
+  const std::int32_t tip = tip_node(s.mesh);
+  pressed->comp.runner->run(s, 20);
+  EXPECT_GT(pressed->comp.contact->contacts(), 0);
+  EXPECT_LT(pressed->comp.contact->tool_forces()[0].y(), 0.0);  // pushes down
+  EXPECT_EQ(pressed->comp.contact->tool_forces()[1].norm(), 0.0);
+  EXPECT_LT(s.mesh.x[static_cast<std::size_t>(tip)].y(), -1e-5);
+  for (const Vec3& x : s.mesh.x) EXPECT_TRUE(x.allFinite());
+  // Without "contact" the same tools do nothing to the (weightless) beam.
+  const fs::path dir2 = out_dir("contact_off");
+  auto free_run = beam_with_tools(dir2, "\"fem\"", tools, csv);
+  EXPECT_EQ(free_run->comp.contact, nullptr);
+  free_run->comp.runner->run(free_run->assembled.state, 20);
+  double moved = 0.0;
+  for (std::size_t i = 0; i < free_run->assembled.state.mesh.x.size(); ++i)
+    moved = std::max(
+        moved,
+        (free_run->assembled.state.mesh.x[i] - free_run->assembled.state.mesh.rest[i]).norm());
+  EXPECT_LT(moved, 1e-12);
+}
+
+}  // namespace
+}  // namespace serosa::app

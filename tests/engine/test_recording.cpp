@@ -1,0 +1,197 @@
+// .lapr recordings: round trip, damage anywhere after the header reads up to the last good chunk
+// and names the offset, the writer flushes while the run goes on.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <thread>
+
+#include "engine/input_error.h"
+#include "engine/recording_reader.h"
+#include "engine/recording_writer.h"
+
+namespace serosa::recording {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path temp_file(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("serosa_rec_" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  return d / name;
+}
+
+std::vector<std::uint8_t> bytes_of(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary | std::ios::ate);
+  std::vector<std::uint8_t> b(static_cast<std::size_t>(std::max<std::streamoff>(in.tellg(), 0)));
+  in.seekg(0);
+  in.read(reinterpret_cast<char*>(b.data()), static_cast<std::streamsize>(b.size()));
+  return b;
+}
+
+ToolState tool(std::uint64_t step, int k) {
+  ToolState t;
+  t.tick = step;
+  t.time_s = 0.005 * static_cast<double>(step);
+  t.tip_m = {0.01 * k, -0.002 * static_cast<double>(step), 1.0 / 3.0};
+  t.quat_wxyz = {0.5, 0.5, -0.5, 0.5};
+  t.jaw_rad = 0.25 * k;
+  t.buttons = static_cast<std::uint32_t>(step % 3);
+  return t;
+}
+
+Header header() {
+  Header h;
+  h.set("serosa", "test");
+  h.set("scene_text", "[scene]\ndt = 0.005\n# \xc3\xa9\0 binary-safe");
+  h.set("tools", "a,b");
+  return h;
+}
+
+// Writes `steps` steps with a hash every 10, a chunk every `per_chunk` steps (small chunks).
+fs::path write_run(const std::string& name, std::uint64_t steps, bool close = true) {
+  const fs::path p = temp_file(name);
+  WriterOptions o;
+  o.chunk_bytes = 600;  // a few steps per chunk
+  RecordingWriter w(p, header(), o);
+  for (std::uint64_t s = 0; s < steps; ++s) {
+    const std::vector<ToolState> tools{tool(s, 0), tool(s, 1)};
+    w.record_inputs(s, tools);
+    if ((s + 1) % 10 == 0) w.record_hash(s, s * 7919u);
+    if (s == 5) w.record_event(s, "pause");
+  }
+  if (close) {
+    w.close(steps);
+  } else {
+    w.abandon();
+  }
+  return p;
+}
+
+TEST(Recording, RoundTripsBitForBit) {
+  const fs::path p = write_run("round.lapr", 100);
+  const Recording r = read_recording(p);
+  EXPECT_TRUE(r.complete) << r.stopped;
+  EXPECT_TRUE(r.stopped.empty()) << r.stopped;
+  EXPECT_EQ(r.header.get("scene_text"), header().get("scene_text"));
+  EXPECT_EQ(r.header.get("tools"), "a,b");
+  ASSERT_EQ(r.inputs.size(), 100u);
+  for (std::uint64_t s = 0; s < 100; ++s)
+    for (int k = 0; k < 2; ++k) {
+      const ToolState a = r.inputs[s][static_cast<std::size_t>(k)], b = tool(s, k);
+      EXPECT_EQ(std::memcmp(&a.tip_m, &b.tip_m, sizeof a.tip_m), 0);
+      EXPECT_EQ(a.tick, b.tick);
+      EXPECT_EQ(a.time_s, b.time_s);
+      EXPECT_EQ(a.quat_wxyz, b.quat_wxyz);
+      EXPECT_EQ(a.jaw_rad, b.jaw_rad);
+      EXPECT_EQ(a.buttons, b.buttons);
+    }
+  ASSERT_EQ(r.hashes.size(), 10u);
+  EXPECT_EQ(r.hashes.at(99), 99u * 7919u);
+  ASSERT_EQ(r.events.size(), 1u);
+  EXPECT_EQ(r.events[0].second, "pause");
+  EXPECT_GT(r.chunks, 5);
+}
+
+TEST(Recording, EveryTruncationReadsAPrefixAndSaysWhere) {
+  const fs::path p = write_run("trunc.lapr", 60);
+  const std::vector<std::uint8_t> all = bytes_of(p);
+  const Recording full = parse_recording(all, "full");
+  std::size_t header_end = 0;
+  {
+    // The header ends where the first chunk magic starts.
+    for (std::size_t i = 0; i + 4 <= all.size(); ++i)
+      if (std::equal(kChunkMagic, kChunkMagic + 4, all.begin() + static_cast<std::ptrdiff_t>(i))) {
+        header_end = i;
+        break;
+      }
+  }
+  ASSERT_GT(header_end, 0u);
+  std::size_t previous = 0;
+  for (std::size_t n = header_end; n < all.size(); ++n) {
+    const std::vector<std::uint8_t> cut(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(n));
+    const Recording r = parse_recording(cut, "cut");
+    EXPECT_FALSE(r.complete);
+    EXPECT_FALSE(r.stopped.empty());
+    EXPECT_LE(r.stopped_at, n);
+    // What was read is a prefix of the full run, growing with the file.
+    ASSERT_LE(r.inputs.size(), full.inputs.size());
+    EXPECT_GE(r.inputs.size(), previous);
+    previous = r.inputs.size();
+    for (std::size_t s = 0; s < r.inputs.size(); ++s)
+      EXPECT_EQ(r.inputs[s][0].tip_m, full.inputs[s][0].tip_m);
+  }
+  EXPECT_GT(previous, 40u);
+}
+
+TEST(Recording, CorruptByteIsFoundAndNamed) {
+  const fs::path p = write_run("corrupt.lapr", 60);
+  const std::vector<std::uint8_t> all = bytes_of(p);
+  const Recording full = parse_recording(all, "full");
+  std::mt19937 rng(5);
+  const std::size_t header_end = all.size() / 2;  // flips in the second half of the file
+  for (int trial = 0; trial < 200; ++trial) {
+    std::uniform_int_distribution<std::size_t> pick(header_end, all.size() - 1);
+    const std::size_t at = pick(rng);
+    std::vector<std::uint8_t> bad = all;
+    bad[at] ^= static_cast<std::uint8_t>(1u << (trial % 8));
+    const Recording r = parse_recording(bad, "bad");
+    EXPECT_FALSE(r.complete) << "flip at " << at;
+    EXPECT_NE(r.stopped.find("at byte " + std::to_string(r.stopped_at)), std::string::npos)
+        << r.stopped;
+    // It stopped at the chunk holding the flipped byte: at or before it, within one chunk.
+    EXPECT_LE(r.stopped_at, at);
+    EXPECT_LT(at - r.stopped_at, 1000u);
+    for (std::size_t s = 0; s < r.inputs.size(); ++s)
+      EXPECT_EQ(r.inputs[s][1].jaw_rad, full.inputs[s][1].jaw_rad);
+  }
+}
+
+TEST(Recording, DamagedHeaderOrWrongFileIsAnInputError) {
+  const fs::path p = write_run("head.lapr", 5);
+  std::vector<std::uint8_t> b = bytes_of(p);
+  b[20] ^= 0x40;
+  EXPECT_THROW((void)parse_recording(b, "x"), InputError);
+  EXPECT_THROW((void)parse_recording({'M', 'Z', 0, 0}, "x"), InputError);
+  std::vector<std::uint8_t> v = bytes_of(p);
+  v[4] = 99;  // version
+  try {
+    (void)parse_recording(v, "x.lapr");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("version 99"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW((void)read_recording(temp_file("missing.lapr")), InputError);
+}
+
+TEST(Recording, AbandonedRunKeepsItsStepsWithoutEnd) {
+  const Recording r = read_recording(write_run("abandon.lapr", 30, false));
+  EXPECT_FALSE(r.complete);
+  EXPECT_EQ(r.inputs.size(), 30u);
+  EXPECT_NE(r.stopped.find("no end record"), std::string::npos) << r.stopped;
+}
+
+TEST(Recording, WriterFlushesWhileTheRunGoesOn) {
+  const fs::path p = temp_file("live.lapr");
+  WriterOptions o;
+  o.flush_interval = std::chrono::milliseconds(50);
+  RecordingWriter w(p, header(), o);
+  const std::vector<ToolState> tools{tool(0, 0)};
+  w.record_inputs(0, tools);
+  // Without closing, the step reaches the file (poll: the machine may be busy).
+  std::size_t seen = 0;
+  for (int i = 0; i < 200 && seen == 0; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(25));
+    seen = parse_recording(bytes_of(p), "live").inputs.size();
+  }
+  EXPECT_EQ(seen, 1u);
+  w.close(1);
+  EXPECT_TRUE(read_recording(p).complete);
+}
+
+}  // namespace
+}  // namespace serosa::recording
