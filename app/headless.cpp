@@ -9,8 +9,8 @@
 #include <ctime>
 #include <fstream>
 #include <iterator>
-#include <sstream>
 #include <memory>
+#include <sstream>
 
 #include "app/assemble_state.h"
 #include "app/compose.h"

@@ -31,17 +31,28 @@ void RecordingWriter::record_inputs(std::uint64_t step, std::span<const ToolStat
   std::lock_guard lock(m_mutex);
   put_inputs(m_pending, step, tools);
   ++m_stats.steps;
-  if (m_pending.size() >= m_options.chunk_bytes) m_wake.notify_one();
+  seal_if_full();
+}
+
+// A chunk never grows past chunk_bytes by much (one record): a full payload is sealed here, at a
+// record boundary, and the writer thread writes each sealed payload as its own chunk.
+void RecordingWriter::seal_if_full() {
+  if (m_pending.size() < m_options.chunk_bytes) return;
+  m_ready.push_back(std::move(m_pending));
+  m_pending.clear();
+  m_wake.notify_one();
 }
 
 void RecordingWriter::record_hash(std::uint64_t step, std::uint64_t hash) {
   std::lock_guard lock(m_mutex);
   put_hash(m_pending, step, hash);
+  seal_if_full();
 }
 
 void RecordingWriter::record_event(std::uint64_t step, const std::string& text) {
   std::lock_guard lock(m_mutex);
   put_event(m_pending, step, text);
+  seal_if_full();
 }
 
 void RecordingWriter::write_chunk(std::vector<std::uint8_t>& payload) {
@@ -60,10 +71,15 @@ void RecordingWriter::run() {
   std::vector<std::uint8_t> payload;
   std::unique_lock lock(m_mutex);
   while (!m_stop) {
-    m_wake.wait_for(lock, m_options.flush_interval,
-                    [this] { return m_stop || m_pending.size() >= m_options.chunk_bytes; });
+    const bool sealed = m_wake.wait_for(lock, m_options.flush_interval,
+                                        [this] { return m_stop || !m_ready.empty(); });
     if (m_stop) break;  // stop() writes the rest itself, in order, with the end record
-    payload.swap(m_pending);
+    if (sealed) {
+      payload = std::move(m_ready.front());
+      m_ready.pop_front();
+    } else if (m_ready.empty()) {  // flush_interval passed: write what is pending
+      payload.swap(m_pending);
+    }
     lock.unlock();
     write_chunk(payload);
     lock.lock();
@@ -79,11 +95,14 @@ void RecordingWriter::stop(bool with_end, std::uint64_t steps) {
   }
   m_wake.notify_one();
   if (m_thread.joinable()) m_thread.join();
+  std::deque<std::vector<std::uint8_t>> ready;
   std::vector<std::uint8_t> payload;
   {
     std::lock_guard lock(m_mutex);
+    ready.swap(m_ready);
     payload.swap(m_pending);
   }
+  for (std::vector<std::uint8_t>& sealed : ready) write_chunk(sealed);
   if (with_end) put_end(payload, steps);
   write_chunk(payload);
   std::fclose(m_file);

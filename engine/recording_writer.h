@@ -10,6 +10,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <cstdio>
+#include <deque>
 #include <filesystem>
 #include <mutex>
 #include <span>
@@ -73,9 +74,12 @@ class RecordingWriter {
   mutable std::mutex m_mutex;
   std::condition_variable m_wake;
   std::vector<std::uint8_t> m_pending;  // guarded by m_mutex
-  bool m_stop = false;                  // guarded by m_mutex
-  std::string m_error;                  // guarded by m_mutex
-  WriterStats m_stats;                  // guarded by m_mutex
+  /// Payloads that reached chunk_bytes, in order, each to become one chunk; guarded by m_mutex.
+  std::deque<std::vector<std::uint8_t>> m_ready;
+  void seal_if_full();  // caller holds m_mutex
+  bool m_stop = false;  // guarded by m_mutex
+  std::string m_error;  // guarded by m_mutex
+  WriterStats m_stats;  // guarded by m_mutex
   std::thread m_thread;
   bool m_closed = false;
 };

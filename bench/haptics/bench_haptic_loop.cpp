@@ -100,7 +100,13 @@ void BM_LoopJitter(benchmark::State& state) {
     report(state, loop.telemetry());
   }
 }
-BENCHMARK(BM_LoopJitter)->Arg(10)->Arg(20)->Arg(60)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+BENCHMARK(BM_LoopJitter)
+    ->Arg(10)
+    ->Arg(20)
+    ->Arg(60)
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime();
 
 void BM_UsbRigLatency(benchmark::State& state) {
   if (!umockdev_preload_active()) {
