@@ -39,12 +39,6 @@ namespace {
 
 using Json = nlohmann::json;
 
-std::string hex(std::uint64_t h) {
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
-}
-
 // Pictures of the organs' boundary surface, drawn offscreen (EGL) in the visual view.
 class Pictures {
  public:
@@ -154,6 +148,12 @@ Json cutting_json(const Composition& comp) {
   return j;
 }
 
+std::string hash_hex(std::uint64_t hash) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(hash));
+  return buf;
+}
+
 Json run_headless(const HeadlessOptions& options) {
   const auto wall0 = std::chrono::steady_clock::now();
   Scene scene = load_scene(options.scene);
@@ -254,7 +254,7 @@ Json run_headless(const HeadlessOptions& options) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   report["stepping_time_s"] = sim_s;
   report["mesh_final"] = mesh_json(state.mesh);
-  report["state_hash"] = hex(state_hash(state));
+  report["state_hash"] = hash_hex(state_hash(state));
   if (comp.cutting) report["cutting"] = cutting_json(comp);
   if (comp.metrics) report["metrics"] = comp.metrics->report();
   if (comp.contact) {

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -34,6 +35,9 @@ struct HeadlessOptions {
 
 /// The header of a recording of `scene` (engine/recording_format.h lists the keys).
 [[nodiscard]] recording::Header recording_header(const Scene& scene, std::int64_t steps);
+
+/// A state hash as the report writes it: 16 lower-case hex digits.
+[[nodiscard]] std::string hash_hex(std::uint64_t hash);
 
 /// The report's "cutting" object (empty without a cutting stage).
 [[nodiscard]] nlohmann::json cutting_json(const Composition& comp);

@@ -28,12 +28,6 @@ namespace {
 
 using Json = nlohmann::json;
 
-std::string hex(std::uint64_t h) {
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
-}
-
 }  // namespace
 
 ReplayResult run_replay(const ReplayOptions& options) {
@@ -132,7 +126,7 @@ ReplayResult run_replay(const ReplayOptions& options) {
   report["steps"] = result.steps;
   report["simulated_time_s"] = state.time_s;
   report["stepping_time_s"] = wall;
-  report["state_hash"] = hex(state_hash(state));
+  report["state_hash"] = hash_hex(state_hash(state));
   report["mesh_final"] = {{"nodes", state.mesh.num_nodes()}, {"tets", state.mesh.num_tets()}};
   if (comp.cutting) report["cutting"] = cutting_json(comp);
   if (comp.metrics) report["metrics"] = comp.metrics->report();
@@ -143,8 +137,8 @@ ReplayResult run_replay(const ReplayOptions& options) {
     if (const auto& d = verify->divergence()) {
       result.diverged_at = d->step;
       report["verify"]["diverged_at_step"] = d->step;
-      report["verify"]["recorded_hash"] = hex(d->recorded);
-      report["verify"]["replayed_hash"] = hex(d->replayed);
+      report["verify"]["recorded_hash"] = hash_hex(d->recorded);
+      report["verify"]["replayed_hash"] = hash_hex(d->replayed);
     }
     report["verify"]["ok"] = !result.diverged_at.has_value();
   }
