@@ -41,6 +41,11 @@ inline TetMesh grid(int nx, int ny, int nz, double hx, double hy, double hz) {
 }
 
 /// Moves interior nodes of a grid by up to `amount` x cell size in each direction (uniform).
+/// Fixes every node on the x = 0 face (a clamped end).
+inline void clamp_x0(TetMesh& m) {
+  for (std::size_t i = 0; i < m.rest.size(); ++i) m.fixed[i] = m.rest[i].x() < 1e-12 ? 1 : 0;
+}
+
 inline void jitter_interior(TetMesh& m, double lo_x, double hi_x, double lo_y, double hi_y,
                             double lo_z, double hi_z, double amount, std::uint32_t seed) {
   std::mt19937 rng(seed);

@@ -23,7 +23,7 @@ namespace {
 // at x = 0 (every node there fixed).
 TetMesh beam(int k, double length, double thick) {
   TetMesh m = fixtures::grid(10 * k, k, k, length / (10 * k), thick / k, thick / k);
-  for (std::size_t i = 0; i < m.rest.size(); ++i) m.fixed[i] = m.rest[i].x() < 1e-12 ? 1 : 0;
+  fixtures::clamp_x0(m);
   return m;
 }
 

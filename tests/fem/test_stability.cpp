@@ -18,7 +18,7 @@ namespace {
 TetMesh soft_bar() {
   TetMesh m = fixtures::grid(6, 2, 2, 0.05, 0.05, 0.05);
   m.fill_node_state();
-  for (std::size_t i = 0; i < m.rest.size(); ++i) m.fixed[i] = m.rest[i].x() < 1e-12 ? 1 : 0;
+  fixtures::clamp_x0(m);
   return m;
 }
 
