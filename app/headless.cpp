@@ -15,9 +15,9 @@
 #include "app/assemble_state.h"
 #include "app/compose.h"
 #include "app/cutting_stage.h"
+#include "app/frame_pictures.h"
 #include "app/metrics_stage.h"
 #include "app/record_stage.h"
-#include "app/render_frame_from_surface.h"
 #include "app/script_tool_stage.h"
 #include "app/surface_stage.h"
 #include "app/tool_contact_stage.h"
@@ -29,51 +29,11 @@
 #include "engine/scene.h"
 #include "engine/sim_state.h"
 #include "fem/fem_stage.h"
-#include "render/camera.h"
-#include "render/gl_context.h"
-#include "render/snapshot.h"
-#include "surface/extract_surface.h"
 
 namespace serosa::app {
 namespace {
 
 using Json = nlohmann::json;
-
-// Pictures of the organs' boundary surface, drawn offscreen (EGL) in the visual view.
-class Pictures {
- public:
-  Pictures(std::filesystem::path dir, const Scene& scene, std::map<int, std::string> names)
-      : m_dir(std::move(dir)), m_names(std::move(names)) {
-    std::filesystem::create_directories(m_dir);
-    m_options.width = std::min(scene.render.width, 960);
-    m_options.height = std::min(scene.render.height, 540);
-    m_options.tessellation = scene.render.tessellation;
-    m_options.shape_factor = static_cast<float>(scene.render.shape_factor);
-    m_context = std::make_unique<render::OffscreenContext>(m_options.width, m_options.height);
-  }
-
-  std::filesystem::path take(const TetMesh& mesh, const std::string& stem) {
-    const surface::SurfaceMesh surf = surface::extract_surface(mesh);
-    fill_render_frame(mesh, surf, m_names, false, m_frame);
-    // The camera is fitted once, on the first picture, so motion shows between pictures.
-    if (!m_camera) {
-      m_camera = render::auto_camera(
-          m_frame, static_cast<float>(m_options.width) / static_cast<float>(m_options.height));
-    }
-    m_frame.camera = *m_camera;
-    const auto png = m_dir / (stem + ".png");
-    render::render_to_png(*m_context, m_frame, m_options, png);
-    return png;
-  }
-
- private:
-  std::filesystem::path m_dir;
-  std::map<int, std::string> m_names;
-  render::SnapshotOptions m_options;
-  std::unique_ptr<render::OffscreenContext> m_context;
-  render::RenderFrame m_frame;
-  std::optional<render::Camera> m_camera;
-};
 
 void progress_bar(std::int64_t done, std::int64_t total) {
   const int width = 40;
@@ -201,10 +161,11 @@ Json run_headless(const HeadlessOptions& options) {
   for (Effect e : comp.unavailable) report["effects"]["unavailable"].push_back(effect_name(e));
   report["mesh_initial"] = mesh_json(state.mesh);
 
-  std::unique_ptr<Pictures> pictures;
+  std::unique_ptr<FramePictures> pictures;
   std::vector<std::int64_t> picture_steps;
   if (options.frames) {
-    pictures = std::make_unique<Pictures>(*options.frames, scene, assembled.group_names());
+    pictures = std::make_unique<FramePictures>(*options.frames, scene, state.mesh,
+                                               assembled.group_names());
     const int count = std::max(options.frame_count, 1);
     for (int k = 0; k < count; ++k)
       picture_steps.push_back(count == 1 ? steps : steps * k / std::max(count - 1, 1));
@@ -215,7 +176,8 @@ Json run_headless(const HeadlessOptions& options) {
       if (s == step) {
         char stem[32];
         std::snprintf(stem, sizeof stem, "step_%06lld", static_cast<long long>(step));
-        report["frames"].push_back(pictures->take(state.mesh, stem).string());
+        for (const auto& png : pictures->take(state, stem))
+          report["frames"].push_back(png.string());
         break;
       }
   };

@@ -101,6 +101,10 @@ void fill_render_tools(const Scene& scene, const SimState& state, render::Render
     const Tool& tool = scene.tools[i];
     if (tool.kind == ToolKind::kEndoscope) continue;
     const ToolState& in = state.tools[i];
+    // A tool no device has posed yet (its input still the default) is not drawn.
+    if (in.tip_m == std::array<double, 3>{0.0, 0.0, 0.0} &&
+        in.quat_wxyz == std::array<double, 4>{1.0, 0.0, 0.0, 0.0})
+      continue;
     render::RenderTool t;
     t.kind = tool.kind == ToolKind::kScissors ? render::RenderTool::Kind::kScissors
                                               : render::RenderTool::Kind::kGrasper;

@@ -28,7 +28,8 @@ void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
 
 /// frame.tools: one RenderTool per scene tool of kind scissors or grasper, posed by its latest
 /// consumed input (state.tools, scene order), with the scene's trocar when given. Endoscopes are
-/// cameras, not drawn.
+/// cameras, not drawn; a tool no device has posed yet (tip at the origin, identity rotation: the
+/// default input) is not drawn either.
 void fill_render_tools(const Scene& scene, const SimState& state, render::RenderFrame& frame);
 
 /// The camera of the scene's first endoscope tool, posed by its latest input (a scope of

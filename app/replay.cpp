@@ -9,19 +9,15 @@
 
 #include "app/assemble_state.h"
 #include "app/compose.h"
+#include "app/frame_pictures.h"
 #include "app/headless.h"
 #include "app/metrics_stage.h"
 #include "app/record_stage.h"
-#include "app/render_frame_from_surface.h"
 #include "app/version.h"
 #include "engine/input_error.h"
 #include "engine/recording_reader.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"
-#include "render/camera.h"
-#include "render/gl_context.h"
-#include "render/snapshot.h"
-#include "surface/extract_surface.h"
 
 namespace serosa::app {
 namespace {
@@ -64,41 +60,25 @@ ReplayResult run_replay(const ReplayOptions& options) {
   SimState& state = assembled.state;
 
   // Pictures spread over the replay, first and last included.
-  std::unique_ptr<render::OffscreenContext> context;
-  render::SnapshotOptions snap;
-  render::RenderFrame frame;
-  std::optional<render::Camera> camera;
+  std::unique_ptr<FramePictures> pictures;
   std::vector<std::uint64_t> picture_steps;
   const auto n = static_cast<std::uint64_t>(rec.inputs.size());
   Json report;
   if (options.frames) {
-    std::filesystem::create_directories(*options.frames);
-    snap.width = std::min(scene.render.width, 960);
-    snap.height = std::min(scene.render.height, 540);
-    snap.tessellation = scene.render.tessellation;
-    snap.shape_factor = static_cast<float>(scene.render.shape_factor);
-    context = std::make_unique<render::OffscreenContext>(snap.width, snap.height);
+    pictures = std::make_unique<FramePictures>(*options.frames, scene, state.mesh,
+                                               assembled.group_names());
     const int count = std::max(options.frame_count, 1);
     for (int k = 0; k < count; ++k)
       picture_steps.push_back(count == 1 ? n
                                          : n * static_cast<std::uint64_t>(k) /
                                                static_cast<std::uint64_t>(std::max(count - 1, 1)));
   }
-  const auto names = assembled.group_names();
   auto maybe_picture = [&](std::uint64_t step) {
-    if (!context) return;
+    if (!pictures) return;
     if (std::find(picture_steps.begin(), picture_steps.end(), step) == picture_steps.end()) return;
-    const surface::SurfaceMesh surf = surface::extract_surface(state.mesh);
-    fill_render_frame(state.mesh, surf, names, false, frame);
-    if (!camera)
-      camera = render::auto_camera(
-          frame, static_cast<float>(snap.width) / static_cast<float>(snap.height));
-    frame.camera = *camera;
     char stem[32];
-    std::snprintf(stem, sizeof stem, "step_%06llu.png", static_cast<unsigned long long>(step));
-    const auto png = *options.frames / stem;
-    render::render_to_png(*context, frame, snap, png);
-    report["frames"].push_back(png.string());
+    std::snprintf(stem, sizeof stem, "step_%06llu", static_cast<unsigned long long>(step));
+    for (const auto& png : pictures->take(state, stem)) report["frames"].push_back(png.string());
   };
 
   const auto t0 = std::chrono::steady_clock::now();

@@ -1,0 +1,66 @@
+// Pictures of a running simulation, drawn offscreen (EGL) for `serosa headless --frames` and
+// `serosa replay --frames`: the organs' boundary surface with its wound (cut faces flagged against
+// the uncut surface, surface/cut_faces.h) and the instruments at their current poses, seen by a
+// camera fitted once to the organs (or, on request, through the scene's endoscope).
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/scene.h"
+#include "engine/sim_state.h"
+#include "render/image.h"
+#include "render/render_frame.h"
+#include "render/snapshot_options.h"
+#include "surface/cut_faces.h"
+
+namespace serosa::render {
+class OffscreenContext;
+}
+
+namespace serosa::app {
+
+class FramePictures {
+ public:
+  using View = render::SnapshotOptions::View;
+
+  /// Opens an offscreen context of the scene's render size (at most 960 x 540) and takes the
+  /// uncut surface of `initial` as the wound reference: construct it BEFORE the first cut.
+  /// `views`: which of the paper's views each take() writes (the first is written as STEM.png,
+  /// the others as STEM_<view>.png). @throws std::runtime_error when no GL context can be had
+  FramePictures(std::filesystem::path dir, const Scene& scene, const TetMesh& initial,
+                std::map<int, std::string> group_names, std::vector<View> views = {View::kVisual});
+  ~FramePictures();
+  FramePictures(const FramePictures&) = delete;
+  FramePictures& operator=(const FramePictures&) = delete;
+
+  /// The frame of `state` (surface with wound flags, tet edges, tools, camera), as drawn.
+  [[nodiscard]] const render::RenderFrame& frame(const SimState& state);
+  /// The picture of `state` in `view`.
+  [[nodiscard]] render::Image image(const SimState& state, View view);
+  /// Writes the pictures of `state` (one per view) into the folder; returns their paths.
+  std::vector<std::filesystem::path> take(const SimState& state, const std::string& stem);
+
+  [[nodiscard]] const render::SnapshotOptions& options() const { return m_options; }
+  /// Look through the scene's endoscope when a device posed it (default: a camera fitted once to
+  /// the organs, the same for every picture).
+  void set_endoscope(bool on) { m_endoscope = on; }
+
+ private:
+  std::filesystem::path m_dir;
+  const Scene& m_scene;
+  std::map<int, std::string> m_names;
+  std::vector<View> m_views;
+  surface::OriginalSurface m_original;
+  render::SnapshotOptions m_options;
+  std::unique_ptr<render::OffscreenContext> m_context;
+  render::RenderFrame m_frame;
+  std::optional<render::Camera> m_fitted;
+  bool m_endoscope = false;
+};
+
+}  // namespace serosa::app
