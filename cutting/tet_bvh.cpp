@@ -32,14 +32,12 @@ TetBvh::TetBvh(const TetMesh& mesh) {
   m_lo.resize(static_cast<std::size_t>(m));
   m_hi.resize(static_cast<std::size_t>(m));
   m_leaf_of.assign(static_cast<std::size_t>(m), -1);
-  std::vector<Vec3> centroids(static_cast<std::size_t>(m));
+  std::vector<Item> items(static_cast<std::size_t>(m));
   for (std::int32_t i = 0; i < m; ++i) {
     set_box(mesh, i);
-    centroids[static_cast<std::size_t>(i)] = centroid(mesh, i);
+    items[static_cast<std::size_t>(i)] = {centroid(mesh, i), i};
   }
-  std::vector<std::int32_t> order(static_cast<std::size_t>(m));
-  std::iota(order.begin(), order.end(), 0);
-  build(mesh, centroids, order, 0, m, -1);
+  build(items, 0, m, -1, 0);
 }
 
 void TetBvh::set_box(const TetMesh& mesh, std::int32_t ti) {
@@ -53,34 +51,36 @@ void TetBvh::set_box(const TetMesh& mesh, std::int32_t ti) {
   m_hi[static_cast<std::size_t>(ti)] = hi;
 }
 
-std::int32_t TetBvh::build(const TetMesh& mesh, const std::vector<Vec3>& centroids,
-                           std::vector<std::int32_t>& order, std::int32_t begin, std::int32_t end,
-                           std::int32_t parent) {
+std::int32_t TetBvh::build(std::vector<Item>& items, std::int32_t begin, std::int32_t end,
+                           std::int32_t parent, std::int32_t depth) {
   const auto id = static_cast<std::int32_t>(m_nodes.size());
   m_nodes.emplace_back();
   m_nodes[id].parent = parent;
+  m_nodes[id].depth = depth;
+  m_nodes[id].size = end - begin;
   if (static_cast<std::size_t>(end - begin) <= kLeafSize) {
-    m_nodes[id].tets.assign(order.begin() + begin, order.begin() + end);
-    for (std::int32_t t : m_nodes[id].tets) m_leaf_of[static_cast<std::size_t>(t)] = id;
+    for (std::int32_t i = begin; i < end; ++i) {
+      const std::int32_t t = items[static_cast<std::size_t>(i)].tet;
+      m_nodes[id].tets.push_back(t);
+      m_leaf_of[static_cast<std::size_t>(t)] = id;
+    }
     refit_leaf(id);
     return id;
   }
-  Vec3 clo = centroids[static_cast<std::size_t>(order[begin])], chi = clo;
+  Vec3 clo = items[static_cast<std::size_t>(begin)].c, chi = clo;
   for (std::int32_t i = begin; i < end; ++i) {
-    clo = clo.cwiseMin(centroids[static_cast<std::size_t>(order[i])]);
-    chi = chi.cwiseMax(centroids[static_cast<std::size_t>(order[i])]);
+    clo = clo.cwiseMin(items[static_cast<std::size_t>(i)].c);
+    chi = chi.cwiseMax(items[static_cast<std::size_t>(i)].c);
   }
   int axis = 0;
   (chi - clo).maxCoeff(&axis);
   const std::int32_t mid = begin + (end - begin) / 2;
-  std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
-                   [&](std::int32_t a, std::int32_t b) {
-                     const double ca = centroids[static_cast<std::size_t>(a)][axis];
-                     const double cb = centroids[static_cast<std::size_t>(b)][axis];
-                     return ca < cb || (ca == cb && a < b);
+  std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end,
+                   [&](const Item& a, const Item& b) {
+                     return a.c[axis] < b.c[axis] || (a.c[axis] == b.c[axis] && a.tet < b.tet);
                    });
-  const std::int32_t left = build(mesh, centroids, order, begin, mid, id);
-  const std::int32_t right = build(mesh, centroids, order, mid, end, id);
+  const std::int32_t left = build(items, begin, mid, id, depth + 1);
+  const std::int32_t right = build(items, mid, end, id, depth + 1);
   Node& n = m_nodes[id];
   n.left = left;
   n.right = right;
@@ -143,12 +143,92 @@ std::int32_t TetBvh::choose_leaf(std::int32_t tet) const {
 }
 
 void TetBvh::remove_from_leaf(std::int32_t tet) {
-  std::vector<std::int32_t>& v = m_nodes[m_leaf_of[static_cast<std::size_t>(tet)]].tets;
+  const std::int32_t leaf = m_leaf_of[static_cast<std::size_t>(tet)];
+  std::vector<std::int32_t>& v = m_nodes[leaf].tets;
   const auto it = std::find(v.begin(), v.end(), tet);
   if (it != v.end()) {
     *it = v.back();
     v.pop_back();
+    add_size(leaf, -1);
   }
+}
+
+void TetBvh::add_size(std::int32_t node, std::int32_t delta) {
+  for (std::int32_t k = node; k >= 0; k = m_nodes[k].parent) m_nodes[k].size += delta;
+}
+
+void TetBvh::collect(std::int32_t node, std::vector<std::int32_t>& tets) const {
+  std::vector<std::int32_t> stack{node};
+  while (!stack.empty()) {
+    const Node& n = m_nodes[stack.back()];
+    stack.pop_back();
+    if (n.left < 0) {
+      tets.insert(tets.end(), n.tets.begin(), n.tets.end());
+    } else {
+      stack.push_back(n.left);
+      stack.push_back(n.right);
+    }
+  }
+}
+
+std::int32_t TetBvh::max_depth() const {
+  std::int32_t lg = 0;
+  while ((std::int64_t{1} << lg) < num_tets() / static_cast<std::int32_t>(kLeafSize) + 1) ++lg;
+  return 2 * lg + 2;
+}
+
+// Rebuilds the subtree at `node` by median splits, in place: the new nodes are appended (so
+// children still come after their parent) and the new root is copied into `node`.
+void TetBvh::rebuild_subtree(const TetMesh& mesh, std::int32_t node) {
+  std::vector<std::int32_t> tets;
+  collect(node, tets);
+  std::int64_t old_nodes = 0;  // the old subtree below `node`, cleared (refit visits them)
+  if (m_nodes[node].left >= 0) {
+    std::vector<std::int32_t> stack{m_nodes[node].left, m_nodes[node].right};
+    while (!stack.empty()) {
+      const std::int32_t k = stack.back();
+      stack.pop_back();
+      ++old_nodes;
+      if (m_nodes[k].left >= 0) {
+        stack.push_back(m_nodes[k].left);
+        stack.push_back(m_nodes[k].right);
+      }
+      m_nodes[k] = Node{};
+      m_nodes[k].lo = kEmptyLo;
+      m_nodes[k].hi = kEmptyHi;
+    }
+  }
+  std::vector<Item> items(tets.size());
+  for (std::size_t k = 0; k < tets.size(); ++k) items[k] = {centroid(mesh, tets[k]), tets[k]};
+  const std::int32_t parent = m_nodes[node].parent;
+  const std::int32_t depth = m_nodes[node].depth;
+  const std::int32_t root = build(items, 0, static_cast<std::int32_t>(items.size()), parent, depth);
+  m_nodes[node] = std::move(m_nodes[root]);
+  m_nodes[root] = Node{};
+  m_nodes[root].lo = kEmptyLo;
+  m_nodes[root].hi = kEmptyHi;
+  Node& n = m_nodes[node];
+  if (n.left >= 0) {
+    m_nodes[n.left].parent = node;
+    m_nodes[n.right].parent = node;
+  } else {
+    for (std::int32_t t : n.tets) m_leaf_of[static_cast<std::size_t>(t)] = node;
+  }
+  m_orphans += old_nodes + 1;  // and the new root's slot
+  ++m_rebuilds;
+}
+
+// `leaf` is deeper than max_depth(): rebuild the highest ancestor with a child holding over
+// 0.7 of its tets. With every ancestor 0.7-balanced a leaf holding a tet is at most
+// log(m) / log(1 / 0.7) < 2 log2(m) deep, so one exists; the root is the fallback.
+void TetBvh::rebalance(const TetMesh& mesh, std::int32_t leaf) {
+  std::int32_t scapegoat = 0;
+  for (std::int32_t p = m_nodes[leaf].parent; p >= 0; p = m_nodes[p].parent) {
+    const Node& n = m_nodes[p];
+    const std::int32_t big = std::max(m_nodes[n.left].size, m_nodes[n.right].size);
+    if (static_cast<double>(big) > 0.7 * static_cast<double>(n.size)) scapegoat = p;
+  }
+  rebuild_subtree(mesh, scapegoat);
 }
 
 void TetBvh::split_leaf(const TetMesh& mesh, std::int32_t node) {
@@ -178,6 +258,9 @@ void TetBvh::split_leaf(const TetMesh& mesh, std::int32_t node) {
     m_leaf_of[static_cast<std::size_t>(tets[idx[k]])] = leaf;
   }
   m_nodes[left].parent = m_nodes[right].parent = node;
+  m_nodes[left].depth = m_nodes[right].depth = m_nodes[node].depth + 1;
+  m_nodes[left].size = static_cast<std::int32_t>(m_nodes[left].tets.size());
+  m_nodes[right].size = static_cast<std::int32_t>(m_nodes[right].tets.size());
   m_nodes[node].left = left;
   m_nodes[node].right = right;
   refit_leaf(left);
@@ -217,6 +300,7 @@ void TetBvh::update(const TetMesh& mesh, const TopologyDelta& d) {
     set_box(mesh, id);
     const std::int32_t leaf = choose_leaf(id);
     m_nodes[leaf].tets.push_back(id);
+    add_size(leaf, 1);
     m_leaf_of[static_cast<std::size_t>(id)] = leaf;
     // Grow the path now so the next choice sees this tet.
     m_nodes[leaf].lo = m_nodes[leaf].lo.cwiseMin(m_lo[static_cast<std::size_t>(id)]);
@@ -261,15 +345,36 @@ void TetBvh::update(const TetMesh& mesh, const TopologyDelta& d) {
       n.hi = m_nodes[n.left].hi.cwiseMax(m_nodes[n.right].hi);
     }
   }
+  // Depth bound: appended tets are the only ones that deepen the tree (no hole moves then).
+  const std::int32_t limit = max_depth();
+  for (std::int32_t k = reuse; k < added; ++k) {
+    const std::int32_t id = d.slot_of_added[static_cast<std::size_t>(k)];
+    if (id >= num_tets()) continue;
+    const std::int32_t leaf = m_leaf_of[static_cast<std::size_t>(id)];
+    if (m_nodes[leaf].depth > limit) rebalance(mesh, leaf);
+  }
+  // Reclaim the nodes rebuilds left behind once they outnumber the live ones.
+  if (m_orphans > static_cast<std::int64_t>(m_nodes.size()) / 2) {
+    const std::int64_t rebuilds = m_rebuilds;
+    *this = TetBvh(mesh);
+    m_rebuilds = rebuilds + 1;
+  }
 }
 
 std::int32_t TetBvh::depth() const {
   std::int32_t best = 0;
-  for (std::size_t k = 0; k < m_nodes.size(); ++k) {
-    if (m_nodes[k].left >= 0) continue;
-    std::int32_t d = 0;
-    for (std::int32_t p = m_nodes[k].parent; p >= 0; p = m_nodes[p].parent) ++d;
-    best = std::max(best, d);
+  if (m_nodes.empty()) return 0;
+  std::vector<std::pair<std::int32_t, std::int32_t>> stack{{0, 0}};  // reachable nodes only
+  while (!stack.empty()) {
+    const auto [k, d] = stack.back();
+    stack.pop_back();
+    const Node& n = m_nodes[k];
+    if (n.left < 0) {
+      best = std::max(best, d);
+    } else {
+      stack.push_back({n.left, d + 1});
+      stack.push_back({n.right, d + 1});
+    }
   }
   return best;
 }

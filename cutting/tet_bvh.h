@@ -27,8 +27,12 @@ class TetBvh {
   /// apply() filled (slot_of_added, moved_tets). Boxes of the changed tets are set, new tets go
   /// into the leaf their box grows least (a leaf over 8 tets splits), moved tets keep their
   /// leaf under their new id, and only the changed leaves and their ancestors are refitted:
-  /// O(changed tets x depth), independent of the mesh size. Throws std::invalid_argument when
-  /// the delta does not match (the BVH must be at delta.version_before's tet count).
+  /// O(changed tets x depth), independent of the mesh size. Depth stays bounded: when a leaf
+  /// gets deeper than max_depth() the highest unbalanced ancestor on its path (a child holding
+  /// over 3/4 of its tets, as in a scapegoat tree) is rebuilt by median splits, an amortised
+  /// O(log m) per inserted tet; nodes orphaned by rebuilds are reclaimed by a full rebuild once
+  /// they outnumber the live ones. Throws std::invalid_argument when the delta does not match
+  /// (the BVH must be at delta.version_before's tet count).
   void update(const TetMesh& mesh, const TopologyDelta& delta);
 
   /// Appends the ids of exactly the tets whose boxes meet [lo, hi] (m), as brute_force_query.
@@ -38,30 +42,45 @@ class TetBvh {
   [[nodiscard]] TetBoxQuery as_query() const;
 
   [[nodiscard]] std::int32_t num_tets() const { return static_cast<std::int32_t>(m_lo.size()); }
-  /// Depth of the deepest leaf (root = 0); for tests and benchmarks.
+  /// Depth of the deepest leaf (root = 0); for tests and benchmarks. O(nodes).
   [[nodiscard]] std::int32_t depth() const;
+  /// The bound update() keeps depth() under: 2 ceil(log2(m / 4 + 1)) + 2, m the tet count.
+  [[nodiscard]] std::int32_t max_depth() const;
+  /// Subtree rebuilds update() has done since construction (for tests and benchmarks).
+  [[nodiscard]] std::int64_t rebuilds() const { return m_rebuilds; }
 
  private:
   struct Node {
-    Vec3 lo, hi;
+    Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();
     std::int32_t left = -1;  ///< inner: children (leaf: -1)
     std::int32_t right = -1;
     std::int32_t parent = -1;
+    std::int32_t size = 0;           ///< tets in the subtree
+    std::int32_t depth = 0;          ///< root = 0
     std::vector<std::int32_t> tets;  ///< leaf: tet ids
   };
-  std::int32_t build(const TetMesh& mesh, const std::vector<Vec3>& centroids,
-                     std::vector<std::int32_t>& order, std::int32_t begin, std::int32_t end,
-                     std::int32_t parent);
+  struct Item {
+    Vec3 c = Vec3::Zero();  ///< centroid, m
+    std::int32_t tet = -1;
+  };
+  std::int32_t build(std::vector<Item>& items, std::int32_t begin, std::int32_t end,
+                     std::int32_t parent, std::int32_t depth);
   void set_box(const TetMesh& mesh, std::int32_t tet);
   void refit_leaf(std::int32_t node);
   void refit_up(std::int32_t node);
   void split_leaf(const TetMesh& mesh, std::int32_t node);
   std::int32_t choose_leaf(std::int32_t tet) const;
   void remove_from_leaf(std::int32_t tet);
+  void add_size(std::int32_t node, std::int32_t delta);
+  void rebalance(const TetMesh& mesh, std::int32_t leaf);
+  void rebuild_subtree(const TetMesh& mesh, std::int32_t node);
+  void collect(std::int32_t node, std::vector<std::int32_t>& tets) const;
 
   std::vector<Node> m_nodes;            ///< children always after their parent
   std::vector<Vec3> m_lo, m_hi;         ///< (m) box of each tet, m
   std::vector<std::int32_t> m_leaf_of;  ///< (m) leaf node holding each tet
+  std::int64_t m_orphans = 0;           ///< nodes no longer reachable (left by rebuilds)
+  std::int64_t m_rebuilds = 0;
 };
 
 }  // namespace serosa::cutting

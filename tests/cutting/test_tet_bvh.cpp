@@ -93,8 +93,8 @@ TEST(TetBvh, LocalUpdateAfterCutsMatchesBruteForce) {
           << "cut " << i;
     }
   }
-  // Known limit: repeated local inserts are not rebalanced yet, so the depth grows.
-  std::printf("BVH depth after %d cuts: %d\n", cuts, bvh.depth());
+  std::printf("BVH depth after %d cuts: %d (bound %d)\n", cuts, bvh.depth(), bvh.max_depth());
+  EXPECT_LE(bvh.depth(), bvh.max_depth());
   // Refit after node motion still works on the updated tree.
   for (Vec3& x : m.x) x += Vec3(0.2 * x.y(), 0.0, 0.0);
   bvh.refit(m);
@@ -103,6 +103,56 @@ TEST(TetBvh, LocalUpdateAfterCutsMatchesBruteForce) {
   // A delta that was not applied is refused.
   CutResult r = cut_mesh(m, testing::square(Vec3::UnitX(), Vec3(1.5, 2, 2), 50.0));
   EXPECT_THROW(bvh.update(m, r.delta), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace serosa::cutting
+
+namespace serosa::cutting {
+namespace {
+
+// 200 small cuts, a quarter of them in one corner (so the local inserts pile into a few leaves):
+// after every cut the updated BVH answers exactly as brute force, and its depth stays within
+// max_depth() = 2 ceil(log2(m / 4 + 1)) + 2 because deep paths are rebuilt.
+TEST(TetBvh, TwoHundredCutsStayExactAndShallow) {
+  TetMesh m = fixtures::grid(5, 1.0, 0.1, 7);
+  TetBvh bvh(m);
+  std::mt19937 rng(10);
+  std::normal_distribution<double> g;
+  std::uniform_real_distribution<double> u(0.4, 1.6), v(0.3, 4.7), s(0.0, 1.0), w(-0.5, 5.5);
+  std::int32_t deepest = 0;
+  for (int i = 0; i < 200; ++i) {
+    const Vec3 c = i % 4 == 0 ? Vec3(u(rng), u(rng), u(rng)) : Vec3(v(rng), v(rng), v(rng));
+    const ConvexPolygon blade = testing::square(Vec3(g(rng), g(rng), g(rng)), c, 0.15, 0.7 * i);
+    CutResult r = cut_mesh(m, blade, {}, bvh.as_query());
+    apply(m, r.delta);
+    bvh.update(m, r.delta);
+    ASSERT_EQ(bvh.num_tets(), m.num_tets());
+    deepest = std::max(deepest, bvh.depth());
+    ASSERT_LE(bvh.depth(), bvh.max_depth()) << "cut " << i << ", " << m.num_tets() << " tets";
+    const int queries = i % 20 == 19 ? 40 : 3;
+    for (int q = 0; q < queries; ++q) {
+      const Vec3 lo = q % 2 == 0 ? Vec3(w(rng), w(rng), w(rng)) : c - Vec3::Constant(0.3);
+      const Vec3 hi = lo + Vec3(s(rng), s(rng), s(rng));
+      ASSERT_EQ(sorted_query(bvh.as_query(), lo, hi), sorted_query(brute_force_query(m), lo, hi))
+          << "cut " << i;
+    }
+  }
+  std::printf("BVH after 200 cuts: %d tets, depth %d (deepest seen %d, bound %d), %lld rebuilds\n",
+              m.num_tets(), bvh.depth(), deepest, bvh.max_depth(),
+              static_cast<long long>(bvh.rebuilds()));
+  RecordProperty("bvh_depth_after_200_cuts", bvh.depth());
+  RecordProperty("bvh_rebuilds", static_cast<int>(bvh.rebuilds()));
+  EXPECT_GT(m.num_tets(), 750 * 3);  // the cuts did grow the mesh a lot
+  EXPECT_GT(bvh.rebuilds(), 0);      // and the bound was needed
+  // Refit keeps working on the rebuilt tree.
+  for (Vec3& x : m.x) x += Vec3(0.1 * x.y(), 0.0, 0.05 * x.x());
+  bvh.refit(m);
+  for (int q = 0; q < 40; ++q) {
+    const Vec3 lo(w(rng), w(rng), w(rng));
+    const Vec3 hi = lo + Vec3(s(rng), s(rng), s(rng));
+    ASSERT_EQ(sorted_query(bvh.as_query(), lo, hi), sorted_query(brute_force_query(m), lo, hi));
+  }
 }
 
 }  // namespace
