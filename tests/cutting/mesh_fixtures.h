@@ -51,6 +51,32 @@ inline TetMesh grid(int k, double h = 1.0, double jitter = 0.0, std::uint32_t se
   return m;
 }
 
+/// A box of nx x ny x nz cubes of side h (m), each split into 6 tets around its main diagonal
+/// (Kuhn), all exactly on the grid. Group 1 + groups * i / nx for cube column i.
+inline TetMesh box(int nx, int ny, int nz, int groups = 1, double h = 0.01) {
+  TetMesh m;
+  auto id = [&](int i, int j, int l) { return (i * (ny + 1) + j) * (nz + 1) + l; };
+  for (int i = 0; i <= nx; ++i)
+    for (int j = 0; j <= ny; ++j)
+      for (int l = 0; l <= nz; ++l) m.add_node(Vec3(i * h, j * h, l * h));
+  constexpr std::array<std::array<int, 3>, 6> perms{
+      {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}};
+  for (int i = 0; i < nx; ++i)
+    for (int j = 0; j < ny; ++j)
+      for (int l = 0; l < nz; ++l)
+        for (const auto& p : perms) {
+          std::array<int, 3> c{i, j, l};
+          Tet t{};
+          t[0] = id(c[0], c[1], c[2]);
+          for (int s = 0; s < 3; ++s) {
+            ++c[p[s]];
+            t[s + 1] = id(c[0], c[1], c[2]);
+          }
+          add_oriented(m, t, static_cast<std::uint16_t>(1 + groups * i / nx));
+        }
+  return m;
+}
+
 /// One random tet with positive volume (not too flat), nodes in [-1, 1]^3.
 inline TetMesh random_tet(std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
