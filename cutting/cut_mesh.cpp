@@ -36,8 +36,13 @@
 // 5. Complete or partial. A crossing edge gets a cut point iff the point lies inside the polygon
 //    grown by tol (a property of the edge, so every tet around it agrees); it opens (two nodes)
 //    iff it lies inside by more than tol and no "pinned" tet (below) holds the edge. A coplanar
-//    node is cloned iff it lies inside by more than tol, no pinned tet holds it, every coplanar
-//    face around it lies inside, no flat tet holds it, and both sides use it. A straddling tet is
+//    node is cloned iff it lies inside the grown polygon, no pinned tet holds it, every coplanar
+//    face around it that is still welded (shared by two tets) lies inside, every partial tet
+//    holding it has both its section sides from the node starting inside the blade, no flat
+//    tet holds it, and both sides use it. So a node on the blade's outline opens when the far
+//    side is already open: a scissors closing in many thin steps, each step's trailing edge on
+//    the previous step's crack front (its apex and face points), carries the crack on. A
+//    straddling tet is
 //    complete when its whole section (the polygon Sigma of its cut points and coplanar nodes)
 //    lies in the grown polygon; it takes the patterns of point 2. Otherwise the blade's edge
 //    ends inside it (partial cut; the paper's end cases), and it is cut exactly along
@@ -336,9 +341,25 @@ class Cutter {
 
   // Clones of coplanar nodes (rules in the design note, point 5), in ascending node order.
   void decide_clones() {
+    // Coplanar faces of the candidates: a face two candidates share is still welded; a face
+    // one candidate holds is already open (an earlier cut's crack) or on the surface.
+    std::unordered_map<std::array<std::int32_t, 3>, int, FaceKeyHash> coplanar;
+    for (const auto& [id, tets] : m_zero_tets)
+      for (std::int32_t ci : tets) {
+        const TetInfo& info = m_tets[static_cast<std::size_t>(ci)];
+        const Tet& t = m_mesh.tets[m_cands[static_cast<std::size_t>(ci)]];
+        for (const auto& f : kFaces) {
+          std::array<std::int32_t, 3> key{t[f[0]], t[f[1]], t[f[2]]};
+          if (info.sign[f[0]] != Sign::kZero || info.sign[f[1]] != Sign::kZero ||
+              info.sign[f[2]] != Sign::kZero || std::min({key[0], key[1], key[2]}) != id)
+            continue;  // counted once, from its smallest node
+          std::sort(key.begin(), key.end());
+          ++coplanar[key];
+        }
+      }
     std::vector<std::int32_t> zero_nodes;
     for (const auto& [id, tets] : m_zero_tets)
-      if (m_nodes[id].strict) zero_nodes.push_back(id);
+      if (m_nodes[id].inside) zero_nodes.push_back(id);
     std::sort(zero_nodes.begin(), zero_nodes.end());
     for (std::int32_t a : zero_nodes) {
       bool ok = true, pos_user = false, neg_user = false;
@@ -346,7 +367,11 @@ class Cutter {
         const TetInfo& info = m_tets[static_cast<std::size_t>(ci)];
         const Tet& t = m_mesh.tets[m_cands[static_cast<std::size_t>(ci)]];
         if (info.straddles) {
-          ok = ok && !info.pinned;
+          // Complete: opened by its pattern. Partial: the crack may reach its coplanar node
+          // only where both section sides from it start inside the blade (a node on the
+          // outline whose far side an earlier cut already opened: a scissors' crack front).
+          ok = ok && !info.pinned &&
+               (info.complete || (info.interacts && sides_start_inside(t, info, a)));
           pos_user = neg_user = true;
           continue;
         }
@@ -357,18 +382,55 @@ class Cutter {
           any = any || info.sign[k] != Sign::kZero;
         }
         ok = ok && any;  // a flat tet (all four coplanar) pins its nodes
+        // Every coplanar face around it that is still welded must lie inside the blade; faces
+        // already open stay open.
         for (const auto& f : kFaces) {
-          bool has_a = false, coplanar = true, inside = true;
+          bool has_a = false, copl = true, inside = true;
           for (int k : f) {
             has_a = has_a || t[k] == a;
-            coplanar = coplanar && info.sign[k] == Sign::kZero;
+            copl = copl && info.sign[k] == Sign::kZero;
             inside = inside && m_nodes[t[k]].inside;
           }
-          if (has_a && coplanar) ok = ok && inside;
+          if (!has_a || !copl || inside) continue;
+          std::array<std::int32_t, 3> key{t[f[0]], t[f[1]], t[f[2]]};
+          std::sort(key.begin(), key.end());
+          ok = ok && coplanar[key] < 2;
         }
       }
-      if (ok && pos_user && neg_user) m_weld.clone(a);
+      if (ok && pos_user && neg_user) {
+        m_weld.clone(a);
+        if (!m_nodes[a].strict) ++m_result.stats.clones_on_outline;
+      }
     }
+  }
+
+  // Partial tet t with coplanar node a: both sides of its section from a start inside the
+  // blade (the midpoint of a and the next point along the side: a face point or the side's
+  // other end), so opening a opens only the part of the section the blade covers.
+  bool sides_start_inside(const Tet& t, const TetInfo& info, std::int32_t a) {
+    const std::vector<SecVert> sv = section(t, info);
+    const std::size_t ns = sv.size();
+    const std::uint64_t label = edge_key(a, a);
+    std::size_t i = ns;
+    for (std::size_t k = 0; k < ns; ++k)
+      if (sv[k].label == label) i = k;
+    if (i == ns || ns < 3) return false;
+    const Vec3 xa = m_mesh.x[a];
+    for (const SecVert* u : {&sv[(i + 1) % ns], &sv[(i + ns - 1) % ns]}) {
+      const auto key = face_key_of(sv[i], *u);
+      if (key[0] == -2) return false;
+      Vec3 next = u->combo.cur(m_mesh);
+      if (key[0] >= 0) {
+        const auto it = m_faces.find(key);
+        if (it != m_faces.end() && !it->second.points.empty()) {
+          const FacePoint& fp =
+              label < u->label ? it->second.points.front() : it->second.points.back();
+          next = fp.combo.cur(m_mesh);
+        }
+      }
+      if (m_blade.inside_margin(0.5 * (xa + next)) < -m_tol) return false;
+    }
+    return true;
   }
 
   // Id of original node v on side pos (its clone on the positive side).

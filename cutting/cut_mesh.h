@@ -31,13 +31,14 @@ struct CutStats {
   std::int64_t tets_removed = 0;     ///< = tets_split + tets_relabelled + tets_partial
   std::int64_t tets_added = 0;
   std::int64_t nodes_added = 0;
-  std::int64_t edge_pairs = 0;       ///< opened cut edges (two nodes each)
-  std::int64_t edge_singles = 0;     ///< welded cut edges (one node each)
-  std::int64_t clones = 0;           ///< coplanar nodes cloned
-  std::int64_t steiner_points = 0;   ///< Schönhardt prisms and the apexes of partial tets
-  std::int64_t face_points = 0;      ///< where the blade's outline crosses a tet face
-  std::int64_t degenerate_tets = 0;  ///< emitted tets with non-positive rest volume (must be 0)
-  double tolerance_m = 0.0;          ///< the classification tolerance used
+  std::int64_t edge_pairs = 0;         ///< opened cut edges (two nodes each)
+  std::int64_t edge_singles = 0;       ///< welded cut edges (one node each)
+  std::int64_t clones = 0;             ///< coplanar nodes cloned
+  std::int64_t clones_on_outline = 0;  ///< of those, on the blade's outline (a crack front)
+  std::int64_t steiner_points = 0;     ///< Schönhardt prisms and the apexes of partial tets
+  std::int64_t face_points = 0;        ///< where the blade's outline crosses a tet face
+  std::int64_t degenerate_tets = 0;    ///< emitted tets with non-positive rest volume (must be 0)
+  double tolerance_m = 0.0;            ///< the classification tolerance used
   std::array<std::int64_t, 81> per_code{};  ///< candidates per sign case (case_code)
   std::array<std::int64_t, kNumCanonicalCases> per_case{};        ///< candidates per canonical case
   std::array<std::int64_t, kNumCanonicalCases> split_per_case{};  ///< split/relabelled per case
