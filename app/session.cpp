@@ -14,6 +14,7 @@
 
 #include "app/assemble_state.h"
 #include "app/compose.h"
+#include "app/overlay_stats.h"
 #include "app/render_frame_from_surface.h"
 #include "engine/scene.h"
 #include "engine/triple_buffer.h"
@@ -144,14 +145,15 @@ class SolverLoop {
       cam = m_fitted;
     }
     f.camera = *cam;
-    render::OverlayData& o = f.overlay;
-    o.sim_time_s = m_state.time_s;
-    o.fem_ms_per_step = m_step_ms;
-    o.solver_rate_hz = m_rate_hz;
-    o.haptic_rate_hz = 0.0;  // no haptic loop in this session yet
-    o.cuts = m_cuts;
-    o.paused = m_control.paused.load();
-    o.slow_motion = m_slow;
+    FrameStats stats;
+    stats.sim_time_s = m_state.time_s;
+    stats.fem_ms_per_step = m_step_ms;
+    stats.solver_rate_hz = m_rate_hz;
+    stats.haptics = nullptr;  // no haptic loop in this session yet: the overlay shows a dash
+    stats.cuts = m_cuts;
+    stats.paused = m_control.paused.load();
+    stats.slow_motion = m_slow;
+    f.overlay = overlay_data(stats);
     m_frames.publish();
   }
 

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "render/gl_program.h"
@@ -65,6 +66,42 @@ void format_time(double s, char* out, std::size_t size) {
 }
 
 }  // namespace
+
+OverlayText overlay_text(const OverlayData& data) {
+  OverlayText t;
+  char line[160];
+  std::snprintf(line, sizeof line, "t = %.2f s%s%s", data.sim_time_s,
+                data.paused ? "  [paused]" : "", data.slow_motion ? "  [slow motion]" : "");
+  t.stats.emplace_back(line);
+  std::snprintf(line, sizeof line, "FEM %.2f ms/step  (%.0f steps/s)", data.fem_ms_per_step,
+                data.solver_rate_hz);
+  t.stats.emplace_back(line);
+  if (data.haptic_rate_hz > 0.0) {
+    std::snprintf(line, sizeof line, "haptics %.0f Hz", data.haptic_rate_hz);
+    t.stats.emplace_back(line);
+  } else {
+    t.stats.emplace_back("haptics \u2014");
+  }
+  std::snprintf(line, sizeof line, "cuts %lld", static_cast<long long>(data.cuts));
+  t.stats.emplace_back(line);
+  for (const OverlayMetric& m : data.metrics) {
+    std::string l = m.name;
+    std::snprintf(line, sizeof line, " %.3g", m.value);
+    l.append(line);
+    if (!m.unit.empty()) l.append(" ").append(m.unit);
+    t.stats.push_back(std::move(l));
+  }
+  if (data.replay) {
+    char now[32];
+    char total[32];
+    format_time(data.replay_position_s, now, sizeof now);
+    format_time(data.replay_duration_s, total, sizeof total);
+    std::snprintf(line, sizeof line, "%s / %s  x%.2g%s", now, total, data.replay_speed,
+                  data.paused ? "  [paused]" : "");
+    t.timeline = line;
+  }
+  return t;
+}
 
 const char* view_name(SnapshotOptions::View view) {
   switch (view) {
@@ -189,21 +226,17 @@ OverlayResult Overlay::layout(const OverlayData& data, const SnapshotOptions& op
   ImGui::SetNextWindowPos(ImVec2(10.0f, 10.0f), ImGuiCond_Always);
   ImGui::SetNextWindowBgAlpha(0.55f);
   if (ImGui::Begin("Statistics", nullptr, panel)) {
-    ImGui::Text("t = %.2f s%s%s", data.sim_time_s, data.paused ? "  [paused]" : "",
-                data.slow_motion ? "  [slow motion]" : "");
-    ImGui::Text("FEM %.2f ms/step  (%.0f steps/s)", data.fem_ms_per_step, data.solver_rate_hz);
-    if (data.haptic_rate_hz > 0.0) {
-      ImGui::Text("haptics %.0f Hz", data.haptic_rate_hz);
-    } else {
-      ImGui::TextDisabled("haptics off");
+    const OverlayText text = overlay_text(data);
+    for (std::size_t i = 0; i < text.stats.size(); ++i) {
+      if (i == 4) ImGui::Separator();  // the metrics
+      if (i == 2 && data.haptic_rate_hz <= 0.0) {
+        // ImGui's built-in font has no em dash: a hyphen in the picture, greyed out.
+        ImGui::TextDisabled("haptics -");
+      } else {
+        ImGui::TextUnformatted(text.stats[i].c_str());
+      }
     }
-    ImGui::Text("cuts %lld", static_cast<long long>(data.cuts));
-    if (!data.metrics.empty()) {
-      ImGui::Separator();
-      for (const OverlayMetric& m : data.metrics)
-        ImGui::Text("%s %.3g %s", m.name.c_str(), m.value, m.unit.c_str());
-      ImGui::Separator();
-    }
+    if (text.stats.size() > 4) ImGui::Separator();
     int view = 0;
     for (std::size_t i = 0; i < kViews.size(); ++i)
       if (kViews[i] == options.view) view = static_cast<int>(i);
@@ -233,17 +266,12 @@ OverlayResult Overlay::layout(const OverlayData& data, const SnapshotOptions& op
       if (ImGui::Button(data.paused ? " Play  " : " Pause ")) result.toggle_pause = true;
       result.pause_button = last_item_rect();
       ImGui::SameLine();
-      char now[32];
-      char total[32];
-      format_time(data.replay_position_s, now, sizeof now);
-      format_time(data.replay_duration_s, total, sizeof total);
-      char label[80];
-      std::snprintf(label, sizeof label, "%s / %s", now, total);
+      const std::string label = overlay_text(data).timeline;
       const double duration = std::max(data.replay_duration_s, 1e-6);
       auto position =
           static_cast<float>(std::clamp(data.replay_position_s, 0.0, duration) / duration);
       ImGui::SetNextItemWidth(-1.0f);
-      if (ImGui::SliderFloat("##timeline", &position, 0.0f, 1.0f, label,
+      if (ImGui::SliderFloat("##timeline", &position, 0.0f, 1.0f, label.c_str(),
                              ImGuiSliderFlags_AlwaysClamp)) {
         result.seek_s = static_cast<double>(position) * duration;
       }

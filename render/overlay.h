@@ -6,6 +6,8 @@
 #include <array>
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "render/render_frame.h"
 #include "render/snapshot_options.h"
@@ -69,6 +71,18 @@ class Overlay {
   bool first_frame_ = true;
   bool replay_shown_ = false;  // the replay panel was laid out last frame
 };
+
+/// The text the overlay shows for `data`, line by line (no GL, no ImGui: what tests check).
+struct OverlayText {
+  /// The statistics panel: "t = 12.50 s" (with "  [paused]", "  [slow motion]"),
+  /// "FEM 3.20 ms/step  (200 steps/s)", "haptics 1000 Hz" or "haptics \u2014" (an em dash: no
+  /// haptic loop runs), "cuts 2", then one line per metric: "max force 1.8 N".
+  std::vector<std::string> stats;
+  /// The replay timeline's label, "0:15.0 / 1:00.0  x1.0" (with "  [paused]"); empty outside
+  /// replays.
+  std::string timeline;
+};
+[[nodiscard]] OverlayText overlay_text(const OverlayData& data);
 
 /// The views' names as the overlay and the window title show them: "visual", "collision",
 /// "mechanical".

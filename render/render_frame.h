@@ -58,6 +58,7 @@ struct OverlayData {
   bool replay = false;
   double replay_position_s = 0.0;      ///< position in the recording, s
   double replay_duration_s = 0.0;      ///< length of the recording, s
+  double replay_speed = 1.0;           ///< playback speed, x real time (> 0)
   std::vector<OverlayMetric> metrics;  ///< listed under the statistics, in this order
 };
 

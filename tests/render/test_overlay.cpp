@@ -173,3 +173,50 @@ TEST_F(OverlayTest, ClicksBecomeActions) {
 
 }  // namespace
 }  // namespace serosa::render
+
+namespace serosa::render {
+namespace {
+
+// The overlay's text comes from the frame's statistics (no GL involved).
+TEST(OverlayText, StatisticsLinesComeFromTheFrameStats) {
+  OverlayData d;
+  d.sim_time_s = 12.5;
+  d.fem_ms_per_step = 3.25;
+  d.solver_rate_hz = 199.6;
+  d.cuts = 3;
+  OverlayText t = overlay_text(d);
+  ASSERT_EQ(t.stats.size(), 4u);
+  EXPECT_EQ(t.stats[0], "t = 12.50 s");
+  EXPECT_EQ(t.stats[1], "FEM 3.25 ms/step  (200 steps/s)");
+  EXPECT_EQ(t.stats[2], "haptics \u2014");  // no haptic loop
+  EXPECT_EQ(t.stats[3], "cuts 3");
+  EXPECT_TRUE(t.timeline.empty());  // not a replay
+
+  d.haptic_rate_hz = 998.7;
+  d.paused = true;
+  d.slow_motion = true;
+  d.metrics = {{"max force", 1.8, "N"}, {"path length", 0.1234, "m"}, {"cuts made", 2.0, ""}};
+  t = overlay_text(d);
+  ASSERT_EQ(t.stats.size(), 7u);
+  EXPECT_EQ(t.stats[0], "t = 12.50 s  [paused]  [slow motion]");
+  EXPECT_EQ(t.stats[2], "haptics 999 Hz");
+  EXPECT_EQ(t.stats[4], "max force 1.8 N");
+  EXPECT_EQ(t.stats[5], "path length 0.123 m");
+  EXPECT_EQ(t.stats[6], "cuts made 2");
+}
+
+TEST(OverlayText, ReplayTimelineShowsPositionDurationSpeedAndPause) {
+  OverlayData d;
+  d.replay = true;
+  d.replay_position_s = 75.25;
+  d.replay_duration_s = 130.0;
+  d.replay_speed = 0.5;
+  EXPECT_EQ(overlay_text(d).timeline, "1:15.2 / 2:10.0  x0.5");
+  d.paused = true;
+  d.replay_speed = 2.0;
+  d.replay_position_s = -1.0;  // clamped to the start
+  EXPECT_EQ(overlay_text(d).timeline, "0:00.0 / 2:10.0  x2  [paused]");
+}
+
+}  // namespace
+}  // namespace serosa::render

@@ -1,0 +1,156 @@
+#include "app/replay_controller.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "app/assemble_state.h"
+#include "app/compose.h"
+#include "app/record_stage.h"
+#include "engine/input_error.h"
+
+namespace serosa::app {
+namespace {
+
+// Last stage: the state hash where the recorder took it, compared with the recording's.
+class HashStage final : public Stage {
+ public:
+  explicit HashStage(const std::map<std::uint64_t, std::uint64_t>& recorded)
+      : m_recorded(recorded) {}
+  [[nodiscard]] std::string_view name() const noexcept override { return "replay-hash"; }
+  void step(const StepContext& ctx, SimState& state) override {
+    m_last = state_hash(state);
+    const auto it = m_recorded.find(ctx.step);
+    if (it == m_recorded.end()) return;
+    ++m_checked;
+    if (it->second != *m_last && !m_diverged) m_diverged = ctx.step;
+  }
+  const std::map<std::uint64_t, std::uint64_t>& m_recorded;
+  std::optional<std::uint64_t> m_last;
+  std::uint64_t m_checked = 0;
+  std::optional<std::uint64_t> m_diverged;
+};
+
+}  // namespace
+
+struct ReplayController::Pipeline {
+  AssembledScene assembled;
+  Composition comp;
+  HashStage* hash = nullptr;
+};
+
+ReplayController::ReplayController(const std::filesystem::path& recording,
+                                   ReplayControllerOptions options)
+    : m_rec(recording::read_recording(recording)), m_options(options) {
+  const std::string file = recording.string();
+  const std::string scene_path = m_rec.header.get("scene_path");
+  const std::string scene_text = m_rec.header.get("scene_text");
+  if (scene_path.empty() || scene_text.empty())
+    throw InputError(file, 0, "the header holds no scene", "scene_path and scene_text");
+  m_scene = parse_scene_text(scene_text, scene_path);
+  for (std::size_t s = 0; s < m_rec.inputs.size(); ++s)
+    if (m_rec.inputs[s].size() != m_scene.tools.size())
+      throw InputError(file, 0,
+                       "step " + std::to_string(s) + " records " +
+                           std::to_string(m_rec.inputs[s].size()) + " tools, the scene has " +
+                           std::to_string(m_scene.tools.size()));
+  if (!(options.snapshot_every_s > 0.0))
+    throw InputError("snapshot_every_s", 0, "not positive", "> 0 s");
+  m_snapshot_every = std::max<std::uint64_t>(
+      1, static_cast<std::uint64_t>(std::llround(options.snapshot_every_s / dt_s())));
+  set_speed(options.speed);
+  m_initial = std::make_unique<AssembledScene>(assemble_state(m_scene));
+  restart(nullptr);
+}
+
+ReplayController::~ReplayController() = default;
+
+void ReplayController::restart(const Snapshot* from) {
+  m_sim.reset();
+  auto sim = std::make_unique<Pipeline>();
+  sim->assembled = *m_initial;
+  if (from != nullptr) sim->assembled.state = from->state;
+  ComposeOptions co;
+  co.tool_input = std::make_unique<ReplayInputStage>(m_rec.inputs);
+  sim->comp = compose(m_scene, sim->assembled, std::move(co));
+  auto hash = std::make_unique<HashStage>(m_rec.hashes);
+  sim->hash = hash.get();
+  if (from != nullptr) hash->m_last = from->hash;
+  sim->comp.runner->add(std::move(hash));
+  m_sim = std::move(sim);
+  ++m_restarts;
+  if (from == nullptr) {
+    m_exact = true;
+    m_snapshots.try_emplace(0, Snapshot{m_sim->assembled.state, std::nullopt});
+  } else {
+    m_exact = from->state.step == 0;
+  }
+}
+
+void ReplayController::set_speed(double speed) {
+  m_speed = std::clamp(std::isfinite(speed) ? speed : 1.0, kMinSpeed, kMaxSpeed);
+}
+
+bool ReplayController::step_forward() {
+  if (at_end()) return false;
+  SimState& s = m_sim->assembled.state;
+  m_sim->comp.runner->step(s);
+  if (s.step % m_snapshot_every == 0 && m_exact)
+    m_snapshots.try_emplace(s.step, Snapshot{s, m_sim->hash->m_last});
+  return true;
+}
+
+std::uint64_t ReplayController::advance(double wall_dt_s) {
+  if (m_paused || at_end() || !(wall_dt_s > 0.0)) return 0;
+  m_due += wall_dt_s * m_speed;
+  std::uint64_t taken = 0;
+  while (m_due >= dt_s() && step_forward()) {
+    m_due -= dt_s();
+    ++taken;
+  }
+  if (at_end()) m_due = 0.0;
+  return taken;
+}
+
+void ReplayController::seek_step(std::uint64_t steps) {
+  steps = std::min(steps, num_steps());
+  m_due = 0.0;
+  if (steps < steps_taken()) {
+    if (m_options.exact_seek) {
+      restart(nullptr);
+    } else {
+      // The nearest snapshot at or before the target (step 0 always exists).
+      auto it = m_snapshots.upper_bound(steps);
+      --it;
+      if (it->first == 0) {
+        restart(nullptr);
+      } else {
+        const Snapshot from = it->second;
+        restart(&from);
+      }
+    }
+  }
+  while (steps_taken() < steps && step_forward()) {
+  }
+}
+
+void ReplayController::seek(double t_s) {
+  const double k = std::isfinite(t_s) ? std::round(std::max(t_s, 0.0) / dt_s()) : 0.0;
+  seek_step(static_cast<std::uint64_t>(std::min(k, static_cast<double>(num_steps()))));
+}
+
+std::uint64_t ReplayController::steps_taken() const { return m_sim->assembled.state.step; }
+double ReplayController::time_s() const { return m_sim->assembled.state.time_s; }
+std::optional<std::uint64_t> ReplayController::last_step_hash() const {
+  return m_sim->hash->m_last;
+}
+std::uint64_t ReplayController::hashes_checked() const { return m_sim->hash->m_checked; }
+std::optional<std::uint64_t> ReplayController::diverged_at() const {
+  return m_sim->hash->m_diverged;
+}
+const SimState& ReplayController::state() const { return m_sim->assembled.state; }
+const Composition& ReplayController::composition() const { return m_sim->comp; }
+std::map<int, std::string> ReplayController::group_names() const {
+  return m_initial->group_names();
+}
+
+}  // namespace serosa::app

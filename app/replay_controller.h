@@ -1,0 +1,120 @@
+// ReplayController: the instructor's replay without a window (the core of `serosa replay` in a
+// window, shared/DESIGN.md; issue 8 item 5): plays a .lapr recording forward at a speed, pauses,
+// and seeks to any time. Forward seeks step on; backward seeks restart from a snapshot.
+//
+// Snapshots. While playing forward the controller keeps a copy of the SimState every
+// `snapshot_every_s` (and the start). The stages keep caches a SimState does not hold (FEM's
+// per-tet rotations that warm-start the next step, the scissors' last blade pose, the grasper's
+// hold, metrics sums), so a simulation restarted from a mid-run SimState continues close to, but
+// not bit for bit like, the recording. Hence two seek modes:
+//  - exact (default): a backward seek re-simulates from the start (the step-0 snapshot, where a
+//    fresh pipeline IS the recorded one): every state hash equals the recording's. O(t).
+//  - snapshot: restores the nearest snapshot at or before the target into a fresh pipeline and
+//    re-simulates from there: O(snapshot interval), the state at the snapshot itself is bit-exact,
+//    later states differ from the recording by the solvers' tolerances (the controller then says
+//    exact() == false until the next exact seek).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/recording_reader.h"
+#include "engine/scene.h"
+#include "engine/sim_state.h"
+
+namespace serosa::app {
+
+struct AssembledScene;
+struct Composition;
+
+struct ReplayControllerOptions {
+  double snapshot_every_s = 1.0;  ///< simulated time between snapshots, s (> 0)
+  bool exact_seek = true;         ///< backward seeks re-simulate from the start (see above)
+  double speed = 1.0;             ///< initial playback speed, x real time
+};
+
+class ReplayController {
+ public:
+  static constexpr double kMinSpeed = 1.0 / 16.0;
+  static constexpr double kMaxSpeed = 16.0;
+
+  /// Opens the recording and builds its scene from the header. Throws InputError when the file
+  /// is not a usable recording (as run_replay does).
+  explicit ReplayController(const std::filesystem::path& recording,
+                            ReplayControllerOptions options = {});
+  ~ReplayController();
+  ReplayController(const ReplayController&) = delete;
+  ReplayController& operator=(const ReplayController&) = delete;
+
+  // ---- playback ----
+  void set_paused(bool paused) { m_paused = paused; }
+  [[nodiscard]] bool paused() const { return m_paused; }
+  /// Clamped to [kMinSpeed, kMaxSpeed].
+  void set_speed(double speed);
+  [[nodiscard]] double speed() const { return m_speed; }
+  /// Plays `wall_dt_s` of wall time at the current speed (nothing while paused or at the end):
+  /// takes every step that became due. Returns the steps taken.
+  std::uint64_t advance(double wall_dt_s);
+  /// Takes one step (false at the end of the recording).
+  bool step_forward();
+
+  // ---- seeking ----
+  /// To the state after `steps` recorded steps (clamped to the recording's length).
+  void seek_step(std::uint64_t steps);
+  /// To simulated time t, s: the state after round(t / dt) steps (clamped).
+  void seek(double t_s);
+
+  // ---- where we are ----
+  [[nodiscard]] std::uint64_t steps_taken() const;  ///< = state().step
+  [[nodiscard]] std::uint64_t num_steps() const { return m_rec.inputs.size(); }
+  [[nodiscard]] double dt_s() const { return m_scene.settings.dt_s; }
+  [[nodiscard]] double time_s() const;
+  [[nodiscard]] double duration_s() const { return static_cast<double>(num_steps()) * dt_s(); }
+  [[nodiscard]] bool at_end() const { return steps_taken() >= num_steps(); }
+  /// True while the state follows the recording bit for bit (no snapshot-mode seek since the last
+  /// restart from the start).
+  [[nodiscard]] bool exact() const { return m_exact; }
+  /// The hash of the state as the recording hashes it (after the stages of the last step, before
+  /// the step counter advanced); nullopt before the first step.
+  [[nodiscard]] std::optional<std::uint64_t> last_step_hash() const;
+  /// Recorded hashes compared so far on this pipeline, and the first step whose hash differed.
+  [[nodiscard]] std::uint64_t hashes_checked() const;
+  [[nodiscard]] std::optional<std::uint64_t> diverged_at() const;
+  [[nodiscard]] std::size_t num_snapshots() const { return m_snapshots.size(); }
+  /// Full restarts so far (the first build included): tests check which seeks restart.
+  [[nodiscard]] std::uint64_t restarts() const { return m_restarts; }
+
+  [[nodiscard]] const SimState& state() const;
+  [[nodiscard]] const Scene& scene() const { return m_scene; }
+  [[nodiscard]] const recording::Recording& recording() const { return m_rec; }
+  [[nodiscard]] const Composition& composition() const;
+  [[nodiscard]] std::map<int, std::string> group_names() const;
+
+ private:
+  struct Pipeline;
+  struct Snapshot {
+    SimState state;
+    std::optional<std::uint64_t> hash;  // last_step_hash() there
+  };
+  void restart(const Snapshot* from);
+
+  recording::Recording m_rec;
+  Scene m_scene;
+  ReplayControllerOptions m_options;
+  std::unique_ptr<AssembledScene> m_initial;  // the scene at step 0, copied on restarts
+  std::unique_ptr<Pipeline> m_sim;
+  std::map<std::uint64_t, Snapshot> m_snapshots;  // steps taken -> snapshot
+  std::uint64_t m_snapshot_every = 1;             // steps
+  double m_speed = 1.0;
+  double m_due = 0.0;  // simulated time owed to playback, s
+  bool m_paused = false;
+  bool m_exact = true;
+  std::uint64_t m_restarts = 0;
+};
+
+}  // namespace serosa::app

@@ -1,0 +1,170 @@
+// The replay window's core without a window (app/replay_controller.h): play, pause, speed and
+// seek over a recorded scripted transection (cuts included). Exact seeks land on the recorded
+// state hashes, backwards equals forwards; snapshot seeks are bit-exact at the snapshot and stay
+// close after it.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <map>
+
+#include "app/headless.h"
+#include "app/replay_controller.h"
+#include "app_test_util.h"
+#include "engine/input_error.h"
+
+namespace serosa::app {
+namespace {
+
+using namespace serosa::app::testing;
+
+constexpr std::int64_t kSteps = 40;  // hashes recorded after steps 19 and 39 (hash_every 20)
+
+// Records the scripted transection once for all tests of this file.
+const fs::path& recording() {
+  static const fs::path file = [] {
+    const fs::path dir = out_dir("replay_controller");
+    HeadlessOptions o;
+    o.scene = source("config/appendectomy.toml");
+    o.tool_path = source("config/paths/appendix_transection.csv");
+    o.steps = kSteps;
+    o.record = dir / "run.lapr";
+    o.progress = false;
+    const auto report = run_headless(o);
+    EXPECT_GT(report["cutting"]["cuts"].get<int>(), 0);
+    return *o.record;
+  }();
+  return file;
+}
+
+// The hash after each step of a plain forward replay: steps taken -> last_step_hash().
+const std::map<std::uint64_t, std::uint64_t>& forward_hashes() {
+  static const std::map<std::uint64_t, std::uint64_t> hashes = [] {
+    ReplayController c(recording());
+    std::map<std::uint64_t, std::uint64_t> h;
+    while (c.step_forward()) h[c.steps_taken()] = *c.last_step_hash();
+    EXPECT_EQ(c.hashes_checked(), 2u);
+    EXPECT_FALSE(c.diverged_at().has_value());
+    return h;
+  }();
+  return hashes;
+}
+
+// A 40-step recording of the beam (FEM only, no tools): cheap, for pacing.
+const fs::path& beam_recording() {
+  static const fs::path file = [] {
+    const fs::path dir = out_dir("replay_controller_beam");
+    HeadlessOptions o;
+    o.scene = source("config/beam.toml");
+    o.steps = kSteps;
+    o.record = dir / "beam.lapr";
+    o.progress = false;
+    (void)run_headless(o);
+    return *o.record;
+  }();
+  return file;
+}
+
+TEST(ReplayController, ExactSeekLandsOnTheRecordedHashesBackwardsAndForwards) {
+  const auto& fwd = forward_hashes();
+  ASSERT_EQ(fwd.size(), static_cast<std::size_t>(kSteps));
+  ReplayControllerOptions o;
+  o.snapshot_every_s = 0.05;  // 10 steps
+  ReplayController c(recording(), o);
+  EXPECT_EQ(c.num_steps(), 40u);
+  EXPECT_NEAR(c.duration_s(), 0.2, 1e-12);
+  const auto& rec = c.recording().hashes;
+
+  // Forward to t = 0.1 s: the state after 20 steps, hashed as the recorder did after step 19.
+  c.seek(0.1);
+  EXPECT_EQ(c.steps_taken(), 20u);
+  ASSERT_TRUE(c.last_step_hash().has_value());
+  EXPECT_EQ(*c.last_step_hash(), rec.at(19));
+  // To the end, then back to 20 and to 7: the same hashes as going forward.
+  c.seek_step(40);
+  EXPECT_EQ(*c.last_step_hash(), rec.at(39));
+  EXPECT_TRUE(c.at_end());
+  c.seek_step(7);
+  EXPECT_EQ(*c.last_step_hash(), fwd.at(7));
+  EXPECT_TRUE(c.exact());
+  // Every step after a backward seek matches the forward pass (through the cuts).
+  while (c.steps_taken() < 25 && c.step_forward())
+    ASSERT_EQ(*c.last_step_hash(), fwd.at(c.steps_taken()));
+  EXPECT_FALSE(c.diverged_at().has_value());
+  // Clamped: past the end, before the start.
+  c.seek(99.0);
+  EXPECT_EQ(c.steps_taken(), 40u);
+  c.seek(-1.0);
+  EXPECT_EQ(c.steps_taken(), 0u);
+  EXPECT_FALSE(c.last_step_hash().has_value());
+}
+
+TEST(ReplayController, SnapshotSeekIsExactAtTheSnapshotAndCloseAfter) {
+  const auto& fwd = forward_hashes();
+  ReplayControllerOptions o;
+  o.snapshot_every_s = 0.05;  // 10 steps
+  o.exact_seek = false;
+  ReplayController c(recording(), o);
+  c.seek_step(40);
+  EXPECT_EQ(c.num_snapshots(), 5u);  // 0, 10, 20, 30, 40
+  const SimState at40 = c.state();
+  const std::uint64_t restarts = c.restarts();
+
+  // Back to 30: restored from the snapshot, no re-simulation from the start, bit-exact.
+  c.seek_step(30);
+  EXPECT_EQ(c.restarts(), restarts + 1);
+  EXPECT_EQ(c.steps_taken(), 30u);
+  ASSERT_TRUE(c.last_step_hash().has_value());
+  EXPECT_EQ(*c.last_step_hash(), fwd.at(30));
+  EXPECT_FALSE(c.exact());
+  // On to the end from there: the same topology, positions within 0.1 mm of the forward run.
+  c.seek_step(40);
+  ASSERT_EQ(c.state().mesh.num_nodes(), at40.mesh.num_nodes());
+  ASSERT_EQ(c.state().mesh.num_tets(), at40.mesh.num_tets());
+  double worst = 0.0;
+  for (std::size_t i = 0; i < at40.mesh.x.size(); ++i)
+    worst = std::max(worst, (c.state().mesh.x[i] - at40.mesh.x[i]).norm());
+  RecordProperty("snapshot_seek_max_dx_m", std::to_string(worst));
+  EXPECT_LT(worst, 1e-4);
+  // Back to the start: exact again.
+  c.seek_step(0);
+  EXPECT_TRUE(c.exact());
+  c.seek_step(20);
+  EXPECT_EQ(*c.last_step_hash(), c.recording().hashes.at(19));
+}
+
+TEST(ReplayController, PauseAndSpeedPaceThePlayback) {
+  ReplayController c(beam_recording());
+  const double dt = c.dt_s();
+  // 1x: 10 dt of wall time take 10 steps (in pieces of 0.4 dt: no step is lost to rounding).
+  for (int i = 0; i < 25; ++i) c.advance(0.4 * dt);
+  EXPECT_EQ(c.steps_taken(), 10u);
+  // Paused: nothing moves.
+  c.set_paused(true);
+  EXPECT_EQ(c.advance(10.0 * dt), 0u);
+  EXPECT_EQ(c.steps_taken(), 10u);
+  c.set_paused(false);
+  // 2x: 5 dt of wall time take 10 steps; 0.5x: 10 dt take 5.
+  c.set_speed(2.0);
+  EXPECT_EQ(c.advance(5.0 * dt + 1e-9), 10u);
+  c.set_speed(0.5);
+  EXPECT_EQ(c.advance(10.0 * dt + 1e-9), 5u);
+  EXPECT_EQ(c.steps_taken(), 25u);
+  // Speeds are clamped; the end stops playback.
+  c.set_speed(1000.0);
+  EXPECT_EQ(c.speed(), ReplayController::kMaxSpeed);
+  c.set_speed(0.0);
+  EXPECT_EQ(c.speed(), ReplayController::kMinSpeed);
+  c.set_speed(16.0);
+  EXPECT_EQ(c.advance(100.0), 15u);
+  EXPECT_TRUE(c.at_end());
+  EXPECT_EQ(c.advance(1.0), 0u);
+}
+
+TEST(ReplayController, NotARecordingIsAClearError) {
+  const fs::path dir = out_dir("replay_controller_bad");
+  std::ofstream(dir / "bad.lapr") << "not a recording";
+  EXPECT_THROW(ReplayController c(dir / "bad.lapr"), InputError);
+}
+
+}  // namespace
+}  // namespace serosa::app
