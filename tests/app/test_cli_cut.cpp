@@ -1,0 +1,137 @@
+// `serosa cut` end to end (shared/DESIGN.md "Contracts"): runs the built executable on the bundled
+// beam (assets/beam_coarse.msh: 0.1 x 0.01 x 0.01 m, x in [0, 0.1], 20 x 2 x 2 cubes of 5 mm) and
+// checks the exit code, the JSON summary and the Gmsh 2.2 file it writes, for each method, and
+// that bad --polygon and --method values exit 1 naming the flag and the value.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "app_test_util.h"
+#include "cutting/validate.h"
+#include "engine/mesh_check.h"
+#include "engine/mesh_io.h"
+
+namespace serosa::app {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::CliResult;
+using testing::out_dir;
+using testing::run_serosa;
+using testing::source;
+
+// A square in the plane x = X (a little tilted when tilt != 0) that covers the beam's section.
+std::string covering(double x, double tilt = 0.0) {
+  std::string s;
+  for (const auto& [y, z] : {std::pair{-0.02, -0.02}, {0.02, -0.02}, {0.02, 0.02}, {-0.02, 0.02}}) {
+    if (!s.empty()) s.append(" ");
+    s.append(std::to_string(x + tilt * y)).append(",").append(std::to_string(y));
+    s.append(",").append(std::to_string(z));
+  }
+  return "'" + s + "'";
+}
+
+struct CutRun {
+  CliResult cli;
+  nlohmann::json summary;
+  TetMesh out;
+};
+
+CutRun cut(const std::string& name, const std::string& flags) {
+  const fs::path dir = out_dir("cli_cut_" + name);
+  const fs::path out = dir / "out.msh";
+  CutRun r;
+  r.cli = run_serosa("cut '" + source("assets/beam_coarse.msh").string() + "' " + flags +
+                     " --out '" + out.string() + "' --json");
+  if (r.cli.code != 0) return r;
+  r.summary = nlohmann::json::parse(r.cli.out);
+  r.out = read_mesh(out);
+  return r;
+}
+
+TEST(CliCut, PatternCoveringCutSplitsTheBeamInTwoAndKeepsVolume) {
+  const CutRun r = cut("pattern", "--polygon " + covering(0.0523, 0.3));
+  ASSERT_EQ(r.cli.code, 0) << r.cli.out;
+  const auto& before = r.summary.at("before");
+  const auto& after = r.summary.at("after");
+  EXPECT_EQ(r.summary.at("method").get<std::string>(), "pattern");
+  EXPECT_EQ(before.at("tets").get<int>(), 480);
+  EXPECT_GT(after.at("tets").get<int>(), 480);
+  EXPECT_GT(after.at("nodes").get<int>(), before.at("nodes").get<int>());
+  EXPECT_GT(r.summary.at("tets_created").get<int>(), 0);
+  const double v0 = before.at("volume_m3").get<double>();
+  EXPECT_NEAR(v0, 1e-5, 1e-15);
+  EXPECT_NEAR(after.at("volume_m3").get<double>(), v0, 1e-12 * v0);
+  EXPECT_GT(after.at("min_quality").get<double>(), 0.0);
+  ASSERT_EQ(r.summary.at("cuts").size(), 1U);
+  EXPECT_GE(r.summary.at("cuts")[0].at("time_ms").get<double>(), 0.0);
+  // The file: the cut mesh, valid, in two pieces, every tet still group 1.
+  EXPECT_EQ(r.out.num_tets(), after.at("tets").get<int>());
+  EXPECT_TRUE(check_mesh(r.out).valid);
+  EXPECT_EQ(cutting::count_components(r.out), 2);
+  for (std::uint16_t g : r.out.group) EXPECT_EQ(g, 1);
+}
+
+TEST(CliCut, SeveralPolygonsApplyInTurn) {
+  const CutRun r =
+      cut("two", "--polygon " + covering(0.0311, -0.2) + " --polygon " + covering(0.0712, 0.1));
+  ASSERT_EQ(r.cli.code, 0) << r.cli.out;
+  EXPECT_EQ(r.summary.at("cuts").size(), 2U);
+  EXPECT_EQ(cutting::count_components(r.out), 3);
+  const double v0 = r.summary.at("before").at("volume_m3").get<double>();
+  EXPECT_NEAR(r.summary.at("after").at("volume_m3").get<double>(), v0, 1e-12 * v0);
+}
+
+TEST(CliCut, RemoveLosesVolumeSnapKeepsIt) {
+  const CutRun rm = cut("remove", "--method remove --polygon " + covering(0.0523));
+  ASSERT_EQ(rm.cli.code, 0) << rm.cli.out;
+  const double v0 = rm.summary.at("before").at("volume_m3").get<double>();
+  // The plane x = 0.0523 lies in the column of cubes x in [0.05, 0.055]: its 4 cubes go.
+  EXPECT_NEAR(rm.summary.at("after").at("volume_m3").get<double>(), v0 - 4 * 0.005 * 0.005 * 0.005,
+              1e-12 * v0);
+  EXPECT_EQ(rm.summary.at("after").at("tets").get<int>(), 480 - 24);
+  EXPECT_EQ(rm.summary.at("tets_created").get<int>(), 0);
+  EXPECT_EQ(cutting::count_components(rm.out), 2);
+
+  const CutRun sn = cut("snap", "--method snap --polygon " + covering(0.0523));
+  ASSERT_EQ(sn.cli.code, 0) << sn.cli.out;
+  EXPECT_EQ(sn.summary.at("after").at("tets").get<int>(), 480);  // snapping never subdivides
+  EXPECT_NEAR(sn.summary.at("after").at("volume_m3").get<double>(), v0, 1e-12 * v0);
+  EXPECT_EQ(cutting::count_components(sn.out), 2);
+  EXPECT_TRUE(check_mesh(sn.out).valid);
+}
+
+TEST(CliCut, NegativeCoordinatesParse) {
+  const CutRun r = cut("negative", "--polygon '-0.02,-0.02,-0.02 -0.02,0.02,-0.02 0.09,0.02,0.02'");
+  ASSERT_EQ(r.cli.code, 0) << r.cli.out;
+  EXPECT_GT(r.summary.at("after").at("tets").get<int>(), 480);
+}
+
+// Bad flags: exit 1, the message names the flag and the offending value.
+void expect_rejected(const std::string& flags, const std::string& needle) {
+  const fs::path out = out_dir("cli_cut_bad") / "out.msh";
+  const CliResult r = run_serosa("cut '" + source("assets/beam_coarse.msh").string() + "' " +
+                                 flags + " --out '" + out.string() + "'");
+  EXPECT_EQ(r.code, 1) << flags << "\n" << r.out;
+  EXPECT_NE(r.out.find(needle), std::string::npos) << flags << "\n" << r.out;
+  EXPECT_FALSE(fs::exists(out)) << flags;
+}
+
+TEST(CliCut, BadPolygonsExitOneNamingFlagAndValue) {
+  expect_rejected("--polygon '0,0,0 1,0,0'", "--polygon #1 \"0,0,0 1,0,0\": has 2 point(s)");
+  expect_rejected("--polygon '0,0,0 1,0,x 0,1,0'", "\"x\" is not a finite number");
+  expect_rejected("--polygon '0,0,0 1,0 0,1,0'", "exactly three comma-separated");
+  expect_rejected("--polygon '0,0,0 1,0,0,5 0,1,0'", "exactly three comma-separated");
+  expect_rejected("--polygon '0,0,0 1,0,0 0,1,0 1,1,0.5'", "--polygon #1");  // not planar
+  expect_rejected("--polygon '0,0,0 1,0,0 0,1,0 1,1,0'", "not a valid blade polygon");  // crossed
+  expect_rejected("--polygon '0,0,0 1,0,0 2,0,0'", "not a valid blade polygon");        // no area
+  expect_rejected("--polygon " + covering(0.05) + " --polygon '0,0,0 1,0,nan 0,1,0'",
+                  "--polygon #2");
+  expect_rejected("--polygon " + covering(0.05) + " --method chop", "--method \"chop\"");
+}
+
+}  // namespace
+}  // namespace serosa::app
