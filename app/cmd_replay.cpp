@@ -1,15 +1,20 @@
 // serosa replay REC.lapr [--headless] [--verify] [--speed S] [--frames DIR] [--report OUT.json]
 //
+// Without --headless: the instructor's replay in a window (app/session.h run_replay_window:
+// pause, seek, speed). With --headless: re-simulates as fast as it can (app/replay.h).
+//
 // Exit codes: 0 replayed (and, with --verify, every recorded hash matched up to where the
 // recording ends); 1 bad input (not a recording, damaged header, scene unreadable);
 // 3 --verify found a divergence (the step is named); 4 --verify on a corrupt recording (a
 // checksum or record error before its end: replayed and verified up to there, then named).
 // A recording merely cut short (crash, kill -9) replays up to its last chunk and exits 0.
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 
 #include "app/command.h"
 #include "app/replay.h"
+#include "app/session.h"
 #include "engine/input_error.h"
 
 namespace serosa::app {
@@ -31,12 +36,22 @@ void add_replay_command(CLI::App& app, Action& action) {
   cmd->add_option("--frame-count", opts->frame_count, "Pictures over the replay (with --frames)")
       ->check(CLI::Range(1, 100000));
   cmd->add_option("--report", *report, "Write the JSON report here (also printed)");
-  cmd->callback([&action, opts, headless, frames, report] {
-    action = [opts, headless, frames, report] {
-      if (!*headless)
-        throw InputError(opts->recording.string(), 0,
-                         "replay in a window is not implemented in this build yet",
-                         "serosa replay FILE --headless");
+  auto seconds = std::make_shared<double>(0.0);
+  auto snapshot = std::make_shared<std::string>();
+  cmd->add_option("--seconds", *seconds, "In a window: close after this much wall time (0: never)");
+  cmd->add_option("--snapshot", *snapshot,
+                  "In a window: also write the last picture drawn to this PNG");
+  cmd->callback([&action, opts, headless, frames, report, speed, seconds, snapshot] {
+    action = [opts, headless, frames, report, speed, seconds, snapshot] {
+      if (!*headless) {
+        const char* x = std::getenv("DISPLAY");
+        const char* wl = std::getenv("WAYLAND_DISPLAY");
+        if ((x == nullptr || *x == '\0') && (wl == nullptr || *wl == '\0'))
+          throw InputError(opts->recording.string(), 0,
+                           "replay in a window needs a display and none is set",
+                           "DISPLAY or WAYLAND_DISPLAY; without one use --headless");
+        return run_replay_window(opts->recording, *speed, *seconds, *snapshot);
+      }
       if (!frames->empty()) opts->frames = *frames;
       if (!report->empty()) opts->report = *report;
       const ReplayResult r = run_replay(*opts);

@@ -14,8 +14,10 @@
 
 #include "app/assemble_state.h"
 #include "app/compose.h"
+#include "app/metrics_stage.h"
 #include "app/overlay_stats.h"
 #include "app/render_frame_from_surface.h"
+#include "app/replay_controller.h"
 #include "engine/scene.h"
 #include "engine/triple_buffer.h"
 #include "render/camera.h"
@@ -262,6 +264,131 @@ int run_session(const std::filesystem::path& scene_path, double seconds,
                  assembled.state.time_s, g_interrupted.load() ? " (interrupted)" : "");
   }
   if (loop.error()) std::rethrow_exception(loop.error());
+  return 0;
+}
+
+int run_replay_window(const std::filesystem::path& recording, double speed, double seconds,
+                      const std::filesystem::path& snapshot) {
+  ReplayControllerOptions co;
+  co.exact_seek = false;  // interactive seeks: from the nearest snapshot (see the header)
+  co.snapshot_every_s = 1.0;
+  co.speed = speed;
+  ReplayController replay(recording, co);
+  const Scene& scene = replay.scene();
+  const std::map<int, std::string> names = replay.group_names();
+  const surface::OriginalSurface original(replay.state().mesh,
+                                          surface::extract_surface(replay.state().mesh));
+
+  const InterruptGuard interrupts;
+  render::Window window(scene.render.width, scene.render.height, "Serosa replay");
+  render::FrameRenderer renderer;
+  render::Overlay overlay;
+  render::SnapshotOptions options;
+  options.tessellation = scene.render.tessellation;
+  options.shape_factor = static_cast<float>(scene.render.shape_factor);
+  bool show_overlay = true;
+  render::RenderFrame frame;
+  surface::SurfaceMesh surf;
+  bool have_surface = false;
+  std::optional<render::Camera> fitted;
+  // Every cut bumps the topology version, which snapshots keep: cuts survive seeks.
+  const std::uint64_t version0 = replay.state().mesh.topology_version;
+  double step_ms = 0.0;
+  double rate_hz = 0.0;
+
+  const auto start = Clock::now();
+  auto last = start;
+  while (!window.should_close() && !g_interrupted.load()) {
+    window.poll_events();
+    if (window.pressed(render::Key::kEscape)) window.close();
+    if (window.pressed(render::Key::kSpace)) replay.set_paused(!replay.paused());
+    if (window.pressed(render::Key::kLeft)) replay.seek(replay.time_s() - 1.0);
+    if (window.pressed(render::Key::kRight)) replay.seek(replay.time_s() + 1.0);
+    if (window.pressed(render::Key::kPlus)) replay.set_speed(2.0 * replay.speed());
+    if (window.pressed(render::Key::kMinus)) replay.set_speed(0.5 * replay.speed());
+    if (window.pressed(render::Key::kV))
+      options.view =
+          static_cast<render::SnapshotOptions::View>((static_cast<int>(options.view) + 1) % 3);
+    if (window.pressed(render::Key::kUp))
+      options.tessellation = std::min(options.tessellation + 1, 16);
+    if (window.pressed(render::Key::kDown))
+      options.tessellation = std::max(options.tessellation - 1, 1);
+    if (window.pressed(render::Key::kH)) show_overlay = !show_overlay;
+
+    // Play: the steps that became due over the wall time since the last frame (at most 0.1 s of
+    // it, so that a slow step plays in slow motion rather than in a catch-up burst).
+    const auto now = Clock::now();
+    const double wall_dt = std::chrono::duration<double>(now - last).count();
+    last = now;
+    const auto t0 = Clock::now();
+    const std::uint64_t taken = replay.advance(std::min(wall_dt, 0.1));
+    if (taken > 0)
+      step_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count() /
+                static_cast<double>(taken);
+    if (wall_dt > 0.0) rate_hz = 0.9 * rate_hz + 0.1 * static_cast<double>(taken) / wall_dt;
+    if (replay.at_end()) replay.set_paused(true);
+
+    const SimState& state = replay.state();
+    if (!have_surface || surf.topology_version != state.mesh.topology_version) {
+      surf = surface::extract_surface(state.mesh, original);
+      have_surface = true;
+    }
+    fill_render_frame(state.mesh, surf, names, true, frame);
+    fill_render_tools(scene, state, frame);
+    const int w = window.width();
+    const int h = window.height();
+    std::optional<render::Camera> cam = endoscope_view(scene, state);
+    if (!cam) {
+      if (!fitted)
+        fitted =
+            render::auto_camera(frame, static_cast<float>(w) / static_cast<float>(std::max(h, 1)));
+      cam = fitted;
+    }
+    frame.camera = *cam;
+
+    FrameStats stats;
+    stats.sim_time_s = state.time_s;
+    stats.fem_ms_per_step = step_ms;
+    stats.solver_rate_hz = rate_hz;
+    stats.cuts = static_cast<std::int64_t>(state.mesh.topology_version - version0);
+    stats.paused = replay.paused();
+    stats.replay = true;
+    stats.replay_position_s = replay.time_s();
+    stats.replay_duration_s = replay.duration_s();
+    stats.replay_speed = replay.speed();
+    nlohmann::json metrics;
+    if (replay.composition().metrics != nullptr) {
+      metrics = replay.composition().metrics->report();
+      stats.metrics = &metrics;
+    }
+    frame.overlay = overlay_data(stats);
+    frame.overlay.visible = show_overlay;
+
+    window.bind_framebuffer();
+    renderer.draw(frame, options, w, h);
+    render::OverlayInput input;
+    window.cursor(input.mouse_x, input.mouse_y);
+    input.mouse_down = window.mouse_down();
+    input.dt_s = static_cast<float>(std::max(wall_dt, 1e-3));
+    const render::OverlayResult r = overlay.draw(frame.overlay, options, w, h, input);
+    if (r.view) options.view = *r.view;
+    if (r.tessellation) options.tessellation = *r.tessellation;
+    if (r.toggle_pause) replay.set_paused(!replay.paused());
+    if (r.seek_s) replay.seek(*r.seek_s);
+    const bool last_frame =
+        seconds > 0.0 && std::chrono::duration<double>(now - start).count() > seconds;
+    if (!snapshot.empty() && (last_frame || window.should_close() || g_interrupted.load()))
+      render::write_png(window.read_image(), snapshot);
+    window.swap_buffers();
+
+    char title[160];
+    std::snprintf(title, sizeof title, "Serosa replay  %.2f / %.2f s  x%.3g%s  %s", replay.time_s(),
+                  replay.duration_s(), replay.speed(), replay.paused() ? "  [paused]" : "",
+                  render::view_name(options.view));
+    window.set_title(title);
+    if (last_frame) break;
+  }
+  spdlog::info("replay: {} of {} steps shown", replay.steps_taken(), replay.num_steps());
   return 0;
 }
 

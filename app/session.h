@@ -23,4 +23,17 @@ namespace serosa::app {
 int run_session(const std::filesystem::path& scene, double seconds,
                 const std::filesystem::path& snapshot = {});
 
+/// The instructor's replay of a .lapr recording in a window (`serosa replay REC.lapr`), driven
+/// by a ReplayController (app/replay_controller.h) in snapshot-seek mode (a snapshot every
+/// second): it plays at `speed` x real time, drawing the replayed scene with its wound, tools,
+/// the overlay's timeline (position / length, speed, pause) and the metrics.
+///
+/// Keys: Space pause/play, Left/Right seek -/+ 1 s, Plus/Minus double/halve the speed, V views,
+/// Up/Down tessellation, H overlay, Esc quit; the overlay's Play/Pause button and timeline work
+/// with the mouse. At the end of the recording playback pauses on the last frame. Closes after
+/// `seconds` of wall time when > 0 (checks), writing the last picture to `snapshot` when given.
+/// Throws InputError when the file is not a usable recording.
+int run_replay_window(const std::filesystem::path& recording, double speed, double seconds,
+                      const std::filesystem::path& snapshot = {});
+
 }  // namespace serosa::app

@@ -27,6 +27,14 @@ int glfw_key(Key k) {
       return GLFW_KEY_O;
     case Key::kH:
       return GLFW_KEY_H;
+    case Key::kLeft:
+      return GLFW_KEY_LEFT;
+    case Key::kRight:
+      return GLFW_KEY_RIGHT;
+    case Key::kPlus:
+      return GLFW_KEY_EQUAL;  // '+' shares the '=' key on US layouts
+    case Key::kMinus:
+      return GLFW_KEY_MINUS;
   }
   return GLFW_KEY_UNKNOWN;
 }
@@ -85,7 +93,12 @@ int Window::height() const {
 }
 
 bool Window::pressed(Key key) {
-  const bool down = glfwGetKey(m_window, glfw_key(key)) == GLFW_PRESS;
+  // Plus and minus also on the keypad.
+  const int alt = key == Key::kPlus    ? GLFW_KEY_KP_ADD
+                  : key == Key::kMinus ? GLFW_KEY_KP_SUBTRACT
+                                       : GLFW_KEY_UNKNOWN;
+  const bool down = glfwGetKey(m_window, glfw_key(key)) == GLFW_PRESS ||
+                    (alt != GLFW_KEY_UNKNOWN && glfwGetKey(m_window, alt) == GLFW_PRESS);
   bool& was = m_down[static_cast<int>(key)];
   const bool edge = down && !was;
   was = down;

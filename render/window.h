@@ -11,8 +11,9 @@ struct GLFWwindow;
 namespace serosa::render {
 
 /// Keys a session reacts to (GLFW key codes stay inside render/).
-/// Space: pause; V: next view; Up/Down: tessellation; O: 0/30 degree scope; H: overlay on/off.
-enum class Key { kEscape, kSpace, kV, kUp, kDown, kO, kH };
+/// Space: pause; V: next view; Up/Down: tessellation; O: 0/30 degree scope; H: overlay on/off;
+/// in a replay Left/Right: seek -/+ 1 s, Plus/Minus (main row or keypad): faster/slower.
+enum class Key { kEscape, kSpace, kV, kUp, kDown, kO, kH, kLeft, kRight, kPlus, kMinus };
 
 class Window {
  public:
@@ -50,7 +51,7 @@ class Window {
 
  private:
   GLFWwindow* m_window = nullptr;
-  bool m_down[7] = {};
+  bool m_down[11] = {};
 };
 
 }  // namespace serosa::render

@@ -4,6 +4,10 @@
 // close after it.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
 #include <fstream>
 #include <map>
 
@@ -164,6 +168,43 @@ TEST(ReplayController, NotARecordingIsAClearError) {
   const fs::path dir = out_dir("replay_controller_bad");
   std::ofstream(dir / "bad.lapr") << "not a recording";
   EXPECT_THROW(ReplayController c(dir / "bad.lapr"), InputError);
+}
+
+// `serosa replay REC.lapr` (no --headless) opens a window on a virtual X display, plays and
+// closes by itself, leaving its last picture (scene, tools, overlay timeline) as a PNG.
+TEST(ReplayWindow, PlaysInAWindowUnderXvfb) {
+  const fs::path png = fs::path(SEROSA_BINARY_DIR) / "test-output" / "render" / "replay_window.png";
+  fs::remove(png);
+  const std::string cmd = "xvfb-run -a -s '-screen 0 1280x720x24' '" + serosa_exe().string() +
+                          "' replay '" + recording().string() + "' --seconds 2 --speed 0.5 " +
+                          "--snapshot '" + png.string() + "' 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string out;
+  std::array<char, 4096> buf{};
+  std::size_t n = 0;
+  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
+  const int status = pclose(pipe);
+  ASSERT_TRUE(WIFEXITED(status)) << out;
+  EXPECT_EQ(WEXITSTATUS(status), 0) << out;
+  EXPECT_NE(out.find("steps shown"), std::string::npos) << out;
+  ASSERT_TRUE(fs::exists(png)) << out;
+  EXPECT_GT(fs::file_size(png), 10000u);
+}
+
+// Without a display the window cannot open: a clear error, exit 1.
+TEST(ReplayWindow, NoDisplayIsAClearError) {
+  const std::string cmd = "env -u DISPLAY -u WAYLAND_DISPLAY '" + serosa_exe().string() +
+                          "' replay '" + recording().string() + "' 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string out;
+  std::array<char, 4096> buf{};
+  std::size_t n = 0;
+  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
+  const int status = pclose(pipe);
+  EXPECT_EQ(WEXITSTATUS(status), 1) << out;
+  EXPECT_NE(out.find("needs a display"), std::string::npos) << out;
 }
 
 }  // namespace
