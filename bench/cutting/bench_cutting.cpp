@@ -35,6 +35,7 @@
 
 #include "cutting/convex_polygon.h"
 #include "cutting/cut_method.h"
+#include "cutting/snap_cut.h"
 #include "cutting/tet_bvh.h"
 #include "engine/boundary.h"
 #include "engine/mesh_quality.h"
@@ -298,6 +299,12 @@ void BM_Method(benchmark::State& state) {
     state.counters["cut_area_cm2"] = a.cut_area_m2 * 1e4;
     state.counters["tets_created"] = static_cast<double>(r.stats.tets_added - r.stats.tets_removed);
     state.counters["nodes_added"] = static_cast<double>(r.stats.nodes_added);
+    if (method == CutMethod::kSnap) {  // crossing edges snapping could not resolve
+      SnapStats st;
+      (void)snap_cut(f.pristine, b, {}, f.pristine_bvh->as_query(), &st);
+      state.counters["snap_crossing_edges"] = static_cast<double>(st.crossing_edges);
+      state.counters["snap_unresolved"] = static_cast<double>(st.edges_unresolved);
+    }
   }
   run_cuts(state, f, b, method);
 }
