@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "app/assemble_state.h"
 #include "app/compose.h"
@@ -30,17 +31,52 @@ class HashStage final : public Stage {
   std::optional<std::uint64_t> m_diverged;
 };
 
+// The "tools" stage: the recorded inputs, or after a branch the live ones.
+class InputStage final : public Stage {
+ public:
+  explicit InputStage(const std::vector<std::vector<ToolState>>& recorded) : m_recorded(recorded) {}
+  [[nodiscard]] std::string_view name() const noexcept override { return "tools"; }
+  void step(const StepContext& ctx, SimState& state) override {
+    if (m_live) {
+      state.tools = *m_live;
+      return;
+    }
+    const std::vector<ToolState>& in = m_recorded.at(ctx.step);
+    if (in.size() != state.tools.size())
+      throw std::out_of_range("recorded tool count differs from the scene's");
+    state.tools = in;
+  }
+  const std::vector<std::vector<ToolState>>& m_recorded;
+  std::optional<std::vector<ToolState>> m_live;
+};
+
+// Records a branch (as RecordStage does) once it has a writer; nothing before.
+class BranchRecordStage final : public Stage {
+ public:
+  explicit BranchRecordStage(std::int64_t hash_every) : m_hash_every(hash_every) {}
+  [[nodiscard]] std::string_view name() const noexcept override { return "branch-record"; }
+  void step(const StepContext& ctx, SimState& state) override {
+    if (m_writer == nullptr) return;
+    m_writer->record_inputs(ctx.step, state.tools);
+    if (hashed_step(ctx.step, m_hash_every)) m_writer->record_hash(ctx.step, state_hash(state));
+  }
+  recording::RecordingWriter* m_writer = nullptr;
+  std::int64_t m_hash_every;
+};
+
 }  // namespace
 
 struct ReplayController::Pipeline {
   AssembledScene assembled;
   Composition comp;
+  InputStage* input = nullptr;
+  BranchRecordStage* record = nullptr;
   HashStage* hash = nullptr;
 };
 
 ReplayController::ReplayController(const std::filesystem::path& recording,
                                    ReplayControllerOptions options)
-    : m_rec(recording::read_recording(recording)), m_options(options) {
+    : m_rec(recording::read_recording(recording)), m_options(options), m_path(recording) {
   const std::string file = recording.string();
   const std::string scene_path = m_rec.header.get("scene_path");
   const std::string scene_text = m_rec.header.get("scene_text");
@@ -70,8 +106,13 @@ void ReplayController::restart(const Snapshot* from) {
   sim->assembled = *m_initial;
   if (from != nullptr) sim->assembled.state = from->state;
   ComposeOptions co;
-  co.tool_input = std::make_unique<ReplayInputStage>(m_rec.inputs);
+  auto input = std::make_unique<InputStage>(m_rec.inputs);
+  sim->input = input.get();
+  co.tool_input = std::move(input);
   sim->comp = compose(m_scene, sim->assembled, std::move(co));
+  auto record = std::make_unique<BranchRecordStage>(m_scene.record.hash_every);
+  sim->record = record.get();
+  sim->comp.runner->add(std::move(record));
   auto hash = std::make_unique<HashStage>(m_rec.hashes);
   sim->hash = hash.get();
   if (from != nullptr) hash->m_last = from->hash;
@@ -112,6 +153,7 @@ std::uint64_t ReplayController::advance(double wall_dt_s) {
 }
 
 void ReplayController::seek_step(std::uint64_t steps) {
+  if (m_branch_step) return;  // a branch is a live run: it cannot be seeked
   steps = std::min(steps, num_steps());
   m_due = 0.0;
   if (steps < steps_taken()) {
@@ -136,6 +178,46 @@ void ReplayController::seek_step(std::uint64_t steps) {
 void ReplayController::seek(double t_s) {
   const double k = std::isfinite(t_s) ? std::round(std::max(t_s, 0.0) / dt_s()) : 0.0;
   seek_step(static_cast<std::uint64_t>(std::min(k, static_cast<double>(num_steps()))));
+}
+
+bool ReplayController::at_end() const {
+  if (m_branch_step) return m_branch_closed;
+  return steps_taken() >= num_steps();
+}
+
+void ReplayController::branch(const std::filesystem::path& branch_file) {
+  if (m_branch_step) throw std::logic_error("this replay has already branched");
+  if (!m_exact)
+    throw std::logic_error("branching needs the exact recorded state: seek exactly first");
+  const std::uint64_t k = steps_taken();
+  recording::Header h = m_rec.header;
+  h.set("parent", std::filesystem::absolute(m_path).lexically_normal().string());
+  h.set("branch_step", std::to_string(k));
+  h.set("steps_planned", "0");
+  m_branch_writer = std::make_unique<recording::RecordingWriter>(branch_file, h);
+  // The parent's prefix, so that the branch replays from step 0.
+  for (std::uint64_t s = 0; s < k; ++s) {
+    m_branch_writer->record_inputs(s, m_rec.inputs[s]);
+    const auto it = m_rec.hashes.find(s);
+    if (it != m_rec.hashes.end()) m_branch_writer->record_hash(s, it->second);
+  }
+  m_branch_writer->record_event(k, "branch");
+  m_branch_step = k;
+  m_exact = false;  // from here on the run is the branch, not the recording
+  m_sim->input->m_live = m_sim->assembled.state.tools;
+  m_sim->record->m_writer = m_branch_writer.get();
+}
+
+void ReplayController::set_tool_input(std::size_t i, const ToolState& input) {
+  if (!m_branch_step || m_branch_closed) throw std::logic_error("not in a branch");
+  m_sim->input->m_live->at(i) = input;
+}
+
+void ReplayController::end_branch() {
+  if (!m_branch_writer || m_branch_closed) return;
+  m_sim->record->m_writer = nullptr;
+  m_branch_writer->close(steps_taken());
+  m_branch_closed = true;
 }
 
 std::uint64_t ReplayController::steps_taken() const { return m_sim->assembled.state.step; }

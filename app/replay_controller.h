@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "engine/recording_reader.h"
+#include "engine/recording_writer.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"
 
@@ -69,15 +70,34 @@ class ReplayController {
   /// To simulated time t, s: the state after round(t / dt) steps (clamped).
   void seek(double t_s);
 
+  // ---- branching (take over from the replayed state) ----
+  /// Branches here: from now on the tools follow set_tool_input() (the rig or the mouse) instead
+  /// of the recording, and the run is recorded to `branch_file`: a complete recording from step 0
+  /// (the parent's inputs and hashes up to here, then the new ones), so that `serosa replay
+  /// branch_file --verify` re-simulates it; its header holds the parent's scene and keys plus
+  /// "parent" (the parent's path) and "branch_step" (steps taken when it branched), and an event
+  /// "branch" marks the step. Playback may then go past the parent's end; seeks are refused.
+  /// Throws std::logic_error unless exact() (the state must be the recorded one) or when already
+  /// branched; std::runtime_error when the file cannot be written.
+  void branch(const std::filesystem::path& branch_file);
+  /// Sets tool `i`'s input (scene order) for the next steps of a branch.
+  /// Throws std::logic_error when not branched, std::out_of_range for a bad index.
+  void set_tool_input(std::size_t i, const ToolState& input);
+  /// Closes the branch's recording (end record); playback stops. Idempotent.
+  void end_branch();
+  [[nodiscard]] bool branched() const { return m_branch_writer != nullptr; }
+  [[nodiscard]] std::optional<std::uint64_t> branch_step() const { return m_branch_step; }
+
   // ---- where we are ----
   [[nodiscard]] std::uint64_t steps_taken() const;  ///< = state().step
   [[nodiscard]] std::uint64_t num_steps() const { return m_rec.inputs.size(); }
   [[nodiscard]] double dt_s() const { return m_scene.settings.dt_s; }
   [[nodiscard]] double time_s() const;
   [[nodiscard]] double duration_s() const { return static_cast<double>(num_steps()) * dt_s(); }
-  [[nodiscard]] bool at_end() const { return steps_taken() >= num_steps(); }
+  /// At the recording's end (never while a branch records; always once it is closed).
+  [[nodiscard]] bool at_end() const;
   /// True while the state follows the recording bit for bit (no snapshot-mode seek since the last
-  /// restart from the start).
+  /// restart from the start, no branch).
   [[nodiscard]] bool exact() const { return m_exact; }
   /// The hash of the state as the recording hashes it (after the stages of the last step, before
   /// the step counter advanced); nullopt before the first step.
@@ -115,6 +135,10 @@ class ReplayController {
   bool m_paused = false;
   bool m_exact = true;
   std::uint64_t m_restarts = 0;
+  std::filesystem::path m_path;
+  std::unique_ptr<recording::RecordingWriter> m_branch_writer;
+  std::optional<std::uint64_t> m_branch_step;
+  bool m_branch_closed = false;
 };
 
 }  // namespace serosa::app

@@ -12,6 +12,7 @@
 #include <map>
 
 #include "app/headless.h"
+#include "app/replay.h"
 #include "app/replay_controller.h"
 #include "app_test_util.h"
 #include "engine/input_error.h"
@@ -168,6 +169,58 @@ TEST(ReplayController, NotARecordingIsAClearError) {
   const fs::path dir = out_dir("replay_controller_bad");
   std::ofstream(dir / "bad.lapr") << "not a recording";
   EXPECT_THROW(ReplayController c(dir / "bad.lapr"), InputError);
+}
+
+// Branch from replay: pause at step 10, take over (the scissors stay open instead of closing),
+// record the branch; the branch file replays --verify from step 0 with every hash matching, its
+// header names the parent and the step, and it really differs from the parent.
+TEST(ReplayController, BranchRecordsAFileThatReplaysVerified) {
+  const fs::path dir = out_dir("replay_branch");
+  ReplayController c(recording());
+  c.seek_step(10);
+  c.set_paused(true);
+  const fs::path file = dir / "branch.lapr";
+  c.branch(file);
+  EXPECT_TRUE(c.branched());
+  EXPECT_EQ(c.branch_step(), 10u);
+  EXPECT_THROW(c.branch(dir / "again.lapr"), std::logic_error);
+  std::size_t scissors = 0;
+  for (std::size_t i = 0; i < c.scene().tools.size(); ++i)
+    if (c.scene().tools[i].kind == ToolKind::kScissors) scissors = i;
+  ToolState open = c.state().tools[scissors];
+  open.jaw_rad = 1.0;
+  c.set_tool_input(scissors, open);
+  EXPECT_THROW(c.set_tool_input(99, open), std::out_of_range);
+  c.set_paused(false);
+  for (int i = 0; i < 15; ++i) ASSERT_TRUE(c.step_forward());
+  c.seek_step(0);  // refused in a branch
+  EXPECT_EQ(c.steps_taken(), 25u);
+  const std::uint64_t branch_hash = state_hash(c.state());
+  c.end_branch();
+  EXPECT_TRUE(c.at_end());
+  EXPECT_FALSE(c.step_forward());
+
+  const recording::Recording b = recording::read_recording(file);
+  EXPECT_TRUE(b.complete);
+  EXPECT_EQ(b.inputs.size(), 25u);
+  EXPECT_EQ(b.header.get("branch_step"), "10");
+  EXPECT_EQ(b.header.get("parent"), fs::absolute(recording()).lexically_normal().string());
+  ASSERT_EQ(b.events.size(), 1u);
+  EXPECT_EQ(b.events[0].first, 10u);
+  EXPECT_EQ(b.events[0].second, "branch");
+  ASSERT_EQ(b.hashes.count(19), 1u);
+  const auto& parent = c.recording();
+  EXPECT_NE(b.hashes.at(19), parent.hashes.at(19));  // the branch did not cut like the parent
+
+  ReplayOptions o;
+  o.recording = file;
+  o.verify = true;
+  o.progress = false;
+  const ReplayResult r = run_replay(o);
+  EXPECT_EQ(r.steps, 25u);
+  EXPECT_EQ(r.hashes_checked, 1u);
+  EXPECT_FALSE(r.diverged_at.has_value());
+  EXPECT_EQ(r.report["state_hash"], hash_hex(branch_hash));
 }
 
 // `serosa replay REC.lapr` (no --headless) opens a window on a virtual X display, plays and
