@@ -36,6 +36,8 @@ fem::FemMaterial to_fem(const Material& m) {
   return f;
 }
 
+}  // namespace
+
 fem::FemConfig fem_config(const Scene& scene, const AssembledScene& assembled) {
   fem::FemConfig c;
   for (const auto& [g, info] : assembled.groups)
@@ -55,8 +57,6 @@ LameTable lame_table(const Scene& scene, const AssembledScene& assembled) {
   if (!scene.organs.empty()) t.fallback = lame(scene.organs.front().material);
   return t;
 }
-
-}  // namespace
 
 Composition compose(const Scene& scene, const AssembledScene& assembled, ComposeOptions options) {
   Composition c;

@@ -7,8 +7,10 @@
 #include <vector>
 
 #include "app/assemble_state.h"
+#include "app/tissue_stress.h"
 #include "engine/runner.h"
 #include "engine/scene.h"
+#include "fem/fem_config.h"
 
 namespace serosa::fem {
 class FemStage;
@@ -47,6 +49,11 @@ struct Composition {
   MetricsStage* metrics = nullptr;      ///< built with "fem" (stress needs it)
   Stage* tool_input = nullptr;          ///< ComposeOptions::tool_input once handed to the runner
 };
+
+/// The FEM model of `scene`: a material per group, the solver settings, gravity when listed.
+[[nodiscard]] fem::FemConfig fem_config(const Scene& scene, const AssembledScene& assembled);
+/// The Lamé parameters per group (stress metrics, grasp forces).
+[[nodiscard]] LameTable lame_table(const Scene& scene, const AssembledScene& assembled);
 
 /// Builds the stages for `scene` in the pipeline order of DESIGN.md (tools -> contact -> FEM ->
 /// cuts -> surface -> metrics -> publish -> record), only for listed effects.

@@ -1,6 +1,7 @@
 #include "app/cutting_stage.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "app/tool_geometry.h"
 #include "cutting/tet_bvh.h"
@@ -11,11 +12,40 @@ namespace serosa::app {
 
 CuttingStage::CuttingStage(const Scene& scene, CuttingStageOptions options) : m_options(options) {
   for (std::size_t i = 0; i < scene.tools.size(); ++i)
-    if (scene.tools[i].kind == ToolKind::kScissors) m_scissors.push_back({i, std::nullopt});
+    if (scene.tools[i].kind == ToolKind::kScissors) m_scissors.push_back({i, std::nullopt, std::nullopt});
   m_cut_options.classify_rel = scene.cutting.tolerance;
 }
 
 CuttingStage::~CuttingStage() = default;
+
+std::optional<cutting::ConvexPolygon> sector_polygon(const ToolFrame& frame, double a0, double a1,
+                                                     double length_m) {
+  if (a1 < a0) std::swap(a0, a1);
+  const double span = a1 - a0;
+  if (!(span > 1e-9) || !(length_m > 0.0)) return std::nullopt;
+  const int segments = std::max(1, static_cast<int>(std::ceil(span / kStrokeArcStep)));
+  std::vector<Vec3> points{frame.hinge};
+  // Counter-clockwise seen from +pin: from the side (+a) towards the other side.
+  for (int k = 0; k <= segments; ++k) {
+    const double a = a1 - span * static_cast<double>(k) / static_cast<double>(segments);
+    points.push_back(frame.hinge +
+                     length_m * (std::cos(a) * frame.forward + std::sin(a) * frame.side));
+  }
+  return cutting::ConvexPolygon::make(std::move(points));
+}
+
+namespace {
+
+// Whether two poses hold the blades in the same place, within the stroke tolerances.
+bool same_place(const ToolState& a, const ToolState& b) {
+  const ToolFrame fa = tool_frame(a), fb = tool_frame(b);
+  if (!((fa.hinge - fb.hinge).norm() <= kStrokeHingeTol)) return false;
+  const double turn =
+      std::max((fa.forward - fb.forward).norm(), (fa.side - fb.side).norm());  // ~ angle, rad
+  return turn <= kStrokeAngleTol;
+}
+
+}  // namespace
 
 void CuttingStage::step(const StepContext& ctx, SimState& state) {
   for (Scissors& s : m_scissors) {
@@ -23,8 +53,36 @@ void CuttingStage::step(const StepContext& ctx, SimState& state) {
     const ToolState now = state.tools[s.tool];
     const std::optional<ToolState> before = s.before;
     s.before = now;
+    if (!before) continue;
+    const bool closing = now.jaw_rad < before->jaw_rad;
+    // A stationary stroke goes on while the jaws close and the scissors stay in its place.
+    if (s.stroke) {
+      if (closing && same_place(*s.stroke, now)) {
+        if (now.jaw_rad <= 0.0) {  // closed: nothing more to sweep
+          const ToolState start = *s.stroke;
+          s.stroke.reset();
+          flush_stroke(ctx, state, s.tool, start, 0.0);
+        }
+        continue;
+      }
+      // Stopped closing or moved: cut what the stroke swept up to the previous pose.
+      const ToolState start = *s.stroke;
+      s.stroke.reset();
+      flush_stroke(ctx, state, s.tool, start, before->jaw_rad);
+      if (!closing) continue;
+    } else if (!closing) {
+      continue;
+    }
     // Only closing jaws cut: the blades slide past each other over the tissue between them.
-    if (!before || !(now.jaw_rad < before->jaw_rad)) continue;
+    if (same_place(*before, now)) {
+      s.stroke = *before;  // a stationary stroke begins: cut it as a whole later
+      if (now.jaw_rad <= 0.0) {
+        s.stroke.reset();
+        flush_stroke(ctx, state, s.tool, *before, 0.0);
+      }
+      continue;
+    }
+    // Moving while closing: each blade sweeps the quad between its two poses.
     const ToolFrame f0 = tool_frame(*before);
     const ToolFrame f1 = tool_frame(now);
     for (int blade = 0; blade < 2; ++blade) {
@@ -37,6 +95,33 @@ void CuttingStage::step(const StepContext& ctx, SimState& state) {
         continue;
       }
       cut(ctx, state, s.tool, blade, *polygon);
+    }
+  }
+}
+
+void CuttingStage::flush_stroke(const StepContext& ctx, SimState& state, std::size_t tool,
+                                const ToolState& start, double end_jaw_rad) {
+  const ToolFrame f = tool_frame(start);
+  const double a0 = 0.5 * start.jaw_rad, a1 = 0.5 * std::max(end_jaw_rad, 0.0);
+  if (!(a0 > a1)) return;
+  ++m_stats.strokes;
+  if (a1 <= 0.0) {
+    // Fully closed: the two blades swept one sector across the shaft axis.
+    ++m_stats.sweeps;
+    if (auto p = sector_polygon(f, -a0, a0, kJawLength)) {
+      cut(ctx, state, tool, 0, *p);
+    } else {
+      ++m_stats.degenerate_sweeps;
+    }
+    return;
+  }
+  for (int blade = 0; blade < 2; ++blade) {
+    const double sign = blade == 0 ? 1.0 : -1.0;
+    ++m_stats.sweeps;
+    if (auto p = sector_polygon(f, sign * a1, sign * a0, kJawLength)) {
+      cut(ctx, state, tool, blade, *p);
+    } else {
+      ++m_stats.degenerate_sweeps;
     }
   }
 }

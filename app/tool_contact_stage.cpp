@@ -133,7 +133,10 @@ void ToolContactStage::step(const StepContext& ctx, SimState& state) {
         for (std::size_t k = 0; k < g.nodes.size(); ++k) {
           const auto un = static_cast<std::size_t>(g.nodes[k]);
           const Vec3 target = f.hinge + r * g.local[k];
-          mesh.v[un] = (target - mesh.x[un]) / ctx.dt_s;
+          // At rest in the step: FEM evaluates elastic forces at x + (beta + dt) v, so a
+          // velocity here would put the held nodes a step ahead of the jaws in the solve (the
+          // tissue then overtook the jaws and the grasp force came out reversed).
+          mesh.v[un].setZero();
           mesh.x[un] = target;
           mesh.fixed[un] = 1;
         }

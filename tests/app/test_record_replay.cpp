@@ -3,12 +3,15 @@
 // recording (the real `serosa` process) leaves a file that replays up to its last chunk.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <fstream>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "app/headless.h"
 #include "app/replay.h"
@@ -150,6 +153,69 @@ TEST(RecordReplay, KillNineWhileRecordingReplaysUpToTheLastChunk) {
   EXPECT_NE(cli.out.find("replayed " + std::to_string(r.inputs.size()) + " steps"),
             std::string::npos)
       << cli.out;
+}
+
+// Starts `serosa headless SCENE --steps 1e8 --record FILE [extra]` in a child process and
+// returns its pid once the writer has written at least `chunks` chunks (or 60 s passed).
+pid_t start_long_recording(const fs::path& file, const std::vector<std::string>& extra,
+                           std::int64_t chunks, std::int64_t& seen) {
+  const std::string exe = serosa_exe().string();
+  const std::string scene = source("config/beam.toml").string();
+  const std::string path = file.string();
+  std::vector<std::string> args{exe, "headless", scene, "--steps", "100000000", "--record", path};
+  args.insert(args.end(), extra.begin(), extra.end());
+  const pid_t pid = fork();
+  if (pid == 0) {
+    std::freopen("/dev/null", "w", stdout);
+    std::freopen("/dev/null", "w", stderr);
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(exe.c_str(), argv.data());
+    _exit(127);
+  }
+  seen = 0;
+  for (int i = 0; i < 600 && seen < chunks; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (fs::exists(file) && fs::file_size(file) > 0) {
+      try {
+        seen = recording::read_recording(file).chunks;
+      } catch (const std::exception&) {  // header not complete yet
+      }
+    }
+  }
+  return pid;
+}
+
+TEST(RecordReplay, CtrlCWhileRecordingClosesTheRecordingCleanly) {
+  const fs::path dir = out_dir("record_sigint");
+  const fs::path file = dir / "interrupted.lapr";
+  const fs::path report = dir / "report.json";
+  std::int64_t chunks = 0;
+  const pid_t pid = start_long_recording(file, {"--report", report.string()}, 2, chunks);
+  ASSERT_GT(pid, 0);
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_GE(chunks, 2) << "the recording never reached 2 chunks";
+  // The run ends after the current step: exit 0, recording complete with its end record, the
+  // report written and saying it was interrupted.
+  ASSERT_TRUE(WIFEXITED(status)) << "status " << status;
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  const recording::Recording r = recording::read_recording(file);
+  EXPECT_TRUE(r.complete) << r.stopped;
+  EXPECT_FALSE(r.corrupt);
+  EXPECT_TRUE(r.stopped.empty()) << r.stopped;
+  ASSERT_TRUE(fs::exists(report));
+  nlohmann::json j;
+  std::ifstream(report) >> j;
+  EXPECT_TRUE(j["interrupted"].get<bool>());
+  EXPECT_EQ(j["steps_taken"].get<std::uint64_t>(), r.inputs.size());
+  EXPECT_EQ(j["recording"]["steps"].get<std::uint64_t>(), r.inputs.size());
+  // It replays in full and verifies: no "cut short" warning.
+  const CliResult cli = run_serosa("replay '" + file.string() + "' --headless --verify");
+  EXPECT_EQ(cli.code, 0) << cli.out;
+  EXPECT_EQ(cli.out.find("warning"), std::string::npos) << cli.out;
 }
 
 TEST(RecordReplay, NotARecordingIsAClearError) {

@@ -135,8 +135,7 @@ std::int32_t tip_node(const TetMesh& m) {
 // Quaternion of that frame: rotation about x by +90 degrees.
 const std::string kDown = "0.7071067811865476,0.7071067811865476,0,0";
 
-// DISABLED: fails today (grasp force sign / contact geometry unverified); see issue 8 report.
-TEST(Grasper, DISABLED_GrabsLiftsAndLetsGo) {
+TEST(Grasper, GrabsLiftsAndLetsGo) {
   const fs::path dir = out_dir("grasper");
   // Jaw tips 3 mm into the beam (top at y = 5 mm) near its end; open, close, lift 5 mm, open.
   const std::string csv =
@@ -165,8 +164,7 @@ TEST(Grasper, DISABLED_GrabsLiftsAndLetsGo) {
   EXPECT_GT(m["peak_stress_pa"].get<double>(), 0.0);
 }
 
-// DISABLED: fails today (no contact detected); see issue 8 report.
-TEST(Contact, DISABLED_ShaftPressesTheBeamDownAndTwoToolsActAtOnce) {
+TEST(Contact, ShaftPressesTheBeamDownAndTwoToolsActAtOnce) {
   const fs::path dir = out_dir("contact");
   // A closed grasper held still, its shaft (radius 2.5 mm) lying across the top of the beam
   // (y = 5 mm) at x = 8 cm, 1 mm deep, pointing along -z (jaws beyond the beam); scissors held
@@ -181,11 +179,20 @@ TEST(Contact, DISABLED_ShaftPressesTheBeamDownAndTwoToolsActAtOnce) {
   auto pressed = beam_with_tools(dir, "\"fem\", \"surface\", \"contact\"", tools, csv);
   SimState& s = pressed->assembled.state;
   const std::int32_t tip = tip_node(s.mesh);
-  pressed->comp.runner->run(s, 20);
-  EXPECT_GT(pressed->comp.contact->contacts(), 0);
-  EXPECT_LT(pressed->comp.contact->tool_forces()[0].y(), 0.0);  // pushes down
-  EXPECT_EQ(pressed->comp.contact->tool_forces()[1].norm(), 0.0);
-  EXPECT_LT(s.mesh.x[static_cast<std::size_t>(tip)].y(), -1e-5);
+  const double tip_y0 = s.mesh.x[static_cast<std::size_t>(tip)].y();
+  // The shaft pushes the weightless beam down and away: contact while it touches, none after.
+  std::int64_t touching_steps = 0;
+  for (int k = 0; k < 20; ++k) {
+    pressed->comp.runner->step(s);
+    const auto& f = pressed->comp.contact->tool_forces();
+    if (pressed->comp.contact->contacts() > 0) {
+      ++touching_steps;
+      EXPECT_LT(f[0].y(), 0.0) << "step " << k;  // pushes down
+    }
+    EXPECT_EQ(f[1].norm(), 0.0) << "step " << k;  // the scissors touch nothing
+  }
+  EXPECT_GE(touching_steps, 5);
+  EXPECT_LT(s.mesh.x[static_cast<std::size_t>(tip)].y() - tip_y0, -1e-4);  // the end went down
   for (const Vec3& x : s.mesh.x) EXPECT_TRUE(x.allFinite());
   // Without "contact" the same tools do nothing to the (weightless) beam.
   const fs::path dir2 = out_dir("contact_off");
