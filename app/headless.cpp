@@ -93,7 +93,8 @@ Json cutting_json(const Composition& comp) {
   Json j = Json::object();
   if (comp.cutting) {
     const CuttingStageStats& c = comp.cutting->stats();
-    j = {{"sweeps", c.sweeps},
+    j = {{"strokes", c.strokes},
+         {"sweeps", c.sweeps},
          {"cuts", c.cuts},
          {"tets_removed", c.tets_removed},
          {"tets_added", c.tets_added},
