@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "cut_helpers.h"
+#include "cutting/tet_bvh.h"
 #include "mesh_fixtures.h"
 
 namespace serosa::cutting {
@@ -45,10 +46,16 @@ TEST(PartialBlades, TipInsideTheMeshGivesAnAcceptedDelta) {
   const ConvexPolygon blade({c + Vec3(0, -3 * h, h), c + Vec3(0, 3 * h, h),
                              c + Vec3(0, 3 * h, -2 * h), c + Vec3(0, -3 * h, -2 * h)});
   EXPECT_TRUE(cut_applies_and_checks(m, blade));
-  // The same blade the other way round, and through the BVH.
+  // The same blade the other way round; through the BVH the same delta.
   const ConvexPolygon reversed({c + Vec3(0, -3 * h, -2 * h), c + Vec3(0, 3 * h, -2 * h),
                                 c + Vec3(0, 3 * h, h), c + Vec3(0, -3 * h, h)});
   EXPECT_TRUE(cut_applies_and_checks(m, reversed));
+  const TetBvh bvh(m);
+  const CutResult a = cut_mesh(m, blade, {}, bvh.as_query());
+  const CutResult b = cut_mesh(m, blade);
+  EXPECT_EQ(a.delta.removed_tets, b.delta.removed_tets);
+  EXPECT_EQ(a.delta.added_tets, b.delta.added_tets);
+  EXPECT_GT(b.stats.tets_partial, 0);
 }
 
 // A point of tet `t` of `m` by `kind`: 0 inside, 1 on a face, 2 on an edge, 3 on a node.
