@@ -36,14 +36,15 @@ struct CholmodSolver::Impl {
     ok_factor = false;
   }
 
-  // A view of the CSR arrays as a symmetric CSC matrix (upper triangle used). CHOLMOD only
-  // reads through the pointers, so the const_casts are safe.
+  // A view of the CSR arrays as a symmetric, unpacked CSC matrix (upper triangle used). CHOLMOD
+  // only reads through the pointers, so the const_casts are safe.
   static cholmod_sparse view(const CsrMatrix& a) {
     cholmod_sparse s{};
     s.nrow = static_cast<std::size_t>(a.rows);
     s.ncol = static_cast<std::size_t>(a.rows);
-    s.nzmax = static_cast<std::size_t>(a.nnz());
-    s.p = const_cast<std::int32_t*>(a.row_ptr.data());
+    s.nzmax = static_cast<std::size_t>(a.storage());
+    s.p = const_cast<std::int32_t*>(a.row_start.data());
+    s.nz = const_cast<std::int32_t*>(a.row_nz.data());
     s.i = const_cast<std::int32_t*>(a.col.data());
     s.x = const_cast<double*>(a.val.data());
     s.stype = 1;
@@ -51,7 +52,7 @@ struct CholmodSolver::Impl {
     s.xtype = CHOLMOD_REAL;
     s.dtype = CHOLMOD_DOUBLE;
     s.sorted = 1;
-    s.packed = 1;
+    s.packed = 0;  // rows may leave slack (fem/csr_matrix.h)
     return s;
   }
 };

@@ -35,16 +35,29 @@ void ImplicitIntegrator::rebuild(TetMesh& mesh) {
   m_dv.assign(3 * static_cast<std::size_t>(mesh.num_nodes()), 0.0);
   m_rot.assign(static_cast<std::size_t>(mesh.num_tets()), Mat3::Identity());
   rebuild_solver_structure(mesh);
+  m_built = true;
 }
 
 void ImplicitIntegrator::update(TetMesh& mesh, const TopologyDelta& delta) {
-  if (m_el.topology_version != delta.version_before ||
+  if (!m_built || m_el.topology_version != delta.version_before ||
+      m_pattern.topology_version != delta.version_before ||
       mesh.topology_version != delta.version_after || m_el.elements.size() != m_q.size()) {
     rebuild(mesh);
     return;
   }
+  // The removed tets' nodes, before their elements are overwritten (the mesh no longer has them).
+  m_removed.clear();
+  for (std::int32_t r : delta.removed_tets)
+    m_removed.push_back(m_el.elements[static_cast<std::size_t>(r)].nodes);
   update_elements(mesh, delta, m_config, m_el);
-  mesh.mass = m_el.node_mass;
+  // Masses of touched nodes only (new nodes appended).
+  mesh.mass.resize(m_el.node_mass.size());
+  for (const Tet& t : m_removed)
+    for (std::int32_t i : t)
+      mesh.mass[static_cast<std::size_t>(i)] = m_el.node_mass[static_cast<std::size_t>(i)];
+  for (std::int32_t slot : delta.slot_of_added)
+    for (std::int32_t i : mesh.tets[static_cast<std::size_t>(slot)])
+      mesh.mass[static_cast<std::size_t>(i)] = m_el.node_mass[static_cast<std::size_t>(i)];
   // Per-tet rotations follow the same slot rules; added tets start from their SVD polar factor.
   for (std::size_t k = 0; k < delta.slot_of_added.size(); ++k) {
     const auto slot = static_cast<std::size_t>(delta.slot_of_added[k]);
@@ -69,10 +82,22 @@ void ImplicitIntegrator::update(TetMesh& mesh, const TopologyDelta& delta) {
       m_plastic[static_cast<std::size_t>(to)] = m_plastic[static_cast<std::size_t>(from)];
     m_plastic.resize(static_cast<std::size_t>(mesh.num_tets()), Mat3::Zero());
   }
-  m_rot.resize(static_cast<std::size_t>(mesh.num_tets()), Mat3::Identity());
-  // New nodes: no warm start.
-  m_dv.resize(3 * static_cast<std::size_t>(mesh.num_nodes()), 0.0);
-  rebuild_solver_structure(mesh);
+  // Matrix pattern: only the rows of touched nodes and the blocks of tets around them.
+  m_last_update = update_pattern(mesh, delta, m_removed, m_pattern, m_a);
+  // Per-node and per-tet work arrays grow or shrink at their ends (new nodes: no warm start).
+  const auto n3 = 3 * static_cast<std::size_t>(mesh.num_nodes());
+  const auto m = static_cast<std::size_t>(mesh.num_tets());
+  m_rhs.resize(n3, 0.0);
+  m_pcg.r.resize(n3, 0.0);
+  m_dv.resize(n3, 0.0);
+  m_fe.resize(4 * m);
+  m_rot.resize(m, Mat3::Identity());
+  m_rg.resize(4 * m);
+  // A direct factor is global: CHOLMOD re-analyzes the new pattern; pcg_cholmod's background
+  // factor is requested for the new structure by the next step.
+  m_analyzed = false;
+  ++m_structure;
+  if (m_config.solver.kind == SolverKind::cholmod) m_analyzed = m_cholmod.analyze(m_a);
 }
 
 StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const Vec3> f_ext) {
@@ -123,8 +148,8 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
     if (!node_constrained(mesh, m_el, ui)) {
       b = m_el.node_mass[ui] * g - m_el.node_damping[ui] * mesh.v[ui];
       if (has_ext) b += f_ext[ui];
-      for (std::int32_t k = m_pattern.incident_ptr[ui]; k < m_pattern.incident_ptr[ui + 1]; ++k)
-        b += m_fe[static_cast<std::size_t>(m_pattern.incident[static_cast<std::size_t>(k)])];
+      for (const std::int32_t ic : m_pattern.incident_of(ui))
+        b += m_fe[static_cast<std::size_t>(ic)];
       b *= dt_s;
     }
     for (int c = 0; c < 3; ++c) m_rhs[3 * ui + static_cast<std::size_t>(c)] = b[c];

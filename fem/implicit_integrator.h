@@ -57,8 +57,11 @@ class ImplicitIntegrator {
   /// pattern, CHOLMOD analysis, rotations from scratch.
   void rebuild(TetMesh& mesh);
   /// Incremental update after apply(mesh, delta): recomputes only the added elements and the
-  /// masses of touched nodes, relabels per-tet rotations; rebuilds the matrix pattern.
-  /// Falls back to rebuild() if the delta does not follow the version this integrator holds.
+  /// masses of touched nodes, relabels per-tet rotations, and patches the matrix pattern locally
+  /// (fem/system_matrix.h update_pattern). Cost follows the tets touched, not the mesh size,
+  /// except for CHOLMOD's symbolic analysis (solver.kind = cholmod: a direct factor is global).
+  /// Falls back to rebuild() if nothing was built yet or the delta does not follow the version
+  /// this integrator holds.
   void update(TetMesh& mesh, const TopologyDelta& delta);
 
   /// Advances mesh.x and mesh.v by dt_s. f_ext: (n) external node forces, N, or empty. Gravity
@@ -75,6 +78,9 @@ class ImplicitIntegrator {
   [[nodiscard]] const FemElements& elements() const { return m_el; }
   [[nodiscard]] std::span<const Mat3> rotations() const { return m_rot; }
   [[nodiscard]] const CsrMatrix& matrix() const { return m_a; }
+  [[nodiscard]] const SystemPattern& pattern() const { return m_pattern; }
+  /// What the last update() did to the matrix pattern.
+  [[nodiscard]] const PatternUpdateStats& last_update() const { return m_last_update; }
 
  private:
   void rebuild_solver_structure(const TetMesh& mesh);
@@ -100,6 +106,9 @@ class ImplicitIntegrator {
   BackgroundFactor m_factor;
   std::uint64_t m_structure = 0;
   std::vector<Vec3> m_rg_rest;  // (4m) unrotated gradients b_a
+  std::vector<Tet> m_removed;   // scratch of update(): nodes of the removed tets
+  PatternUpdateStats m_last_update;
+  bool m_built = false;  // rebuild() ran: update() has something to update
 };
 
 }  // namespace serosa::fem

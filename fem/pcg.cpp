@@ -45,8 +45,8 @@ Preconditioner jacobi(const CsrMatrix& a, PcgScratch& s) {
   s.inv_diag.assign(static_cast<std::size_t>(a.rows), 1.0);
 #pragma omp parallel for schedule(static) if (a.rows >= kParallelMin)
   for (std::int32_t r = 0; r < a.rows; ++r)
-    for (std::int32_t k = a.row_ptr[static_cast<std::size_t>(r)];
-         k < a.row_ptr[static_cast<std::size_t>(r) + 1]; ++k)
+    for (std::int32_t k = a.row_start[static_cast<std::size_t>(r)];
+         k < a.row_start[static_cast<std::size_t>(r)] + a.row_nz[static_cast<std::size_t>(r)]; ++k)
       if (a.col[static_cast<std::size_t>(k)] == r) {
         const double d = a.val[static_cast<std::size_t>(k)];
         s.inv_diag[static_cast<std::size_t>(r)] = d > 0.0 ? 1.0 / d : 1.0;

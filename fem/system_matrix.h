@@ -1,9 +1,19 @@
 // System matrix of the implicit step, A = (M + dt alpha M) + (dt^2 + dt beta) R K R^T, assembled
 // into a CsrMatrix. Split precompute/fill (libigl's min_quad_with_fixed):
-//  * build_pattern(): once per topology version. Node a's three rows hold the columns 3b..3b+2 of
-//    every node b sharing a tet with a (sorted), so entry (3a+i, 3b+j) sits at
+//  * build_pattern(): once. Node a's three rows hold the columns 3b..3b+2 of every node b sharing
+//    a tet with a (sorted, a itself included), so entry (3a+i, 3b+j) sits at
 //      block_start + i * row_len(a) + j,
 //    and every (tet, a, b) block start is precomputed. Also builds node -> (tet, corner) incidence.
+//  * update_pattern(): after a topology change (engine/topology_delta.h), local. Only the nodes of
+//    removed and added tets get a new incidence and neighbour list; a node whose neighbour list
+//    changed rewrites its three rows in place when they fit its capacity, else moves them to the
+//    end of the storage with 50% slack (the CSR is unpacked: row_start/row_nz, so no other row
+//    moves); only the tets touching such a node, and the added and relabelled tets, recompute
+//    their block starts. Entries of neighbours a node no longer shares a tet with are dropped.
+//    When moved rows leave gaps over half the storage in use, it is compacted (amortized).
+//    The result holds exactly the entries of a full build_pattern() on the new mesh, in the same
+//    order within each row, with the same incidence order (ascending tet), so fill_system()
+//    gives the same values bit for bit.
 //  * fill_system(): every step, in parallel over nodes (each thread writes only its own rows, so no
 //    atomics and the result is the same for any thread count).
 // Dirichlet nodes (TetMesh::fixed) and massless nodes (no active tet) get the row and column of
@@ -16,23 +26,62 @@
 #include <vector>
 
 #include "engine/tet_mesh.h"
+#include "engine/topology_delta.h"
 #include "fem/csr_matrix.h"
 #include "fem/fem_elements.h"
 
 namespace serosa::fem {
 
+/// A list per node kept in one flat array with room to grow: node i's items are
+/// data[start[i] .. start[i] + count[i]), with capacity cap[i] >= count[i].
+struct SlackLists {
+  std::vector<std::int32_t> start;  ///< (n) first item of each list in data
+  std::vector<std::int32_t> count;  ///< (n) items in use
+  std::vector<std::int32_t> cap;    ///< (n) items reserved
+  std::vector<std::int32_t> data;   ///< (storage) items, with unused gaps
+  std::int64_t used = 0;            ///< sum of cap (storage in live lists)
+
+  [[nodiscard]] std::span<const std::int32_t> of(std::size_t i) const {
+    return {data.data() + start[i], static_cast<std::size_t>(count[i])};
+  }
+};
+
 struct SystemPattern {
   std::int32_t nodes = 0;
+  /// Node i's neighbour list (sorted node ids sharing a tet with i, i included). Its three rows
+  /// use the value/column storage from 9 * nbr.start[i] (capacity 9 * nbr.cap[i]).
+  SlackLists nbr;
   std::vector<std::int32_t> row_len;                ///< (n) entries per row of node a = 3 deg
   std::vector<std::int32_t> diag_start;             ///< (n) index of entry (3a, 3a)
   std::vector<std::array<std::int32_t, 16>> block;  ///< (m x 4 x 4) index of (3 t_a, 3 t_b)
-  std::vector<std::int32_t> incident_ptr;           ///< (n + 1) start in incident
-  std::vector<std::int32_t> incident;               ///< (4m) 4 * tet + corner, by node
+  /// Node i's incident corners 4 * tet + corner, ascending.
+  SlackLists incident;
   std::uint64_t topology_version = 0;
+
+  [[nodiscard]] std::span<const std::int32_t> incident_of(std::size_t i) const {
+    return incident.of(i);
+  }
+};
+
+/// What update_pattern() touched (for tests and benchmarks).
+struct PatternUpdateStats {
+  std::int32_t nodes_touched = 0;   ///< nodes whose incidence was recomputed
+  std::int32_t rows_rewritten = 0;  ///< nodes whose neighbour list (three rows) changed
+  std::int32_t rows_moved = 0;      ///< of those, moved to the end of the storage
+  std::int32_t blocks_updated = 0;  ///< tets whose block starts were recomputed
+  bool compacted = false;           ///< the storage was compacted
 };
 
 /// Builds the pattern and the matrix structure (values zeroed) for the mesh's tets.
 void build_pattern(const TetMesh& mesh, SystemPattern& pattern, CsrMatrix& a);
+
+/// Local update after `apply(mesh, delta)` (mesh: after the change; delta: with its apply()
+/// outputs). removed: (r) node ids of the removed tets, in delta.removed_tets order (the mesh no
+/// longer has them). Requires pattern.topology_version == delta.version_before. Values of
+/// rewritten rows are zero; the others are left as they were.
+PatternUpdateStats update_pattern(const TetMesh& mesh, const TopologyDelta& delta,
+                                  std::span<const Tet> removed, SystemPattern& pattern,
+                                  CsrMatrix& a);
 
 /// True where node i takes no part in the solve (fixed, or no mass): dv_i = 0.
 [[nodiscard]] inline bool node_constrained(const TetMesh& mesh, const FemElements& el,

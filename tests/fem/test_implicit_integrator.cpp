@@ -9,7 +9,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -237,38 +236,6 @@ TEST(Stability, StiffnessContrastStaysFinite) {
       EXPECT_LT(tip_sag(m, 1.0), 1.0);
       EXPECT_GT(tip_sag(m, 1.0), 0.0);
     }
-}
-
-// Not a timed test: run with --gtest_also_run_disabled_tests to print ms per step for a 4 x 1 x 1
-// box (x = 0 fixed, E = 3000 Pa, nu = 0.45, rho = 1 kg/m^3, Rayleigh 0.1 / 0.1, dt = 0.01 s).
-// SEROSA_BENCH_LARGE=1 adds the ~98k-tet box (minutes with CHOLMOD).
-TEST(Benchmark, DISABLED_BoxStepTimes) {
-  std::vector<int> sizes{9};
-  if (std::getenv("SEROSA_BENCH_LARGE") != nullptr) sizes.push_back(16);
-  for (int k : sizes) {
-    for (SolverKind kind : {SolverKind::pcg, SolverKind::pcg_cholmod, SolverKind::cholmod}) {
-      TetMesh m = fixtures::grid(4 * k, k, k, 1.0 / k, 1.0 / k, 1.0 / k);
-      for (std::size_t i = 0; i < m.rest.size(); ++i) m.fixed[i] = m.rest[i].x() < 1e-12;
-      FemConfig c;
-      c.default_material = FemMaterial{3000.0, 0.45, 1.0, 0.1, 0.1};
-      c.solver.kind = kind;
-      c.solver.max_iterations = kind == SolverKind::cholmod ? 0 : 20;
-      c.solver.tolerance = 1e-12;
-      ImplicitIntegrator integ(c);
-      integ.step(m, 0.01);  // precompute, analysis, first factorization
-      const int steps = k > 10 ? 5 : 20;
-      const auto t0 = std::chrono::steady_clock::now();
-      for (int s = 0; s < steps; ++s) integ.step(m, 0.01);
-      const double ms =
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() /
-          steps;
-      double sag = 0.0;
-      for (std::size_t i = 0; i < m.rest.size(); ++i)
-        sag = std::max(sag, m.rest[i].y() - m.x[i].y());
-      std::printf("box tets=%d solver=%d: %.2f ms/step (%.0f steps/s), sag after %d steps %.4f\n",
-                  m.num_tets(), static_cast<int>(kind), ms, 1000.0 / ms, steps + 1, sag);
-    }
-  }
 }
 
 }  // namespace

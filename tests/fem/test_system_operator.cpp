@@ -54,8 +54,8 @@ TEST(SystemOperator, MatrixFreeEqualsAssembledAndBlockedSpmv) {
   }
   operator_inverse_diagonal(el, pat, rg, op, inv);
   for (std::int32_t r = 0; r < a.rows; ++r)
-    for (std::int32_t k = a.row_ptr[static_cast<std::size_t>(r)];
-         k < a.row_ptr[static_cast<std::size_t>(r) + 1]; ++k)
+    for (std::int32_t k = a.row_start[static_cast<std::size_t>(r)];
+         k < a.row_start[static_cast<std::size_t>(r)] + a.row_nz[static_cast<std::size_t>(r)]; ++k)
       if (a.col[static_cast<std::size_t>(k)] == r) {
         EXPECT_NEAR(1.0 / inv[static_cast<std::size_t>(r)], a.val[static_cast<std::size_t>(k)],
                     1e-12 * a.val[static_cast<std::size_t>(k)]);
