@@ -48,6 +48,7 @@ bool same_place(const ToolState& a, const ToolState& b) {
 }  // namespace
 
 void CuttingStage::step(const StepContext& ctx, SimState& state) {
+  if (!m_scissors.empty()) cutting::reserve_for_cuts(state.mesh);  // no realloc in the first cut
   for (Scissors& s : m_scissors) {
     if (s.tool >= state.tools.size()) continue;
     const ToolState now = state.tools[s.tool];

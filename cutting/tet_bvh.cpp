@@ -1,7 +1,9 @@
 #include "cutting/tet_bvh.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -22,13 +24,39 @@ double half_area(const Vec3& lo, const Vec3& hi) {
   return d.x() * d.y() + d.y() * d.z() + d.z() * d.x();
 }
 
+// Nodes build() makes for `count` tets (median splits down to kLeafSize): 1 + both halves. Sizes
+// on one level differ by at most one, so memoising keeps this O(log count).
+std::size_t build_node_count(std::size_t count, std::map<std::size_t, std::size_t>& memo) {
+  if (count <= kLeafSize) return 1;
+  if (const auto it = memo.find(count); it != memo.end()) return it->second;
+  const std::size_t n =
+      1 + build_node_count(count / 2, memo) + build_node_count(count - count / 2, memo);
+  memo.emplace(count, n);
+  return n;
+}
+
 const Vec3 kEmptyLo = Vec3::Constant(std::numeric_limits<double>::infinity());
 const Vec3 kEmptyHi = Vec3::Constant(-std::numeric_limits<double>::infinity());
 
 }  // namespace
 
-TetBvh::TetBvh(const TetMesh& mesh) {
+TetBvh::TetBvh(const TetMesh& mesh, double spare) : m_spare(spare) {
+  if (!std::isfinite(spare) || spare < 0.0) {
+    std::string what = "TetBvh: spare must be finite and >= 0, got ";
+    what.append(std::to_string(spare));
+    throw std::invalid_argument(what);
+  }
   const std::int32_t m = mesh.num_tets();
+  // Spare capacity for the tets and nodes cuts append (update()): without it the first cut
+  // after a build reallocates every array, O(m).
+  const auto with_spare = [spare](std::size_t count) {
+    return static_cast<std::size_t>(std::ceil(static_cast<double>(count) * (1.0 + spare)));
+  };
+  m_lo.reserve(with_spare(static_cast<std::size_t>(m)));
+  m_hi.reserve(with_spare(static_cast<std::size_t>(m)));
+  m_leaf_of.reserve(with_spare(static_cast<std::size_t>(m)));
+  std::map<std::size_t, std::size_t> memo;
+  m_nodes.reserve(with_spare(m > 0 ? build_node_count(static_cast<std::size_t>(m), memo) : 0));
   m_lo.resize(static_cast<std::size_t>(m));
   m_hi.resize(static_cast<std::size_t>(m));
   m_leaf_of.assign(static_cast<std::size_t>(m), -1);
@@ -280,7 +308,7 @@ void TetBvh::update(const TetMesh& mesh, const TopologyDelta& d) {
         " tets, the mesh " + std::to_string(mesh.num_tets()) + ", the delta adds " +
         std::to_string(added) + " and removes " + std::to_string(removed) + "; was it applied?)");
   if (m_nodes.empty()) {
-    *this = TetBvh(mesh);
+    *this = TetBvh(mesh, m_spare);
     return;
   }
   std::vector<std::int32_t> dirty;
@@ -356,7 +384,7 @@ void TetBvh::update(const TetMesh& mesh, const TopologyDelta& d) {
   // Reclaim the nodes rebuilds left behind once they outnumber the live ones.
   if (m_orphans > static_cast<std::int64_t>(m_nodes.size()) / 2) {
     const std::int64_t rebuilds = m_rebuilds;
-    *this = TetBvh(mesh);
+    *this = TetBvh(mesh, m_spare);
     m_rebuilds = rebuilds + 1;
   }
 }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cutting/cut_mesh.h"
+#include "cutting/reserve.h"
 #include "engine/math.h"
 #include "engine/tet_mesh.h"
 #include "engine/topology_delta.h"
@@ -16,8 +17,12 @@ namespace serosa::cutting {
 class TetBvh {
  public:
   /// Builds over the mesh's current positions x (median split on the widest axis of the tet
-  /// centroids, up to 4 tets per leaf). O(m log m).
-  explicit TetBvh(const TetMesh& mesh);
+  /// centroids, up to 4 tets per leaf). O(m log m). The per-tet arrays and the node array get
+  /// capacity for `spare` (fraction, >= 0) more tets and nodes than built, so the cuts after the
+  /// build append to them without reallocating (untouched capacity costs no page faults). A copy
+  /// of a TetBvh has no spare capacity (std::vector copies do not keep it). Throws
+  /// std::invalid_argument when spare is negative or not finite.
+  explicit TetBvh(const TetMesh& mesh, double spare = kCutSpare);
 
   /// Recomputes every box for moved nodes (same tets as at build or last update). O(m). Throws
   /// std::invalid_argument when the tet count differs (a cut was applied without update()).
@@ -81,6 +86,7 @@ class TetBvh {
   std::vector<std::int32_t> m_leaf_of;  ///< (m) leaf node holding each tet
   std::int64_t m_orphans = 0;           ///< nodes no longer reachable (left by rebuilds)
   std::int64_t m_rebuilds = 0;
+  double m_spare = kCutSpare;  ///< spare capacity fraction, kept by full rebuilds
 };
 
 }  // namespace serosa::cutting

@@ -17,8 +17,9 @@
 // reset outside the timing (manual timing of exactly those four steps) by copy assignment from the
 // pristine ones (which keeps the working arrays' capacity, so the timed apply() and update() do not
 // reallocate), so every iteration cuts the same mesh with the same BVH. Counters cut_us, apply_us
-// and update_us split the time; first_cut_us is one cut on fresh copies (arrays without spare
-// capacity); bvh_depth is the BVH's depth before the cut.
+// and update_us split the time; first_cut_us is one cut on a fresh copy given spare capacity
+// as the app does after loading (reserve_for_cuts, a freshly built TetBvh); bvh_depth is the BVH's
+// depth before the cut.
 //
 //   serosa_bench_cutting --benchmark_min_time=0.2
 #include <benchmark/benchmark.h>
@@ -35,6 +36,7 @@
 
 #include "cutting/convex_polygon.h"
 #include "cutting/cut_method.h"
+#include "cutting/reserve.h"
 #include "cutting/snap_cut.h"
 #include "cutting/tet_bvh.h"
 #include "engine/boundary.h"
@@ -123,12 +125,16 @@ double us(Clock::time_point a, Clock::time_point b) {
 }
 
 /// One timed cut per iteration of the pristine mesh, reset outside the timing; fills the split
-/// counters. first_cut_us: the first cut after the mesh and BVH were copied (fresh arrays with
-/// no spare capacity: apply() and update() reallocate the per-tet arrays), not in the average.
+/// counters. first_cut_us: the first cut on a fresh copy of the mesh given spare capacity by
+/// reserve_for_cuts and a BVH built from it, as the app has right after loading (no per-tet
+/// array reallocates in that cut), not in the average.
 CutResult run_cuts(benchmark::State& state, Fixture& f, const ConvexPolygon& b, CutMethod method) {
   {
+    // As the app after loading: spare capacity in the mesh (CuttingStage::step) and a BVH built
+    // from it (with its own spare; a copied TetBvh would have none).
     TetMesh mesh = f.pristine;
-    TetBvh bvh = *f.pristine_bvh;
+    reserve_for_cuts(mesh);
+    TetBvh bvh(mesh);
     const auto t0 = Clock::now();
     CutResult r = cut_with(method, mesh, b, {}, bvh.as_query());
     const auto t1 = Clock::now();
