@@ -4,7 +4,7 @@
 #       --benchmark_format=csv > docs/plots/cutting_bench.csv
 #   gnuplot tools/plots/cutting.gp        (from the repository root)
 # Left: median time per cut (query + cut + apply + BVH update) and its parts against mesh size,
-# same blade, and the first cut on freshly copied arrays (no spare capacity). Right: median time per cut against the tets the blade touches, 100k-tet mesh.
+# same blade, and the first cut after loading (a fresh copy with spare capacity, one cut). Right: median time per cut against the tets the blade touches, 100k-tet mesh.
 set terminal pngcairo size 1100,420 font ",10"
 set output "docs/plots/cutting_time_per_cut.png"
 set datafile separator ","
@@ -12,7 +12,7 @@ set multiplot layout 1,2
 set logscale x
 set logscale y
 set grid
-set key top left
+set key bottom right
 # Rows are picked by name (the medians), columns by their header names.
 is(s) = (strstrt(strcol(1), s) > 0 && strstrt(strcol(1), "_median") > 0)
 set title "Time per cut vs mesh size (same blade, 161 tets touched)"
@@ -24,7 +24,7 @@ plot "docs/plots/cutting_bench.csv" using (is("BM_CutVsSize") ? column("tets") :
      "" using (is("BM_CutVsSize") ? column("tets") : NaN):(column("cut_us")/1000) with linespoints pt 5 title "cut (incl. BVH query)", \
      "" using (is("BM_CutVsSize") ? column("tets") : NaN):(column("update_us")/1000) with linespoints pt 9 title "TetBvh::update", \
      "" using (is("BM_CutVsSize") ? column("tets") : NaN):(column("apply_us")/1000) with linespoints pt 11 title "apply()", \
-     "" using (is("BM_CutVsSize") ? column("tets") : NaN):(column("first_cut_us")/1000) with linespoints dt 2 pt 6 title "first cut on fresh arrays (total)"
+     "" using (is("BM_CutVsSize") ? column("tets") : NaN):(column("first_cut_us")/1000) with linespoints dt 2 pt 6 title "first cut after loading (total)"
 set title "Time per cut vs tets touched (100k-tet mesh)"
 set xlabel "tets touched by the blade"
 set xrange [30:1e4]
