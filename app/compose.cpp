@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "app/cutting_stage.h"
+#include "app/haptics_stage.h"
 #include "app/metrics_stage.h"
 #include "app/script_tool_stage.h"
 #include "app/surface_stage.h"
@@ -94,6 +95,13 @@ Composition compose(const Scene& scene, const AssembledScene& assembled, Compose
     auto tools = std::make_unique<ScriptToolStage>(scene);
     c.tools = tools.get();
     c.runner->add(std::move(tools));
+  }
+  // the haptic loop's handles override their scripted tools (a replay feeds recorded inputs)
+  if (listed(Effect::kHaptics) && !c.tool_input) {
+    auto haptics_stage = std::make_unique<HapticsStage>(scene);
+    c.haptics = haptics_stage.get();
+    c.runner->add(std::move(haptics_stage));
+    c.built.push_back(Effect::kHaptics);
   }
   // contact
   if (contact_stage) {

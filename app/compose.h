@@ -19,6 +19,7 @@ class FemStage;
 namespace serosa::app {
 
 class ScriptToolStage;
+class HapticsStage;
 class CuttingStage;
 class SurfaceStage;
 class ToolContactStage;
@@ -42,6 +43,7 @@ struct Composition {
   /// the FEM stage, "render" is drawn by the headless command when frames are asked for.
   std::vector<Effect> folded;
   ScriptToolStage* tools = nullptr;     ///< null when no tool is scripted
+  HapticsStage* haptics = nullptr;      ///< null unless "haptics" is listed (not in replay)
   fem::FemStage* fem = nullptr;         ///< null unless "fem" is listed
   CuttingStage* cutting = nullptr;      ///< null unless "cutting" is listed
   SurfaceStage* surface = nullptr;      ///< null unless "surface" is listed

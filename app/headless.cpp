@@ -16,6 +16,7 @@
 #include "app/compose.h"
 #include "app/cutting_stage.h"
 #include "app/frame_pictures.h"
+#include "app/haptics_stage.h"
 #include "app/metrics_stage.h"
 #include "app/record_stage.h"
 #include "app/script_tool_stage.h"
@@ -202,6 +203,7 @@ Json run_headless(const HeadlessOptions& options) {
   if (bar && taken < steps) std::fputc('\n', stderr);
   report["steps_taken"] = taken;
   if (taken < steps) report["interrupted"] = true;
+  if (comp.haptics) report["haptics"] = comp.haptics->telemetry_json();  // stops the loop
   if (writer) {
     writer->close(static_cast<std::uint64_t>(taken));
     const auto ws = writer->stats();

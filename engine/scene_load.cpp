@@ -736,10 +736,10 @@ class Loader {
     if (s.has(Effect::kHaptics)) {
       bool device = false;
       for (const Tool& tool : scene.tools)
-        device = device || tool.device.kind != DeviceKind::kScript;
+        device = device || tool.kind != ToolKind::kEndoscope;  // a script plays in real time
       if (!device) {
         fail(line, p, "effect \"haptics\" needs a tool driven by a device, but no tool has one",
-             "a [[tool]] with device rig, rig-emulated or mouse");
+             "a grasper or scissors [[tool]] (device rig, rig-emulated, mouse or script)");
       }
     }
   }

@@ -535,7 +535,7 @@ TEST_F(SceneTest, EffectDependencies) {
 TEST_F(SceneTest, HapticsNeedsADeviceTool) {
   expect_error("[scene]\neffects = [\"haptics\"]\n" + kOrgan, 2, "scene.effects", "haptics");
   expect_error("[scene]\neffects = [\"haptics\"]\n" + kOrgan +
-                   "[[tool]]\nname = \"grasper\"\nkind = \"grasper\"\n"
+                   "[[tool]]\nname = \"grasper\"\nkind = \"endoscope\"\n"
                    "device = \"script:paths/p.csv\"\n",
                2, "scene.effects", "needs a tool driven by a device");
 }
