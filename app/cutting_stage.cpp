@@ -12,7 +12,8 @@ namespace serosa::app {
 
 CuttingStage::CuttingStage(const Scene& scene, CuttingStageOptions options) : m_options(options) {
   for (std::size_t i = 0; i < scene.tools.size(); ++i)
-    if (scene.tools[i].kind == ToolKind::kScissors) m_scissors.push_back({i, std::nullopt, std::nullopt});
+    if (scene.tools[i].kind == ToolKind::kScissors)
+      m_scissors.push_back({i, std::nullopt, std::nullopt});
   m_cut_options.classify_rel = scene.cutting.tolerance;
 }
 
