@@ -240,11 +240,12 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
     return st;
   }
 
-  // 7. v' = v + dv, x' = x + dt v'; fixed nodes stay.
+  // 7. v' = v + dv, x' = x + dt v'; fixed nodes stay, and so do massless nodes (left in no
+  // active tet by a cut: they belong to no body, and would otherwise drift forever).
 #pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (std::int32_t i = 0; i < n; ++i) {
     const auto ui = static_cast<std::size_t>(i);
-    if (mesh.fixed[ui] != 0) {
+    if (mesh.fixed[ui] != 0 || !(m_el.node_mass[ui] > 0.0)) {
       mesh.v[ui].setZero();
       continue;
     }
