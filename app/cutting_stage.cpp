@@ -131,7 +131,9 @@ void CuttingStage::flush_stroke(const StepContext& ctx, SimState& state, std::si
 void CuttingStage::cut(const StepContext& ctx, SimState& state, std::size_t tool, int blade,
                        const cutting::ConvexPolygon& polygon) {
   TetMesh& mesh = state.mesh;
-  // Candidate search: a BVH over current positions, rebuilt after a cut, refitted once a step.
+  // Candidate search: a BVH over current positions, built once, updated locally after each of our
+  // cuts (cost follows the tets touched), refitted once a step; rebuilt only when the topology
+  // changed behind our back.
   if (!m_bvh || m_bvh_version != mesh.topology_version) {
     m_bvh = std::make_unique<cutting::TetBvh>(mesh);
     m_bvh_version = mesh.topology_version;
@@ -161,6 +163,8 @@ void CuttingStage::cut(const StepContext& ctx, SimState& state, std::size_t tool
 
   apply(mesh, result.delta);
   applied.delta = &result.delta;
+  m_bvh->update(mesh, result.delta);
+  m_bvh_version = mesh.topology_version;
 
   ++m_stats.cuts;
   m_stats.tets_removed += static_cast<std::int64_t>(result.delta.removed_tets.size());
