@@ -24,10 +24,19 @@ using namespace serosa::app::testing;
 
 constexpr std::int64_t kSteps = 40;  // hashes recorded after steps 19 and 39 (hash_every 20)
 
-// Records the scripted transection once for all tests of this file.
+// A folder of this test's own: CTest runs each test in its own process, in parallel, and a
+// shared folder would be wiped and rewritten by one test while another reads from it.
+fs::path own_dir(const std::string& name) {
+  const ::testing::TestInfo* t = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string full = name;
+  if (t != nullptr) full.append("_").append(t->name());
+  return out_dir(full);
+}
+
+// Records the scripted transection once per test process.
 const fs::path& recording() {
   static const fs::path file = [] {
-    const fs::path dir = out_dir("replay_controller");
+    const fs::path dir = own_dir("replay_controller");
     HeadlessOptions o;
     o.scene = source("config/appendectomy.toml");
     o.tool_path = source("config/paths/appendix_transection.csv");
@@ -57,7 +66,7 @@ const std::map<std::uint64_t, std::uint64_t>& forward_hashes() {
 // A 40-step recording of the beam (FEM only, no tools): cheap, for pacing.
 const fs::path& beam_recording() {
   static const fs::path file = [] {
-    const fs::path dir = out_dir("replay_controller_beam");
+    const fs::path dir = own_dir("replay_controller_beam");
     HeadlessOptions o;
     o.scene = source("config/beam.toml");
     o.steps = kSteps;
