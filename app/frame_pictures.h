@@ -49,6 +49,8 @@ class FramePictures {
   /// Look through the scene's endoscope when a device posed it (default: a camera fitted once to
   /// the organs, the same for every picture).
   void set_endoscope(bool on) { m_endoscope = on; }
+  /// Look through `camera` from now on instead of the fitted one (a close-up, say).
+  void set_camera(const render::Camera& camera) { m_fitted = camera; }
 
  private:
   std::filesystem::path m_dir;

@@ -13,6 +13,7 @@
 #define STBI_ONLY_PNG
 #include <stb/stb_image.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -106,8 +107,8 @@ constexpr std::array<View, 3> kViews{View::kVisual, View::kCollision, View::kMec
 
 // The scripted scissors transection of the appendix: the frame flags the faces the cut made (the
 // wound), the tools are drawn once their devices posed them, and the pictures are written.
-// (Today's transection leaves the appendix in one piece with its slit closed, so the wound is
-// flagged but hidden: its visibility is checked on a beam cut through below.)
+// Right after the cut the two faces of the wound touch (a closed slit); pulling the cut-off tip
+// away, as the grasper does, shows the stump's wound in a close-up.
 TEST(RenderWound, ScriptedAppendixCutFlagsTheWoundAndDrawsTheTools) {
   const fs::path dir = render_out("wound_appendix");
   const Scene scene = transection_scene();
@@ -115,6 +116,7 @@ TEST(RenderWound, ScriptedAppendixCutFlagsTheWoundAndDrawsTheTools) {
   Composition comp = compose(scene, assembled);
   ASSERT_NE(comp.cutting, nullptr);
   SimState& state = assembled.state;
+  const std::size_t nodes_before = state.mesh.x.size();
   FramePictures pictures(dir, scene, state.mesh, assembled.group_names(),
                          {View::kVisual, View::kCollision, View::kMechanical});
 
@@ -144,6 +146,55 @@ TEST(RenderWound, ScriptedAppendixCutFlagsTheWoundAndDrawsTheTools) {
   for (const auto c : pictures.frame(state).tri_cut) cut_faces += c;
   RecordProperty("cut_faces", static_cast<int>(cut_faces));
   EXPECT_GT(cut_faces, 0u);
+
+  // Traction, as the grasper gives it once the appendix is free: the cut-off tip (the smallest
+  // piece) is pulled 10 mm away from the stump, and a close-up camera beside the gap, looking at
+  // the stump, sees its wound.
+  const std::vector<std::int32_t> piece = cutting::tet_components(state.mesh);
+  const std::int32_t pieces = cutting::count_components(state.mesh);
+  ASSERT_GE(pieces, 2);
+  std::vector<std::int64_t> size(static_cast<std::size_t>(pieces), 0);
+  for (const std::int32_t p : piece) ++size[static_cast<std::size_t>(p)];
+  const auto tip =
+      static_cast<std::int32_t>(std::min_element(size.begin(), size.end()) - size.begin());
+  std::vector<std::uint8_t> on_tip(state.mesh.x.size(), 0);
+  for (std::size_t t = 0; t < state.mesh.tets.size(); ++t)
+    if (piece[t] == tip)
+      for (const std::int32_t v : state.mesh.tets[t]) on_tip[static_cast<std::size_t>(v)] = 1;
+  // The wound's centre: the nodes the cut added on the stump's side (cut points on the blade).
+  Vec3 c_tip = Vec3::Zero(), c_wound = Vec3::Zero();
+  double n_tip = 0.0, n_wound = 0.0;
+  for (std::size_t v = 0; v < on_tip.size(); ++v) {
+    if (on_tip[v] != 0) {
+      c_tip += state.mesh.x[v];
+      n_tip += 1.0;
+    } else if (v >= nodes_before) {
+      c_wound += state.mesh.x[v];
+      n_wound += 1.0;
+    }
+  }
+  ASSERT_GT(n_tip, 0.0);
+  ASSERT_GT(n_wound, 0.0);
+  c_tip /= n_tip;
+  c_wound /= n_wound;
+  const Vec3 away = (c_tip - c_wound).normalized();
+  for (std::size_t v = 0; v < on_tip.size(); ++v)
+    if (on_tip[v] != 0) state.mesh.x[v] += 0.010 * away;
+  const Vec3 side = away.cross(Vec3(0.0, 1.0, 0.0)).normalized();
+  const Vec3 eye = c_wound + 0.02 * away + 0.02 * side;
+  render::Camera close_up;
+  close_up.eye = {static_cast<float>(eye.x()), static_cast<float>(eye.y()),
+                  static_cast<float>(eye.z())};
+  close_up.target = {static_cast<float>(c_wound.x()), static_cast<float>(c_wound.y()),
+                     static_cast<float>(c_wound.z())};
+  close_up.fov_y_deg = 40.0f;
+  pictures.set_camera(close_up);
+  const render::Image pulled = pictures.image(state, View::kVisual);
+  pictures.take(state, "pulled");
+  const std::size_t wound = wound_pixels(pulled.rgba, 4);
+  RecordProperty("wound_px", static_cast<int>(wound));
+  const double px = static_cast<double>(pulled.width) * pulled.height;
+  EXPECT_GT(static_cast<double>(wound), 0.01 * px) << "no wound colour in " << (dir / "pulled.png");
 }
 
 // A beam (config/beam.toml) cut right through by an oblique blade (cutting::cut_mesh, the same
