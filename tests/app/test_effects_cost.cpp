@@ -34,11 +34,23 @@ void* counted(std::size_t n) {
   throw std::bad_alloc();
 }
 
+void* counted_nothrow(std::size_t n) noexcept {
+  g_allocs.fetch_add(1, std::memory_order_relaxed);
+  g_bytes.fetch_add(n, std::memory_order_relaxed);
+  return std::malloc(n == 0 ? 1 : n);
+}
+
 }  // namespace
 
-// Replaced for the whole test executable (counting only; memory comes from malloc).
+// Replaced for the whole test executable (counting only; memory comes from malloc). Every
+// unaligned form is replaced, nothrow ones included (the standard library's temporary buffers
+// use them): a form left to the runtime would hand out memory our delete frees with free().
 void* operator new(std::size_t n) { return counted(n); }
 void* operator new[](std::size_t n) { return counted(n); }
+void* operator new(std::size_t n, const std::nothrow_t&) noexcept { return counted_nothrow(n); }
+void* operator new[](std::size_t n, const std::nothrow_t&) noexcept { return counted_nothrow(n); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete[](void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
