@@ -17,25 +17,14 @@
 #include "engine/topology_delta.h"
 #include "fem/implicit_integrator.h"
 #include "fem/rotation.h"
+#include "fem_energy.h"
 #include "fem_fixtures.h"
 
 namespace serosa::fem {
 namespace {
 
 double energy(const TetMesh& m, const FemElements& el) {
-  double e = 0.0;
-  for (std::size_t i = 0; i < m.x.size(); ++i) e += 0.5 * m.mass[i] * m.v[i].squaredNorm();
-  for (std::size_t t = 0; t < m.tets.size(); ++t) {
-    const TetElement& te = el.elements[t];
-    if (!te.active()) continue;
-    const Tet& n = m.tets[t];
-    const Mat3 f = nodal_gradient(te, m.x[n[0]], m.x[n[1]], m.x[n[2]], m.x[n[3]]);
-    const Mat3 rf = polar_rotation_svd(f).transpose() * f;
-    const Mat3 eps = 0.5 * (rf + rf.transpose()) - Mat3::Identity();
-    e += te.volume_m3 *
-         (te.mu_pa * eps.squaredNorm() + 0.5 * te.lambda_pa * eps.trace() * eps.trace());
-  }
-  return e;
+  return fixtures::kinetic_energy(m) + fixtures::elastic_energy(m, el);
 }
 
 // A cut-like delta: removes 1-4 random tets; each is dropped (a gap opens, holes are filled by
