@@ -80,6 +80,9 @@ struct SceneSettings {
   Vec3 gravity_mps2 = Vec3(0.0, -9.81, 0.0);                 ///< gravity, m/s^2 (scene frame, y up)
   std::set<Effect> effects{Effect::kFem, Effect::kGravity};  ///< listed effects, enum order
   std::optional<Quality> quality;  ///< preset that chose the solver/render defaults, if given
+  /// Displacement error the solver preset must stay within, relative (dimensionless, (0, 1)):
+  /// `accuracy_target` in the scene, else the quality preset's target (engine/presets.h).
+  std::optional<double> accuracy_target;
 
   [[nodiscard]] bool has(Effect e) const { return effects.count(e) != 0; }
 };
