@@ -67,6 +67,10 @@ struct FemConfig {
   FemMaterial default_material;                    ///< for groups not in `materials`
   SolverSettings solver;
   PlasticitySettings plasticity;
+  /// Corotational FEM (true: R_e from each tet's deformation gradient, Müller & Gross 2004) or
+  /// linear FEM (false: R_e = I, small-strain; rotations show as spurious growth). Linear is for
+  /// comparison only (`serosa bench fem`); scenes never set it.
+  bool corotational = true;
   bool gravity_on = true;                     ///< the "gravity" effect
   Vec3 gravity_mps2 = Vec3(0.0, -9.81, 0.0);  ///< gravitational acceleration g, m/s^2
 

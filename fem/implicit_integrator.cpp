@@ -131,7 +131,9 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
     const Tet& nd = mesh.tets[ut];
     const Mat3 f = nodal_gradient(e, mesh.x[nd[0]], mesh.x[nd[1]], mesh.x[nd[2]], mesh.x[nd[3]]);
     if (f.determinant() <= 0.0) ++inverted;
-    m_rot[ut] = robust_rotation(f, m_q[ut], kRotationMaxIterations, kStepRotationTolerance);
+    m_rot[ut] = m_config.corotational
+                    ? robust_rotation(f, m_q[ut], kRotationMaxIterations, kStepRotationTolerance)
+                    : Mat3::Identity();
     for (std::size_t c = 0; c < 4; ++c) m_rg[4 * ut + c] = m_rot[ut] * e.grad[c];
     element_forces(e, m_rot[ut], nd, mesh.x, mesh.v, e.beta_s + dt_s, out,
                    plastic ? &m_plastic[ut] : nullptr);
