@@ -18,6 +18,7 @@
 #include <utility>
 
 #include "engine/input_error.h"
+#include "engine/presets.h"
 #include "engine/scene.h"
 #include "engine/tool_path.h"
 
@@ -82,24 +83,6 @@ std::string_view type_name(const toml::node& n) {
   return "nothing";
 }
 
-// Quality presets: the solver and render defaults each one stands for. Explicit keys win.
-void apply_quality(Quality q, SolverSettings& solver, RenderSettings& render) {
-  switch (q) {
-    case Quality::kFast:
-      solver = {SolverKind::kPcg, 1e-4, 25};
-      render.tessellation = 1;
-      return;
-    case Quality::kBalanced:
-      solver = {SolverKind::kPcg, 1e-6, 100};
-      render.tessellation = 3;
-      return;
-    case Quality::kAccurate:
-      solver = {SolverKind::kCholmod, 1e-8, 500};
-      render.tessellation = 6;
-      return;
-  }
-}
-
 // Reads one scene document. One instance per load; holds the file name for errors, the folder
 // relative paths resolve against, and what cross-table checks need.
 class Loader {
@@ -127,7 +110,13 @@ class Loader {
     if (const auto* t = opt_table(root, "scene", "")) {
       read_scene(*t, scene, effects_node);
     }
-    if (scene.settings.quality) apply_quality(*scene.settings.quality, scene.solver, scene.render);
+    // Presets first; explicit [solver] and [render] keys, read below, win.
+    if (scene.settings.quality && !scene.settings.accuracy_target) {
+      scene.settings.accuracy_target = quality_accuracy_target(*scene.settings.quality);
+    }
+    if (const auto choice = scene_preset(scene.settings)) {
+      apply_preset(*choice, scene.solver, scene.render);
+    }
     read_organs(root, scene);
     if (const auto* t = opt_table(root, "solver", "")) read_solver(*t, scene.solver);
     if (const auto* t = opt_table(root, "render", "")) read_render(*t, scene.render);
@@ -292,7 +281,7 @@ class Loader {
 
   void read_scene(const toml::table& t, Scene& scene, const toml::node*& effects_node) const {
     const std::string p = "scene";
-    check_keys(t, p, {"dt", "gravity", "effects", "quality"});
+    check_keys(t, p, {"dt", "gravity", "effects", "quality", "accuracy_target"});
     SceneSettings& s = scene.settings;
     if (const auto* n = t.get("dt")) {
       s.dt_s = ranged(*n, sub(p, "dt"), 0.0, true, 1.0, false, "a solver step in s, 0 < dt <= 1");
@@ -303,6 +292,10 @@ class Loader {
     if (const auto* n = t.get("quality")) {
       s.quality =
           enum_value<Quality>(*n, sub(p, "quality"), quality_from_name, "fast, balanced, accurate");
+    }
+    if (const auto* n = t.get("accuracy_target")) {
+      s.accuracy_target = ranged(*n, sub(p, "accuracy_target"), 0.0, true, 1.0, true,
+                                 "a relative displacement error in (0, 1), e.g. 0.01");
     }
     if (const auto* n = t.get("effects")) {
       effects_node = n;

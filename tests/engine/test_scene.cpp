@@ -11,6 +11,7 @@
 #include <string>
 
 #include "engine/input_error.h"
+#include "engine/presets.h"
 
 namespace serosa {
 namespace {
@@ -304,14 +305,36 @@ TEST_F(SceneTest, RelativeScenePathResolvesFromTheWorkingDirectory) {
 }
 
 TEST_F(SceneTest, QualityPresetSetsDefaultsAndExplicitKeysWin) {
+  // What each preset picks is tested against the measured curves in test_presets.cpp; here the
+  // loader's part: the preset applies, and explicit keys win over it.
   const Scene fast = parse("[scene]\nquality = \"fast\"\n" + kOrgan);
   EXPECT_EQ(fast.settings.quality, Quality::kFast);
-  EXPECT_EQ(fast.render.tessellation, 1);
-  EXPECT_DOUBLE_EQ(fast.solver.tolerance, 1e-4);
-  const Scene accurate =
-      parse("[scene]\nquality = \"accurate\"\n" + kOrgan + "[render]\ntessellation = 2\n");
-  EXPECT_EQ(accurate.solver.kind, SolverKind::kCholmod);
-  EXPECT_EQ(accurate.render.tessellation, 2);
+  ASSERT_TRUE(fast.settings.accuracy_target.has_value());
+  EXPECT_DOUBLE_EQ(*fast.settings.accuracy_target, quality_accuracy_target(Quality::kFast));
+  const PresetChoice c = choose_preset(*fast.settings.accuracy_target, Quality::kFast);
+  EXPECT_EQ(fast.solver.max_iterations, c.solver->max_iterations);
+  EXPECT_EQ(fast.render.tessellation, c.tessellation->level);
+  const Scene accurate = parse("[scene]\nquality = \"accurate\"\n" + kOrgan +
+                               "[render]\ntessellation = 5\n[solver]\nmax_iterations = 7\n");
+  EXPECT_EQ(accurate.render.tessellation, 5);
+  EXPECT_EQ(accurate.solver.max_iterations, 7);
+  const Scene none = parse(kOrgan);
+  EXPECT_FALSE(none.settings.accuracy_target.has_value());
+  EXPECT_EQ(none.solver.max_iterations, SolverSettings{}.max_iterations);
+}
+
+TEST_F(SceneTest, AccuracyTargetOverridesTheQualityTarget) {
+  const Scene s = parse("[scene]\nquality = \"fast\"\naccuracy_target = 0.001\n" + kOrgan);
+  ASSERT_TRUE(s.settings.accuracy_target.has_value());
+  EXPECT_DOUBLE_EQ(*s.settings.accuracy_target, 0.001);
+  const PresetChoice c = choose_preset(0.001, Quality::kFast);
+  EXPECT_LE(c.solver->rel_error, 0.001);
+  EXPECT_EQ(s.solver.max_iterations, c.solver->max_iterations);
+  EXPECT_EQ(s.solver.kind, c.solver->kind);
+  expect_error("[scene]\naccuracy_target = 0\n" + kOrgan, 2, "scene.accuracy_target",
+               "relative displacement error");
+  expect_error("[scene]\naccuracy_target = 1.5\n" + kOrgan, 2, "scene.accuracy_target",
+               "relative displacement error");
 }
 
 TEST_F(SceneTest, EffectsAreASet) {
@@ -359,7 +382,7 @@ TEST_F(SceneTest, UnknownTopLevelKeyListsTheAllowedOnes) {
 
 TEST_F(SceneTest, UnknownKeyInATable) {
   expect_error("[scene]\ndt = 0.01\ntimestep = 0.01\n" + kOrgan, 3, "scene.timestep",
-               "one of: dt, gravity, effects, quality");
+               "one of: dt, gravity, effects, quality, accuracy_target");
   expect_error(kOrgan + "yong = 3000\n", 4, "organ[0].yong", "one of: name, mesh, groups, young");
   expect_error(kOrgan + "damping = { mass = 0.1, stiff = 0.2 }\n", 4, "organ[0].damping.stiff",
                "one of: mass, stiffness");
