@@ -18,6 +18,7 @@
 #include "app/frame_pictures.h"
 #include "app/haptics_stage.h"
 #include "app/metrics_stage.h"
+#include "app/preset_report.h"
 #include "app/record_stage.h"
 #include "app/script_tool_stage.h"
 #include "app/surface_stage.h"
@@ -162,6 +163,8 @@ Json run_headless(const HeadlessOptions& options) {
   for (Effect e : comp.folded) report["effects"]["folded"].push_back(effect_name(e));
   for (Effect e : comp.unavailable) report["effects"]["unavailable"].push_back(effect_name(e));
   report["mesh_initial"] = mesh_json(state.mesh);
+  report["solver"] = solver_report(scene.solver);
+  if (auto preset = preset_report(scene)) report["preset"] = std::move(*preset);
 
   std::unique_ptr<FramePictures> pictures;
   std::vector<std::int64_t> picture_steps;

@@ -1,0 +1,44 @@
+#include "app/preset_report.h"
+
+#include <string>
+
+#include "engine/presets.h"
+
+namespace serosa::app {
+
+nlohmann::json solver_report(const SolverSettings& solver) {
+  return {{"kind", std::string(solver_kind_name(solver.kind))},
+          {"tolerance", solver.tolerance},
+          {"max_iterations", solver.max_iterations}};
+}
+
+std::optional<nlohmann::json> preset_report(const Scene& scene) {
+  const auto choice = scene_preset(scene.settings);
+  if (!choice) return std::nullopt;
+  nlohmann::json j;
+  if (scene.settings.quality) j["quality"] = std::string(quality_name(*scene.settings.quality));
+  j["target_rel_error"] = choice->target;
+  j["target_met"] = choice->target_met;
+  const SolverCurvePoint& p = *choice->solver;
+  SolverSettings chosen;
+  RenderSettings chosen_render;
+  apply_preset(*choice, chosen, chosen_render);
+  j["solver"] = solver_report(chosen);
+  j["solver"]["measured_setting"] = std::string(p.setting);
+  j["solver"]["measured_rel_error"] = p.rel_error;
+  j["solver"]["measured_ms_per_step"] = p.ms_per_step;
+  j["solver"]["measured_on"] = "17.5k-tet SOFA box, docs/BENCHMARKS.md Presets";
+  j["solver"]["overridden"] = chosen.kind != scene.solver.kind ||
+                              chosen.tolerance != scene.solver.tolerance ||
+                              chosen.max_iterations != scene.solver.max_iterations;
+  if (choice->tessellation) {
+    const TessellationCurvePoint& t = *choice->tessellation;
+    j["tessellation"] = {{"level", t.level},
+                         {"measured_mean_rel_distance", t.mean_rel_distance},
+                         {"measured_frame_ms", t.frame_ms},
+                         {"overridden", t.level != scene.render.tessellation}};
+  }
+  return j;
+}
+
+}  // namespace serosa::app
