@@ -195,6 +195,7 @@ class Cutter {
   CutResult run() {
     if (!find_candidates()) return std::move(m_result);
     classify();
+    decide_faces();
     decide_edges();
     decide_clones();
     emit();
@@ -330,6 +331,342 @@ class Cutter {
     return merged;
   }
 
+  // ---- coplanar faces partly under the blade (the paper's coplanar-face clipping) -----------
+
+  // A corner of the part of a coplanar face under the blade: node key[a], point b of the face's
+  // edge a (edges (0,1), (0,2), (1,2) of the sorted key), or the blade's corner a.
+  struct ClipCorner {
+    int kind = 0;  ///< 0 node, 1 edge point, 2 blade corner
+    int a = 0, b = 0;
+    Combo combo;
+    V2 p2 = V2::Zero();
+  };
+  // A welded coplanar face partly under the blade: the corners of face ∩ blade, counter-clockwise.
+  struct ClipFace {
+    std::vector<ClipCorner> corners;
+  };
+  // A point where the blade's outline crosses a coplanar edge (welded, shared by every tet
+  // around the edge).
+  struct CopPoint {
+    double s = 0.0;  ///< from the smaller node id to the larger
+    Combo combo;
+    std::int32_t id = -1;
+  };
+  static constexpr std::array<std::array<int, 2>, 3> kFaceEdges{{{0, 1}, {0, 2}, {1, 2}}};
+
+  // Points where the outline crosses coplanar edge (a, b), computed once per edge.
+  std::vector<CopPoint>& cop_edge(std::int32_t a, std::int32_t b) {
+    auto [it, fresh] = m_cop_edges.try_emplace(edge_key(a, b));
+    if (fresh) {
+      const std::int32_t lo = std::min(a, b), hi = std::max(a, b);
+      for (double s : crossings(m_blade.to_plane(m_mesh.x[lo]), m_blade.to_plane(m_mesh.x[hi]))) {
+        CopPoint p;
+        p.s = s;
+        p.combo.add(lo, 1.0 - s);
+        p.combo.add(hi, s);
+        it->second.push_back(p);
+      }
+    }
+    return it->second;
+  }
+  // The crossings of coplanar edge (a, b) decided by decide_faces (empty for other edges).
+  std::vector<CopPoint>& cop_points(std::int32_t a, std::int32_t b) {
+    const auto it = m_cop_edges.find(edge_key(a, b));
+    return it == m_cop_edges.end() ? m_no_points : it->second;
+  }
+  [[nodiscard]] bool has_cop_points(std::int32_t a, std::int32_t b) const {
+    const auto it = m_cop_edges.find(edge_key(a, b));
+    return it != m_cop_edges.end() && !it->second.empty();
+  }
+  std::int32_t cop_point_id(CopPoint& p) {
+    if (p.id < 0) {
+      p.id = m_weld.add_point(p.combo.parent());
+      ++m_result.stats.face_points;
+    }
+    return p.id;
+  }
+
+  // Coplanar faces of the candidates (a face two candidates share is still welded; one a single
+  // candidate holds is already open or on the surface); the welded ones the blade covers only
+  // partly (with positive area) are clipped along its outline: their edges get the outline's
+  // crossings, every tet around such an edge is split there, and straddling tets holding one are
+  // pinned (split welded).
+  void decide_faces() {
+    for (const auto& [id, tets] : m_zero_tets)
+      for (std::int32_t ci : tets) {
+        const TetInfo& info = m_tets[static_cast<std::size_t>(ci)];
+        const Tet& t = m_mesh.tets[m_cands[static_cast<std::size_t>(ci)]];
+        for (const auto& f : kFaces) {
+          std::array<std::int32_t, 3> key{t[f[0]], t[f[1]], t[f[2]]};
+          if (info.sign[f[0]] != Sign::kZero || info.sign[f[1]] != Sign::kZero ||
+              info.sign[f[2]] != Sign::kZero || std::min({key[0], key[1], key[2]}) != id)
+            continue;  // counted once, from its smallest node
+          std::sort(key.begin(), key.end());
+          ++m_coplanar[key];
+        }
+      }
+    std::vector<std::array<std::int32_t, 3>> keys;
+    for (const auto& [key, count] : m_coplanar)
+      if (count >= 2) keys.push_back(key);
+    std::sort(keys.begin(), keys.end());
+    for (const auto& key : keys) {
+      if (m_nodes[key[0]].inside && m_nodes[key[1]].inside && m_nodes[key[2]].inside) continue;
+      std::array<V2, 3> q{m_blade.to_plane(m_mesh.x[key[0]]), m_blade.to_plane(m_mesh.x[key[1]]),
+                          m_blade.to_plane(m_mesh.x[key[2]])};
+      const double a2 = area2d(q[0], q[1], q[2]);
+      if (!(std::abs(a2) > 0.0)) continue;
+      ClipFace cf;
+      for (int k = 0; k < 3; ++k)
+        if (m_nodes[key[static_cast<std::size_t>(k)]].inside) {
+          ClipCorner c;
+          c.kind = 0;
+          c.a = k;
+          c.combo.add(key[static_cast<std::size_t>(k)], 1.0);
+          c.p2 = q[static_cast<std::size_t>(k)];
+          cf.corners.push_back(c);
+        }
+      for (int e = 0; e < 3; ++e) {
+        const auto& fe = kFaceEdges[static_cast<std::size_t>(e)];
+        const std::vector<CopPoint>& pts = cop_edge(key[fe[0]], key[fe[1]]);
+        for (std::size_t k = 0; k < pts.size(); ++k) {
+          ClipCorner c;
+          c.kind = 1;
+          c.a = e;
+          c.b = static_cast<int>(k);
+          c.combo = pts[k].combo;
+          c.p2 = (1.0 - pts[k].s) * q[fe[0]] + pts[k].s * q[fe[1]];
+          cf.corners.push_back(c);
+        }
+      }
+      double diam = 0.0;
+      for (int k = 0; k < 3; ++k)
+        diam = std::max(diam, (q[static_cast<std::size_t>(k)] - q[(k + 1) % 3]).norm());
+      for (std::size_t k = 0; k < m_blade2.size(); ++k) {
+        double margin = std::numeric_limits<double>::infinity();
+        std::array<double, 3> w{};
+        for (int i = 0; i < 3; ++i) {
+          const V2 &u = q[static_cast<std::size_t>(i)], &v = q[(i + 1) % 3];
+          const double ar = area2d(u, v, m_blade2[k]);
+          margin = std::min(margin, (a2 > 0.0 ? 2.0 : -2.0) * ar / (v - u).norm());
+          w[(i + 2) % 3] = ar / a2;
+        }
+        if (!(margin > m_tol)) continue;
+        ClipCorner c;
+        c.kind = 2;
+        c.a = static_cast<int>(k);
+        for (int i = 0; i < 3; ++i)
+          c.combo.add(key[static_cast<std::size_t>(i)], w[static_cast<std::size_t>(i)]);
+        c.p2 = m_blade2[k];
+        cf.corners.push_back(c);
+      }
+      if (cf.corners.size() < 3) continue;
+      V2 c = V2::Zero();
+      for (const ClipCorner& cc : cf.corners) c += cc.p2;
+      c /= static_cast<double>(cf.corners.size());
+      std::sort(cf.corners.begin(), cf.corners.end(),
+                [&](const ClipCorner& x, const ClipCorner& y) {
+                  return std::atan2(x.p2.y() - c.y(), x.p2.x() - c.x()) <
+                         std::atan2(y.p2.y() - c.y(), y.p2.x() - c.x());
+                });
+      double area = 0.0;
+      const std::size_t n = cf.corners.size();
+      for (std::size_t k = 0; k < n; ++k)
+        area += area2d(c, cf.corners[k].p2, cf.corners[(k + 1) % n].p2);
+      if (!(area > m_tol * diam)) continue;
+      m_pfaces.emplace(key, std::move(cf));
+    }
+    // Only the edges of clipped faces are split.
+    std::unordered_map<std::uint64_t, std::vector<CopPoint>> kept;
+    for (const auto& [key, cf] : m_pfaces)
+      for (const auto& fe : kFaceEdges) {
+        const std::uint64_t k = edge_key(key[fe[0]], key[fe[1]]);
+        if (!m_cop_edges[k].empty()) kept.emplace(k, m_cop_edges[k]);
+      }
+    m_cop_edges = std::move(kept);
+    // Straddling tets holding a coplanar edge with crossings cannot open along it: pinned.
+    for (std::size_t ci = 0; ci < m_cands.size(); ++ci) {
+      TetInfo& info = m_tets[ci];
+      if (!info.straddles) continue;
+      const Tet& t = m_mesh.tets[m_cands[ci]];
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j)
+          if (info.sign[i] == Sign::kZero && info.sign[j] == Sign::kZero &&
+              has_cop_points(t[i], t[j])) {
+            info.complete = false;
+            info.pinned = true;
+            info.interacts = true;
+          }
+    }
+  }
+
+  // Clipped face `key` (in m_pfaces) seen from its node a: its corner at a lies under the blade
+  // (the midpoints from a to the next point along both edges from a are inside), so every piece
+  // of the face at a is under the blade and a may open.
+  bool corner_inside(std::int32_t a, const std::array<std::int32_t, 3>& key) {
+    for (std::int32_t w : key) {
+      if (w == a) continue;
+      Vec3 next = m_mesh.x[w];
+      const auto it = m_cop_edges.find(edge_key(a, w));
+      if (it != m_cop_edges.end() && !it->second.empty())
+        next = (a < w ? it->second.front() : it->second.back()).combo.cur(m_mesh);
+      if (m_blade.inside_margin(0.5 * (m_mesh.x[a] + next)) < -m_tol) return false;
+    }
+    return true;
+  }
+
+  // A point of a coplanar face's triangulation.
+  struct CopFacePoint {
+    Combo combo;
+    std::int32_t node = -1;           ///< original node (resolved per side), else -1
+    std::int32_t pos = -1, neg = -1;  ///< new nodes (pos == neg when welded)
+  };
+  struct CopFaceTris {
+    std::vector<CopFacePoint> pts;
+    std::vector<std::array<int, 3>> tris;
+  };
+
+  // The triangulation of coplanar face `key` (sorted), once per face so both tets holding it
+  // agree: its nodes, the crossings on its edges, and, when the blade covers it partly, the part
+  // under the blade fanned from an opened pair of nodes at its centroid.
+  const CopFaceTris& cop_face(const std::array<std::int32_t, 3>& key) {
+    auto [it, fresh] = m_cop_faces.try_emplace(key);
+    if (!fresh) return it->second;
+    CopFaceTris& ft = it->second;
+    for (int k = 0; k < 3; ++k) {
+      CopFacePoint p;
+      p.node = key[static_cast<std::size_t>(k)];
+      p.combo.add(p.node, 1.0);
+      ft.pts.push_back(p);
+    }
+    std::array<std::vector<int>, 3> edge_idx;
+    for (int e = 0; e < 3; ++e) {
+      const auto& fe = kFaceEdges[static_cast<std::size_t>(e)];
+      for (CopPoint& cp : cop_points(key[fe[0]], key[fe[1]])) {
+        CopFacePoint p;
+        p.combo = cp.combo;
+        p.pos = p.neg = cop_point_id(cp);
+        edge_idx[static_cast<std::size_t>(e)].push_back(static_cast<int>(ft.pts.size()));
+        ft.pts.push_back(p);
+      }
+    }
+    std::vector<std::array<int, 2>> constraints;
+    int centre = -1;
+    const auto pf = m_pfaces.find(key);
+    if (pf != m_pfaces.end()) {
+      std::vector<int> ring;
+      Combo mean;
+      const auto& corners = pf->second.corners;
+      for (const ClipCorner& c : corners) {
+        mean.add(c.combo, 1.0 / static_cast<double>(corners.size()));
+        if (c.kind == 0) {
+          ring.push_back(c.a);
+        } else if (c.kind == 1) {
+          ring.push_back(edge_idx[static_cast<std::size_t>(c.a)][static_cast<std::size_t>(c.b)]);
+        } else {
+          CopFacePoint p;
+          p.combo = c.combo;
+          p.pos = p.neg = m_weld.add_point(c.combo.parent());
+          ++m_result.stats.face_points;
+          ring.push_back(static_cast<int>(ft.pts.size()));
+          ft.pts.push_back(p);
+        }
+      }
+      CopFacePoint p;
+      p.combo = mean;
+      p.pos = m_weld.add_point(mean.parent());
+      p.neg = m_weld.add_point(mean.parent());
+      m_result.stats.steiner_points += 2;
+      centre = static_cast<int>(ft.pts.size());
+      ft.pts.push_back(p);
+      for (std::size_t k = 0; k < ring.size(); ++k) {
+        constraints.push_back({ring[k], ring[(k + 1) % ring.size()]});
+        constraints.push_back({centre, ring[k]});
+      }
+    }
+    std::vector<V2> uv;
+    for (const CopFacePoint& p : ft.pts) {
+      double w1 = 0.0, w2 = 0.0;
+      for (int l = 0; l < p.combo.count; ++l) {
+        if (p.combo.nodes[l] == key[1]) w1 += p.combo.w[l];
+        if (p.combo.nodes[l] == key[2]) w2 += p.combo.w[l];
+      }
+      uv.emplace_back(w1, w2);
+    }
+    ft.tris = triangulate_section(uv, constraints, 1e-10);
+    double area = 0.0;
+    for (const auto& tr : ft.tris) area += area2d(uv[tr[0]], uv[tr[1]], uv[tr[2]]);
+    if (!(std::abs(area - 0.5) <= 1e-9)) ++m_result.stats.degenerate_tets;
+    return ft;
+  }
+
+  // A one-sided tet holding a clipped coplanar face or a coplanar edge with crossings: split
+  // there (coned from its off-plane node, or fanned from its opposite edge), welded except the
+  // clipped part under the blade.
+  [[nodiscard]] bool needs_cop_split(const Tet& t, const TetInfo& info) const {
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        if (info.sign[i] == Sign::kZero && info.sign[j] == Sign::kZero &&
+            has_cop_points(t[i], t[j]))
+          return true;
+    for (const auto& f : kFaces) {
+      if (info.sign[f[0]] != Sign::kZero || info.sign[f[1]] != Sign::kZero ||
+          info.sign[f[2]] != Sign::kZero)
+        continue;
+      std::array<std::int32_t, 3> key{t[f[0]], t[f[1]], t[f[2]]};
+      std::sort(key.begin(), key.end());
+      if (m_pfaces.count(key) > 0) return true;
+    }
+    return false;
+  }
+
+  void emit_cop_split(const Tet& t, const TetInfo& info, std::uint16_t g) {
+    bool pos = false;
+    std::vector<int> zeros, others;
+    for (int k = 0; k < 4; ++k) {
+      pos = pos || info.sign[k] == Sign::kPos;
+      (info.sign[k] == Sign::kZero ? zeros : others).push_back(k);
+    }
+    if (zeros.size() == 3) {
+      std::array<std::int32_t, 3> key{t[zeros[0]], t[zeros[1]], t[zeros[2]]};
+      std::sort(key.begin(), key.end());
+      const CopFaceTris& ft = cop_face(key);
+      const std::int32_t o = t[others[0]];
+      Combo co;
+      co.add(o, 1.0);
+      for (const auto& tr : ft.tris) {
+        std::array<std::int32_t, 4> ids{o, 0, 0, 0};
+        for (int k = 0; k < 3; ++k) {
+          const CopFacePoint& p = ft.pts[static_cast<std::size_t>(tr[static_cast<std::size_t>(k)])];
+          ids[static_cast<std::size_t>(k + 1)] =
+              p.node >= 0 ? node_id(p.node, pos) : (pos ? p.pos : p.neg);
+        }
+        emit_tet(ids,
+                 {&co, &ft.pts[static_cast<std::size_t>(tr[0])].combo,
+                  &ft.pts[static_cast<std::size_t>(tr[1])].combo,
+                  &ft.pts[static_cast<std::size_t>(tr[2])].combo},
+                 g);
+      }
+      return;
+    }
+    // One coplanar edge (a, b) with crossings: pieces (q_k, q_k+1, c, d) along it.
+    const std::int32_t a = std::min(t[zeros[0]], t[zeros[1]]),
+                       b = std::max(t[zeros[0]], t[zeros[1]]);
+    std::vector<CopPoint>& pts = cop_points(a, b);
+    std::vector<std::pair<std::int32_t, Combo>> chain;
+    Combo ca, cb;
+    ca.add(a, 1.0);
+    cb.add(b, 1.0);
+    chain.emplace_back(node_id(a, pos), ca);
+    for (CopPoint& p : pts) chain.emplace_back(cop_point_id(p), p.combo);
+    chain.emplace_back(node_id(b, pos), cb);
+    Combo cc, cd;
+    cc.add(t[others[0]], 1.0);
+    cd.add(t[others[1]], 1.0);
+    for (std::size_t k = 0; k + 1 < chain.size(); ++k)
+      emit_tet({chain[k].first, chain[k + 1].first, t[others[0]], t[others[1]]},
+               {&chain[k].second, &chain[k + 1].second, &cc, &cd}, g);
+  }
+
   // An edge opens iff its cut point is strictly inside and no pinned tet holds it.
   void decide_edges() {
     for (auto& [key, e] : m_edges) {
@@ -341,22 +678,7 @@ class Cutter {
 
   // Clones of coplanar nodes (rules in the design note, point 5), in ascending node order.
   void decide_clones() {
-    // Coplanar faces of the candidates: a face two candidates share is still welded; a face
-    // one candidate holds is already open (an earlier cut's crack) or on the surface.
-    std::unordered_map<std::array<std::int32_t, 3>, int, FaceKeyHash> coplanar;
-    for (const auto& [id, tets] : m_zero_tets)
-      for (std::int32_t ci : tets) {
-        const TetInfo& info = m_tets[static_cast<std::size_t>(ci)];
-        const Tet& t = m_mesh.tets[m_cands[static_cast<std::size_t>(ci)]];
-        for (const auto& f : kFaces) {
-          std::array<std::int32_t, 3> key{t[f[0]], t[f[1]], t[f[2]]};
-          if (info.sign[f[0]] != Sign::kZero || info.sign[f[1]] != Sign::kZero ||
-              info.sign[f[2]] != Sign::kZero || std::min({key[0], key[1], key[2]}) != id)
-            continue;  // counted once, from its smallest node
-          std::sort(key.begin(), key.end());
-          ++coplanar[key];
-        }
-      }
+    auto& coplanar = m_coplanar;
     std::vector<std::int32_t> zero_nodes;
     for (const auto& [id, tets] : m_zero_tets)
       if (m_nodes[id].inside) zero_nodes.push_back(id);
@@ -394,7 +716,9 @@ class Cutter {
           if (!has_a || !copl || inside) continue;
           std::array<std::int32_t, 3> key{t[f[0]], t[f[1]], t[f[2]]};
           std::sort(key.begin(), key.end());
-          ok = ok && coplanar[key] < 2;
+          // A welded face partly under the blade is clipped along its outline (decide_faces):
+          // a may open when the face's corner at a lies under the blade.
+          ok = ok && (coplanar[key] < 2 || (m_pfaces.count(key) > 0 && corner_inside(a, key)));
         }
       }
       if (ok && pos_user && neg_user) {
@@ -764,6 +1088,26 @@ class Cutter {
       cone(a, b, c, side >= 0);
     };
     if (!(has_pos && has_neg)) {  // the whole face on one side
+      // A coplanar edge with crossings (decide_faces): fanned from the face's third node.
+      for (int k = 0; k < 3; ++k) {
+        const int i = f[k], j = f[(k + 1) % 3], o = f[(k + 2) % 3];
+        if (info.sign[i] != Sign::kZero || info.sign[j] != Sign::kZero ||
+            !has_cop_points(t[i], t[j]))
+          continue;
+        const std::int32_t lo = std::min(t[i], t[j]), hi = std::max(t[i], t[j]);
+        std::vector<FPoint> chain{node_point(t[i] == lo ? k : (k + 1) % 3)};
+        for (CopPoint& cp : cop_points(lo, hi)) {
+          FPoint p;
+          p.combo = cp.combo;
+          p.pos = p.neg = cop_point_id(cp);
+          chain.push_back(p);
+        }
+        chain.push_back(node_point(t[i] == lo ? (k + 1) % 3 : k));
+        const FPoint third = node_point((k + 2) % 3);
+        (void)o;
+        for (std::size_t l = 0; l + 1 < chain.size(); ++l) emit_tri(chain[l], chain[l + 1], third);
+        return;
+      }
       emit_tri(node_point(0), node_point(1), node_point(2));
       return;
     }
@@ -905,11 +1249,19 @@ class Cutter {
       if (info.straddles) {
         ++st.tets_split;
       } else {
-        // One-sided: touched when on the positive side with a cloned coplanar node.
-        bool pos = false, cloned = false;
+        // One-sided: split where it holds a clipped coplanar face or a coplanar edge with
+        // crossings; else touched when on the positive side with a cloned coplanar node.
+        bool pos = false, cloned = false, flat = true;
         for (int k = 0; k < 4; ++k) {
           pos = pos || info.sign[k] == Sign::kPos;
+          flat = flat && info.sign[k] == Sign::kZero;
           cloned = cloned || (info.sign[k] == Sign::kZero && m_weld.find_clone(t[k]));
+        }
+        if (!flat && needs_cop_split(t, info)) {
+          ++st.tets_split;
+          d.removed_tets.push_back(ti);
+          emit_cop_split(t, info, m_mesh.group[ti]);
+          continue;
         }
         if (!pos || !cloned) continue;
         ++st.tets_relabelled;
@@ -944,6 +1296,14 @@ class Cutter {
       m_faces;  ///< sorted face ids -> face points of its section side
   std::unordered_map<std::int32_t, std::vector<std::int32_t>>
       m_zero_tets;  ///< coplanar node -> tets
+  std::unordered_map<std::array<std::int32_t, 3>, int, FaceKeyHash>
+      m_coplanar;  ///< sorted coplanar faces of the candidates -> how many candidates hold them
+  std::unordered_map<std::array<std::int32_t, 3>, ClipFace, FaceKeyHash>
+      m_pfaces;  ///< welded coplanar faces partly under the blade
+  std::unordered_map<std::uint64_t, std::vector<CopPoint>> m_cop_edges;  ///< coplanar edges
+  std::unordered_map<std::array<std::int32_t, 3>, CopFaceTris, FaceKeyHash>
+      m_cop_faces;                    ///< triangulations of split coplanar faces
+  std::vector<CopPoint> m_no_points;  ///< always empty
 };
 
 }  // namespace
