@@ -41,8 +41,17 @@ void add_replay_command(CLI::App& app, Action& action) {
   cmd->add_option("--seconds", *seconds, "In a window: close after this much wall time (0: never)");
   cmd->add_option("--snapshot", *snapshot,
                   "In a window: also write the last picture drawn to this PNG");
-  cmd->callback([&action, opts, headless, frames, report, speed, seconds, snapshot] {
-    action = [opts, headless, frames, report, speed, seconds, snapshot] {
+  auto branch_at = std::make_shared<double>(-1.0);
+  auto branch_file = std::make_shared<std::string>();
+  cmd->add_option("--branch-at", *branch_at,
+                  "In a window: branch at this time (s) and take over with the mouse (key B "
+                  "branches where the replay is)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--branch", *branch_file,
+                  "In a window: the branch recording (default: NAME.branch-STEP.lapr beside it)");
+  cmd->callback([&action, opts, headless, frames, report, speed, seconds, snapshot, branch_at,
+                 branch_file] {
+    action = [opts, headless, frames, report, speed, seconds, snapshot, branch_at, branch_file] {
       if (!*headless) {
         const char* x = std::getenv("DISPLAY");
         const char* wl = std::getenv("WAYLAND_DISPLAY");
@@ -50,7 +59,13 @@ void add_replay_command(CLI::App& app, Action& action) {
           throw InputError(opts->recording.string(), 0,
                            "replay in a window needs a display and none is set",
                            "DISPLAY or WAYLAND_DISPLAY; without one use --headless");
-        return run_replay_window(opts->recording, *speed, *seconds, *snapshot);
+        ReplayWindowOptions wo;
+        wo.speed = *speed;
+        wo.seconds = *seconds;
+        wo.snapshot = *snapshot;
+        if (*branch_at >= 0.0) wo.branch_at_s = *branch_at;
+        if (!branch_file->empty()) wo.branch_file = *branch_file;
+        return run_replay_window(opts->recording, wo);
       }
       if (!frames->empty()) opts->frames = *frames;
       if (!report->empty()) opts->report = *report;

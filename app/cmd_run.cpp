@@ -18,14 +18,25 @@ void add_run_command(CLI::App& app, Action& action) {
   cmd->add_option("--seconds", *seconds, "Close the window after this much wall time (0: never)");
   cmd->add_option("--snapshot", *snapshot,
                   "Also write the last picture drawn to this PNG (for checks and bug reports)");
-  cmd->callback([&action, scene, seconds, snapshot] {
-    action = [scene, seconds, snapshot] {
+  auto record = std::make_shared<std::string>();
+  auto report = std::make_shared<std::string>();
+  cmd->add_option("--record", *record,
+                  "Record the session (.lapr) here (default: the scene's [record] path)");
+  cmd->add_option("--report", *report,
+                  "Write a JSON report at the end (frames, steps, haptic telemetry, metrics)");
+  cmd->callback([&action, scene, seconds, snapshot, record, report] {
+    action = [scene, seconds, snapshot, record, report] {
       const char* x = std::getenv("DISPLAY");
       const char* wl = std::getenv("WAYLAND_DISPLAY");
       if ((x == nullptr || *x == '\0') && (wl == nullptr || *wl == '\0'))
         throw InputError(*scene, 0, "serosa run needs a display and none is set",
                          "DISPLAY or WAYLAND_DISPLAY; without one use `serosa headless`");
-      return run_session(*scene, *seconds, *snapshot);
+      SessionOptions so;
+      so.seconds = *seconds;
+      so.snapshot = *snapshot;
+      if (!record->empty()) so.record = *record;
+      if (!report->empty()) so.report = *report;
+      return run_session(*scene, so);
     };
   });
 }

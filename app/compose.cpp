@@ -98,7 +98,19 @@ Composition compose(const Scene& scene, const AssembledScene& assembled, Compose
   }
   // the haptic loop's handles override their scripted tools (a replay feeds recorded inputs)
   if (listed(Effect::kHaptics) && !c.tool_input) {
-    auto haptics_stage = std::make_unique<HapticsStage>(scene);
+    HapticsStageOptions ho;
+    ho.realtime = options.realtime_haptics;
+    const TetMesh& mesh = assembled.state.mesh;
+    if (!mesh.x.empty()) {
+      Vec3 sum = Vec3::Zero();
+      for (const Vec3& x : mesh.x) sum += x;
+      ho.aim_m = sum / static_cast<double>(mesh.x.size());
+    }
+    if (contact_stage) {
+      contact_stage->enable_haptic_planes();
+      ho.contact = contact_stage.get();
+    }
+    auto haptics_stage = std::make_unique<HapticsStage>(scene, ho);
     c.haptics = haptics_stage.get();
     c.runner->add(std::move(haptics_stage));
     c.built.push_back(Effect::kHaptics);

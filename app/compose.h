@@ -32,6 +32,8 @@ struct ComposeOptions {
   std::unique_ptr<Stage> tool_input;
   /// Check every cut's invariants (cutting/validate.h); costly, for tests.
   bool validate_cuts = false;
+  /// The haptic loop asks for SCHED_FIFO and runs its gap monitor (the trainee session).
+  bool realtime_haptics = false;
 };
 
 /// The runner with its stages, plus non-owning handles to the stages app needs to talk to.

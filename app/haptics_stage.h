@@ -1,41 +1,66 @@
-// The "haptics" effect in a headless run: the 1 kHz haptic loop (haptics/haptic_loop.h) runs on
-// its own thread beside the solver, driving a ScriptDevice that plays the scene's scripted tool
-// path in real time (the regression run of the whole device path, without a rig). Hand-offs
-// (shared/DESIGN.md "Threads and hand-offs"), both through engine/seqlock.h:
+// The "haptics" effect: the 1 kHz haptic loop (haptics/haptic_loop.h) runs on its own thread
+// beside the solver, driving one device for the (at most two) handles:
+//  - script: a ScriptDevice plays the scene's scripted tool path in real time (headless
+//    regression runs of the whole device path, without a rig);
+//  - mouse: a MouseKeyboardDevice the trainee session's window feeds (feed_pointer()).
+// Hand-offs (shared/DESIGN.md "Threads and hand-offs"), all through engine/seqlock.h:
 //   loop -> solver: each handle's ToolState, written every tick; this stage (right after the
 //     "tools" stage) takes the newest one at the step boundary and puts it into SimState::tools,
 //     so the record stage records exactly what the solver consumed and a replay reproduces the
 //     run bit for bit without the loop;
-//   solver -> loop: a ContactModel (step, time, each handle's simulated tip), published each step.
-// Handles: the first two scripted tools that are not endoscopes (scene order) take handles 0 and
-// 1; they must share one script file. Each handle's trocar is its tool's `trocar` (its axis
-// pointing at the tool's first scripted tip), or the first tip itself when none is given.
+//   solver -> loop: a ContactModel published each step: step, time, each handle's simulated tip
+//     and, with a contact stage, its local contact plane (the nearest organ surface point to the
+//     tip from the collision BVH, ToolContactStage::haptic_plane). The planes are the contact
+//     stage's of the previous step (it runs after this stage): one solver step of latency.
+//   window -> loop: the mouse device's cumulative PointerInput.
+// Handles: the first two tools that are not endoscopes and whose device is a script or the mouse
+// (scene order) take handles 0 and 1; they must share one device kind, and scripts one file. A
+// scripted handle's trocar is its tool's `trocar` (its axis pointing at the tool's first scripted
+// tip), or the first tip itself when none is given. A mouse handle's trocar is its tool's
+// `trocar`, else 12 cm above the aim point (the organs' centroid; handle 1 5 cm to the side);
+// its axis points at the aim point and the tool rests halfway there.
 #pragma once
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string_view>
 
 #include <nlohmann/json.hpp>
 
+#include "engine/math.h"
 #include "engine/scene.h"
 #include "engine/stage.h"
 #include "haptics/contact_model.h"
+#include "haptics/mouse_device.h"
 
 namespace serosa::haptics {
+class Device;
 class HapticLoop;
-class ScriptDevice;
+struct LoopStatus;
 }  // namespace serosa::haptics
 
 namespace serosa::app {
 
+class ToolContactStage;
+
+struct HapticsStageOptions {
+  /// Ask for SCHED_FIFO and run the gap monitor (the trainee session); headless runs share the
+  /// machine (CI) and leave both off.
+  bool realtime = false;
+  /// Where mouse handles' trocar axes point, m (compose passes the organs' centroid).
+  Vec3 aim_m = Vec3::Zero();
+  /// Source of the contact planes published to the loop (may be null: coupling tip only).
+  const ToolContactStage* contact = nullptr;
+};
+
 class HapticsStage final : public Stage {
  public:
-  /// Throws InputError when no scripted tool can take a handle, or the handle tools' scripts
-  /// differ. The loop starts at the first step.
-  explicit HapticsStage(const Scene& scene);
+  /// Throws InputError when no tool can take a handle, the handles' device kinds differ, or the
+  /// handle tools' scripts differ. The loop starts at the first step.
+  explicit HapticsStage(const Scene& scene, const HapticsStageOptions& options = {});
   ~HapticsStage() override;
 
   [[nodiscard]] std::string_view name() const noexcept override { return "haptics"; }
@@ -45,18 +70,38 @@ class HapticsStage final : public Stage {
   void stop();
   /// The loop's telemetry (LoopTelemetry::write_json) as JSON; stops the loop first.
   [[nodiscard]] nlohmann::json telemetry_json();
+  /// The loop's live status (tick count, forces), readable from any thread while it runs.
+  [[nodiscard]] haptics::LoopStatus status() const;
   /// Scene tool index of each handle (nullopt: idle handle).
   [[nodiscard]] const std::array<std::optional<std::size_t>, haptics::kHandles>& handle_tools()
       const noexcept {
     return m_tool;
   }
+  /// The device kind driving the handles (kScript or kMouse).
+  [[nodiscard]] DeviceKind device_kind() const noexcept { return m_kind; }
+  /// Mouse handles: the window's cumulative input (any one thread; no-op for a script device).
+  void feed_pointer(const haptics::PointerInput& in) noexcept;
+  /// The contact model published last (tests).
+  [[nodiscard]] haptics::ContactModel last_model() const noexcept { return m_model.load(); }
 
  private:
   std::array<std::optional<std::size_t>, haptics::kHandles> m_tool{};
+  DeviceKind m_kind = DeviceKind::kScript;
+  const ToolContactStage* m_contact = nullptr;
   haptics::ContactModelChannel m_model;
-  std::unique_ptr<haptics::ScriptDevice> m_device;
+  std::unique_ptr<haptics::Device> m_device;
+  haptics::MouseKeyboardDevice* m_mouse = nullptr;  // m_device when it is the mouse
   std::unique_ptr<haptics::HapticLoop> m_loop;
   bool m_started = false;
 };
+
+/// The trocar and rest joints of a mouse-driven handle (see the header comment): pivot at the
+/// tool's trocar, else 12 cm above `aim` (handle 1: 5 cm to the side), axis towards `aim`,
+/// resting halfway there.
+struct MouseHandle {
+  haptics::Trocar trocar;
+  haptics::JointState rest;
+};
+[[nodiscard]] MouseHandle mouse_handle(const Tool& tool, std::size_t handle, const Vec3& aim_m);
 
 }  // namespace serosa::app

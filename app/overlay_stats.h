@@ -23,6 +23,9 @@ struct FrameStats {
   double solver_rate_hz = 0.0;   ///< solver steps per wall second, Hz
   /// The haptic loop's telemetry, null when no haptic loop runs (the overlay then shows a dash).
   const haptics::LoopTelemetry* haptics = nullptr;
+  /// The haptic loop's live rate while it runs (its telemetry is the loop thread's then): ticks
+  /// of its LoopStatus per wall second, Hz. Shown when `haptics` is null; 0: no loop (a dash).
+  double haptic_live_rate_hz = 0.0;
   std::int64_t cuts = 0;  ///< topology changes applied so far
   bool paused = false;
   bool slow_motion = false;

@@ -180,6 +180,14 @@ void ReplayController::seek(double t_s) {
   seek_step(static_cast<std::uint64_t>(std::min(k, static_cast<double>(num_steps()))));
 }
 
+void ReplayController::make_exact() {
+  if (m_exact || m_branch_step) return;
+  const std::uint64_t k = steps_taken();
+  restart(nullptr);
+  while (steps_taken() < k && step_forward()) {
+  }
+}
+
 bool ReplayController::at_end() const {
   if (m_branch_step) return m_branch_closed;
   return steps_taken() >= num_steps();

@@ -69,6 +69,10 @@ class ReplayController {
   void seek_step(std::uint64_t steps);
   /// To simulated time t, s: the state after round(t / dt) steps (clamped).
   void seek(double t_s);
+  /// After snapshot-mode seeks: re-simulates from the start to the current step so that the
+  /// state is the recorded one again (exact() afterwards; a branch needs it). O(t). No-op when
+  /// already exact or branched.
+  void make_exact();
 
   // ---- branching (take over from the replayed state) ----
   /// Branches here: from now on the tools follow set_tool_input() (the rig or the mouse) instead

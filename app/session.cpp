@@ -12,14 +12,24 @@
 #include <string>
 #include <thread>
 
+#include <fstream>
+
 #include "app/assemble_state.h"
 #include "app/compose.h"
+#include "app/haptics_stage.h"
+#include "app/headless.h"
 #include "app/metrics_stage.h"
+#include "app/mouse_takeover.h"
 #include "app/overlay_stats.h"
+#include "app/record_stage.h"
 #include "app/render_frame_from_surface.h"
 #include "app/replay_controller.h"
+#include "engine/input_error.h"
+#include "engine/recording_writer.h"
 #include "engine/scene.h"
 #include "engine/triple_buffer.h"
+#include "haptics/haptic_loop.h"
+#include "haptics/mouse_device.h"
 #include "render/camera.h"
 #include "render/frame_renderer.h"
 #include "render/overlay.h"
@@ -60,6 +70,42 @@ class InterruptGuard {
   void (*m_term)(int) = SIG_DFL;
 };
 
+// The window's pointer and keys as the mouse device's cumulative input (window thread only):
+// drag with the left button pivots the active instrument, W/S insert/retract, Q/E roll, J toggles
+// the jaws, Tab switches the active instrument.
+class PointerControl {
+ public:
+  explicit PointerControl(const haptics::PointerInput& start = {}) : m_input(start) {}
+  // Reads the keys and the pointer; returns the cumulative input.
+  const haptics::PointerInput& update(render::Window& w) {
+    if (w.pressed(render::Key::kTab)) m_active = (m_active + 1) % haptics::kHandles;
+    if (w.pressed(render::Key::kW)) m_input.scroll_steps[m_active] += 1.0;
+    if (w.pressed(render::Key::kS)) m_input.scroll_steps[m_active] -= 1.0;
+    if (w.pressed(render::Key::kQ)) m_input.roll_steps[m_active] -= 1.0;
+    if (w.pressed(render::Key::kE)) m_input.roll_steps[m_active] += 1.0;
+    if (w.pressed(render::Key::kJ)) m_input.jaw_open[m_active] ^= 1u;
+    float x = 0.0f;
+    float y = 0.0f;
+    w.cursor(x, y);
+    const bool down = w.mouse_down();
+    if (down && m_dragging) {
+      m_input.dx_px[m_active] += static_cast<double>(x - m_x);
+      m_input.dy_px[m_active] += static_cast<double>(y - m_y);
+    }
+    m_dragging = down;
+    m_x = x;
+    m_y = y;
+    return m_input;
+  }
+
+ private:
+  haptics::PointerInput m_input;
+  std::size_t m_active = 0;
+  bool m_dragging = false;
+  float m_x = 0.0f;
+  float m_y = 0.0f;
+};
+
 // What the window thread tells the solver thread.
 struct Control {
   std::atomic<bool> paused{false};
@@ -90,6 +136,7 @@ class SolverLoop {
   }
 
   [[nodiscard]] std::exception_ptr error() const { return m_error; }
+  [[nodiscard]] std::int64_t steps() const { return m_steps; }
 
  private:
   void loop(const std::stop_token& stop) {
@@ -115,6 +162,7 @@ class SolverLoop {
       m_step_ms = m_step_ms == 0.0 ? ms : 0.9 * m_step_ms + 0.1 * ms;
       ++rate_steps;
       const auto now = Clock::now();
+      ++m_steps;
       if (now - rate_start >= std::chrono::seconds(1)) {
         m_rate_hz = rate_steps / std::chrono::duration<double>(now - rate_start).count();
         rate_start = now;
@@ -151,7 +199,24 @@ class SolverLoop {
     stats.sim_time_s = m_state.time_s;
     stats.fem_ms_per_step = m_step_ms;
     stats.solver_rate_hz = m_rate_hz;
-    stats.haptics = nullptr;  // no haptic loop in this session yet: the overlay shows a dash
+    // The haptic loop's telemetry is the loop thread's while it runs: the overlay's rate comes
+    // from its live status (ticks per wall second over the last half second or more).
+    stats.haptics = nullptr;
+    if (m_comp.haptics != nullptr) {
+      const auto now = Clock::now();
+      const std::uint64_t tick = m_comp.haptics->status().tick;
+      if (!m_hap_started) {
+        m_hap_t0 = now;
+        m_hap_tick0 = tick;
+        m_hap_started = true;
+      } else if (now - m_hap_t0 >= std::chrono::milliseconds(500)) {
+        m_hap_rate_hz = static_cast<double>(tick - m_hap_tick0) /
+                        std::chrono::duration<double>(now - m_hap_t0).count();
+        m_hap_t0 = now;
+        m_hap_tick0 = tick;
+      }
+      stats.haptic_live_rate_hz = m_hap_rate_hz;
+    }
     stats.cuts = m_cuts;
     stats.paused = m_control.paused.load();
     stats.slow_motion = m_slow;
@@ -173,18 +238,44 @@ class SolverLoop {
   double m_rate_hz = 0.0;
   std::int64_t m_cuts = 0;
   bool m_slow = false;
+  std::int64_t m_steps = 0;
+  bool m_hap_started = false;
+  Clock::time_point m_hap_t0{};
+  std::uint64_t m_hap_tick0 = 0;
+  double m_hap_rate_hz = 0.0;
   std::exception_ptr m_error;
 };
 
 }  // namespace
 
-int run_session(const std::filesystem::path& scene_path, double seconds,
-                const std::filesystem::path& snapshot) {
+int run_session(const std::filesystem::path& scene_path, const SessionOptions& so) {
+  const double seconds = so.seconds;
+  const std::filesystem::path& snapshot = so.snapshot;
   const Scene scene = load_scene(scene_path);
   AssembledScene assembled = assemble_state(scene);
-  Composition comp = compose(scene, assembled);
+  ComposeOptions co;
+  co.realtime_haptics = true;  // the trainee's machine: SCHED_FIFO when granted
+  Composition comp = compose(scene, assembled, std::move(co));
+  std::unique_ptr<recording::RecordingWriter> writer;
+  const std::optional<std::filesystem::path> record_path =
+      so.record ? so.record : scene.record.path;
+  if (record_path) {
+    try {
+      writer =
+          std::make_unique<recording::RecordingWriter>(*record_path, recording_header(scene, 0));
+    } catch (const std::exception& e) {
+      throw InputError(record_path->string(), 0, e.what(), "a writable path");
+    }
+    comp.runner->add(std::make_unique<RecordStage>(*writer, scene.record.hash_every));
+    comp.built.push_back(Effect::kRecord);
+    comp.unavailable.erase(
+        std::remove(comp.unavailable.begin(), comp.unavailable.end(), Effect::kRecord),
+        comp.unavailable.end());
+  }
   for (Effect e : comp.unavailable)
     spdlog::warn("effect '{}' is not implemented in this build: not simulated", effect_name(e));
+  const bool mouse = comp.haptics != nullptr && comp.haptics->device_kind() == DeviceKind::kMouse;
+  PointerControl pointer;
 
   const InterruptGuard interrupts;
   render::Window window(scene.render.width, scene.render.height, "Serosa");
@@ -222,6 +313,7 @@ int run_session(const std::filesystem::path& scene_path, double seconds,
       if (window.pressed(render::Key::kO))
         control.scope_angle_deg.store(control.scope_angle_deg.load() > 0.0f ? 0.0f : 30.0f);
       if (window.pressed(render::Key::kH)) show_overlay = !show_overlay;
+      if (mouse) comp.haptics->feed_pointer(pointer.update(window));
 
       frames.take();  // the newest frame, if the solver published one since
       const render::RenderFrame& frame = frames.front();
@@ -262,18 +354,63 @@ int run_session(const std::filesystem::path& scene_path, double seconds,
     const double wall = std::chrono::duration<double>(Clock::now() - start).count();
     spdlog::info("session: {} frames drawn in {:.1f} s, simulated {:.2f} s{}", frames_drawn, wall,
                  assembled.state.time_s, g_interrupted.load() ? " (interrupted)" : "");
+    // The solver has stopped: the haptic loop next (motors off), then the recording.
+    nlohmann::json report;
+    report["scene"] = std::filesystem::absolute(scene.file).lexically_normal().string();
+    report["frames_drawn"] = frames_drawn;
+    report["wall_time_s"] = wall;
+    report["steps_taken"] = loop.steps();
+    report["simulated_time_s"] = assembled.state.time_s;
+    report["interrupted"] = g_interrupted.load();
+    if (comp.haptics != nullptr) report["haptics"] = comp.haptics->telemetry_json();
+    if (writer) {
+      writer->close(assembled.state.step);
+      const auto ws = writer->stats();
+      report["recording"] = {{"file", writer->path().string()},
+                             {"steps", ws.steps},
+                             {"chunks", ws.chunks},
+                             {"bytes", ws.bytes},
+                             {"hash_every", scene.record.hash_every}};
+    }
+    if (comp.metrics != nullptr) report["metrics"] = comp.metrics->report();
+    report["state_hash"] = hash_hex(state_hash(assembled.state));
+    if (so.report) {
+      std::ofstream out(*so.report);
+      out << report.dump(2) << '\n';
+      if (!out)
+        throw InputError(so.report->string(), 0, "cannot write the report", "a writable path");
+    }
   }
   if (loop.error()) std::rethrow_exception(loop.error());
   return 0;
 }
 
-int run_replay_window(const std::filesystem::path& recording, double speed, double seconds,
-                      const std::filesystem::path& snapshot) {
+int run_replay_window(const std::filesystem::path& recording, const ReplayWindowOptions& ro) {
+  const double seconds = ro.seconds;
+  const std::filesystem::path& snapshot = ro.snapshot;
   ReplayControllerOptions co;
   co.exact_seek = false;  // interactive seeks: from the nearest snapshot (see the header)
   co.snapshot_every_s = 1.0;
-  co.speed = speed;
+  co.speed = ro.speed;
   ReplayController replay(recording, co);
+  std::optional<MouseTakeover> takeover;
+  PointerControl pointer;
+  const auto branch_here = [&] {
+    replay.set_paused(true);
+    replay.make_exact();
+    std::filesystem::path file = ro.branch_file.value_or(std::filesystem::path{});
+    if (file.empty()) {
+      file = recording;
+      std::string name = recording.stem().string();
+      name.append(".branch-").append(std::to_string(replay.steps_taken())).append(".lapr");
+      file.replace_filename(name);
+    }
+    replay.branch(file);
+    takeover.emplace(replay.scene(), replay.state().tools);
+    pointer = PointerControl(takeover->initial_input());
+    spdlog::info("replay: branched at {:.3f} s (step {}) into {}; the mouse drives the tools",
+                 replay.time_s(), replay.steps_taken(), file.string());
+  };
   const Scene& scene = replay.scene();
   const std::map<int, std::string> names = replay.group_names();
   const surface::OriginalSurface original(replay.state().mesh,
@@ -314,6 +451,8 @@ int run_replay_window(const std::filesystem::path& recording, double speed, doub
     if (window.pressed(render::Key::kDown))
       options.tessellation = std::max(options.tessellation - 1, 1);
     if (window.pressed(render::Key::kH)) show_overlay = !show_overlay;
+    if (window.pressed(render::Key::kB) && !replay.branched()) branch_here();
+    if (takeover) takeover->apply(pointer.update(window), replay);
 
     // Play: the steps that became due over the wall time since the last frame (at most 0.1 s of
     // it, so that a slow step plays in slow motion rather than in a catch-up burst).
@@ -327,6 +466,10 @@ int run_replay_window(const std::filesystem::path& recording, double speed, doub
                 static_cast<double>(taken);
     if (wall_dt > 0.0) rate_hz = 0.9 * rate_hz + 0.1 * static_cast<double>(taken) / wall_dt;
     if (replay.at_end()) replay.set_paused(true);
+    if (ro.branch_at_s && !replay.branched() && replay.time_s() >= *ro.branch_at_s) {
+      branch_here();
+      replay.set_paused(false);  // scripted checks: the branch records at rest input
+    }
 
     const SimState& state = replay.state();
     if (!have_surface || surf.topology_version != state.mesh.topology_version) {
@@ -388,7 +531,13 @@ int run_replay_window(const std::filesystem::path& recording, double speed, doub
     window.set_title(title);
     if (last_frame) break;
   }
-  spdlog::info("replay: {} of {} steps shown", replay.steps_taken(), replay.num_steps());
+  if (replay.branched()) {
+    replay.end_branch();
+    spdlog::info("replay: branch of {} steps recorded (from step {})", replay.steps_taken(),
+                 *replay.branch_step());
+  } else {
+    spdlog::info("replay: {} of {} steps shown", replay.steps_taken(), replay.num_steps());
+  }
   return 0;
 }
 

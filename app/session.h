@@ -2,26 +2,43 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 
 namespace serosa::app {
+
+/// What `serosa run` may add to the window.
+struct SessionOptions {
+  double seconds = 0.0;            ///< close after this much wall time when > 0 (checks)
+  std::filesystem::path snapshot;  ///< when not empty: the last picture drawn, PNG
+  /// .lapr recording of the session (what the solver consumed); default: the scene's [record]
+  /// path, else none. `serosa replay FILE --headless --verify` re-simulates it.
+  std::optional<std::filesystem::path> record;
+  /// JSON report written at the end: frames, steps, simulated time, the haptic loop's telemetry
+  /// ("haptics", as headless writes it), the recording, the metrics.
+  std::optional<std::filesystem::path> report;
+};
 
 /// Opens a window on the scene and runs it in real time until the window closes, Ctrl-C (SIGINT
 /// or SIGTERM) arrives, or `seconds` of wall time passed (when > 0). Returns the exit code.
 ///
-/// Threads: the solver runs on its own thread at the scene's fixed dt, paced to real time (when
-/// a step takes longer than dt it runs in slow motion and says so), and after every step
-/// publishes a RenderFrame (surface, tet edges, tools, endoscope camera, overlay data) through a
-/// TripleBuffer; it never waits for drawing. The calling (main) thread owns the window and its
-/// GL context (GLFW requires the main thread): it takes the newest frame whenever it draws,
-/// uploading positions every frame and indices only when the topology version changed.
+/// Threads (shared/DESIGN.md "Threads and hand-offs"): the solver runs on its own thread at the
+/// scene's fixed dt, paced to real time (when a step takes longer than dt it runs in slow motion
+/// and says so), and after every step publishes a RenderFrame (surface, tet edges, tools,
+/// endoscope camera, overlay data) through a TripleBuffer; it never waits for drawing. When the
+/// scene lists "haptics", the 1 kHz haptic loop runs on a third thread (app/haptics_stage.h,
+/// SCHED_FIFO when granted): tool states to the solver and contact models back through seqlocks;
+/// the mouse device takes the window's pointer input; the overlay shows the loop's live rate
+/// (LoopStatus ticks per wall second). The calling (main) thread owns the window and its GL
+/// context (GLFW requires the main thread): it takes the newest frame whenever it draws.
+/// Shutdown (close, Ctrl-C, `seconds`, a solver error): the solver thread stops and joins, then
+/// the haptic loop (motors off), then the recording is closed and the report written.
 ///
 /// Keys: Space pause, V cycle the views (visual, collision, mechanical), Up/Down tessellation
-/// level, O toggle a 0/30 degree scope, H hide/show the overlay, Esc quit. The overlay's view
-/// and tessellation controls work with the mouse. Scripted tools follow their paths; rig and
-/// mouse input join with the haptics issue.
-/// When `snapshot` is not empty, the last picture drawn is also written there as a PNG.
-int run_session(const std::filesystem::path& scene, double seconds,
-                const std::filesystem::path& snapshot = {});
+/// level, O toggle a 0/30 degree scope, H hide/show the overlay, Esc quit. With mouse-driven
+/// instruments: drag with the left button to pivot the active one about its trocar, W/S insert
+/// and retract, Q/E roll, J open/close the jaws, Tab switch the active instrument. The overlay's
+/// view and tessellation controls work with the mouse.
+int run_session(const std::filesystem::path& scene, const SessionOptions& options);
 
 /// The instructor's replay of a .lapr recording in a window (`serosa replay REC.lapr`), driven
 /// by a ReplayController (app/replay_controller.h) in snapshot-seek mode (a snapshot every
@@ -32,8 +49,20 @@ int run_session(const std::filesystem::path& scene, double seconds,
 /// Up/Down tessellation, H overlay, Esc quit; the overlay's Play/Pause button and timeline work
 /// with the mouse. At the end of the recording playback pauses on the last frame. Closes after
 /// `seconds` of wall time when > 0 (checks), writing the last picture to `snapshot` when given.
+///
+/// Branch (B, or automatically at `branch_at_s` when given): pauses, brings the state back to the
+/// exact recorded one (ReplayController::make_exact) and branches there into `branch_file`
+/// (default: next to the recording, NAME.branch-STEP.lapr); from then on the mouse drives the
+/// instruments (app/mouse_takeover.h; the session's keys: drag, W/S, Q/E, J, Tab) and Space
+/// resumes. The branch recording is closed when the window closes.
 /// Throws InputError when the file is not a usable recording.
-int run_replay_window(const std::filesystem::path& recording, double speed, double seconds,
-                      const std::filesystem::path& snapshot = {});
+struct ReplayWindowOptions {
+  double speed = 1.0;
+  double seconds = 0.0;
+  std::filesystem::path snapshot;
+  std::optional<double> branch_at_s;  ///< branch automatically at this time, s
+  std::optional<std::filesystem::path> branch_file;
+};
+int run_replay_window(const std::filesystem::path& recording, const ReplayWindowOptions& options);
 
 }  // namespace serosa::app

@@ -38,6 +38,42 @@ ToolContactStage::ToolContactStage(const Scene& scene, LameTable lame, fem::FemS
   }
   m_grasps.resize(scene.tools.size());
   m_tool_force.assign(scene.tools.size(), Vec3::Zero());
+  m_planes.resize(scene.tools.size());
+}
+
+std::optional<haptics::ContactPlane> ToolContactStage::haptic_plane(std::size_t tool) const {
+  return tool < m_planes.size() ? m_planes[tool] : std::nullopt;
+}
+
+void ToolContactStage::update_planes(const SimState& state) {
+  const TetMesh& mesh = state.mesh;
+  if (m_bvh_surface == nullptr) return;
+  const surface::SurfaceMesh& s = *m_bvh_surface;
+  if (m_bvh_version != mesh.topology_version) {
+    m_bvh.build(s, mesh.x);
+    m_bvh_version = mesh.topology_version;
+  } else {
+    m_bvh.refit(mesh.x);
+  }
+  for (std::size_t i = 0; i < m_kinds.size() && i < state.tools.size(); ++i) {
+    m_planes[i].reset();
+    if (m_kinds[i] == ToolKind::kEndoscope) continue;
+    const Vec3 tip = tool_frame(state.tools[i]).tip;
+    const std::optional<surface::ClosestHit> hit = m_bvh.closest_point(mesh.x, tip, kHapticRange);
+    if (!hit) continue;
+    const Tri& f = s.faces[static_cast<std::size_t>(hit->face)];
+    const Vec3& a = mesh.x[static_cast<std::size_t>(f[0])];
+    const Vec3& b = mesh.x[static_cast<std::size_t>(f[1])];
+    const Vec3& c = mesh.x[static_cast<std::size_t>(f[2])];
+    const Vec3 n = (b - a).cross(c - a);
+    if (!(n.norm() > 0.0)) continue;  // a degenerate face has no plane
+    const Vec3 un = n.normalized();
+    haptics::ContactPlane p;
+    p.point_m = {hit->point.x(), hit->point.y(), hit->point.z()};
+    p.normal = {un.x(), un.y(), un.z()};
+    p.stiffness_Npm = kHapticStiffness;
+    m_planes[i] = p;
+  }
 }
 
 std::vector<std::size_t> ToolContactStage::grasped_counts() const {
@@ -51,9 +87,9 @@ void ToolContactStage::refresh_boundary(const SimState& state) {
   const bool fresh = m_surface != nullptr &&
                      m_surface->surface().topology_version == state.mesh.topology_version &&
                      !m_surface->surface().faces.empty();
-  const surface::SurfaceMesh own =
-      fresh ? surface::SurfaceMesh{} : surface::extract_surface(state.mesh);
-  const surface::SurfaceMesh& s = fresh ? m_surface->surface() : own;
+  if (!fresh) m_own_surface = surface::extract_surface(state.mesh);
+  const surface::SurfaceMesh& s = fresh ? m_surface->surface() : m_own_surface;
+  m_bvh_surface = &s;
   std::vector<std::uint8_t> on(static_cast<std::size_t>(state.mesh.num_nodes()), 0);
   for (const Tri& f : s.faces)
     for (std::int32_t n : f) on[static_cast<std::size_t>(n)] = 1;
@@ -173,6 +209,7 @@ void ToolContactStage::step(const StepContext& ctx, SimState& state) {
       }
     }
   }
+  if (m_haptic) update_planes(state);
   if (m_fem) {
     if (any_force) {
       m_fem->set_external_forces(m_force);

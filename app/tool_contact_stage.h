@@ -13,6 +13,12 @@
 //   restores their original Dirichlet flags. The grasp force is the tissue's elastic pull on the
 //   grabbed nodes (app/tissue_stress.h).
 // Each tool's total force on the tissue (N) is kept for metrics and the haptic model.
+// - Haptic contact planes (on when the haptic loop asks, enable_haptic_planes()): after the
+//   forces, per tool the organ surface point nearest its tip within kHapticRange (collision BVH,
+//   surface/surface_bvh.h, rebuilt on topology changes and refitted every step) with its face's
+//   outward normal and kHapticStiffness: the local contact plane the 1 kHz loop renders
+//   (haptics/contact_model.h). A tip pressed into the tissue is below that plane and feels a
+//   force along the outward normal, opposing the penetration.
 #pragma once
 
 #include <cstdint>
@@ -24,6 +30,9 @@
 #include "engine/math.h"
 #include "engine/scene.h"
 #include "engine/stage.h"
+#include "haptics/contact_model.h"
+#include "surface/surface_bvh.h"
+#include "surface/surface_mesh.h"
 
 namespace serosa::fem {
 class FemStage;
@@ -39,6 +48,8 @@ inline constexpr double kContactBeta = 0.5;          ///< cap: beta m / dt^2
 inline constexpr double kGraspCloseRad = 0.2;        ///< rad
 inline constexpr double kGraspHysteresisRad = 0.05;  ///< rad
 inline constexpr double kGraspHalfWidth = 0.003;     ///< m
+inline constexpr double kHapticRange = 0.01;         ///< tip to surface, m: farther, no plane
+inline constexpr double kHapticStiffness = 500.0;    ///< rendered contact stiffness, N/m
 
 class ToolContactStage final : public Stage {
  public:
@@ -56,6 +67,12 @@ class ToolContactStage final : public Stage {
   /// Nodes pushed by contact in the last step, over all tools.
   [[nodiscard]] std::int64_t contacts() const noexcept { return m_contacts; }
 
+  /// Computes haptic contact planes from now on (off by default: no BVH, no cost).
+  void enable_haptic_planes() noexcept { m_haptic = true; }
+  /// Tool i's contact plane of the last step (scene tool order); none when planes are off, the
+  /// tool is an endoscope, or no surface lies within kHapticRange of its tip.
+  [[nodiscard]] std::optional<haptics::ContactPlane> haptic_plane(std::size_t tool) const;
+
  private:
   struct Grasp {
     std::vector<std::int32_t> nodes;  // grabbed node ids
@@ -67,6 +84,7 @@ class ToolContactStage final : public Stage {
   void refresh_boundary(const SimState& state);
   void grab(SimState& state, std::size_t tool, Grasp& g);
   void release(SimState& state, Grasp& g);
+  void update_planes(const SimState& state);
 
   std::vector<ToolKind> m_kinds;
   std::vector<std::optional<Vec3>> m_trocars;
@@ -80,6 +98,12 @@ class ToolContactStage final : public Stage {
   std::vector<std::uint8_t> m_flag;  // (n) scratch
   std::vector<Vec3> m_tool_force;    // (tools)
   std::int64_t m_contacts = 0;
+  bool m_haptic = false;
+  surface::SurfaceMesh m_own_surface;  // the boundary when no surface stage keeps it
+  const surface::SurfaceMesh* m_bvh_surface = nullptr;
+  surface::SurfaceBvh m_bvh;
+  std::uint64_t m_bvh_version = ~0ull;
+  std::vector<std::optional<haptics::ContactPlane>> m_planes;  // (tools)
 };
 
 }  // namespace serosa::app

@@ -35,6 +35,22 @@ int glfw_key(Key k) {
       return GLFW_KEY_EQUAL;  // '+' shares the '=' key on US layouts
     case Key::kMinus:
       return GLFW_KEY_MINUS;
+    case Key::kTab:
+      return GLFW_KEY_TAB;
+    case Key::kW:
+      return GLFW_KEY_W;
+    case Key::kS:
+      return GLFW_KEY_S;
+    case Key::kQ:
+      return GLFW_KEY_Q;
+    case Key::kE:
+      return GLFW_KEY_E;
+    case Key::kJ:
+      return GLFW_KEY_J;
+    case Key::kB:
+      return GLFW_KEY_B;
+    case Key::kCount:
+      break;
   }
   return GLFW_KEY_UNKNOWN;
 }
@@ -93,6 +109,7 @@ int Window::height() const {
 }
 
 bool Window::pressed(Key key) {
+  if (key == Key::kCount) return false;
   // Plus and minus also on the keypad.
   const int alt = key == Key::kPlus    ? GLFW_KEY_KP_ADD
                   : key == Key::kMinus ? GLFW_KEY_KP_SUBTRACT

@@ -13,7 +13,27 @@ namespace serosa::render {
 /// Keys a session reacts to (GLFW key codes stay inside render/).
 /// Space: pause; V: next view; Up/Down: tessellation; O: 0/30 degree scope; H: overlay on/off;
 /// in a replay Left/Right: seek -/+ 1 s, Plus/Minus (main row or keypad): faster/slower.
-enum class Key { kEscape, kSpace, kV, kUp, kDown, kO, kH, kLeft, kRight, kPlus, kMinus };
+enum class Key {
+  kEscape,
+  kSpace,
+  kV,
+  kUp,
+  kDown,
+  kO,
+  kH,
+  kLeft,
+  kRight,
+  kPlus,
+  kMinus,
+  kTab,  ///< the session's active instrument (mouse input)
+  kW,    ///< insert the active instrument
+  kS,    ///< retract it
+  kQ,    ///< roll it counter-clockwise
+  kE,    ///< roll it clockwise
+  kJ,    ///< open/close its jaws
+  kB,    ///< replay: branch here and take over with the mouse
+  kCount
+};
 
 class Window {
  public:
@@ -51,7 +71,7 @@ class Window {
 
  private:
   GLFWwindow* m_window = nullptr;
-  bool m_down[11] = {};
+  bool m_down[static_cast<int>(Key::kCount)] = {};
 };
 
 }  // namespace serosa::render
