@@ -42,6 +42,11 @@ struct SolverSettings {
   /// filling the CSR matrix every step. CHOLMOD always assembles. Off by default: assembled CG
   /// measured faster (docs/BENCHMARKS.md "FEM").
   bool matrix_free = false;
+  /// CG on the assembled matrix: store its 3x3 blocks in float instead of double (sums stay in
+  /// double; fem/block_system.h). Halves the SpMV's memory traffic; the stored entries are
+  /// rounded to a relative 6e-8, which perturbs the solution far below CG tolerances >= 1e-6
+  /// (docs/BENCHMARKS.md "FEM" measures it). Off by default; CHOLMOD always uses double.
+  bool float_matrix = false;
   /// pcg_cholmod: factor in a background thread (true) or on the step that needs it (false).
   bool background_factor = true;
   /// pcg_cholmod: the background factorization starts this many ms late. For tests that need

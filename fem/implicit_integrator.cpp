@@ -5,6 +5,7 @@
 #include <cmath>
 #include <utility>
 
+#include "fem/block_system.h"
 #include "fem/elastic_forces.h"
 #include "fem/rotation.h"
 
@@ -112,6 +113,7 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
 
   const bool plastic = m_config.plasticity.on;
   if (plastic) m_plastic.resize(static_cast<std::size_t>(m), Mat3::Zero());
+  m_scale.resize(static_cast<std::size_t>(m));
   // 1-2. Per tet: rotation (warm-started from the last step), rotated gradients R b_a, and the
   // corner forces f_el(x) - (beta + dt) K_R v.
   int inverted = 0;
@@ -122,6 +124,7 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
     std::span<Vec3, 4> out(m_fe.data() + 4 * ut, 4);
     if (!e.active()) {
       m_rot[ut].setIdentity();
+      m_scale[ut] = {0.0, 0.0};
       for (std::size_t c = 0; c < 4; ++c) {
         out[c].setZero();
         m_rg[4 * ut + c].setZero();
@@ -135,6 +138,7 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
                     ? robust_rotation(f, m_q[ut], kRotationMaxIterations, kStepRotationTolerance)
                     : Mat3::Identity();
     for (std::size_t c = 0; c < 4; ++c) m_rg[4 * ut + c] = m_rot[ut] * e.grad[c];
+    m_scale[ut] = tet_scale(e, dt_s);
     element_forces(e, m_rot[ut], nd, mesh.x, mesh.v, e.beta_s + dt_s, out,
                    plastic ? &m_plastic[ut] : nullptr);
   }
@@ -168,10 +172,22 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
     apply_a = [this, &mesh](std::span<const double> x, std::span<double> y) {
       apply_operator(mesh, m_el, m_pattern, m_rg, m_op, x, y);
     };
-  } else {
+  } else if (m_config.solver.kind == SolverKind::cholmod) {
     fill_system(mesh, m_el, m_pattern, m_rg, dt_s, m_a);
     apply_a = [this](std::span<const double> x, std::span<double> y) {
       multiply_system(m_pattern, m_a, x, y);
+    };
+  } else if (m_config.solver.float_matrix) {  // CG: 3x3 blocks (fem/block_system.h)
+    m_blocks_f.resize(block_storage(m_pattern));
+    fill_blocks<float>(mesh, m_el, m_pattern, m_rg, m_scale, dt_s, m_blocks_f);
+    apply_a = [this](std::span<const double> x, std::span<double> y) {
+      multiply_blocks<float>(m_pattern, m_blocks_f, x, y);
+    };
+  } else {
+    m_blocks_d.resize(block_storage(m_pattern));
+    fill_blocks<double>(mesh, m_el, m_pattern, m_rg, m_scale, dt_s, m_blocks_d);
+    apply_a = [this](std::span<const double> x, std::span<double> y) {
+      multiply_blocks<double>(m_pattern, m_blocks_d, x, y);
     };
   }
   SolveStatus ss;
@@ -223,8 +239,10 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
       m_pcg.inv_diag.resize(m_rhs.size());
       if (cg_matrix_free)
         operator_inverse_diagonal(m_el, m_pattern, m_rg, m_op, m_pcg.inv_diag);
+      else if (m_config.solver.float_matrix)
+        blocks_inverse_diagonal<float>(m_pattern, m_blocks_f, m_pcg.inv_diag);
       else
-        precond = jacobi(m_a, m_pcg);
+        blocks_inverse_diagonal<double>(m_pattern, m_blocks_d, m_pcg.inv_diag);
       precond.inv_diag = m_pcg.inv_diag;
     }
     ss = pcg(apply_a, m_rhs, m_dv, m_config.solver.tolerance, m_config.solver.max_iterations,
@@ -277,6 +295,20 @@ void ImplicitIntegrator::update_plasticity(const TetMesh& mesh, double dt_s) {
     const double norm = ep.norm();
     if (norm > p.max) ep *= p.max / norm;
   }
+}
+
+}  // namespace serosa::fem
+
+namespace serosa::fem {
+
+CsrMatrix ImplicitIntegrator::assembled_matrix() const {
+  CsrMatrix a = m_a;
+  const bool blocks = !m_config.solver.matrix_free && m_config.solver.kind != SolverKind::cholmod;
+  if (blocks && m_config.solver.float_matrix && m_blocks_f.size() == block_storage(m_pattern))
+    blocks_to_csr<float>(m_pattern, m_blocks_f, a);
+  else if (blocks && m_blocks_d.size() == block_storage(m_pattern))
+    blocks_to_csr<double>(m_pattern, m_blocks_d, a);
+  return a;
 }
 
 }  // namespace serosa::fem

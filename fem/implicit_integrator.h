@@ -29,6 +29,7 @@
 #include "engine/tet_mesh.h"
 #include "engine/topology_delta.h"
 #include "fem/background_factor.h"
+#include "fem/block_system.h"
 #include "fem/cholmod_solver.h"
 #include "fem/csr_matrix.h"
 #include "fem/fem_config.h"
@@ -77,7 +78,11 @@ class ImplicitIntegrator {
   [[nodiscard]] std::span<const Mat3> plastic_strain() const { return m_plastic; }
   [[nodiscard]] const FemElements& elements() const { return m_el; }
   [[nodiscard]] std::span<const Mat3> rotations() const { return m_rot; }
+  /// The matrix pattern (CSR); its values hold A only for solver.kind = cholmod (CG fills the
+  /// block storage instead, fem/block_system.h): see assembled_matrix().
   [[nodiscard]] const CsrMatrix& matrix() const { return m_a; }
+  /// A of the last step as a CSR matrix, whichever storage the solver filled (a copy; tests).
+  [[nodiscard]] CsrMatrix assembled_matrix() const;
   [[nodiscard]] const SystemPattern& pattern() const { return m_pattern; }
   /// What the last update() did to the matrix pattern.
   [[nodiscard]] const PatternUpdateStats& last_update() const { return m_last_update; }
@@ -89,15 +94,18 @@ class ImplicitIntegrator {
   const FemConfig m_config;
   FemElements m_el;
   SystemPattern m_pattern;
-  CsrMatrix m_a;                // (3n x 3n) system matrix
-  std::vector<Quat> m_q;        // (m) per-tet rotation, warm start of the next step
-  std::vector<Mat3> m_rot;      // (m) R_e of the current step
-  std::vector<Vec3> m_rg;       // (4m) rotated gradients R_e b_a of the current step, 1/m
-  std::vector<Mat3> m_plastic;  // (m) plastic strain eps_p (plasticity on), 1
-  SystemOperator m_op;          // matrix-free system (solver.matrix_free)
-  std::vector<Vec3> m_fe;       // (4m) per-tet corner forces of the right-hand side, N
-  std::vector<double> m_rhs;    // (3n) b = dt (...), N s
-  std::vector<double> m_dv;     // (3n) velocity change, m/s (CG warm start)
+  CsrMatrix m_a;                   // (3n x 3n) system matrix (CHOLMOD; pattern for all)
+  std::vector<double> m_blocks_d;  // A in 3x3 blocks for CG (fem/block_system.h), double
+  std::vector<float> m_blocks_f;   // the same in float (solver.float_matrix)
+  std::vector<TetScale> m_scale;   // (m) per-tet stiffness scales of the fill, this step
+  std::vector<Quat> m_q;           // (m) per-tet rotation, warm start of the next step
+  std::vector<Mat3> m_rot;         // (m) R_e of the current step
+  std::vector<Vec3> m_rg;          // (4m) rotated gradients R_e b_a of the current step, 1/m
+  std::vector<Mat3> m_plastic;     // (m) plastic strain eps_p (plasticity on), 1
+  SystemOperator m_op;             // matrix-free system (solver.matrix_free)
+  std::vector<Vec3> m_fe;          // (4m) per-tet corner forces of the right-hand side, N
+  std::vector<double> m_rhs;       // (3n) b = dt (...), N s
+  std::vector<double> m_dv;        // (3n) velocity change, m/s (CG warm start)
   PcgScratch m_pcg;
   CholmodSolver m_cholmod;  // cholmod: factor of A
   bool m_analyzed = false;

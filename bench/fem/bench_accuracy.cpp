@@ -7,7 +7,6 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
-#include <chrono>
 #include <map>
 #include <utility>
 #include <vector>
@@ -33,18 +32,10 @@ Run simulate(int k, FemConfig cfg) { return simulate_mesh(structured_box(k), std
 
 Run simulate_mesh(TetMesh mesh, FemConfig cfg) {
   Run r{std::move(mesh)};
-  cfg.solver.background_factor = false;  // pcg_cholmod: factor on the first step (timed)
-  ImplicitIntegrator integ(cfg);
-  integ.rebuild(r.mesh);
-  double ms = 0.0;
-  for (int s = 0; s < kSteps; ++s) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const StepStatus st = integ.step(r.mesh, kBoxDt);
-    ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    r.not_converged += st.converged ? 0 : 1;
-    r.rejected += st.applied ? 0 : 1;
-  }
-  r.ms_per_step = ms / kSteps;
+  const TimedRun t = run_timed_steps(r.mesh, std::move(cfg), kSteps, kBoxDt);
+  r.ms_per_step = t.ms_per_step;
+  r.not_converged = t.not_converged;
+  r.rejected = t.rejected;
   return r;
 }
 
@@ -58,19 +49,19 @@ const TetMesh& reference(int k) {
 }
 
 double relative_error(const TetMesh& m, const TetMesh& ref) {
-  double err = 0.0, disp = 0.0;
-  for (std::size_t i = 0; i < m.x.size(); ++i) {
-    err = std::max(err, (m.x[i] - ref.x[i]).norm());
-    disp = std::max(disp, (ref.x[i] - ref.rest[i]).norm());
-  }
-  return err / disp;
+  return relative_displacement_error(m, ref);
 }
 
-void accuracy(benchmark::State& state, SolverKind kind, double tol, int cap) {
+void accuracy(benchmark::State& state, SolverKind kind, double tol, int cap,
+              bool float_matrix = false) {
   const int k = static_cast<int>(state.range(0));
   const TetMesh& ref = reference(k);
   Run r;
-  for (auto _ : state) r = simulate(k, box_config(kind, tol, cap));
+  for (auto _ : state) {
+    FemConfig cfg = box_config(kind, tol, cap);
+    cfg.solver.float_matrix = float_matrix;
+    r = simulate(k, std::move(cfg));
+  }
   state.counters["tets"] = r.mesh.num_tets();
   state.counters["ms/step"] = r.ms_per_step;
   state.counters["steps/s"] = 1000.0 / r.ms_per_step;
@@ -120,18 +111,33 @@ void register_all() {
         ->Unit(benchmark::kMillisecond);
   for (int k : {9}) {
     for (double tol : {1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-8})
-      benchmark::RegisterBenchmark("BM_Accuracy/pcg_tol", accuracy, SolverKind::pcg, tol, 1000)
+      benchmark::RegisterBenchmark("BM_Accuracy/pcg_tol", accuracy, SolverKind::pcg, tol, 1000,
+                                   false)
+          ->Arg(k)
+          ->Iterations(1)
+          ->Unit(benchmark::kMillisecond);
+    // The same with float blocks (SolverSettings::float_matrix): the error it adds.
+    for (double tol : {1e-2, 1e-4, 1e-6, 1e-8})
+      benchmark::RegisterBenchmark("BM_Accuracy/pcg_tol_float", accuracy, SolverKind::pcg, tol,
+                                   1000, true)
+          ->Arg(k)
+          ->Iterations(1)
+          ->Unit(benchmark::kMillisecond);
+    for (int cap : {20, 100})
+      benchmark::RegisterBenchmark("BM_Accuracy/pcg_cap_float", accuracy, SolverKind::pcg, 0.0, cap,
+                                   true)
           ->Arg(k)
           ->Iterations(1)
           ->Unit(benchmark::kMillisecond);
     for (int cap : {5, 10, 20, 50, 100, 200})
-      benchmark::RegisterBenchmark("BM_Accuracy/pcg_cap", accuracy, SolverKind::pcg, 0.0, cap)
+      benchmark::RegisterBenchmark("BM_Accuracy/pcg_cap", accuracy, SolverKind::pcg, 0.0, cap,
+                                   false)
           ->Arg(k)
           ->Iterations(1)
           ->Unit(benchmark::kMillisecond);
     for (int cap : {5, 10, 20})
       benchmark::RegisterBenchmark("BM_Accuracy/pcg_cholmod_cap", accuracy, SolverKind::pcg_cholmod,
-                                   0.0, cap)
+                                   0.0, cap, false)
           ->Arg(k)
           ->Iterations(1)
           ->Unit(benchmark::kMillisecond);

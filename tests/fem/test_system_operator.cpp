@@ -3,10 +3,14 @@
 // Newton rotation extraction agrees with the SVD polar factor.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 #include <vector>
 
+#include "fem/block_system.h"
 #include "fem/fem_elements.h"
+#include "fem/pcg.h"
 #include "fem/rotation.h"
 #include "fem/system_matrix.h"
 #include "fem_fixtures.h"
@@ -60,6 +64,76 @@ TEST(SystemOperator, MatrixFreeEqualsAssembledAndBlockedSpmv) {
         EXPECT_NEAR(1.0 / inv[static_cast<std::size_t>(r)], a.val[static_cast<std::size_t>(k)],
                     1e-12 * a.val[static_cast<std::size_t>(k)]);
       }
+}
+
+// Block storage (fem/block_system.h): the same matrix as fill_system() in double, entry by entry;
+// the same product and diagonal; in float every entry within float rounding (2^-24 relative) and
+// the product within that of the row sums of |A| |x|.
+TEST(BlockSystem, EqualsCsrFillInDoubleAndRoundsOnlyTheEntriesInFloat) {
+  std::mt19937 rng(5);
+  TetMesh m = fixtures::grid(5, 3, 2, 0.1, 0.1, 0.1);
+  fixtures::jitter_interior(m, 0, 0.5, 0, 0.3, 0, 0.2, 0.02, 6);
+  m.fill_node_state();
+  for (std::size_t i = 0; i < m.rest.size(); ++i) m.fixed[i] = m.rest[i].x() < 1e-9 ? 1 : 0;
+  for (std::size_t t = 0; t < m.tets.size(); ++t) m.group[t] = t % 3 == 0 ? 2 : 1;
+  FemConfig cfg;
+  cfg.materials[1] = FemMaterial{3000.0, 0.45, 1000.0, 0.1, 0.1};
+  cfg.materials[2] = FemMaterial{3e9, 0.3, 2000.0, 0.0, 0.01};
+  FemElements el;
+  build_elements(m, cfg, el);
+  SystemPattern pat;
+  CsrMatrix a;
+  build_pattern(m, pat, a);
+  std::vector<Mat3> rot(m.tets.size());
+  for (Mat3& r : rot) r = fixtures::random_rotation(rng);
+  std::vector<Vec3> rg(4 * m.tets.size());
+  rotated_gradients(el, rot, rg);
+  fill_system(m, el, pat, rg, 0.01, a);
+  std::vector<double> bd(block_storage(pat));
+  std::vector<float> bf(block_storage(pat));
+  std::vector<TetScale> sc(m.tets.size());
+  for (std::size_t t = 0; t < sc.size(); ++t) sc[t] = tet_scale(el.elements[t], 0.01);
+  fill_blocks<double>(m, el, pat, rg, sc, 0.01, bd);
+  fill_blocks<float>(m, el, pat, rg, sc, 0.01, bf);
+  CsrMatrix from_d = a, from_f = a;
+  std::fill(from_d.val.begin(), from_d.val.end(), -7.0);
+  blocks_to_csr<double>(pat, bd, from_d);
+  blocks_to_csr<float>(pat, bf, from_f);
+  double scale = 0.0;
+  for (double v : a.val) scale = std::max(scale, std::abs(v));
+  ASSERT_GT(scale, 0.0);
+  for (std::int32_t r = 0; r < a.rows; ++r) {
+    const auto ur = static_cast<std::size_t>(r);
+    for (std::int32_t k = a.row_start[ur]; k < a.row_start[ur] + a.row_nz[ur]; ++k) {
+      const auto uk = static_cast<std::size_t>(k);
+      EXPECT_NEAR(from_d.val[uk], a.val[uk], 1e-13 * scale) << "row " << r;
+      EXPECT_NEAR(from_f.val[uk], a.val[uk], 6.0e-8 * std::abs(a.val[uk])) << "row " << r;
+    }
+  }
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const auto n3 = static_cast<std::size_t>(a.rows);
+  std::vector<double> x(n3), y(n3), yd(n3), yf(n3), inv_d(n3), inv_f(n3), absx(n3), bound(n3);
+  for (double& v : x) v = u(rng);
+  CsrMatrix abs_a = a;
+  for (double& v : abs_a.val) v = std::abs(v);
+  for (std::size_t i = 0; i < n3; ++i) absx[i] = std::abs(x[i]);
+  multiply(a, x, y);
+  multiply(abs_a, absx, bound);
+  multiply_blocks<double>(pat, bd, x, yd);
+  multiply_blocks<float>(pat, bf, x, yf);
+  for (std::size_t i = 0; i < n3; ++i) {
+    EXPECT_NEAR(yd[i], y[i], 1e-12 * bound[i]) << i;
+    EXPECT_NEAR(yf[i], y[i], 1e-7 * bound[i]) << i;
+  }
+  blocks_inverse_diagonal<double>(pat, bd, inv_d);
+  blocks_inverse_diagonal<float>(pat, bf, inv_f);
+  std::vector<double> inv(n3);
+  PcgScratch scratch;
+  const Preconditioner jac = jacobi(a, scratch);
+  for (std::size_t i = 0; i < n3; ++i) {
+    EXPECT_NEAR(inv_d[i], jac.inv_diag[i], 1e-14 * jac.inv_diag[i]);
+    EXPECT_NEAR(inv_f[i], jac.inv_diag[i], 1e-7 * jac.inv_diag[i]);
+  }
 }
 
 TEST(Rotation, NewtonMatchesSvdAndConvergesFastFromAWarmStart) {

@@ -1,0 +1,140 @@
+#include "fem/block_system.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "fem/parallel.h"
+
+namespace serosa::fem {
+
+std::size_t block_storage(const SystemPattern& p) { return 9 * p.nbr.data.size(); }
+
+template <class T>
+void fill_blocks(const TetMesh& mesh, const FemElements& el, const SystemPattern& p,
+                 std::span<const Vec3> rg, std::span<const TetScale> scale, double dt_s,
+                 std::span<T> blocks) {
+  T* out = blocks.data();
+#pragma omp parallel if (p.nodes >= kParallelMin)
+  {
+    std::vector<double> s;  // node's blocks, 9 per neighbour, summed in double
+#pragma omp for schedule(static)
+    for (std::int32_t i = 0; i < p.nodes; ++i) {
+      const auto ui = static_cast<std::size_t>(i);
+      const std::int32_t base = 9 * p.nbr.start[ui];
+      const auto len = static_cast<std::size_t>(9 * p.nbr.count[ui]);
+      // Diagonal block's offset in the node's storage: 9 * (index of i in its neighbour list).
+      const auto self = static_cast<std::size_t>(3 * (p.diag_start[ui] - base));
+      s.assign(len, 0.0);
+      if (node_constrained(mesh, el, ui)) {
+        const double diag = el.node_mass[ui] > 0.0 ? el.node_mass[ui] : 1.0;
+        s[self] = s[self + 4] = s[self + 8] = diag;
+      } else {
+        const double md = el.node_mass[ui] + dt_s * el.node_damping[ui];
+        s[self] = s[self + 4] = s[self + 8] = md;
+        // (dt^2 + dt beta) V (lambda ra rb^T + mu rb ra^T + mu (ra . rb) I), ra = R b_a.
+        for (const std::int32_t ic : p.incident_of(ui)) {
+          const auto inc = static_cast<std::size_t>(ic);
+          const std::size_t t = inc / 4;
+          const std::size_t ca = inc % 4;
+          const auto [sl, sm] = scale[t];
+          if (sl == 0.0 && sm == 0.0) continue;  // inactive
+          const Vec3& ra = rg[4 * t + ca];
+          const Vec3 la = sl * ra, ma = sm * ra;
+          const Tet& tet = mesh.tets[t];
+          for (std::size_t cb = 0; cb < 4; ++cb) {
+            if (node_constrained(mesh, el, static_cast<std::size_t>(tet[cb]))) continue;
+            const Vec3& rb = rg[4 * t + cb];
+            const double dd = ma.dot(rb);
+            double* blk = s.data() + 3 * static_cast<std::size_t>(p.block[t][4 * ca + cb] - base);
+            for (int r0 = 0; r0 < 3; ++r0) {
+              double* row = blk + 3 * r0;
+              for (int c0 = 0; c0 < 3; ++c0) row[c0] += la[r0] * rb[c0] + rb[r0] * ma[c0];
+              row[r0] += dd;
+            }
+          }
+        }
+      }
+      T* dst = out + base;
+      for (std::size_t k = 0; k < len; ++k) dst[k] = static_cast<T>(s[k]);
+    }
+  }
+}
+
+template <class T>
+void multiply_blocks(const SystemPattern& p, std::span<const T> blocks, std::span<const double> x,
+                     std::span<double> y) {
+  const double* xp = x.data();
+  double* yp = y.data();
+  const T* bp = blocks.data();
+  const std::int32_t* nbr = p.nbr.data.data();
+  const std::int32_t* start = p.nbr.start.data();
+  const std::int32_t* count = p.nbr.count.data();
+#pragma omp parallel for schedule(static) if (p.nodes >= kParallelMin)
+  for (std::int32_t i = 0; i < p.nodes; ++i) {
+    const std::int32_t s = start[i];
+    const std::int32_t* l = nbr + s;
+    const T* b = bp + 9 * static_cast<std::ptrdiff_t>(s);
+    double y0 = 0.0, y1 = 0.0, y2 = 0.0;
+    for (std::int32_t k = 0; k < count[i]; ++k, b += 9) {
+      const double* xb = xp + 3 * static_cast<std::ptrdiff_t>(l[k]);
+      const double x0 = xb[0], x1 = xb[1], x2 = xb[2];
+      y0 += static_cast<double>(b[0]) * x0 + static_cast<double>(b[1]) * x1 +
+            static_cast<double>(b[2]) * x2;
+      y1 += static_cast<double>(b[3]) * x0 + static_cast<double>(b[4]) * x1 +
+            static_cast<double>(b[5]) * x2;
+      y2 += static_cast<double>(b[6]) * x0 + static_cast<double>(b[7]) * x1 +
+            static_cast<double>(b[8]) * x2;
+    }
+    yp[3 * i] = y0;
+    yp[3 * i + 1] = y1;
+    yp[3 * i + 2] = y2;
+  }
+}
+
+template <class T>
+void blocks_inverse_diagonal(const SystemPattern& p, std::span<const T> blocks,
+                             std::span<double> inv_diag) {
+#pragma omp parallel for schedule(static) if (p.nodes >= kParallelMin)
+  for (std::int32_t i = 0; i < p.nodes; ++i) {
+    const auto ui = static_cast<std::size_t>(i);
+    const std::int32_t base = 9 * p.nbr.start[ui];
+    const auto d = static_cast<std::size_t>(base + 3 * (p.diag_start[ui] - base));
+    for (std::size_t c = 0; c < 3; ++c) {
+      const auto v = static_cast<double>(blocks[d + 4 * c]);
+      inv_diag[3 * ui + c] = v > 0.0 ? 1.0 / v : 1.0;
+    }
+  }
+}
+
+template <class T>
+void blocks_to_csr(const SystemPattern& p, std::span<const T> blocks, CsrMatrix& a) {
+  for (std::int32_t i = 0; i < p.nodes; ++i) {
+    const auto ui = static_cast<std::size_t>(i);
+    const auto base = static_cast<std::size_t>(9 * p.nbr.start[ui]);
+    const auto cnt = static_cast<std::size_t>(p.nbr.count[ui]);
+    const std::size_t len = 3 * cnt;
+    for (std::size_t k = 0; k < cnt; ++k)
+      for (std::size_t r = 0; r < 3; ++r)
+        for (std::size_t c = 0; c < 3; ++c)
+          a.val[base + r * len + 3 * k + c] = static_cast<double>(blocks[base + 9 * k + 3 * r + c]);
+  }
+}
+
+template void fill_blocks<double>(const TetMesh&, const FemElements&, const SystemPattern&,
+                                  std::span<const Vec3>, std::span<const TetScale>, double,
+                                  std::span<double>);
+template void fill_blocks<float>(const TetMesh&, const FemElements&, const SystemPattern&,
+                                 std::span<const Vec3>, std::span<const TetScale>, double,
+                                 std::span<float>);
+template void multiply_blocks<double>(const SystemPattern&, std::span<const double>,
+                                      std::span<const double>, std::span<double>);
+template void multiply_blocks<float>(const SystemPattern&, std::span<const float>,
+                                     std::span<const double>, std::span<double>);
+template void blocks_inverse_diagonal<double>(const SystemPattern&, std::span<const double>,
+                                              std::span<double>);
+template void blocks_inverse_diagonal<float>(const SystemPattern&, std::span<const float>,
+                                             std::span<double>);
+template void blocks_to_csr<double>(const SystemPattern&, std::span<const double>, CsrMatrix&);
+template void blocks_to_csr<float>(const SystemPattern&, std::span<const float>, CsrMatrix&);
+
+}  // namespace serosa::fem
