@@ -9,4 +9,6 @@ gmsh -3 "$root/tools/assets/box.geo" -setnumber h 0.101 -format msh2 -nt 1 \
   -o "$root/assets/box_19k.msh" >/dev/null
 gmsh -3 "$root/tools/assets/box.geo" -setnumber h 0.0584 -format msh2 -nt 1 \
   -o "$root/assets/box_95k.msh" >/dev/null
+# Node and tet order along a Morton curve: ~2x faster FEM steps than gmsh's order (scattered tets).
+python3 "$root/tools/assets/reorder_msh.py" "$root/assets/box_19k.msh" "$root/assets/box_95k.msh"
 echo "make_box_meshes: wrote assets/box_19k.msh and assets/box_95k.msh"
