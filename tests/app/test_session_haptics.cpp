@@ -1,0 +1,314 @@
+// The haptic loop in the trainee session (issue 8): mouse-driven instruments through the 1 kHz
+// loop, haptic contact planes from the collision BVH, the session under Xvfb with its report and
+// recording, and branching from a replay with the mouse (controller level and in the window).
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "app/assemble_state.h"
+#include "app/compose.h"
+#include "app/haptics_stage.h"
+#include "app/headless.h"
+#include "app/mouse_takeover.h"
+#include "app/replay.h"
+#include "app/replay_controller.h"
+#include "app/tool_contact_stage.h"
+#include "app_test_util.h"
+#include "engine/recording_reader.h"
+#include "engine/scene.h"
+#include "engine/sim_state.h"
+#include "haptics/haptic_loop.h"
+#include "haptics/trocar_kinematics.h"
+
+namespace serosa::app {
+namespace {
+
+using namespace serosa::app::testing;
+
+// Each test writes into a folder of its own (CTest runs tests in parallel processes).
+fs::path own_dir(const std::string& name) {
+  const ::testing::TestInfo* t = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string full = name;
+  if (t != nullptr) full.append("_").append(t->name());
+  return out_dir(full);
+}
+
+// The beam (0.1 x 0.01 x 0.01 m, x from 0 to 0.1, clamped at x = 0) with one grasper.
+std::string beam_scene(const std::string& effects, const std::string& device,
+                       const std::string& young = "1e6") {
+  std::string toml = "[scene]\ndt = 0.005\neffects = [";
+  toml.append(effects).append("]\n[[organ]]\nname = \"beam\"\nmesh = \"");
+  toml.append(source("assets/beam_coarse.msh").string())
+      .append("\"\nyoung = ")
+      .append(young)
+      .append("\ndensity = 1000\n")
+      .append("fixed = { box = [[-0.001, -1, -1], [0.0001, 1, 1]] }\n")
+      .append("[solver]\nkind = \"pcg\"\n[record]\nhash_every = 10\n")
+      .append("[[tool]]\nname = \"grasper\"\nkind = \"grasper\"\ndevice = \"")
+      .append(device)
+      .append("\"\ntrocar = [0.05, 0.1, 0.0]\n");
+  return toml;
+}
+
+struct Shell {
+  int code = -1;
+  std::string out;
+};
+Shell shell(const std::string& cmd) {
+  Shell r;
+  FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
+  if (pipe == nullptr) return r;
+  std::array<char, 4096> buf{};
+  std::size_t n = 0;
+  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+  const int status = pclose(pipe);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+Vec3 tip_of(const ToolState& t) { return Vec3(t.tip_m[0], t.tip_m[1], t.tip_m[2]); }
+
+// A mouse-driven grasper under "haptics": the loop ticks (its live status counts), the solver
+// consumes the loop's tool states, and they follow the pointer: 100 px of drag = 0.2 rad of yaw
+// about the trocar, one scroll step = 5 mm deeper.
+TEST(SessionHaptics, MouseDrivesTheToolThroughTheLoop) {
+  const fs::path dir = own_dir("session_haptics");
+  std::ofstream(dir / "scene.toml") << beam_scene("\"fem\", \"haptics\"", "mouse");
+  const Scene scene = load_scene(dir / "scene.toml");
+  AssembledScene assembled = assemble_state(scene);
+  Composition comp = compose(scene, assembled);
+  ASSERT_NE(comp.haptics, nullptr);
+  EXPECT_EQ(comp.haptics->device_kind(), DeviceKind::kMouse);
+  ASSERT_TRUE(comp.haptics->handle_tools()[0].has_value());
+  EXPECT_FALSE(comp.haptics->handle_tools()[1].has_value());
+
+  const Vec3 aim = [&] {
+    Vec3 s = Vec3::Zero();
+    for (const Vec3& x : assembled.state.mesh.x) s += x;
+    return Vec3(s / static_cast<double>(assembled.state.mesh.x.size()));
+  }();
+  const MouseHandle mh = mouse_handle(scene.tools[0], 0, aim);
+  EXPECT_LT((mh.trocar.pivot_m - Vec3(0.05, 0.1, 0.0)).norm(), 1e-12);
+
+  haptics::PointerInput in;
+  in.dx_px[0] = 100.0;
+  in.scroll_steps[0] = 1.0;
+  in.jaw_open[0] = 1;
+  comp.haptics->feed_pointer(in);
+  haptics::JointState q = mh.rest;
+  q.yaw_rad += 0.2;
+  q.insertion_m += 0.005;
+  const ToolState expected = haptics::forward(mh.trocar, q);
+
+  SimState& state = assembled.state;
+  for (int i = 0; i < 40; ++i) {
+    comp.runner->step(state);
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  const std::uint64_t ticks = comp.haptics->status().tick;
+  EXPECT_GT(ticks, 20u);  // 80+ ms of a 1 kHz loop, however loaded the machine
+  const ToolState& t = state.tools[0];
+  EXPECT_GT(t.tick, 0u);  // the loop's state, not a default
+  EXPECT_LT((tip_of(t) - tip_of(expected)).norm(), 1e-9);
+  EXPECT_NEAR(t.jaw_rad, haptics::MouseMapping{}.jaw_open_rad, 1e-12);
+  const nlohmann::json tel = comp.haptics->telemetry_json();  // stops the loop
+  EXPECT_EQ(tel["device"], "mouse");
+  EXPECT_GE(tel["ticks"].get<std::uint64_t>(), ticks);
+}
+
+// A grasper whose tip is pressed 2 mm into the top of the beam (pointing down, 12 mm from the
+// clamp, a stiff beam: the tissue stays put under the jaws' contact push): the contact stage
+// finds the nearest surface point on the top face (outward normal +y), the haptics stage
+// publishes that plane, and the 1 kHz loop renders a tip force along +y, opposing the
+// penetration (k * depth = 500 N/m * 2 mm = 1 N).
+TEST(SessionHaptics, ToolPressedIntoTheOrganFeelsAForceOpposingPenetration) {
+  const fs::path dir = own_dir("haptic_contact");
+  // Pointing down (+z of the tool = -y of the scene), tip 2 mm below the top face (y = 5 mm).
+  std::ofstream(dir / "path.csv")
+      << "t,tool,px,py,pz,qw,qx,qy,qz,jaw\n"
+         "0,grasper,0.012,0.003,0.001,0.7071067811865476,0.7071067811865476,0,0,0\n"
+         "10,grasper,0.012,0.003,0.001,0.7071067811865476,0.7071067811865476,0,0,0\n";
+  std::ofstream(dir / "scene.toml")
+      << beam_scene("\"fem\", \"surface\", \"contact\", \"haptics\"", "script:path.csv", "1e8");
+  const Scene scene = load_scene(dir / "scene.toml");
+  AssembledScene assembled = assemble_state(scene);
+  Composition comp = compose(scene, assembled);
+  ASSERT_NE(comp.haptics, nullptr);
+  ASSERT_NE(comp.contact, nullptr);
+  SimState& state = assembled.state;
+  for (int i = 0; i < 60; ++i) {
+    comp.runner->step(state);
+    std::this_thread::sleep_for(std::chrono::milliseconds(3));
+  }
+  // The plane the contact stage found for the tip.
+  const std::optional<haptics::ContactPlane> plane = comp.contact->haptic_plane(0);
+  ASSERT_TRUE(plane.has_value());
+  const Vec3 n(plane->normal[0], plane->normal[1], plane->normal[2]);
+  EXPECT_GT(n.y(), 0.99);
+  EXPECT_NEAR(plane->point_m[1], 0.005, 5e-4);
+  const Vec3 tip = tip_of(state.tools[0]);
+  const double depth = (Vec3(plane->point_m[0], plane->point_m[1], plane->point_m[2]) - tip).dot(n);
+  EXPECT_NEAR(depth, 0.002, 5e-4);
+  // The loop renders it: its model holds the plane, its last force pushes the tip out.
+  const haptics::ContactModel model = comp.haptics->last_model();
+  EXPECT_EQ(model.tools[0].n_contacts, 1u);
+  const haptics::LoopStatus st = comp.haptics->status();
+  const Vec3 f(st.tip_force_N[0][0], st.tip_force_N[0][1], st.tip_force_N[0][2]);
+  EXPECT_GT(f.dot(n), 0.5) << f.transpose();
+  EXPECT_NEAR(f.norm(), kHapticStiffness * depth, 0.2) << f.transpose();
+  comp.haptics->stop();
+
+  // A tool away from every surface gets no plane, hence no contact force.
+  ToolState far = state.tools[0];
+  far.tip_m = {0.05, 0.05, 0.0};
+  state.tools[0] = far;
+  comp.contact->step(StepContext{state.step, state.time_s, scene.settings.dt_s}, state);
+  EXPECT_FALSE(comp.contact->haptic_plane(0).has_value());
+}
+
+// Records a scripted grasper run on the beam (fem, surface, contact): 60 steps, hashes every 10.
+fs::path record_beam(const fs::path& dir) {
+  std::ofstream(dir / "path.csv")
+      << "t,tool,px,py,pz,qw,qx,qy,qz,jaw\n"
+         "0,grasper,0.05,0.03,0,0.7071067811865476,0.7071067811865476,0,0,0.5\n"
+         "0.3,grasper,0.07,0.02,0,0.7071067811865476,0.7071067811865476,0,0,0.5\n";
+  std::ofstream(dir / "scene.toml")
+      << beam_scene("\"fem\", \"surface\", \"contact\"", "script:path.csv");
+  HeadlessOptions o;
+  o.scene = dir / "scene.toml";
+  o.steps = 60;
+  o.record = dir / "run.lapr";
+  o.progress = false;
+  (void)run_headless(o);
+  return *o.record;
+}
+
+// Branch from replay with the mouse: pause at step 25, take over, and play a scripted sequence of
+// pointer inputs (drag, insert, close the jaws) standing in for the user. Taking over moves
+// nothing by itself; the tool then follows the device; the branch file replays --verify bit for
+// bit and its first 25 steps (inputs and hashes) are the original's.
+TEST(SessionHaptics, MouseTakeoverBranchReplaysVerifiedWithTheOriginalPrefix) {
+  const fs::path dir = own_dir("mouse_branch");
+  const fs::path rec = record_beam(dir);
+  ReplayControllerOptions co;
+  co.exact_seek = false;  // as in the window: snapshot seeks, then make_exact() before branching
+  co.snapshot_every_s = 0.05;
+  ReplayController c(rec, co);
+  c.seek_step(40);
+  c.seek_step(25);  // backwards, from a snapshot: no longer the recorded state
+  EXPECT_FALSE(c.exact());
+  c.make_exact();
+  ASSERT_TRUE(c.exact());
+  EXPECT_EQ(c.steps_taken(), 25u);
+  c.set_paused(true);
+  const ToolState before = c.state().tools[0];
+  const fs::path file = dir / "branch.lapr";
+  c.branch(file);
+  MouseTakeover take(c.scene(), c.state().tools);
+  ASSERT_TRUE(take.handle_tools()[0].has_value());
+  haptics::PointerInput in = take.initial_input();
+  EXPECT_EQ(in.jaw_open[0], 0u);  // 0.5 rad recorded: below half of jaw_open_rad (0.6)
+  take.apply(in, c);
+  ASSERT_TRUE(c.step_forward());
+  EXPECT_LT((tip_of(c.state().tools[0]) - tip_of(before)).norm(), 1e-12);  // no jump
+  EXPECT_NEAR(c.state().tools[0].jaw_rad, 0.5, 1e-12);
+  for (int i = 0; i < 34; ++i) {
+    in.dx_px[0] += 4.0;                          // drag right
+    if (i % 10 == 0) in.scroll_steps[0] -= 1.0;  // retract
+    in.jaw_open[0] = i < 20 ? 1u : 0u;           // open, then close
+    take.apply(in, c);
+    ASSERT_TRUE(c.step_forward());
+  }
+  EXPECT_EQ(c.steps_taken(), 60u);
+  const ToolState after = c.state().tools[0];
+  EXPECT_GT((tip_of(after) - tip_of(before)).norm(), 0.01);  // 136 px = 0.27 rad, 2 cm back
+  EXPECT_LT(after.jaw_rad, 0.5);
+  const std::uint64_t branch_hash = state_hash(c.state());
+  c.end_branch();
+
+  const recording::Recording parent = recording::read_recording(rec);
+  const recording::Recording b = recording::read_recording(file);
+  ASSERT_EQ(b.inputs.size(), 60u);
+  for (std::size_t s = 0; s < 25; ++s) {
+    ASSERT_EQ(b.inputs[s].size(), parent.inputs[s].size());
+    for (std::size_t k = 0; k < b.inputs[s].size(); ++k)
+      EXPECT_EQ(std::memcmp(&b.inputs[s][k], &parent.inputs[s][k], sizeof(ToolState)), 0) << s;
+  }
+  for (const auto& [step, hash] : parent.hashes)
+    if (step < 25) {
+      EXPECT_EQ(b.hashes.at(step), hash) << step;
+    }
+  EXPECT_NE(b.hashes.at(59), parent.hashes.at(59));  // the branch went its own way
+
+  ReplayOptions o;
+  o.recording = file;
+  o.verify = true;
+  o.progress = false;
+  const ReplayResult r = run_replay(o);
+  EXPECT_EQ(r.steps, 60u);
+  EXPECT_EQ(r.hashes_checked, 6u);
+  EXPECT_FALSE(r.diverged_at.has_value());
+  EXPECT_EQ(r.report["state_hash"], hash_hex(branch_hash));
+  // And with the command line.
+  const CliResult cli = run_serosa("replay '" + file.string() + "' --headless --verify");
+  EXPECT_EQ(cli.code, 0) << cli.out;
+}
+
+// The trainee session under Xvfb with a mouse-driven grasper and "haptics": the loop runs beside
+// the solver and render threads, the report carries its telemetry, the recording of what the
+// solver consumed replays --verify; then the replay window branches at 0.2 s (--branch-at) and
+// its branch file verifies too.
+TEST(SessionHaptics, SessionUnderXvfbRecordsAndReportsTheLoop) {
+  const fs::path dir = own_dir("session_xvfb");
+  std::ofstream(dir / "scene.toml")
+      << beam_scene("\"fem\", \"surface\", \"contact\", \"render\", \"haptics\"", "mouse");
+  const std::string xvfb = "xvfb-run -a -s '-screen 0 640x480x24' '" + serosa_exe().string() + "' ";
+  const Shell run =
+      shell(xvfb + "run '" + (dir / "scene.toml").string() + "' --seconds 2 " + "--record '" +
+            (dir / "s.lapr").string() + "' --report '" + (dir / "s.json").string() + "'");
+  ASSERT_EQ(run.code, 0) << run.out;
+  nlohmann::json rep;
+  std::ifstream(dir / "s.json") >> rep;
+  ASSERT_TRUE(rep.contains("haptics")) << rep.dump(1);
+  EXPECT_EQ(rep["haptics"]["device"], "mouse");
+  EXPECT_GT(rep["haptics"]["ticks"].get<std::uint64_t>(), 100u) << rep["haptics"].dump(1);
+  const std::int64_t steps = rep["steps_taken"].get<std::int64_t>();
+  EXPECT_GT(steps, 10);
+  EXPECT_EQ(rep["recording"]["steps"].get<std::int64_t>(), steps);
+  const recording::Recording rec = recording::read_recording(dir / "s.lapr");
+  EXPECT_TRUE(rec.complete);
+  ASSERT_EQ(static_cast<std::int64_t>(rec.inputs.size()), steps);
+  EXPECT_GT(rec.inputs.back()[0].tick, 0u);  // the loop's states were consumed and recorded
+  const CliResult verify =
+      run_serosa("replay '" + (dir / "s.lapr").string() + "' --headless --verify");
+  EXPECT_EQ(verify.code, 0) << verify.out;
+
+  const Shell branch =
+      shell(xvfb + "replay '" + (dir / "s.lapr").string() +
+            "' --seconds 1.5 --branch-at 0.05 --branch '" + (dir / "b.lapr").string() + "'");
+  ASSERT_EQ(branch.code, 0) << branch.out;
+  EXPECT_NE(branch.out.find("branched at"), std::string::npos) << branch.out;
+  const recording::Recording b = recording::read_recording(dir / "b.lapr");
+  EXPECT_TRUE(b.complete);
+  ASSERT_FALSE(b.events.empty());
+  const std::uint64_t at = b.events[0].first;
+  EXPECT_GE(at, 10u);  // 0.05 s at dt 5 ms
+  ASSERT_GE(b.inputs.size(), at);
+  for (std::size_t s = 0; s < at; ++s)
+    EXPECT_EQ(std::memcmp(b.inputs[s].data(), rec.inputs[s].data(), sizeof(ToolState)), 0) << s;
+  const CliResult bverify =
+      run_serosa("replay '" + (dir / "b.lapr").string() + "' --headless --verify");
+  EXPECT_EQ(bverify.code, 0) << bverify.out;
+}
+
+}  // namespace
+}  // namespace serosa::app
