@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "app/replay_controller.h"
 
@@ -43,9 +44,18 @@ void MouseTakeover::apply(const haptics::PointerInput& in, ReplayController& rep
   const double max_jaw_step = kJawSpeed * replay.dt_s();
   for (std::size_t h = 0; h < haptics::kHandles; ++h) {
     if (!m_tool[h]) continue;
-    ToolState s = sample.pose[h];
-    const double target = in.jaw_open[h] ? m_map.jaw_open_rad : 0.0;
-    m_jaw[h] += std::clamp(target - m_jaw[h], -max_jaw_step, max_jaw_step);
+    // A fresh state with zero padding: the state hash covers the whole struct, and a replay reads
+    // the recording into zeroed ToolStates.
+    ToolState s;
+    std::memset(&s, 0, sizeof s);
+    s.tip_m = sample.pose[h].tip_m;
+    s.quat_wxyz = sample.pose[h].quat_wxyz;
+    // The jaws hold the recorded opening until the input's jaw flag first changes.
+    m_jaw_moved[h] = m_jaw_moved[h] || in.jaw_open[h] != m_initial.jaw_open[h];
+    if (m_jaw_moved[h]) {
+      const double target = in.jaw_open[h] ? m_map.jaw_open_rad : 0.0;
+      m_jaw[h] += std::clamp(target - m_jaw[h], -max_jaw_step, max_jaw_step);
+    }
     s.jaw_rad = m_jaw[h];
     s.tick = replay.steps_taken();
     s.time_s = t;

@@ -6,8 +6,9 @@
 //    pivot at the tool's `trocar` distance from the tip, else 10 cm back along the shaft), its
 //    frame the tool's orientation, so the device's rest joints (insertion only) reproduce that
 //    pose exactly: taking over moves nothing until the input does;
-//  - the jaws start where the recording left them and move towards open (jaw_open_rad) or closed
-//    at kJawSpeed while the input's jaw_open flag says so (a jump would cut or grab at once).
+//  - the jaws hold the opening the recording left them at until the input's jaw_open flag first
+//    changes; then they move towards open (jaw_open_rad) or closed at kJawSpeed (a jump would cut
+//    or grab at once).
 // apply() polls the device with the cumulative input and hands the poses to the controller for
 // its next step; it is deterministic (no thread), so a scripted input sequence stands in for the
 // user in tests, and the branch recording holds exactly what the steps consumed.
@@ -57,6 +58,7 @@ class MouseTakeover {
   std::array<std::optional<std::size_t>, haptics::kHandles> m_tool{};
   std::array<haptics::Trocar, haptics::kHandles> m_trocars{};
   std::array<double, haptics::kHandles> m_jaw{};
+  std::array<bool, haptics::kHandles> m_jaw_moved{};
   haptics::MouseMapping m_map;
   std::unique_ptr<haptics::MouseKeyboardDevice> m_device;
   haptics::PointerInput m_initial{};

@@ -5,10 +5,10 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <fstream>
 #include <thread>
 
@@ -76,6 +76,12 @@ Shell shell(const std::string& cmd) {
 }
 
 Vec3 tip_of(const ToolState& t) { return Vec3(t.tip_m[0], t.tip_m[1], t.tip_m[2]); }
+
+// Field by field (the struct has padding).
+bool same(const ToolState& a, const ToolState& b) {
+  return a.tick == b.tick && a.time_s == b.time_s && a.tip_m == b.tip_m &&
+         a.quat_wxyz == b.quat_wxyz && a.jaw_rad == b.jaw_rad && a.buttons == b.buttons;
+}
 
 // A mouse-driven grasper under "haptics": the loop ticks (its live status counts), the solver
 // consumes the loop's tool states, and they follow the pointer: 100 px of drag = 0.2 rad of yaw
@@ -145,7 +151,7 @@ TEST(SessionHaptics, ToolPressedIntoTheOrganFeelsAForceOpposingPenetration) {
   ASSERT_NE(comp.haptics, nullptr);
   ASSERT_NE(comp.contact, nullptr);
   SimState& state = assembled.state;
-  for (int i = 0; i < 60; ++i) {
+  for (int i = 0; i < 30; ++i) {
     comp.runner->step(state);
     std::this_thread::sleep_for(std::chrono::milliseconds(3));
   }
@@ -158,13 +164,28 @@ TEST(SessionHaptics, ToolPressedIntoTheOrganFeelsAForceOpposingPenetration) {
   const Vec3 tip = tip_of(state.tools[0]);
   const double depth = (Vec3(plane->point_m[0], plane->point_m[1], plane->point_m[2]) - tip).dot(n);
   EXPECT_NEAR(depth, 0.002, 5e-4);
-  // The loop renders it: its model holds the plane, its last force pushes the tip out.
   const haptics::ContactModel model = comp.haptics->last_model();
   EXPECT_EQ(model.tools[0].n_contacts, 1u);
-  const haptics::LoopStatus st = comp.haptics->status();
-  const Vec3 f(st.tip_force_N[0][0], st.tip_force_N[0][1], st.tip_force_N[0][2]);
-  EXPECT_GT(f.dot(n), 0.5) << f.transpose();
-  EXPECT_NEAR(f.norm(), kHapticStiffness * depth, 0.2) << f.transpose();
+  // The loop renders it: sampled over 30 more steps, its tip force pushes the tip out (never in)
+  // and reaches k * depth. (A loaded machine may stall the loop past its watchdog now and then:
+  // such a tick renders zero and the force ramps back, so the largest sample is checked.)
+  double most = 0.0;
+  double least = 0.0;
+  Vec3 f_most = Vec3::Zero();
+  for (int i = 0; i < 30; ++i) {
+    comp.runner->step(state);
+    std::this_thread::sleep_for(std::chrono::milliseconds(3));
+    const haptics::LoopStatus st = comp.haptics->status();
+    const Vec3 f(st.tip_force_N[0][0], st.tip_force_N[0][1], st.tip_force_N[0][2]);
+    least = std::min(least, f.dot(n));
+    if (f.dot(n) > most) {
+      most = f.dot(n);
+      f_most = f;
+    }
+  }
+  EXPECT_GT(most, 0.5) << f_most.transpose();
+  EXPECT_NEAR(f_most.norm(), kHapticStiffness * depth, 0.2) << f_most.transpose();
+  EXPECT_GE(least, -1e-9);
   comp.haptics->stop();
 
   // A tool away from every surface gets no plane, hence no contact force.
@@ -216,7 +237,7 @@ TEST(SessionHaptics, MouseTakeoverBranchReplaysVerifiedWithTheOriginalPrefix) {
   MouseTakeover take(c.scene(), c.state().tools);
   ASSERT_TRUE(take.handle_tools()[0].has_value());
   haptics::PointerInput in = take.initial_input();
-  EXPECT_EQ(in.jaw_open[0], 0u);  // 0.5 rad recorded: below half of jaw_open_rad (0.6)
+  EXPECT_EQ(in.jaw_open[0], 1u);  // 0.5 rad recorded: more than half of jaw_open_rad (0.6)
   take.apply(in, c);
   ASSERT_TRUE(c.step_forward());
   EXPECT_LT((tip_of(c.state().tools[0]) - tip_of(before)).norm(), 1e-12);  // no jump
@@ -224,7 +245,7 @@ TEST(SessionHaptics, MouseTakeoverBranchReplaysVerifiedWithTheOriginalPrefix) {
   for (int i = 0; i < 34; ++i) {
     in.dx_px[0] += 4.0;                          // drag right
     if (i % 10 == 0) in.scroll_steps[0] -= 1.0;  // retract
-    in.jaw_open[0] = i < 20 ? 1u : 0u;           // open, then close
+    in.jaw_open[0] = i < 20 ? 1u : 0u;           // held open (as recorded), then closing
     take.apply(in, c);
     ASSERT_TRUE(c.step_forward());
   }
@@ -241,7 +262,7 @@ TEST(SessionHaptics, MouseTakeoverBranchReplaysVerifiedWithTheOriginalPrefix) {
   for (std::size_t s = 0; s < 25; ++s) {
     ASSERT_EQ(b.inputs[s].size(), parent.inputs[s].size());
     for (std::size_t k = 0; k < b.inputs[s].size(); ++k)
-      EXPECT_EQ(std::memcmp(&b.inputs[s][k], &parent.inputs[s][k], sizeof(ToolState)), 0) << s;
+      EXPECT_TRUE(same(b.inputs[s][k], parent.inputs[s][k])) << s;
   }
   for (const auto& [step, hash] : parent.hashes)
     if (step < 25) {
@@ -271,7 +292,8 @@ TEST(SessionHaptics, SessionUnderXvfbRecordsAndReportsTheLoop) {
   const fs::path dir = own_dir("session_xvfb");
   std::ofstream(dir / "scene.toml")
       << beam_scene("\"fem\", \"surface\", \"contact\", \"render\", \"haptics\"", "mouse");
-  const std::string xvfb = "xvfb-run -a -s '-screen 0 640x480x24' '" + serosa_exe().string() + "' ";
+  const std::string xvfb =
+      "xvfb-run -a -s '-screen 0 1280x720x24' '" + serosa_exe().string() + "' ";
   const Shell run =
       shell(xvfb + "run '" + (dir / "scene.toml").string() + "' --seconds 2 " + "--record '" +
             (dir / "s.lapr").string() + "' --report '" + (dir / "s.json").string() + "'");
@@ -303,8 +325,7 @@ TEST(SessionHaptics, SessionUnderXvfbRecordsAndReportsTheLoop) {
   const std::uint64_t at = b.events[0].first;
   EXPECT_GE(at, 10u);  // 0.05 s at dt 5 ms
   ASSERT_GE(b.inputs.size(), at);
-  for (std::size_t s = 0; s < at; ++s)
-    EXPECT_EQ(std::memcmp(b.inputs[s].data(), rec.inputs[s].data(), sizeof(ToolState)), 0) << s;
+  for (std::size_t s = 0; s < at; ++s) EXPECT_TRUE(same(b.inputs[s][0], rec.inputs[s][0])) << s;
   const CliResult bverify =
       run_serosa("replay '" + (dir / "b.lapr").string() + "' --headless --verify");
   EXPECT_EQ(bverify.code, 0) << bverify.out;
