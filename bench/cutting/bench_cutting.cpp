@@ -10,8 +10,9 @@
 //                         ends inside it. Counters: tets touched and created, nodes added, volume
 //                         lost, minimum quality after, and the distance from the blade polygon of
 //                         the new boundary faces off the old surface (the cut surface), in cell
-//                         edges, and their area (both sides of the crack; the pattern method's is
-//                         exactly twice the blade's section of the mesh).
+//                         edges (max and area-weighted mean), and their area (both sides of the
+//                         crack; the pattern method's is exactly twice the blade's section of the
+//                         mesh). Measured by cutting/cut_accuracy.h, as `serosa bench cutting`.
 // Time per cut = candidate query through the TetBvh + the cut + apply(mesh, delta) +
 // TetBvh::update. The mesh and its BVH are built once per size; after each timed cut they are
 // reset outside the timing (manual timing of exactly those four steps) by copy assignment from the
@@ -31,16 +32,15 @@
 #include <cstdint>
 #include <map>
 #include <memory>
-#include <set>
 #include <vector>
 
 #include "cutting/convex_polygon.h"
+#include "cutting/cut_accuracy.h"
 #include "cutting/cut_method.h"
 #include "cutting/reserve.h"
 #include "cutting/snap_cut.h"
 #include "cutting/tet_bvh.h"
-#include "engine/boundary.h"
-#include "engine/mesh_quality.h"
+#include "engine/kuhn_grid.h"
 #include "engine/tet_mesh.h"
 #include "engine/topology_delta.h"
 
@@ -50,31 +50,7 @@ namespace {
 constexpr double kH = 0.002;  // cell edge, m (2 mm)
 
 /// n x n x n cubes of edge kH, 6 Kuhn tets each (6 n^3 tets), one group.
-TetMesh grid(int n) {
-  TetMesh m;
-  const auto id = [n](int i, int j, int k) { return (i * (n + 1) + j) * (n + 1) + k; };
-  for (int i = 0; i <= n; ++i)
-    for (int j = 0; j <= n; ++j)
-      for (int k = 0; k <= n; ++k) m.add_node(Vec3(i * kH, j * kH, k * kH));
-  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  m.tets.reserve(static_cast<std::size_t>(6 * n * n * n));
-  m.group.reserve(m.tets.capacity());
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      for (int k = 0; k < n; ++k)
-        for (const auto& p : perms) {
-          std::array<int, 3> c{i, j, k};
-          Tet t{};
-          t[0] = id(c[0], c[1], c[2]);
-          for (int s = 0; s < 3; ++s) {
-            ++c[static_cast<std::size_t>(p[s])];
-            t[static_cast<std::size_t>(s) + 1] = id(c[0], c[1], c[2]);
-          }
-          const int tet = m.add_tet(t, 1);
-          if (m.rest_volume(tet) < 0.0) std::swap(m.tets.back()[2], m.tets.back()[3]);
-        }
-  return m;
-}
+TetMesh grid(int n) { return kuhn_grid(n, kH); }
 
 /// An oblique square blade of half-size `half` cells centred at `centre` (cells).
 ConvexPolygon blade(const Vec3& centre, double half) {
@@ -208,85 +184,6 @@ BENCHMARK(BM_CutVsBlade)
     ->UseManualTime()
     ->Unit(benchmark::kMicrosecond);
 
-// Distance (m) from p to the convex polygon b.
-double polygon_distance(const ConvexPolygon& b, const Vec3& p) {
-  if (b.contains_projection(p)) return std::abs(b.signed_distance(p));
-  double best = std::numeric_limits<double>::infinity();
-  const auto& q = b.points();
-  for (std::size_t i = 0; i < q.size(); ++i) {
-    const Vec3& s = q[i];
-    const Vec3 e = q[(i + 1) % q.size()] - s;
-    const double t = std::clamp(e.dot(p - s) / e.squaredNorm(), 0.0, 1.0);
-    best = std::min(best, (s + t * e - p).norm());
-  }
-  return best;
-}
-
-// Distance (m) from p to triangle (a, b, c).
-double triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 n = (b - a).cross(c - a);
-  const Vec3 q = p - n * (n.dot(p - a) / n.squaredNorm());
-  if (n.dot((b - q).cross(c - q)) >= 0.0 && n.dot((c - q).cross(a - q)) >= 0.0 &&
-      n.dot((a - q).cross(b - q)) >= 0.0)
-    return (p - q).norm();
-  auto seg = [&](const Vec3& s, const Vec3& e) {
-    const Vec3 d = e - s;
-    const double t = std::clamp(d.dot(p - s) / d.squaredNorm(), 0.0, 1.0);
-    return (s + t * d - p).norm();
-  };
-  return std::min({seg(a, b), seg(b, c), seg(c, a)});
-}
-
-struct Accuracy {
-  double volume_lost_rel = 0.0;  ///< (V_before - V_after) / V_before (rest)
-  double min_quality = 0.0;      ///< smallest mean-ratio quality after (rest)
-  double max_dist_cells = 0.0;   ///< new boundary faces off the old surface: max vertex
-                                 ///< distance from the blade polygon, in cell edges
-  double cut_area_m2 = 0.0;      ///< their area (both sides)
-};
-
-// What one cut does to the mesh's geometry (not timed).
-Accuracy accuracy(const TetMesh& before, const TetMesh& after, const ConvexPolygon& b) {
-  Accuracy a;
-  double vb = 0.0, va = 0.0;
-  for (std::int32_t i = 0; i < before.num_tets(); ++i) vb += before.rest_volume(i);
-  for (std::int32_t i = 0; i < after.num_tets(); ++i) va += after.rest_volume(i);
-  a.volume_lost_rel = (vb - va) / vb;
-  const std::vector<double> q = tet_qualities(after);
-  a.min_quality = *std::min_element(q.begin(), q.end());
-  const FaceCensus fb = face_census(before), fa = face_census(after);
-  auto key = [](Tri t) {
-    std::sort(t.begin(), t.end());
-    return t;
-  };
-  std::set<Tri> old;
-  for (const BoundaryFace& f : fb.boundary) old.insert(key(f.nodes));
-  // Old boundary faces near the blade (the only ones a new face can lie on).
-  const Vec3 lo = b.box_min() - Vec3::Constant(3.0 * kH),
-             hi = b.box_max() + Vec3::Constant(3.0 * kH);
-  std::vector<Tri> near;
-  for (const BoundaryFace& f : fb.boundary) {
-    const Vec3& p = before.x[f.nodes[0]];
-    if ((p.array() >= lo.array()).all() && (p.array() <= hi.array()).all()) near.push_back(f.nodes);
-  }
-  for (const BoundaryFace& f : fa.boundary) {
-    if (old.contains(key(f.nodes))) continue;
-    const Vec3 &p0 = after.x[f.nodes[0]], &p1 = after.x[f.nodes[1]], &p2 = after.x[f.nodes[2]];
-    const Vec3 c = (p0 + p1 + p2) / 3.0;
-    bool on_old = false;
-    for (const Tri& o : near)
-      if (triangle_distance(c, before.x[o[0]], before.x[o[1]], before.x[o[2]]) <= 1e-9 * kH) {
-        on_old = true;
-        break;
-      }
-    if (on_old) continue;
-    for (const Vec3* p : {&p0, &p1, &p2})
-      a.max_dist_cells = std::max(a.max_dist_cells, polygon_distance(b, *p) / kH);
-    a.cut_area_m2 += 0.5 * (p1 - p0).cross(p2 - p0).norm();
-  }
-  return a;
-}
-
 void BM_Method(benchmark::State& state) {
   const auto method = static_cast<CutMethod>(state.range(0));
   Fixture& f = fixture(20);
@@ -298,10 +195,11 @@ void BM_Method(benchmark::State& state) {
     TetMesh after = f.pristine;
     CutResult r = cut_with(method, after, b, {}, f.pristine_bvh->as_query());
     apply(after, r.delta);
-    const Accuracy a = accuracy(f.pristine, after, b);
+    const CutAccuracy a = measure_cut(f.pristine, after, b, kH);
     state.counters["volume_lost_rel"] = a.volume_lost_rel;
     state.counters["min_quality"] = a.min_quality;
-    state.counters["max_dist_cells"] = a.max_dist_cells;
+    state.counters["max_dist_cells"] = a.max_dist_m / kH;
+    state.counters["mean_dist_cells"] = a.mean_dist_m / kH;
     state.counters["cut_area_cm2"] = a.cut_area_m2 * 1e4;
     state.counters["tets_created"] = static_cast<double>(r.stats.tets_added - r.stats.tets_removed);
     state.counters["nodes_added"] = static_cast<double>(r.stats.nodes_added);
