@@ -47,7 +47,7 @@ void MouseTakeover::apply(const haptics::PointerInput& in, ReplayController& rep
     // A fresh state with zero padding: the state hash covers the whole struct, and a replay reads
     // the recording into zeroed ToolStates.
     ToolState s;
-    std::memset(&s, 0, sizeof s);
+    std::memset(static_cast<void*>(&s), 0, sizeof s);
     s.tip_m = sample.pose[h].tip_m;
     s.quat_wxyz = sample.pose[h].quat_wxyz;
     // The jaws hold the recorded opening until the input's jaw flag first changes.
