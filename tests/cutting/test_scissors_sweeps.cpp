@@ -162,3 +162,54 @@ TEST(ScissorsSweeps, DISABLED_SmallStepsCutABeamThroughTilted20Steps) {
 
 }  // namespace
 }  // namespace serosa::cutting
+
+namespace serosa::cutting {
+namespace {
+
+// Mesh growth on repeated small cuts along a path in a plane of grid faces (a scissors closing
+// in 47 steps over a 24-tet bar, each step's trailing edge on the previous crack front): every
+// step only clips the coplanar faces its outline crosses. A clipped face has at most 3 nodes,
+// 2 crossings per edge (6), 3 blade corners and a centroid pair, n <= 13 points, so at most
+// 2n - 5 = 21 triangles, each coned from the off-plane node of each tet holding the face: a
+// touched tet gives at most 21 tets (an edge split at most 3, a relabelled tet 1). Every step
+// passes the invariant checker, pins nothing, and the bar ends in two pieces. The tets touched
+// per step are reported, not bounded: they still grow by about 5 per step here (so the mesh
+// grows quadratically in the steps), and off the grid planes much faster (docs/BENCHMARKS.md
+// "Cutting", mesh growth).
+TEST(ScissorsSweeps, RepeatedSmallCutsInAGridPlaneCreateAtMost21TetsPerTouchedTet) {
+  const double h = 0.01;
+  const TetMesh bar = fixtures::box(4, 1, 1, 1, h);
+  const Vec3 hinge(2.0 * h, -h, 0.5 * h), n = Vec3::UnitX();
+  const double a0 = 80.0 * 3.141592653589793 / 180.0, a1 = -a0;
+  const int steps = 47;
+  TetMesh m = bar;
+  const Vec3 ea = n.unitOrthogonal(), eb = n.cross(ea);
+  auto tip = [&](double t) -> Vec3 {
+    return hinge + 3.0 * h * (std::cos(t) * ea + std::sin(t) * eb);
+  };
+  std::int64_t max_added = 0, max_touched = 0;
+  double min_quality = 1.0;
+  for (int k = 0; k < steps; ++k) {
+    const double s0 = a0 + (a1 - a0) * k / steps, s1 = a0 + (a1 - a0) * (k + 1) / steps;
+    auto blade = ConvexPolygon::make({hinge, tip(s0), tip(s1)});
+    ASSERT_TRUE(blade.has_value());
+    const testing::Applied a = testing::cut_and_check(m, *blade);
+    ASSERT_TRUE(a.report.ok) << "step " << k << ": " << problems(a.report);
+    const CutStats& st = a.result.stats;
+    EXPECT_EQ(st.tets_pinned, 0) << k;
+    EXPECT_LE(st.tets_added, 21 * st.tets_removed) << k;
+    max_added = std::max(max_added, st.tets_added - st.tets_removed);
+    max_touched = std::max(max_touched, st.tets_removed);
+    if (st.tets_removed > 0) min_quality = std::min(min_quality, a.report.min_quality);
+    m = a.after;
+  }
+  std::printf(
+      "grid-plane path, 47 steps on a 24-tet bar: %d tets at the end, net tets per step "
+      "max %lld, tets touched per step max %lld, min quality %g\n",
+      m.num_tets(), static_cast<long long>(max_added), static_cast<long long>(max_touched),
+      min_quality);
+  EXPECT_EQ(count_components(m), 2);
+}
+
+}  // namespace
+}  // namespace serosa::cutting
