@@ -37,7 +37,8 @@
 //    grown by tol (a property of the edge, so every tet around it agrees); it opens (two nodes)
 //    iff it lies inside by more than tol and no "pinned" tet (below) holds the edge. A coplanar
 //    node is cloned iff it lies inside the grown polygon, no pinned tet holds it, every coplanar
-//    face around it that is still welded (shared by two tets) lies inside, every partial tet
+//    face around it that is still welded (shared by two tets) lies inside or is clipped with
+//    its corner at the node under the blade (below), every partial tet
 //    holding it has both its section sides from the node starting inside the blade, no flat
 //    tet holds it, and both sides use it. So a node on the blade's outline opens when the far
 //    side is already open: a scissors closing in many thin steps, each step's trailing edge on
@@ -63,6 +64,14 @@
 //    is "pinned", split the same way but with every node welded, and the crack stops at its
 //    neighbours (the one remaining case where the crack stops short of the polygon's edge).
 //    A straddling tet the blade does not meet is left whole.
+//    Coplanar faces partly under the blade (the paper's coplanar-face clipping, decide_faces): a
+//    face lying in the plane, still welded, that the blade covers only partly (with positive
+//    area) is clipped along the blade's outline: the outline's crossings of its edges become
+//    welded nodes (keyed by the edge, so every tet around the edge splits there: one-sided tets
+//    holding the face are coned from their off-plane node over the face's triangulation, those
+//    holding only the edge are fanned from the opposite edge, straddling ones are pinned), and
+//    the part under the blade is fanned from an opened pair of nodes at its centroid. So a
+//    scissors closing in steps thinner than the grid's faces opens the crack step by step.
 // 6. Output: the touched tets (cut, or one-sided tets that take a clone) are removed, their
 //    pieces added with the same group, each piece oriented positively by its rest volume.
 #include "cutting/cut_mesh.h"
