@@ -12,6 +12,7 @@
 namespace serosa::app {
 namespace {
 
+namespace fs = std::filesystem;
 using testing::out_dir;
 using testing::source;
 
