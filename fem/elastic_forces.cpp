@@ -40,6 +40,14 @@ void element_forces(const TetElement& e, const Mat3& r, const Tet& tet, std::spa
   for (std::size_t a = 0; a < 4; ++a) out[a] = p * e.grad[a];
 }
 
+double corotated_energy(const TetElement& e, const Mat3& r, const Mat3& f, const Mat3* plastic) {
+  const Mat3 g = r.transpose() * f;
+  Mat3 eps = 0.5 * (g + g.transpose()) - Mat3::Identity();
+  if (plastic != nullptr) eps -= *plastic;
+  const double tr = eps.trace();
+  return e.volume_m3 * (e.mu_pa * eps.squaredNorm() + 0.5 * e.lambda_pa * tr * tr);
+}
+
 void corotational_forces(const TetMesh& mesh, const FemElements& el, std::span<const Mat3> rot,
                          std::span<Vec3> f) {
   for (Vec3& fi : f) fi.setZero();

@@ -28,6 +28,13 @@ void element_forces(const TetElement& e, const Mat3& r, const Tet& tet, std::spa
                     std::span<const Vec3> v, double k_v, std::span<Vec3, 4> out,
                     const Mat3* plastic = nullptr);
 
+/// Corotated elastic energy of one element for deformation gradient f and rotation r:
+///   V (mu eps:eps + lambda/2 tr(eps)^2),  eps = sym(R^T F) - I (- eps_p when plastic), J.
+/// With r the polar rotation of f this is the energy the elastic forces derive from; with r
+/// frozen over a step it is the energy of the step's linear model (the divergence guard).
+[[nodiscard]] double corotated_energy(const TetElement& e, const Mat3& r, const Mat3& f,
+                                      const Mat3* plastic = nullptr);
+
 /// Total elastic forces f (n) = sum_e -R_e K_e (R_e^T x - x0), N, for the given rotations (m).
 /// Serial reference for tests and tools (the step gathers in parallel).
 void corotational_forces(const TetMesh& mesh, const FemElements& el, std::span<const Mat3> rot,

@@ -37,6 +37,7 @@ void ImplicitIntegrator::rebuild(TetMesh& mesh) {
   m_rot.assign(static_cast<std::size_t>(mesh.num_tets()), Mat3::Identity());
   rebuild_solver_structure(mesh);
   m_built = true;
+  m_energy_pending = false;
 }
 
 void ImplicitIntegrator::update(TetMesh& mesh, const TopologyDelta& delta) {
@@ -99,6 +100,7 @@ void ImplicitIntegrator::update(TetMesh& mesh, const TopologyDelta& delta) {
   m_analyzed = false;
   ++m_structure;
   if (m_config.solver.kind == SolverKind::cholmod) m_analyzed = m_cholmod.analyze(m_a);
+  m_energy_pending = false;  // the cut changed the energy: no balance across it
 }
 
 StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const Vec3> f_ext) {
@@ -117,7 +119,8 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
   // 1-2. Per tet: rotation (warm-started from the last step), rotated gradients R b_a, and the
   // corner forces f_el(x) - (beta + dt) K_R v.
   int inverted = 0;
-#pragma omp parallel for schedule(static) reduction(+ : inverted) if (m >= kParallelMin)
+  double elastic_before = 0.0;  // J, corotated elastic energy at x with this step's R
+#pragma omp parallel for schedule(static) reduction(+ : inverted, elastic_before) if (m >= kParallelMin)
   for (std::int32_t t = 0; t < m; ++t) {
     const auto ut = static_cast<std::size_t>(t);
     const TetElement& e = m_el.elements[ut];
@@ -141,17 +144,20 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
     m_scale[ut] = tet_scale(e, dt_s);
     element_forces(e, m_rot[ut], nd, mesh.x, mesh.v, e.beta_s + dt_s, out,
                    plastic ? &m_plastic[ut] : nullptr);
+    elastic_before += corotated_energy(e, m_rot[ut], f, plastic ? &m_plastic[ut] : nullptr);
   }
   st.inverted_tets = inverted;
 
   // 3. Right-hand side b_i = dt (f_ext_i + m_i g - c_i v_i + sum_e f_e,i), 0 on constrained nodes.
   const Vec3 g = m_config.gravity_on ? m_config.gravity_mps2 : Vec3::Zero();
   const bool has_ext = f_ext.size() == static_cast<std::size_t>(n);
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
+  double kinetic_before = 0.0;  // J
+#pragma omp parallel for schedule(static) reduction(+ : kinetic_before) if (n >= kParallelMin)
   for (std::int32_t i = 0; i < n; ++i) {
     const auto ui = static_cast<std::size_t>(i);
     Vec3 b = Vec3::Zero();
     if (!node_constrained(mesh, m_el, ui)) {
+      kinetic_before += 0.5 * m_el.node_mass[ui] * mesh.v[ui].squaredNorm();
       b = m_el.node_mass[ui] * g - m_el.node_damping[ui] * mesh.v[ui];
       if (has_ext) b += f_ext[ui];
       for (const std::int32_t ic : m_pattern.incident_of(ui))
@@ -160,6 +166,19 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
     }
     for (int c = 0; c < 3; ++c) m_rhs[3 * ui + static_cast<std::size_t>(c)] = b[c];
   }
+
+  // Divergence guard (energy) for the previous step: its result x, v (what this step starts
+  // from, rotations extracted above) against its starting energy plus the external work.
+  st.energy_j = kinetic_before + elastic_before;
+  if (m_energy_pending) {
+    st.energy_change_j = st.energy_j - m_energy_before - m_energy_work;
+    if (!(st.energy_change_j <=
+          kEnergyGainTolerance * (m_energy_before + st.energy_j + std::abs(m_energy_work)))) {
+      st.energy_gain = true;
+      std::fill(m_dv.begin(), m_dv.end(), 0.0);  // no warm start from an energy-injecting dv
+    }
+  }
+  m_energy_pending = false;
 
   // 4-5. Solve A dv = b, A = M + dt C + dt^2 K_R: assembled (CHOLMOD always, CG unless
   // matrix_free) or applied matrix-free (fem/system_matrix.h).
@@ -251,6 +270,11 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
   st.converged = ss.converged;
   st.iterations = ss.iterations;
   st.residual = ss.residual;
+  if (st.energy_gain) st.converged = false;
+  if (ss.residual > 1.0) {  // worse than dv = 0 in the residual norm
+    st.residual_growth = true;
+    st.converged = false;
+  }
 
   // 6. Guard: never apply a non-finite or diverged solution (worse than dv = 0: phi > 0).
   if (!ss.finite || !std::isfinite(ss.residual) || !(ss.energy <= 0.0)) {
@@ -262,7 +286,9 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
 
   // 7. v' = v + dv, x' = x + dt v'; fixed nodes stay, and so do massless nodes (left in no
   // active tet by a cut: they belong to no body, and would otherwise drift forever).
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
+  // Also the work of gravity and f_ext over the step: dt sum (m g + f) . v'.
+  double work = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : work) if (n >= kParallelMin)
   for (std::int32_t i = 0; i < n; ++i) {
     const auto ui = static_cast<std::size_t>(i);
     if (mesh.fixed[ui] != 0 || !(m_el.node_mass[ui] > 0.0)) {
@@ -271,7 +297,15 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
     }
     mesh.v[ui] += Vec3(m_dv[3 * ui], m_dv[3 * ui + 1], m_dv[3 * ui + 2]);
     mesh.x[ui] += dt_s * mesh.v[ui];
+    Vec3 f = m_el.node_mass[ui] * g;
+    if (has_ext) f += f_ext[ui];
+    work += dt_s * f.dot(mesh.v[ui]);
   }
+  // The energy balance of this step is checked at the start of the next one (divergence guard:
+  // StepStatus::energy_gain), where the rotations of x' come for free.
+  m_energy_before = kinetic_before + elastic_before;
+  m_energy_work = work;
+  m_energy_pending = true;
   if (plastic) update_plasticity(mesh, dt_s);
   st.applied = true;
   return st;

@@ -48,7 +48,26 @@ struct StepStatus {
   /// pcg_cholmod: the rest-state factor for this topology was not ready yet (being computed in
   /// the background), so CG ran with Jacobi instead; the step did not wait.
   bool factor_pending = false;
+  /// Divergence guard (energy), for the PREVIOUS step (the result this step started from; its
+  /// rotations are extracted here anyway, so the check is free): its mechanical energy (kinetic +
+  /// corotated elastic) rose by more than the work of the external forces and gravity over it,
+  /// beyond kEnergyGainTolerance of the energies involved. Backward Euler with Rayleigh damping
+  /// only dissipates, so a gain means that step's (capped) solve injected energy; slow growth
+  /// over a long run with a low iteration cap is how it shows. This step then reports
+  /// converged = false and starts its CG cold (not from the previous dv). Not checked across a
+  /// topology change (update(), rebuild()) or on the first step; x or v set by the caller between
+  /// steps count as a gain unless restart_energy_balance() is called.
+  bool energy_gain = false;
+  /// Residual guard: the linear solve ended with ||b - A dv|| > ||b|| (worse than dv = 0 in the
+  /// residual norm, though its quadratic decreased): converged = false and this flag.
+  bool residual_growth = false;
+  double energy_j = 0.0;  ///< mechanical energy at the start of this step (as above), J
+  /// energy_j - (energy at the start of the previous step + the external work over it), J.
+  double energy_change_j = 0.0;
 };
+
+/// Relative tolerance of StepStatus::energy_gain: gain > tol * (E_before + E_after + |W_ext|).
+inline constexpr double kEnergyGainTolerance = 1e-4;
 
 class ImplicitIntegrator {
  public:
@@ -68,6 +87,10 @@ class ImplicitIntegrator {
   /// Advances mesh.x and mesh.v by dt_s. f_ext: (n) external node forces, N, or empty. Gravity
   /// (config) is added to it. Rebuilds first if the mesh's topology_version changed unseen.
   StepStatus step(TetMesh& mesh, double dt_s, std::span<const Vec3> f_ext = {});
+
+  /// Forget the last step's energy balance (StepStatus::energy_gain): call after setting x or v
+  /// by hand (initial conditions, a teleported node), which the next step would flag as a gain.
+  void restart_energy_balance() { m_energy_pending = false; }
 
   /// pcg_cholmod: blocks until the background factorization (if any) is done. Tests and shutdown
   /// only; steps never call it.
@@ -116,7 +139,11 @@ class ImplicitIntegrator {
   std::vector<Vec3> m_rg_rest;  // (4m) unrotated gradients b_a
   std::vector<Tet> m_removed;   // scratch of update(): nodes of the removed tets
   PatternUpdateStats m_last_update;
-  bool m_built = false;  // rebuild() ran: update() has something to update
+  // Divergence guard: energy at the start of the last step and the external work over it, J.
+  double m_energy_before = 0.0;
+  double m_energy_work = 0.0;
+  bool m_energy_pending = false;  // the last step's balance is still to be checked
+  bool m_built = false;           // rebuild() ran: update() has something to update
 };
 
 }  // namespace serosa::fem

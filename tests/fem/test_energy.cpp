@@ -40,6 +40,7 @@ TEST(FreeVibration, UndampedNeverGainsEnergy) {
         const double s = m.rest[i].x() / 0.1;
         if (m.fixed[i] == 0) m.v[i] = Vec3(0.0, 0.5 * s * s, 0.1 * s);
       }
+      integ.restart_energy_balance();  // v set by hand: not a gain of the last step
       const double e0 = kinetic_energy(m) + elastic_energy(m, integ.elements());
       ASSERT_GT(e0, 0.0);
       double prev = e0, max_swing = 0.0;

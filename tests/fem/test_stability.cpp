@@ -133,5 +133,70 @@ TEST(Stability, UnconvergedSolveIsReportedNotHidden) {
   for (std::size_t i = 0; i < m.x.size(); ++i) ASSERT_TRUE(m.x[i].allFinite());
 }
 
+// Divergence guard (StepStatus::energy_gain): a converged run under gravity (the energy balance
+// holds step after step: never flagged, and the balance is a loss or within round-off) against
+// energy injected between steps (nodes kicked by the caller, as a solve that diverges slowly
+// would do it): the next step flags it, reports converged = false, and the run goes on.
+TEST(DivergenceGuard, ConvergedStepsNeverFlagAndAnEnergyGainIsFlagged) {
+  for (const SolverKind kind : {SolverKind::pcg, SolverKind::cholmod}) {
+    SCOPED_TRACE(kind == SolverKind::pcg ? "pcg" : "cholmod");
+    TetMesh m = soft_bar();
+    FemConfig c = soft(kind);
+    c.solver.tolerance = 1e-10;
+    c.solver.max_iterations = 2000;
+    ImplicitIntegrator integ(c);
+    double total = 0.0;
+    for (int s = 0; s < 300; ++s) {
+      const StepStatus st = integ.step(m, 0.01);
+      ASSERT_TRUE(st.applied);
+      EXPECT_FALSE(st.energy_gain)
+          << "step " << s << ": " << st.energy_change_j << " J of " << st.energy_j;
+      EXPECT_TRUE(st.converged) << "step " << s;
+      EXPECT_LE(st.energy_change_j, 1e-6 * st.energy_j + 1e-15) << "step " << s;
+      total += st.energy_change_j;
+    }
+    EXPECT_LT(total, 0.0);  // damping dissipated energy on balance
+    // Kick: 0.1 m/s on every free node adds kinetic energy no force paid for (~0.015 J, against
+    // ~3e-4 J dissipated per step).
+    StepStatus st = integ.step(m, 0.01);
+    ASSERT_FALSE(st.energy_gain);
+    for (std::size_t i = 0; i < m.v.size(); ++i)
+      if (m.fixed[i] == 0) m.v[i] += Vec3(0.0, 0.0, 0.1);
+    st = integ.step(m, 0.01);
+    EXPECT_TRUE(st.applied);
+    EXPECT_TRUE(st.energy_gain);
+    EXPECT_FALSE(st.converged);
+    EXPECT_GT(st.energy_change_j, 0.0);
+    // The next step's balance is about its own (good) solve again.
+    st = integ.step(m, 0.01);
+    EXPECT_FALSE(st.energy_gain) << st.energy_change_j << " J of " << st.energy_j;
+    EXPECT_TRUE(st.converged);
+  }
+}
+
+// A low iteration cap on a sliver-laden, stiffness-contrast mesh: steps inject energy now and
+// then; each such step is flagged (never reported as converged), and the state stays finite.
+TEST(DivergenceGuard, CappedSolveThatInjectsEnergyIsFlagged) {
+  TetMesh m = soft_bar();
+  for (std::size_t t = 0; t < m.tets.size(); ++t) m.group[t] = t % 2 == 0 ? 1 : 2;
+  FemConfig c = soft(SolverKind::pcg);
+  c.materials[1] = FemMaterial{3000.0, 0.45, 1000.0, 0.0, 0.0};
+  c.materials[2] = FemMaterial{3e7, 0.45, 1000.0, 0.0, 0.0};
+  c.solver.max_iterations = 2;
+  c.solver.tolerance = 1e-12;
+  ImplicitIntegrator integ(c);
+  int flagged = 0;
+  for (int s = 0; s < 400; ++s) {
+    const StepStatus st = integ.step(m, 0.01);
+    ASSERT_TRUE(st.applied);
+    if (st.energy_gain) {
+      ++flagged;
+      EXPECT_FALSE(st.converged);
+    }
+  }
+  for (std::size_t i = 0; i < m.x.size(); ++i) ASSERT_TRUE(m.x[i].allFinite());
+  EXPECT_GT(flagged, 0);
+}
+
 }  // namespace
 }  // namespace serosa::fem
