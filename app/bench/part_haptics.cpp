@@ -159,10 +159,10 @@ PartResult run_haptics_part(const BenchOptions& options) {
              true,
              true,
              {}};
-  error.series.push_back({"haptics_stiffness", "coupling_Npm", "force_error_rel",
-                          "force error vs tissue (k_t = 1000 N/m)", false, false});
+  error.series.push_back(
+      {"haptics_stiffness", "coupling_Npm", "force_error_rel", "force error", false, false});
   error.series.push_back({"haptics_stiffness", "coupling_Npm", "wall_penetration_mm",
-                          "rigid wall penetration at 3 N, mm", false, false});
+                          "wall penetration, mm", false, false});
   result.plots.push_back(std::move(error));
   Plot margin{"haptics_stability",
               "Haptics: stability margin against coupling stiffness",
@@ -171,8 +171,8 @@ PartResult run_haptics_part(const BenchOptions& options) {
               true,
               false,
               {}};
-  margin.series.push_back({"haptics_stiffness", "coupling_Npm", "decay_per_s",
-                           "measured decay rate (m = 0.1 kg, b = 2 N s/m, 1 kHz)", false, false});
+  margin.series.push_back(
+      {"haptics_stiffness", "coupling_Npm", "decay_per_s", "decay rate", false, false});
   result.plots.push_back(std::move(margin));
   Plot time{"haptics_time",
             "Haptics: force error against loop time per tick",
