@@ -272,6 +272,14 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
         std::remove(comp.unavailable.begin(), comp.unavailable.end(), Effect::kRecord),
         comp.unavailable.end());
   }
+  if (!writer && scene.settings.has(Effect::kRecord)) {
+    spdlog::warn(
+        "effect 'record' is listed but no file is given: not recording (--record FILE or "
+        "[record] path)");
+    comp.unavailable.erase(
+        std::remove(comp.unavailable.begin(), comp.unavailable.end(), Effect::kRecord),
+        comp.unavailable.end());
+  }
   for (Effect e : comp.unavailable)
     spdlog::warn("effect '{}' is not implemented in this build: not simulated", effect_name(e));
   const bool mouse = comp.haptics != nullptr && comp.haptics->device_kind() == DeviceKind::kMouse;
