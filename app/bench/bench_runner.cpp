@@ -184,13 +184,13 @@ std::string gnuplot_script(const Plot& plot, const std::vector<Table>& tables) {
   std::string s = "# ";
   s.append(plot.title).append("\n# Drawn by `serosa bench` from the CSV files beside it: gnuplot ");
   s.append(plot.name).append(".gp\n");
-  s.append("set terminal pngcairo noenhanced size 900,600 font ',10'\n");
+  s.append("set terminal pngcairo noenhanced size 1000,650 font ',10'\n");
   s.append("set output ").append(gp_quote(plot.name + ".png")).append("\n");
   s.append("set datafile separator ','\n");
   s.append("set title ").append(gp_quote(plot.title)).append("\n");
   s.append("set xlabel ").append(gp_quote(plot.x_label)).append("\n");
   s.append("set ylabel ").append(gp_quote(plot.y_label)).append("\n");
-  s.append("set grid\nset key outside right top\n");
+  s.append("set grid\nset key below\n");
   if (plot.log_x) s.append("set logscale x\n");
   if (plot.log_y) s.append("set logscale y\nset format y '%.0e'\n");
   std::string cmd = "plot ";
