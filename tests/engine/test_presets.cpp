@@ -42,37 +42,66 @@ std::string plots(const char* name) {
   return std::string(SEROSA_SOURCE_DIR) + "/docs/plots/" + name;
 }
 
+// One `serosa bench` CSV as maps column name -> cell, one per row.
+std::vector<std::map<std::string, std::string>> read_table(const char* name) {
+  const auto rows = read_csv(plots(name));
+  std::vector<std::map<std::string, std::string>> out;
+  for (std::size_t r = 1; r < rows.size(); ++r) {
+    std::map<std::string, std::string> m;
+    for (std::size_t c = 0; c < rows[0].size() && c < rows[r].size(); ++c)
+      m[rows[0][c]] = rows[r][c];
+    out.push_back(m);
+  }
+  return out;
+}
+
 TEST(Presets, SolverCurveIsTheMeasuredOne) {
-  // setting,family,ms_per_step,error_percent
-  std::map<std::string, std::pair<double, double>> measured;
-  for (const auto& row : read_csv(plots("fem_accuracy.csv"))) {
-    ASSERT_EQ(row.size(), 4u);
-    measured[row[0]] = {std::stod(row[2]), std::stod(row[3]) / 100.0};
+  struct Source {
+    const char* file;
+    const char* prefix;  // the curve's label = prefix + the CSV's setting
+    SolverKind kind;
+  };
+  const Source sources[] = {
+      {"bench_fem_cg_cap.csv", "", SolverKind::kPcg},
+      {"bench_fem_cg_tolerance.csv", "", SolverKind::kPcg},
+      {"bench_fem_cholmod_pcg_cap.csv", "pcg-cholmod ", SolverKind::kPcgCholmod}};
+  std::size_t rows = 0;
+  for (const Source& src : sources) {
+    for (const auto& row : read_table(src.file)) {
+      ++rows;
+      const std::string label = src.prefix + row.at("setting");
+      const SolverCurvePoint* p = nullptr;
+      for (const SolverCurvePoint& q : solver_curve())
+        if (q.setting == label) p = &q;
+      ASSERT_NE(p, nullptr) << src.file << ": " << label << " is not in engine/presets.cpp";
+      EXPECT_EQ(p->kind, src.kind) << label;
+      EXPECT_NEAR(p->ms_per_step, std::stod(row.at("ms_per_step")), 1e-6) << label;
+      const double e = std::stod(row.at("rel_error"));
+      EXPECT_NEAR(p->rel_error, e, 1e-8 * e + 1e-15) << label;
+      if (row.count("max_iterations")) {
+        EXPECT_EQ(p->max_iterations, std::stoi(row.at("max_iterations"))) << label;
+      }
+      if (row.count("tolerance")) {
+        EXPECT_NEAR(p->tolerance, std::stod(row.at("tolerance")), 1e-12) << label;
+      }
+    }
   }
-  ASSERT_EQ(measured.size(), solver_curve().size());
-  for (const SolverCurvePoint& p : solver_curve()) {
-    const auto it = measured.find(std::string(p.setting));
-    ASSERT_NE(it, measured.end()) << p.setting;
-    EXPECT_DOUBLE_EQ(p.ms_per_step, it->second.first) << p.setting;
-    EXPECT_NEAR(p.rel_error, it->second.second, 1e-12 + 1e-9 * it->second.second) << p.setting;
-  }
+  const auto cholmod = read_table("bench_fem_cholmod.csv");
+  ASSERT_EQ(cholmod.size(), 1u);
+  const SolverCurvePoint& last = solver_curve().back();
+  EXPECT_EQ(last.kind, SolverKind::kCholmod);
+  EXPECT_NEAR(last.ms_per_step, std::stod(cholmod[0].at("ms_per_step")), 1e-6);
+  EXPECT_EQ(rows + 1, solver_curve().size());  // nothing in the curve that was not measured
 }
 
 TEST(Presets, TessellationCurveIsTheMeasuredOne) {
-  // The once-subdivided icosahedron: subdiv:1 rows of both render CSVs.
-  std::map<int, double> distance, frame_ms;
-  for (const auto& row : read_csv(plots("render_phong_accuracy.csv"))) {
-    if (row[0].find("/subdiv:1") == std::string::npos) continue;
-    distance[std::stoi(row[0].substr(row[0].find("level:") + 6))] = std::stod(row[12]);
-  }
-  for (const auto& row : read_csv(plots("render_frame_time.csv"))) {
-    if (row[0].find("/subdiv:1/") == std::string::npos) continue;
-    frame_ms[std::stoi(row[0].substr(row[0].find("level:") + 6))] = std::stod(row[2]);
-  }
-  ASSERT_EQ(distance.size(), tessellation_curve().size());
-  for (const TessellationCurvePoint& p : tessellation_curve()) {
-    EXPECT_DOUBLE_EQ(p.mean_rel_distance, distance.at(p.level)) << p.level;
-    EXPECT_DOUBLE_EQ(p.frame_ms, frame_ms.at(p.level)) << p.level;
+  const auto rows = read_table("bench_tessellation_sphere.csv");
+  ASSERT_EQ(rows.size(), tessellation_curve().size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const TessellationCurvePoint& p = tessellation_curve()[i];
+    EXPECT_EQ(p.level, std::stoi(rows[i].at("level")));
+    EXPECT_NEAR(p.mean_rel_distance, std::stod(rows[i].at("mean_dist_rel")), 1e-9) << p.level;
+    EXPECT_NEAR(p.frame_ms, std::stod(rows[i].at("ms_per_frame")), 1e-6) << p.level;
   }
 }
 
