@@ -13,8 +13,6 @@
 #include "fem/fem_stage.h"
 
 namespace serosa::app {
-namespace {
-
 fem::SolverKind to_fem(SolverKind k) {
   switch (k) {
     case SolverKind::kPcg:
@@ -26,6 +24,8 @@ fem::SolverKind to_fem(SolverKind k) {
   }
   return fem::SolverKind::pcg;
 }
+
+namespace {
 
 fem::FemMaterial to_fem(const Material& m) {
   fem::FemMaterial f;

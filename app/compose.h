@@ -54,6 +54,8 @@ struct Composition {
   Stage* tool_input = nullptr;          ///< ComposeOptions::tool_input once handed to the runner
 };
 
+/// The scene's solver kind as fem's.
+[[nodiscard]] fem::SolverKind to_fem(SolverKind k);
 /// The FEM model of `scene`: a material per group, the solver settings, gravity when listed.
 [[nodiscard]] fem::FemConfig fem_config(const Scene& scene, const AssembledScene& assembled);
 /// The Lamé parameters per group (stress metrics, grasp forces).

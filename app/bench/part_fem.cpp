@@ -25,6 +25,7 @@
 #include "app/assemble_state.h"
 #include "app/bench/bench_parts.h"
 #include "app/compose.h"
+#include "engine/presets.h"
 #include "engine/scene.h"
 #include "fem/bench_support.h"
 #include "fem/implicit_integrator.h"
@@ -99,6 +100,37 @@ void add_solver_row(Table& t, std::string setting, double knob, const SolverRun&
   std::vsnprintf(buf, sizeof buf, format, args);
   va_end(args);
   return buf;
+}
+
+// What each quality preset (engine/presets.h) costs and delivers in this run: the settings the
+// preset picks from the compiled-in curves, run again on this box. On the full run (the box the
+// curves were measured on) each must deliver its target; on the quick box only the order holds.
+void presets(const Box& box, const TetMesh& ref, PartResult& result) {
+  Table t{"fem_presets",
+          {"target_rel_error", "ms_per_step", "rel_error", "curve_rel_error", "curve_ms_per_step"},
+          {},
+          {}};
+  for (const Quality q : {Quality::kFast, Quality::kBalanced, Quality::kAccurate}) {
+    const PresetChoice c = choose_preset(quality_accuracy_target(q), q);
+    SolverSettings s;
+    RenderSettings unused;
+    apply_preset(c, s, unused);
+    const SolverRun r = solve_box(box, ref, to_fem(s.kind), s.tolerance, s.max_iterations);
+    std::string label(quality_name(q));
+    label.append(" (").append(c.solver->setting).append(")");
+    t.add(label,
+          {c.target, r.timed.ms_per_step, r.error, c.solver->rel_error, c.solver->ms_per_step});
+    std::string note = "fem_presets: ";
+    note.append(label).append(": error ").append(fmt_double("%.2e", r.error));
+    note.append(r.error <= c.target ? " meets" : " misses").append(" the target ");
+    note.append(fmt_double("%.0e", c.target)).append(" (curve ");
+    note.append(fmt_double("%.2e", c.solver->rel_error)).append("), ");
+    note.append(fmt_double("%.1f", r.timed.ms_per_step)).append(" ms/step");
+    result.notes.push_back(std::move(note));
+  }
+  result.checks.push_back({t.name, "target_rel_error", "rel_error", Direction::increasing, 0.05,
+                           1e-9, "presets: a looser target never delivers a smaller error"});
+  result.tables.push_back(std::move(t));
 }
 
 // (a) CG tolerance, CG iteration cap, CHOLMOD-preconditioned CG, CHOLMOD.
@@ -176,6 +208,7 @@ void solver_knobs(const BenchOptions& options, PartResult& result) {
   result.tables.push_back(std::move(tk));
   result.tables.push_back(std::move(tp));
   result.tables.push_back(std::move(tc));
+  presets(box, ref, result);
 }
 
 // (b) Mesh resolution against Euler-Bernoulli.
