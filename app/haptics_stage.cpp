@@ -1,13 +1,21 @@
 #include "app/haptics_stage.h"
 
+#include <spdlog/spdlog.h>
+
+#include <chrono>
 #include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
 
 #include "app/tool_contact_stage.h"
 #include "engine/input_error.h"
 #include "engine/sim_state.h"
 #include "engine/tool_path.h"
+#include "haptics/emulated_rig.h"
 #include "haptics/haptic_loop.h"
 #include "haptics/script_device.h"
+#include "haptics/usb_rig.h"
 
 namespace serosa::app {
 
@@ -22,15 +30,48 @@ MouseHandle mouse_handle(const Tool& tool, std::size_t handle, const Vec3& aim_m
   return m;
 }
 
+haptics::Trocar rig_trocar(const Tool& tool, std::size_t handle, const Vec3& aim_m) {
+  return mouse_handle(tool, handle, aim_m).trocar;
+}
+
+namespace {
+
+bool is_rig(DeviceKind k) { return k == DeviceKind::kRig || k == DeviceKind::kRigEmulated; }
+
+// Stands in for the rig when the USB stack itself is unavailable (libusb cannot initialize: no
+// usbfs, as in a container): never connected, so the loop renders zero force.
+class NoRig final : public haptics::Device {
+ public:
+  bool poll(double, haptics::DeviceSample&) noexcept override { return false; }
+  [[nodiscard]] bool connected() const noexcept override { return false; }
+  void command(const haptics::DeviceCommand&) noexcept override {}
+  [[nodiscard]] const char* name() const noexcept override { return "no-rig"; }
+};
+
+}  // namespace
+
 HapticsStage::HapticsStage(const Scene& scene, const HapticsStageOptions& options)
     : m_contact(options.contact) {
-  std::size_t handle = 0;
   std::optional<DeviceKind> kind;
   std::optional<std::filesystem::path> script;
-  for (std::size_t i = 0; i < scene.tools.size() && handle < haptics::kHandles; ++i) {
+  for (std::size_t i = 0; i < scene.tools.size(); ++i) {
     const Tool& t = scene.tools[i];
     if (t.kind == ToolKind::kEndoscope) continue;
-    if (t.device.kind != DeviceKind::kScript && t.device.kind != DeviceKind::kMouse) continue;
+    const bool rig = is_rig(t.device.kind);
+    // A rig tool with a hand takes that handle; any other tool the next free one.
+    std::size_t h = 0;
+    if (rig && t.hand) {
+      h = *t.hand == Hand::kLeft ? 0 : 1;
+      if (m_tool[h]) {
+        std::string what = "tools '";
+        what.append(scene.tools[*m_tool[h]].name).append("' and '").append(t.name);
+        what.append("' both take the rig's ").append(hand_name(*t.hand)).append(" handle");
+        throw InputError(scene.file.string(), 0, what, "one tool per hand");
+      }
+    } else {
+      while (h < haptics::kHandles && m_tool[h]) ++h;
+      if (h >= haptics::kHandles) continue;  // both handles taken: this tool is not driven
+    }
     if (kind && *kind != t.device.kind)
       throw InputError(scene.file.string(), 0,
                        "the haptic handles' tools must share one device kind: tool '" + t.name +
@@ -43,11 +84,12 @@ HapticsStage::HapticsStage(const Scene& scene, const HapticsStageOptions& option
                          "the haptic handles' tools must share one script file", script->string());
       script = t.device.script;
     }
-    m_tool[handle++] = i;
+    m_tool[h] = i;
   }
   if (!kind)
     throw InputError(scene.file.string(), 0, "\"haptics\" needs an instrument to drive",
-                     "a grasper or scissors with device = \"mouse\" or \"script:FILE\"");
+                     "a grasper or scissors with device = \"rig\", \"rig-emulated\", "
+                     "\"mouse\" or \"script:FILE\"");
   m_kind = *kind;
   std::array<haptics::Trocar, haptics::kHandles> trocars{};
   if (m_kind == DeviceKind::kScript) {
@@ -68,6 +110,23 @@ HapticsStage::HapticsStage(const Scene& scene, const HapticsStageOptions& option
         trocars[h].rotation = Quat::FromTwoVectors(Vec3::UnitZ(), axis.normalized());
     }
     m_device = std::make_unique<haptics::ScriptDevice>(std::move(path), of_handle, trocars);
+  } else if (is_rig(m_kind)) {
+    haptics::UsbRigConfig rc;
+    for (std::size_t h = 0; h < haptics::kHandles; ++h) {
+      if (m_tool[h]) trocars[h] = rig_trocar(scene.tools[*m_tool[h]], h, options.aim_m);
+    }
+    rc.trocars = trocars;
+    try {
+      auto rig = std::make_unique<haptics::UsbRig>(rc);
+      m_rig = rig.get();
+      m_device = std::move(rig);
+      wait_for_rig(options.rig_wait_s);
+    } catch (const std::runtime_error& e) {
+      m_usb_error = e.what();
+      m_device = std::make_unique<NoRig>();
+    }
+    if (!m_device->connected()) warn_not_connected(scene);
+    m_reported_connected = m_device->connected();
   } else {
     haptics::MouseMapping map;
     for (std::size_t h = 0; h < haptics::kHandles; ++h) {
@@ -84,10 +143,39 @@ HapticsStage::HapticsStage(const Scene& scene, const HapticsStageOptions& option
   c.trocars = trocars;
   c.realtime = options.realtime;
   c.gap_monitor = options.realtime;
+  // The emulated link (umockdev, ioctl round trips) delivers packets less regularly than USB.
+  if (m_kind == DeviceKind::kRigEmulated) c.device_timeout_s = 50e-3;
   m_loop = std::make_unique<haptics::HapticLoop>(*m_device, m_model, c);
 }
 
 HapticsStage::~HapticsStage() { stop(); }
+
+void HapticsStage::wait_for_rig(double seconds) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (!m_rig->connected() && std::chrono::steady_clock::now() < end)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+}
+
+void HapticsStage::warn_not_connected(const Scene& scene) const {
+  std::string tools;
+  for (const auto& t : m_tool) {
+    if (!t) continue;
+    if (!tools.empty()) tools.append(", ");
+    tools.append("'").append(scene.tools[*t].name).append("'");
+  }
+  std::string hint;
+  if (m_kind == DeviceKind::kRigEmulated && !haptics::umockdev_preload_active())
+    hint = " (device \"rig-emulated\" needs the process under umockdev-wrapper)";
+  if (!m_usb_error.empty()) hint.append(" (").append(m_usb_error).append(")");
+  spdlog::warn(
+      "haptics: rig not connected: tool(s) {} (device \"{}\", USB {:04x}:{:04x}) stay at rest "
+      "with zero force until the rig is plugged in{}",
+      tools, device_kind_name(m_kind), haptics::kRigVendorId, haptics::kRigProductId, hint);
+}
+
+bool HapticsStage::device_connected() const noexcept {
+  return m_device != nullptr && m_device->connected();
+}
 
 void HapticsStage::stop() {
   if (m_loop && m_loop->running()) m_loop->stop();
@@ -121,6 +209,14 @@ void HapticsStage::step(const StepContext& ctx, SimState& state) {
     m_loop->start();
     m_started = true;
   }
+  // Rig plugged or unplugged: say so once per change (the loop itself zeroes the force).
+  if (m_rig != nullptr && m_rig->connected() != m_reported_connected) {
+    m_reported_connected = !m_reported_connected;
+    if (m_reported_connected)
+      spdlog::info("haptics: rig connected");
+    else
+      spdlog::warn("haptics: rig not connected (unplugged): zero force until it is back");
+  }
   // Loop -> solver: the newest state of each handle (kept from the script until the first tick).
   for (std::size_t h = 0; h < haptics::kHandles; ++h) {
     if (!m_tool[h] || *m_tool[h] >= state.tools.size()) continue;
@@ -135,6 +231,25 @@ nlohmann::json HapticsStage::telemetry_json() {
   m_loop->telemetry().write_json(os);
   nlohmann::json j = nlohmann::json::parse(os.str());
   j["device"] = std::string(device_kind_name(m_kind));
+  j["device_connected"] = device_connected();
+  if (is_rig(m_kind)) {
+    const haptics::UsbRigCounters n =
+        m_rig != nullptr ? m_rig->counters() : haptics::UsbRigCounters{};
+    // "not_connected_ticks": loop ticks that rendered zero because the rig was absent.
+    j["rig"] = {
+        {"connected", device_connected()},
+        {"not_connected_ticks",
+         m_loop->telemetry().zero_ticks[static_cast<std::size_t>(haptics::ZeroReason::kUnplugged)]},
+        {"packets", n.packets},
+        {"lost", n.lost},
+        {"rejected", n.too_short + n.too_long + n.bad_checksum + n.bad_type_version},
+        {"stalls", n.stalls},
+        {"commands_sent", n.commands_sent},
+        {"commands_dropped", n.commands_dropped},
+        {"connects", n.connects},
+        {"disconnects", n.disconnects}};
+    if (!m_usb_error.empty()) j["rig"]["error"] = m_usb_error;
+  }
   return j;
 }
 

@@ -2,7 +2,14 @@
 // beside the solver, driving one device for the (at most two) handles:
 //  - script: a ScriptDevice plays the scene's scripted tool path in real time (headless
 //    regression runs of the whole device path, without a rig);
-//  - mouse: a MouseKeyboardDevice the trainee session's window feeds (feed_pointer()).
+//  - mouse: a MouseKeyboardDevice the trainee session's window feeds (feed_pointer());
+//  - rig / rig-emulated: the libusb driver haptics::UsbRig (docs/rig-protocol.md) reads both
+//    handles and receives the loop's force commands. "rig-emulated" is the same driver against
+//    haptics::EmulatedRig (umockdev), which the process must run under umockdev-wrapper with the
+//    EmulatedRig created before this stage. A rig that is absent is not an error: the session
+//    runs, the handles' tools stay where they are with zero force, a warning names the tools and
+//    the device, telemetry counts the "not_connected_ticks", and a rig plugged in later is
+//    picked up without a restart (UsbRig's hotplug).
 // Hand-offs (shared/DESIGN.md "Threads and hand-offs"), all through engine/seqlock.h:
 //   loop -> solver: each handle's ToolState, written every tick; this stage (right after the
 //     "tools" stage) takes the newest one at the step boundary and puts it into SimState::tools,
@@ -13,8 +20,9 @@
 //     tip from the collision BVH, ToolContactStage::haptic_plane). The planes are the contact
 //     stage's of the previous step (it runs after this stage): one solver step of latency.
 //   window -> loop: the mouse device's cumulative PointerInput.
-// Handles: the first two tools that are not endoscopes and whose device is a script or the mouse
-// (scene order) take handles 0 and 1; they must share one device kind, and scripts one file. A
+// Handles: the first two tools that are not endoscopes (scene order) take handles 0 and 1, except
+// that a rig tool's `hand` picks its handle (left 0, right 1); they must share one device kind,
+// and scripts one file. A rig handle's trocar is a mouse handle's (below). A
 // scripted handle's trocar is its tool's `trocar` (its axis pointing at the tool's first scripted
 // tip), or the first tip itself when none is given. A mouse handle's trocar is its tool's
 // `trocar`, else 12 cm above the aim point (the organs' centroid; handle 1 5 cm to the side);
@@ -26,6 +34,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include <nlohmann/json.hpp>
@@ -38,6 +47,7 @@
 
 namespace serosa::haptics {
 class Device;
+class UsbRig;
 class HapticLoop;
 struct LoopStatus;
 }  // namespace serosa::haptics
@@ -54,6 +64,9 @@ struct HapticsStageOptions {
   Vec3 aim_m = Vec3::Zero();
   /// Source of the contact planes published to the loop (may be null: coupling tip only).
   const ToolContactStage* contact = nullptr;
+  /// Rig devices: how long the constructor waits for the rig to connect before it warns "rig not
+  /// connected" and goes on, s.
+  double rig_wait_s = 1.0;
 };
 
 class HapticsStage final : public Stage {
@@ -77,10 +90,12 @@ class HapticsStage final : public Stage {
       const noexcept {
     return m_tool;
   }
-  /// The device kind driving the handles (kScript or kMouse).
+  /// The device kind driving the handles.
   [[nodiscard]] DeviceKind device_kind() const noexcept { return m_kind; }
   /// Mouse handles: the window's cumulative input (any one thread; no-op for a script device).
   void feed_pointer(const haptics::PointerInput& in) noexcept;
+  /// Whether the device is connected now (always true for script and mouse).
+  [[nodiscard]] bool device_connected() const noexcept;
   /// The contact model published last (tests).
   [[nodiscard]] haptics::ContactModel last_model() const noexcept { return m_model.load(); }
 
@@ -91,8 +106,14 @@ class HapticsStage final : public Stage {
   haptics::ContactModelChannel m_model;
   std::unique_ptr<haptics::Device> m_device;
   haptics::MouseKeyboardDevice* m_mouse = nullptr;  // m_device when it is the mouse
+  haptics::UsbRig* m_rig = nullptr;                 // m_device when it is the rig
+  bool m_reported_connected = false;                // rig state last logged (solver thread)
+  std::string m_usb_error;  // why libusb could not start (then a never-connected stand-in)
   std::unique_ptr<haptics::HapticLoop> m_loop;
   bool m_started = false;
+
+  void wait_for_rig(double seconds);
+  void warn_not_connected(const Scene& scene) const;
 };
 
 /// The trocar and rest joints of a mouse-driven handle (see the header comment): pivot at the
@@ -103,5 +124,8 @@ struct MouseHandle {
   haptics::JointState rest;
 };
 [[nodiscard]] MouseHandle mouse_handle(const Tool& tool, std::size_t handle, const Vec3& aim_m);
+
+/// The trocar of a rig-driven handle: the same as a mouse handle's (mouse_handle().trocar).
+[[nodiscard]] haptics::Trocar rig_trocar(const Tool& tool, std::size_t handle, const Vec3& aim_m);
 
 }  // namespace serosa::app

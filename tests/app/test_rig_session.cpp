@@ -1,0 +1,205 @@
+// "haptics" with rig tools: a headless run whose two tools (grasper on the left handle, scissors
+// on the right) are driven by the unmodified libusb driver (haptics::UsbRig) against the
+// umockdev-emulated rig (haptics::EmulatedRig) playing a short tool path. The solver consumes the
+// handles' poses (checked in the recording of what it consumed) and the rig's firmware receives
+// the loop's force commands. The test re-runs itself under umockdev-wrapper (the preload library
+// must be in the process from its start), like tests/haptics/test_usb_rig_emulated.cpp.
+#include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "app/assemble_state.h"
+#include "app/haptics_stage.h"
+#include "app/headless.h"
+#include "app_test_util.h"
+#include "engine/recording_reader.h"
+#include "engine/scene.h"
+#include "engine/tool_path.h"
+#include "haptics/emulated_rig.h"
+#include "haptics/trocar_kinematics.h"
+
+extern char** environ;
+
+namespace serosa::app {
+namespace {
+
+using namespace serosa::app::testing;
+
+// Runs the current test in a child process under umockdev-wrapper; returns its exit status.
+int rerun_under_umockdev() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string filter = "--gtest_filter=";
+  filter.append(info->test_suite_name());
+  filter.append(".");
+  filter.append(info->name());
+  std::vector<char> exe(4096, '\0');
+  const ssize_t n = readlink("/proc/self/exe", exe.data(), exe.size() - 1);
+  if (n <= 0) return -1;
+  std::string asan = std::getenv("ASAN_OPTIONS") ? std::getenv("ASAN_OPTIONS") : "";
+  if (!asan.empty()) asan.append(":");
+  asan.append("verify_asan_link_order=0");
+  setenv("ASAN_OPTIONS", asan.c_str(), 1);
+  std::string wrapper = "umockdev-wrapper";
+  std::vector<char*> argv{wrapper.data(), exe.data(), filter.data(), nullptr};
+  pid_t pid = 0;
+  if (posix_spawnp(&pid, "umockdev-wrapper", nullptr, nullptr, argv.data(), environ) != 0) {
+    return -2;
+  }
+  int status = 0;
+  if (waitpid(pid, &status, 0) != pid) return -3;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+// Where the tip lies along the segment a -> b: (fraction in [0, 1], distance off it, m).
+std::pair<double, double> along(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 d = b - a;
+  const double s = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+  return {s, (p - (a + s * d)).norm()};
+}
+
+constexpr double kMoveS = 0.4;  // path time of the motion; the handles hold still afterwards
+
+TEST(RigSession, EmulatedRigDrivesBothToolsAndReceivesForces) {
+  if (!haptics::umockdev_preload_active()) {
+    const int rc = rerun_under_umockdev();
+    ASSERT_EQ(rc, 0) << "the test failed under umockdev-wrapper (see its output); "
+                        "-2 means umockdev-wrapper was not found";
+    return;
+  }
+  const fs::path dir = out_dir("rig_session");
+  std::string toml = "[scene]\ndt = 0.005\neffects = [\"fem\", \"gravity\", \"haptics\"]\n";
+  toml.append("[[organ]]\nname = \"beam\"\nmesh = \"")
+      .append(source("assets/beam_coarse.msh").string())
+      .append("\"\nyoung = 1e5\ndensity = 1000\n")
+      .append("fixed = { box = [[-0.001, -1, -1], [0.0001, 1, 1]] }\n")
+      .append("[solver]\nkind = \"pcg\"\n")
+      // The right-hand tool first: `hand`, not scene order, picks the handle.
+      .append("[[tool]]\nname = \"scissors\"\nkind = \"scissors\"\ndevice = \"rig-emulated\"\n")
+      .append("hand = \"right\"\ntrocar = [0.07, 0.2, 0.0]\n")
+      .append("[[tool]]\nname = \"grasper\"\nkind = \"grasper\"\ndevice = \"rig-emulated\"\n")
+      .append("hand = \"left\"\ntrocar = [0.03, 0.2, 0.0]\n");
+  std::ofstream(dir / "scene.toml") << toml;
+
+  // The trocars the stage will use (they point at the organs' centroid, as compose aims them).
+  const Scene scene = load_scene(dir / "scene.toml");
+  const AssembledScene assembled = assemble_state(scene);
+  Vec3 aim = Vec3::Zero();
+  for (const Vec3& x : assembled.state.mesh.x) aim += x;
+  aim /= static_cast<double>(assembled.state.mesh.x.size());
+  ASSERT_EQ(scene.tools[1].name, "grasper");
+  const std::array<haptics::Trocar, haptics::kHandles> trocars{rig_trocar(scene.tools[1], 0, aim),
+                                                               rig_trocar(scene.tools[0], 1, aim)};
+
+  // Each handle moves its tip 1 cm, 2-3 cm above the beam, then holds; the jaw opens meanwhile.
+  const std::array<Vec3, 2> from{Vec3(0.03, 0.04, 0.0), Vec3(0.07, 0.035, 0.005)};
+  const std::array<Vec3, 2> to{Vec3(0.04, 0.03, 0.0), Vec3(0.06, 0.03, -0.005)};
+  const std::array<std::string, 2> names{"grasper", "scissors"};
+  std::ostringstream csv;
+  csv.precision(17);
+  csv << "t,tool,px,py,pz,qw,qx,qy,qz,jaw\n";
+  for (double t : {0.0, kMoveS, 100.0}) {
+    const double s = std::min(t / kMoveS, 1.0);
+    for (std::size_t h = 0; h < 2; ++h) {
+      haptics::JointState q0;
+      q0.jaw_rad = 0.5 * s;
+      const haptics::JointState q =
+          haptics::inverse_from_tip(trocars[h], from[h] + s * (to[h] - from[h]), q0);
+      const ToolState p = haptics::forward(trocars[h], q);
+      csv << t << ',' << names[h] << ',' << p.tip_m[0] << ',' << p.tip_m[1] << ',' << p.tip_m[2]
+          << ',' << p.quat_wxyz[0] << ',' << p.quat_wxyz[1] << ',' << p.quat_wxyz[2] << ','
+          << p.quat_wxyz[3] << ',' << p.jaw_rad << '\n';
+    }
+  }
+  haptics::EmulatedRigConfig rc;
+  rc.path = parse_tool_path_text(csv.str(), "rig_path.csv");
+  rc.tool_of_handle = {rc.path.index_of("grasper"), rc.path.index_of("scissors")};
+  rc.trocars = trocars;
+  haptics::EmulatedRig rig(rc);  // before the driver's libusb context (the stage's)
+  // Let the handles get under way, so the run sees them move rather than sit at the start.
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+
+  HeadlessOptions o;
+  o.scene = dir / "scene.toml";
+  o.steps = 150;
+  o.record = dir / "run.lapr";
+  o.progress = false;
+  const auto report = run_headless(o);
+  ASSERT_TRUE(report.contains("haptics")) << report.dump(1);
+  const auto& hj = report["haptics"];
+  EXPECT_EQ(hj["device"], "rig-emulated");
+  EXPECT_TRUE(hj["device_connected"].get<bool>()) << hj.dump(1);
+  EXPECT_GT(hj["rig"]["packets"].get<std::uint64_t>(), 0u);
+  EXPECT_EQ(hj["rig"]["rejected"].get<std::uint64_t>(), 0u);
+  EXPECT_GT(hj["rig"]["commands_sent"].get<std::uint64_t>(), 0u);
+
+  // The firmware decoded the loop's force commands, none malformed.
+  const haptics::EmulatedRigStats st = rig.stats();
+  EXPECT_GE(st.forces_ok, 10u);
+  EXPECT_EQ(st.forces_bad, 0u);
+
+  // What the solver consumed: each tool's tip on its handle's path, moving forward along it
+  // (never back), with the jaw the path gives at that point.
+  const recording::Recording rec = recording::read_recording(*o.record);
+  ASSERT_EQ(rec.inputs.size(), 150u);
+  const std::array<std::size_t, 2> tool_of_handle{1, 0};  // scene order: scissors, grasper
+  std::size_t driven = 0;
+  double max_progress = 0.0;
+  std::array<double, 2> last{0.0, 0.0};
+  for (std::size_t k = 0; k < rec.inputs.size(); ++k) {
+    for (std::size_t h = 0; h < 2; ++h) {
+      const ToolState& t = rec.inputs[k][tool_of_handle[h]];
+      if (t.tick == 0) continue;  // before the loop's first sample
+      ++driven;
+      const Vec3 tip(t.tip_m[0], t.tip_m[1], t.tip_m[2]);
+      const auto [s, off] = along(tip, from[h], to[h]);
+      EXPECT_LT(off, 5e-4) << "step " << k << " handle " << h;
+      EXPECT_GE(s, last[h] - 0.02) << "step " << k << " handle " << h << " went back";
+      EXPECT_NEAR(t.jaw_rad, 0.5 * s, 0.02) << "step " << k << " handle " << h;
+      last[h] = std::max(last[h], s);
+      max_progress = std::max(max_progress, s);
+    }
+  }
+  EXPECT_GE(driven, 2u * 100u) << "most steps should consume the rig's poses";
+  EXPECT_GT(max_progress, 0.1) << "the tools should have moved along the path";
+}
+
+TEST(RigSession, AbsentRigStartsTheRunAndSaysNotConnected) {
+  // No EmulatedRig and no preload: libusb finds no rig. The run must start, keep the tool still,
+  // and report the rig as not connected (with the ticks it spent so).
+  const fs::path dir = out_dir("rig_absent");
+  std::string toml = "[scene]\ndt = 0.005\neffects = [\"fem\", \"gravity\", \"haptics\"]\n";
+  toml.append("[[organ]]\nname = \"beam\"\nmesh = \"")
+      .append(source("assets/beam_coarse.msh").string())
+      .append("\"\nyoung = 1e5\ndensity = 1000\n")
+      .append("fixed = { box = [[-0.001, -1, -1], [0.0001, 1, 1]] }\n")
+      .append("[solver]\nkind = \"pcg\"\n")
+      .append("[[tool]]\nname = \"grasper\"\nkind = \"grasper\"\ndevice = \"rig\"\n")
+      .append("hand = \"left\"\ntrocar = [0.03, 0.2, 0.0]\n");
+  std::ofstream(dir / "scene.toml") << toml;
+  HeadlessOptions o;
+  o.scene = dir / "scene.toml";
+  o.steps = 100;
+  o.progress = false;
+  nlohmann::json report;
+  ASSERT_NO_THROW(report = run_headless(o));
+  EXPECT_EQ(report["steps_taken"], 100);
+  const auto& hj = report["haptics"];
+  EXPECT_EQ(hj["device"], "rig");
+  EXPECT_FALSE(hj["device_connected"].get<bool>());
+  EXPECT_FALSE(hj["rig"]["connected"].get<bool>());
+  EXPECT_EQ(hj["rig"]["packets"], 0u);
+  EXPECT_GT(hj["rig"]["not_connected_ticks"].get<std::uint64_t>(), 0u) << hj.dump(1);
+}
+
+}  // namespace
+}  // namespace serosa::app
