@@ -20,36 +20,12 @@
 #include "haptics/emulated_rig.h"
 #include "haptics/haptic_loop.h"
 #include "haptics/usb_rig.h"
-
-extern char** environ;
+#include "umockdev_rerun.h"
 
 namespace serosa::haptics {
 namespace {
 
-// Runs the current test in a child process under umockdev-wrapper; returns its exit status.
-int rerun_under_umockdev() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  std::string filter = "--gtest_filter=";
-  filter.append(info->test_suite_name());
-  filter.append(".");
-  filter.append(info->name());
-  std::vector<char> exe(4096, '\0');
-  const ssize_t n = readlink("/proc/self/exe", exe.data(), exe.size() - 1);
-  if (n <= 0) return -1;
-  std::string asan = std::getenv("ASAN_OPTIONS") ? std::getenv("ASAN_OPTIONS") : "";
-  if (!asan.empty()) asan.append(":");
-  asan.append("verify_asan_link_order=0");
-  setenv("ASAN_OPTIONS", asan.c_str(), 1);
-  std::string wrapper = "umockdev-wrapper";
-  std::vector<char*> argv{wrapper.data(), exe.data(), filter.data(), nullptr};
-  pid_t pid = 0;
-  if (posix_spawnp(&pid, "umockdev-wrapper", nullptr, nullptr, argv.data(), environ) != 0) {
-    return -2;
-  }
-  int status = 0;
-  if (waitpid(pid, &status, 0) != pid) return -3;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
+using test_support::rerun_under_umockdev;
 
 #define SEROSA_UNDER_UMOCKDEV()                                                     \
   if (!umockdev_preload_active()) {                                                 \
