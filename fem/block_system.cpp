@@ -32,25 +32,46 @@ void fill_blocks(const TetMesh& mesh, const FemElements& el, const SystemPattern
         const double md = el.node_mass[ui] + dt_s * el.node_damping[ui];
         s[self] = s[self + 4] = s[self + 8] = md;
         // (dt^2 + dt beta) V (lambda ra rb^T + mu rb ra^T + mu (ra . rb) I), ra = R b_a.
-        for (const std::int32_t ic : p.incident_of(ui)) {
-          const auto inc = static_cast<std::size_t>(ic);
+        const std::span<const std::int32_t> incs = p.incident_of(ui);
+        for (std::size_t q = 0; q < incs.size(); ++q) {
+          const auto inc = static_cast<std::size_t>(incs[q]);
+          if (q + 2 < incs.size()) {  // the fill waits on these scattered per-tet reads
+            const auto tn = static_cast<std::size_t>(incs[q + 2]) / 4;
+            __builtin_prefetch(&p.block[tn]);
+            __builtin_prefetch(&rg[4 * tn]);
+            __builtin_prefetch(&rg[4 * tn + 3]);
+            __builtin_prefetch(&scale[tn]);
+            __builtin_prefetch(&mesh.tets[tn]);
+          }
           const std::size_t t = inc / 4;
           const std::size_t ca = inc % 4;
           const auto [sl, sm] = scale[t];
           if (sl == 0.0 && sm == 0.0) continue;  // inactive
           const Vec3& ra = rg[4 * t + ca];
-          const Vec3 la = sl * ra, ma = sm * ra;
+          const double la[3] = {sl * ra.x(), sl * ra.y(), sl * ra.z()};
+          const double ma[3] = {sm * ra.x(), sm * ra.y(), sm * ra.z()};
           const Tet& tet = mesh.tets[t];
+          // The tet's four blocks (a, b) at once, lane = corner b (vectorizes): entry (r, c) =
+          // la_r rb_c + rb_r ma_c (+ ma . rb on the diagonal). A constrained b gets rb = 0.
+          double b[3][4];
+          bool live[4];
           for (std::size_t cb = 0; cb < 4; ++cb) {
-            if (node_constrained(mesh, el, static_cast<std::size_t>(tet[cb]))) continue;
+            live[cb] = !node_constrained(mesh, el, static_cast<std::size_t>(tet[cb]));
             const Vec3& rb = rg[4 * t + cb];
-            const double dd = ma.dot(rb);
+            for (int k = 0; k < 3; ++k) b[k][cb] = live[cb] ? rb[k] : 0.0;
+          }
+          double e[9][4];
+          for (std::size_t cb = 0; cb < 4; ++cb) {
+            const double dd = ma[0] * b[0][cb] + ma[1] * b[1][cb] + ma[2] * b[2][cb];
+            for (int r0 = 0; r0 < 3; ++r0)
+              for (int c0 = 0; c0 < 3; ++c0)
+                e[3 * r0 + c0][cb] =
+                    la[r0] * b[c0][cb] + b[r0][cb] * ma[c0] + (r0 == c0 ? dd : 0.0);
+          }
+          for (std::size_t cb = 0; cb < 4; ++cb) {
+            if (!live[cb]) continue;
             double* blk = s.data() + 3 * static_cast<std::size_t>(p.block[t][4 * ca + cb] - base);
-            for (int r0 = 0; r0 < 3; ++r0) {
-              double* row = blk + 3 * r0;
-              for (int c0 = 0; c0 < 3; ++c0) row[c0] += la[r0] * rb[c0] + rb[r0] * ma[c0];
-              row[r0] += dd;
-            }
+            for (int k = 0; k < 9; ++k) blk[k] += e[k][cb];
           }
         }
       }
@@ -61,34 +82,44 @@ void fill_blocks(const TetMesh& mesh, const FemElements& el, const SystemPattern
 }
 
 template <class T>
-void multiply_blocks(const SystemPattern& p, std::span<const T> blocks, std::span<const double> x,
-                     std::span<double> y) {
+double multiply_blocks_dot(const SystemPattern& p, std::span<const T> blocks,
+                           std::span<const double> x, std::span<double> y) {
   const double* xp = x.data();
   double* yp = y.data();
   const T* bp = blocks.data();
   const std::int32_t* nbr = p.nbr.data.data();
   const std::int32_t* start = p.nbr.start.data();
   const std::int32_t* count = p.nbr.count.data();
-#pragma omp parallel for schedule(static) if (p.nodes >= kParallelMin)
-  for (std::int32_t i = 0; i < p.nodes; ++i) {
-    const std::int32_t s = start[i];
-    const std::int32_t* l = nbr + s;
-    const T* b = bp + 9 * static_cast<std::ptrdiff_t>(s);
-    double y0 = 0.0, y1 = 0.0, y2 = 0.0;
-    for (std::int32_t k = 0; k < count[i]; ++k, b += 9) {
-      const double* xb = xp + 3 * static_cast<std::ptrdiff_t>(l[k]);
-      const double x0 = xb[0], x1 = xb[1], x2 = xb[2];
-      y0 += static_cast<double>(b[0]) * x0 + static_cast<double>(b[1]) * x1 +
-            static_cast<double>(b[2]) * x2;
-      y1 += static_cast<double>(b[3]) * x0 + static_cast<double>(b[4]) * x1 +
-            static_cast<double>(b[5]) * x2;
-      y2 += static_cast<double>(b[6]) * x0 + static_cast<double>(b[7]) * x1 +
-            static_cast<double>(b[8]) * x2;
+  return chunked<1>(p.nodes, [&](std::ptrdiff_t lo, std::ptrdiff_t hi, std::array<double, 1>& acc) {
+    double xy = 0.0;
+    for (std::ptrdiff_t i = lo; i < hi; ++i) {
+      const std::int32_t s = start[i];
+      const std::int32_t* l = nbr + s;
+      const T* b = bp + 9 * static_cast<std::ptrdiff_t>(s);
+      double y0 = 0.0, y1 = 0.0, y2 = 0.0;
+      for (std::int32_t k = 0; k < count[i]; ++k, b += 9) {
+        const double* xb = xp + 3 * static_cast<std::ptrdiff_t>(l[k]);
+        const double x0 = xb[0], x1 = xb[1], x2 = xb[2];
+        y0 += static_cast<double>(b[0]) * x0 + static_cast<double>(b[1]) * x1 +
+              static_cast<double>(b[2]) * x2;
+        y1 += static_cast<double>(b[3]) * x0 + static_cast<double>(b[4]) * x1 +
+              static_cast<double>(b[5]) * x2;
+        y2 += static_cast<double>(b[6]) * x0 + static_cast<double>(b[7]) * x1 +
+              static_cast<double>(b[8]) * x2;
+      }
+      yp[3 * i] = y0;
+      yp[3 * i + 1] = y1;
+      yp[3 * i + 2] = y2;
+      xy += xp[3 * i] * y0 + xp[3 * i + 1] * y1 + xp[3 * i + 2] * y2;
     }
-    yp[3 * i] = y0;
-    yp[3 * i + 1] = y1;
-    yp[3 * i + 2] = y2;
-  }
+    acc[0] = xy;
+  })[0];
+}
+
+template <class T>
+void multiply_blocks(const SystemPattern& p, std::span<const T> blocks, std::span<const double> x,
+                     std::span<double> y) {
+  (void)multiply_blocks_dot(p, blocks, x, y);
 }
 
 template <class T>
@@ -130,6 +161,10 @@ template void multiply_blocks<double>(const SystemPattern&, std::span<const doub
                                       std::span<const double>, std::span<double>);
 template void multiply_blocks<float>(const SystemPattern&, std::span<const float>,
                                      std::span<const double>, std::span<double>);
+template double multiply_blocks_dot<double>(const SystemPattern&, std::span<const double>,
+                                            std::span<const double>, std::span<double>);
+template double multiply_blocks_dot<float>(const SystemPattern&, std::span<const float>,
+                                           std::span<const double>, std::span<double>);
 template void blocks_inverse_diagonal<double>(const SystemPattern&, std::span<const double>,
                                               std::span<double>);
 template void blocks_inverse_diagonal<float>(const SystemPattern&, std::span<const float>,

@@ -51,6 +51,12 @@ template <class T>
 void multiply_blocks(const SystemPattern& pattern, std::span<const T> blocks,
                      std::span<const double> x, std::span<double> y);
 
+/// multiply_blocks() that also returns x . y, summed over fixed node chunks (fem/parallel.h
+/// chunked: the same bits for any thread count), in the same pass: CG's p . Ap (fem/pcg.h).
+template <class T>
+[[nodiscard]] double multiply_blocks_dot(const SystemPattern& pattern, std::span<const T> blocks,
+                                         std::span<const double> x, std::span<double> y);
+
 /// inv_diag (3n) = 1 / diag(A) (1 where diag <= 0), the Jacobi preconditioner.
 template <class T>
 void blocks_inverse_diagonal(const SystemPattern& pattern, std::span<const T> blocks,

@@ -48,6 +48,23 @@ double corotated_energy(const TetElement& e, const Mat3& r, const Mat3& f, const
   return e.volume_m3 * (e.mu_pa * eps.squaredNorm() + 0.5 * e.lambda_pa * tr * tr);
 }
 
+double element_forces_energy(const TetElement& e, const Mat3& r, const Mat3& f, const Mat3& fv,
+                             double k_v, std::span<Vec3, 4> out, const Mat3* plastic) {
+  const Mat3 rt = r.transpose();
+  const Mat3 g = rt * f;
+  Mat3 eps = 0.5 * (g + g.transpose()) - Mat3::Identity();
+  if (plastic != nullptr) eps -= *plastic;
+  const double tr = eps.trace();
+  const double energy = e.volume_m3 * (e.mu_pa * eps.squaredNorm() + 0.5 * e.lambda_pa * tr * tr);
+  if (k_v != 0.0) {
+    const Mat3 gv = rt * fv;
+    eps += (0.5 * k_v) * (gv + gv.transpose());
+  }
+  const Mat3 p = -e.volume_m3 * (r * linear_stress(e, eps));
+  for (std::size_t a = 0; a < 4; ++a) out[a] = p * e.grad[a];
+  return energy;
+}
+
 void corotational_forces(const TetMesh& mesh, const FemElements& el, std::span<const Mat3> rot,
                          std::span<Vec3> f) {
   for (Vec3& fi : f) fi.setZero();

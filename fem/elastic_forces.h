@@ -35,6 +35,12 @@ void element_forces(const TetElement& e, const Mat3& r, const Tet& tet, std::spa
 [[nodiscard]] double corotated_energy(const TetElement& e, const Mat3& r, const Mat3& f,
                                       const Mat3* plastic = nullptr);
 
+/// element_forces() and corotated_energy() of one tet in one pass, from its deformation gradient
+/// f (F of the positions) and fv (F of the velocities), each computed once by the caller: fills
+/// out (4, N) as element_forces() does and returns the corotated energy (J) at f.
+double element_forces_energy(const TetElement& e, const Mat3& r, const Mat3& f, const Mat3& fv,
+                             double k_v, std::span<Vec3, 4> out, const Mat3* plastic = nullptr);
+
 /// Total elastic forces f (n) = sum_e -R_e K_e (R_e^T x - x0), N, for the given rotations (m).
 /// Serial reference for tests and tools (the step gathers in parallel).
 void corotational_forces(const TetMesh& mesh, const FemElements& el, std::span<const Mat3> rot,

@@ -32,6 +32,7 @@ void ImplicitIntegrator::rebuild(TetMesh& mesh) {
   build_elements(mesh, m_config, m_el);
   mesh.mass = m_el.node_mass;
   m_q.assign(static_cast<std::size_t>(mesh.num_tets()), Quat::Identity());
+  m_q_prev = m_q;
   m_plastic.clear();
   m_dv.assign(3 * static_cast<std::size_t>(mesh.num_nodes()), 0.0);
   m_rot.assign(static_cast<std::size_t>(mesh.num_tets()), Mat3::Identity());
@@ -63,16 +64,23 @@ void ImplicitIntegrator::update(TetMesh& mesh, const TopologyDelta& delta) {
   // Per-tet rotations follow the same slot rules; added tets start from their SVD polar factor.
   for (std::size_t k = 0; k < delta.slot_of_added.size(); ++k) {
     const auto slot = static_cast<std::size_t>(delta.slot_of_added[k]);
-    if (slot >= m_q.size()) m_q.resize(slot + 1);
+    if (slot >= m_q.size()) {
+      m_q.resize(slot + 1);
+      m_q_prev.resize(slot + 1);
+    }
     const TetElement& e = m_el.elements[slot];
     const Tet& n = mesh.tets[slot];
     m_q[slot] = e.active() ? Quat(polar_rotation_svd(nodal_gradient(e, mesh.x[n[0]], mesh.x[n[1]],
                                                                     mesh.x[n[2]], mesh.x[n[3]])))
                            : Quat::Identity();
+    m_q_prev[slot] = m_q[slot];  // no rotation rate yet
   }
-  for (const auto& [from, to] : delta.moved_tets)
+  for (const auto& [from, to] : delta.moved_tets) {
     m_q[static_cast<std::size_t>(to)] = m_q[static_cast<std::size_t>(from)];
+    m_q_prev[static_cast<std::size_t>(to)] = m_q_prev[static_cast<std::size_t>(from)];
+  }
   m_q.resize(static_cast<std::size_t>(mesh.num_tets()));
+  m_q_prev.resize(static_cast<std::size_t>(mesh.num_tets()));
   // Plastic strain follows the same slots; new tets start without any.
   if (!m_plastic.empty()) {
     for (std::int32_t slot : delta.slot_of_added) {
@@ -137,14 +145,23 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
     const Tet& nd = mesh.tets[ut];
     const Mat3 f = nodal_gradient(e, mesh.x[nd[0]], mesh.x[nd[1]], mesh.x[nd[2]], mesh.x[nd[3]]);
     if (f.determinant() <= 0.0) ++inverted;
-    m_rot[ut] = m_config.corotational
-                    ? robust_rotation(f, m_q[ut], kRotationMaxIterations, kStepRotationTolerance)
-                    : Mat3::Identity();
+    if (m_config.corotational) {
+      // Warm start extrapolated from the last two steps' rotations, q (q_prev^* q): half the
+      // Newton iterations of starting from q on a moving body (fem/rotation.h).
+      Quat& q = m_q[ut];
+      const Quat last = q;
+      q = (q * m_q_prev[ut].conjugate()) * q;
+      q.normalize();
+      m_q_prev[ut] = last;
+      m_rot[ut] = robust_rotation(f, q, kRotationMaxIterations, kStepRotationTolerance);
+    } else {
+      m_rot[ut].setIdentity();
+    }
     for (std::size_t c = 0; c < 4; ++c) m_rg[4 * ut + c] = m_rot[ut] * e.grad[c];
     m_scale[ut] = tet_scale(e, dt_s);
-    element_forces(e, m_rot[ut], nd, mesh.x, mesh.v, e.beta_s + dt_s, out,
-                   plastic ? &m_plastic[ut] : nullptr);
-    elastic_before += corotated_energy(e, m_rot[ut], f, plastic ? &m_plastic[ut] : nullptr);
+    const Mat3 fv = nodal_gradient(e, mesh.v[nd[0]], mesh.v[nd[1]], mesh.v[nd[2]], mesh.v[nd[3]]);
+    elastic_before += element_forces_energy(e, m_rot[ut], f, fv, e.beta_s + dt_s, out,
+                                            plastic ? &m_plastic[ut] : nullptr);
   }
   st.inverted_tets = inverted;
 
@@ -185,7 +202,8 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
   if (!m_config.solver.warm_start) std::fill(m_dv.begin(), m_dv.end(), 0.0);
   const bool cg_matrix_free =
       m_config.solver.matrix_free && m_config.solver.kind != SolverKind::cholmod;
-  MatVec apply_a;
+  MatVec apply_a;         // matrix-free or CSR
+  MatVecDot apply_a_dot;  // blocks: the product and p . Ap in one pass
   if (cg_matrix_free) {
     prepare_operator(mesh, m_el, dt_s, m_op);
     apply_a = [this, &mesh](std::span<const double> x, std::span<double> y) {
@@ -199,14 +217,14 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
   } else if (m_config.solver.float_matrix) {  // CG: 3x3 blocks (fem/block_system.h)
     m_blocks_f.resize(block_storage(m_pattern));
     fill_blocks<float>(mesh, m_el, m_pattern, m_rg, m_scale, dt_s, m_blocks_f);
-    apply_a = [this](std::span<const double> x, std::span<double> y) {
-      multiply_blocks<float>(m_pattern, m_blocks_f, x, y);
+    apply_a_dot = [this](std::span<const double> x, std::span<double> y) {
+      return multiply_blocks_dot<float>(m_pattern, m_blocks_f, x, y);
     };
   } else {
     m_blocks_d.resize(block_storage(m_pattern));
     fill_blocks<double>(mesh, m_el, m_pattern, m_rg, m_scale, dt_s, m_blocks_d);
-    apply_a = [this](std::span<const double> x, std::span<double> y) {
-      multiply_blocks<double>(m_pattern, m_blocks_d, x, y);
+    apply_a_dot = [this](std::span<const double> x, std::span<double> y) {
+      return multiply_blocks_dot<double>(m_pattern, m_blocks_d, x, y);
     };
   }
   SolveStatus ss;
@@ -264,8 +282,10 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
         blocks_inverse_diagonal<double>(m_pattern, m_blocks_d, m_pcg.inv_diag);
       precond.inv_diag = m_pcg.inv_diag;
     }
-    ss = pcg(apply_a, m_rhs, m_dv, m_config.solver.tolerance, m_config.solver.max_iterations,
-             precond, m_pcg);
+    ss = apply_a_dot ? pcg(apply_a_dot, m_rhs, m_dv, m_config.solver.tolerance,
+                           m_config.solver.max_iterations, precond, m_pcg)
+                     : pcg(apply_a, m_rhs, m_dv, m_config.solver.tolerance,
+                           m_config.solver.max_iterations, precond, m_pcg);
   }
   st.converged = ss.converged;
   st.iterations = ss.iterations;

@@ -122,6 +122,7 @@ class ImplicitIntegrator {
   std::vector<float> m_blocks_f;   // the same in float (solver.float_matrix)
   std::vector<TetScale> m_scale;   // (m) per-tet stiffness scales of the fill, this step
   std::vector<Quat> m_q;           // (m) per-tet rotation, warm start of the next step
+  std::vector<Quat> m_q_prev;      // (m) the rotation a step before, for the extrapolated start
   std::vector<Mat3> m_rot;         // (m) R_e of the current step
   std::vector<Vec3> m_rg;          // (4m) rotated gradients R_e b_a of the current step, 1/m
   std::vector<Mat3> m_plastic;     // (m) plastic strain eps_p (plasticity on), 1

@@ -7,28 +7,6 @@
 #include "fem/parallel.h"
 
 namespace serosa::fem {
-namespace {
-
-constexpr int kChunks = 64;  // fixed: makes the sums independent of the thread count
-
-// Runs body(lo, hi, sums) over kChunks fixed chunks of [0, n) (in parallel when n is large) and
-// returns the K per-chunk sums added in chunk order.
-template <int K, class Body>
-std::array<double, K> chunked(std::ptrdiff_t n, const Body& body) {
-  std::array<std::array<double, K>, kChunks> part{};
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
-  for (int c = 0; c < kChunks; ++c) {
-    std::array<double, K> s{};
-    body(n * c / kChunks, n * (c + 1) / kChunks, s);
-    part[static_cast<std::size_t>(c)] = s;
-  }
-  std::array<double, K> total{};
-  for (const auto& p : part)
-    for (std::size_t k = 0; k < static_cast<std::size_t>(K); ++k) total[k] += p[k];
-  return total;
-}
-
-}  // namespace
 
 double dot(std::span<const double> x, std::span<const double> y) {
   const double* xp = x.data();
@@ -64,6 +42,16 @@ SolveStatus pcg(const CsrMatrix& a, std::span<const double> b, std::span<double>
 
 SolveStatus pcg(const MatVec& a, std::span<const double> b, std::span<double> x, double tolerance,
                 int max_iterations, const Preconditioner& precond, PcgScratch& s) {
+  return pcg(MatVecDot([&a](std::span<const double> in, std::span<double> out) {
+               a(in, out);
+               return dot(in, out);
+             }),
+             b, x, tolerance, max_iterations, precond, s);
+}
+
+SolveStatus pcg(const MatVecDot& a, std::span<const double> b, std::span<double> x,
+                double tolerance, int max_iterations, const Preconditioner& precond,
+                PcgScratch& s) {
   const auto n = static_cast<std::ptrdiff_t>(b.size());
   const auto un = static_cast<std::size_t>(n);
   s.r.resize(un);
@@ -103,7 +91,7 @@ SolveStatus pcg(const MatVec& a, std::span<const double> b, std::span<double> x,
     })[0];
   };
   // r = b - A x; a warm start worse than zero (phi > 0): start from zero.
-  a(x, s.r);
+  (void)a(x, s.r);
 #pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (std::ptrdiff_t i = 0; i < n; ++i) rp[i] = bp[i] - rp[i];
   if (!(phi_of() <= 0.0)) {
@@ -126,8 +114,7 @@ SolveStatus pcg(const MatVec& a, std::span<const double> b, std::span<double> x,
   double rz = sums[1];
   int it = 0;
   while (rnorm > tolerance * bnorm && it < max_iterations) {
-    a(s.p, s.ap);
-    const double pap = dot(s.p, s.ap);
+    const double pap = a(s.p, s.ap);
     if (!(pap > 0.0)) break;  // A not SPD along p (or NaN): stop, report unconverged
     const double alpha = rz / pap;
     // x += alpha p; r -= alpha A p; Jacobi: z = D^{-1} r; sums r.r, r.z

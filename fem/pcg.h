@@ -5,10 +5,10 @@
 //   loop: alpha = (r.z) / (p.A p);  x += alpha p;  r -= alpha A p;  stop if ||r|| <= tol ||b||
 //         z = P^{-1} r;  beta = (r.z)_new / (r.z)_old;  p = z + beta p
 // The vector updates of one iteration are fused into one pass (x, r, and for Jacobi z, with the
-// dot products r.r and r.z), so an iteration opens three parallel regions: A p with p.Ap, the
-// fused update, and the new direction. Dot products are summed over a fixed number of chunks in a
-// fixed order, so the result is the same bit for bit for any OpenMP thread count (replays stay
-// exact).
+// dot products r.r and r.z), so an iteration opens three parallel regions: A p with p.Ap (one
+// pass when the operator returns it, MatVecDot), the fused update, and the new direction. Dot
+// products are summed over a fixed number of chunks in a fixed order, so the result is the same bit
+// for bit for any OpenMP thread count (replays stay exact).
 #pragma once
 
 #include <functional>
@@ -22,6 +22,10 @@ namespace serosa::fem {
 
 /// y = A x; x and y: (rows), distinct.
 using MatVec = std::function<void(std::span<const double> x, std::span<double> y)>;
+
+/// y = A x, returning x . y (summed deterministically, as dot()): lets an operator fuse the
+/// product p . Ap of the CG step into its own pass (fem/block_system.h multiply_blocks_dot).
+using MatVecDot = std::function<double(std::span<const double> x, std::span<double> y)>;
 
 /// z = P^{-1} r. Jacobi when `apply` is empty: z = inv_diag .* r (fused into the CG update);
 /// otherwise `apply` (e.g. a CHOLMOD solve). r and z: (rows).
@@ -43,6 +47,11 @@ struct PcgScratch {
 /// A warm start worse than x = 0 (phi(x) > 0) is replaced by 0.
 SolveStatus pcg(const MatVec& a, std::span<const double> b, std::span<double> x, double tolerance,
                 int max_iterations, const Preconditioner& precond, PcgScratch& scratch);
+
+/// Same with an operator that also returns x . A x.
+SolveStatus pcg(const MatVecDot& a, std::span<const double> b, std::span<double> x,
+                double tolerance, int max_iterations, const Preconditioner& precond,
+                PcgScratch& scratch);
 
 /// Same on an assembled matrix.
 SolveStatus pcg(const CsrMatrix& a, std::span<const double> b, std::span<double> x,

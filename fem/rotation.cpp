@@ -73,10 +73,12 @@ bool newton_rotation(const Mat3& f, Quat& q, int max_iter, double tolerance) {
     }
     const double w = omega.norm();
     rotate_left(omega, w, q);
-    // Quadratic convergence: a small Newton step on a well-conditioned H (det H comparable to
-    // tr^3, i.e. not a flat tet) leaves an error ~w^2 << tolerance; skip the confirming pass.
-    if (newton_step && w < 0.1 * std::sqrt(tolerance) && det > 0.1 * trace * trace * trace)
-      return true;
+    // Quadratic convergence: a Newton step of w < sqrt(tolerance) on a well-conditioned H (det H
+    // comparable to tr^3, i.e. not a flat tet) leaves an error ~w^2 < tolerance; skip the
+    // confirming pass. Measured on the gmsh boxes (bench/fem BM_StepGmsh*, warm-started from the
+    // extrapolated rotation): 71 % of the extractions stop here, after one Newton step, and the
+    // Müller step of their result is at most 8e-5 of the tolerance.
+    if (newton_step && w < std::sqrt(tolerance) && det > 0.1 * trace * trace * trace) return true;
   }
   return false;
 }
