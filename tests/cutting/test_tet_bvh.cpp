@@ -113,9 +113,7 @@ namespace {
 
 // 200 small cuts, a quarter of them in one corner (so the local inserts pile into a few leaves):
 // after every cut the updated BVH answers exactly as brute force, and its depth stays within
-// max_depth() = 2 ceil(log2(m / 4 + 1)) + 2 because deep paths are rebuilt. (Since partial tets
-// are split by the plane the mesh reaches ~590k tets here and the brute-force checks dominate:
-// 120 cuts under ASan+UBSan, which is ~10x slower; the release run does all 200.)
+// max_depth() = 2 ceil(log2(m / 4 + 1)) + 2 because deep paths are rebuilt.
 TEST(TetBvh, TwoHundredCutsStayExactAndShallow) {
   TetMesh m = fixtures::grid(5, 1.0, 0.1, 7);
   TetBvh bvh(m);
@@ -123,12 +121,7 @@ TEST(TetBvh, TwoHundredCutsStayExactAndShallow) {
   std::normal_distribution<double> g;
   std::uniform_real_distribution<double> u(0.4, 1.6), v(0.3, 4.7), s(0.0, 1.0), w(-0.5, 5.5);
   std::int32_t deepest = 0;
-#if defined(__SANITIZE_ADDRESS__)
-  const int cuts = 120;
-#else
-  const int cuts = 200;
-#endif
-  for (int i = 0; i < cuts; ++i) {
+  for (int i = 0; i < 200; ++i) {
     const Vec3 c = i % 4 == 0 ? Vec3(u(rng), u(rng), u(rng)) : Vec3(v(rng), v(rng), v(rng));
     const ConvexPolygon blade = testing::square(Vec3(g(rng), g(rng), g(rng)), c, 0.15, 0.7 * i);
     CutResult r = cut_mesh(m, blade, {}, bvh.as_query());
@@ -145,8 +138,8 @@ TEST(TetBvh, TwoHundredCutsStayExactAndShallow) {
           << "cut " << i;
     }
   }
-  std::printf("BVH after %d cuts: %d tets, depth %d (deepest seen %d, bound %d), %lld rebuilds\n",
-              cuts, m.num_tets(), bvh.depth(), deepest, bvh.max_depth(),
+  std::printf("BVH after 200 cuts: %d tets, depth %d (deepest seen %d, bound %d), %lld rebuilds\n",
+              m.num_tets(), bvh.depth(), deepest, bvh.max_depth(),
               static_cast<long long>(bvh.rebuilds()));
   RecordProperty("bvh_depth_after_200_cuts", bvh.depth());
   RecordProperty("bvh_rebuilds", static_cast<int>(bvh.rebuilds()));
