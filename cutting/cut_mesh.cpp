@@ -34,54 +34,44 @@
 //    the polygon is cloned: the original stays with the negative side, the clone goes to the
 //    positive side (paper convention).
 // 5. Complete or partial. A crossing edge gets a cut point iff the point lies inside the polygon
-//    grown by tol, or it is a crossing edge of a partial tet the blade meets (below); a cut point
-//    opens (two nodes) iff it lies inside by more than tol (a property of the edge, so every tet
-//    around it agrees). A coplanar node is cloned iff it lies inside the grown polygon, no pinned
-//    (sliver) tet holds it, every coplanar face around it that is still welded (shared by two
-//    tets) lies inside or is clipped with its corner at the node under the blade (below), every
-//    partial tet holding it has both its section sides from the node starting inside the blade,
-//    no flat tet holds it, and both sides use it. So a node on the blade's outline opens when
-//    the far side is already open: a scissors closing in many thin steps, each step's trailing
-//    edge on the previous step's crack front, carries the crack on. (A segment lying along the
-//    outline within tol, e.g. a piece of the previous front under this step's trailing edge, has
-//    no crossing with it: crossings() needs both ends beyond tol on opposite sides.)
-//    A straddling tet is complete when its whole section (the polygon Sigma of its cut points and
-//    coplanar nodes) lies in the grown polygon; it takes the patterns of point 2. Otherwise the
-//    blade's edge ends inside it (partial cut; the paper's end cases), and, if the blade meets
-//    Sigma, it is split BY THE PLANE (emit_plane_split), cut exactly along S = Sigma ∩ blade:
-//      - every crossing edge gets its cut point (welded where outside the blade); face points
-//        where the blade's outline crosses Sigma's sides in a tet face (the "blade crosses a
-//        face without cutting its edges" case), one welded node each, keyed by the face so both
-//        tets sharing it agree; tip points: the blade's corners strictly inside Sigma;
+//    grown by tol (a property of the edge, so every tet around it agrees); it opens (two nodes)
+//    iff it lies inside by more than tol and no "pinned" tet (below) holds the edge. A coplanar
+//    node is cloned iff it lies inside the grown polygon, no pinned tet holds it, every coplanar
+//    face around it that is still welded (shared by two tets) lies inside or is clipped with
+//    its corner at the node under the blade (below), every partial tet
+//    holding it has both its section sides from the node starting inside the blade, no flat
+//    tet holds it, and both sides use it. So a node on the blade's outline opens when the far
+//    side is already open: a scissors closing in many thin steps, each step's trailing edge on
+//    the previous step's crack front (its apex and face points), carries the crack on. A
+//    straddling tet is
+//    complete when its whole section (the polygon Sigma of its cut points and coplanar nodes)
+//    lies in the grown polygon; it takes the patterns of point 2. Otherwise the blade's edge
+//    ends inside it (partial cut; the paper's end cases), and it is cut exactly along
+//    S = Sigma ∩ blade:
+//      - face points: where the blade's outline crosses the section's side in a tet face (the
+//        "blade crosses a face without cutting its edges" case), one welded node each, computed
+//        once per face (keyed by the face) so both tets sharing the face agree;
+//      - tip points: the blade's corners strictly inside Sigma, one welded node each;
 //      - Sigma is triangulated with S's outline as constraints (cutting/section_triangulation.h)
 //        plus an opened pair of nodes at S's centroid joined to S's corners, so the crack opens
-//        over all of S and closes exactly on the blade's outline; the rest of Sigma is welded;
+//        over all of S and closes exactly on the blade's outline;
 //      - each side's piece (the tet clipped by the plane, convex) is coned from its own Steiner
-//        point (the mean of its corners, strictly on its side) over the section triangles and
-//        its faces' parts (the face rule of emit_face, the same in both tets sharing a face).
-//    Every piece lies on one side, so later cuts in the same plane meet only coplanar faces.
-//    A straddling tet the blade misses is left whole, unless a cut point was put on one of its
-//    crossing edges; then it is coned, welded, from the centroid of its section over its faces
-//    (face rule). That apex lies on the plane inside the tet, so no cone edge crosses the plane.
-//    Why (approach (b) of issue 3; re-subdividing from the original, Mor & Kanade, was not
-//    needed for this): coning a partial tet from one apex on the crack front (the previous
-//    design) left the pieces ahead of the front straddling the plane and meeting at that apex,
-//    so the next thin step cut all of them again and slivers doubled per step (a 24-tet bar
-//    reached 906k tets in 29 steps). Now no cut makes an edge that crosses the plane: every tet
-//    straddling the plane crosses it along edges of the original mesh, an edge that gets a point
-//    stops crossing, and the straddling descendants of an original tet are finitely many
-//    (tested: ScissorsSweeps.RepeatedSmallCutsOffTheGridPlanesStayBoundedPerStep).
-//    A straddling tet whose section cannot be ordered (a sliver) is "pinned": split as above
-//    from its section's centroid, every node welded.
+//        point over its boundary: the section triangles and the face parts (faces without face
+//        points split by split_face, the patterns' rule; faces with face points fanned from their
+//        smallest node on that side, the same in both tets sharing the face).
+//    A straddling tet whose section side along a coplanar EDGE is crossed by the blade's outline
+//    cannot stop the crack there (the edge would need a point every tet around it agrees on): it
+//    is "pinned", split the same way but with every node welded, and the crack stops at its
+//    neighbours (the one remaining case where the crack stops short of the polygon's edge).
+//    A straddling tet the blade does not meet is left whole.
 //    Coplanar faces partly under the blade (the paper's coplanar-face clipping, decide_faces): a
-//    face lying in the plane, still welded, that the blade covers only partly (with area above
-//    tol^2) is clipped along the blade's outline: the outline's crossings of its edges become
+//    face lying in the plane, still welded, that the blade covers only partly (with positive
+//    area) is clipped along the blade's outline: the outline's crossings of its edges become
 //    welded nodes (keyed by the edge, so every tet around the edge splits there: one-sided tets
 //    holding the face are coned from their off-plane node over the face's triangulation, those
-//    holding only the edge are fanned from the opposite edge, straddling ones are split by the
-//    plane), and the part under the blade is fanned from an opened pair of nodes at its
-//    centroid. So a scissors closing in steps thinner than the grid's faces opens the crack step
-//    by step.
+//    holding only the edge are fanned from the opposite edge, straddling ones are pinned), and
+//    the part under the blade is fanned from an opened pair of nodes at its centroid. So a
+//    scissors closing in steps thinner than the grid's faces opens the crack step by step.
 // 6. Output: the touched tets (cut, or one-sided tets that take a clone) are removed, their
 //    pieces added with the same group, each piece oriented positively by its rest volume.
 #include "cutting/cut_mesh.h"
@@ -89,7 +79,6 @@
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
-#include <unordered_set>
 
 #include "cutting/patterns.h"
 #include "cutting/section_triangulation.h"
@@ -117,7 +106,6 @@ struct EdgeInfo {
   bool inside = false;  ///< cut point inside the polygon (grown by tol): the edge is split
   bool strict = false;  ///< cut point inside by more than tol: may open
   bool open = false;    ///< strict and no pinned tet around it: two nodes
-  bool split = false;   ///< gets a point: inside, or a crossing edge of a plane-split partial tet
   std::vector<std::int32_t> tets;  ///< candidate indices of the tets around it
 };
 
@@ -167,7 +155,7 @@ struct TetInfo {
   bool complete = false;   ///< straddles and its whole section lies in the polygon
   bool pinned = false;     ///< partial, but the crack cannot stop inside it: split welded
   bool interacts = false;  ///< partial: the blade meets its section (else left whole)
-  bool sliver = false;     ///< partial with an unordered section: coned from its centroid
+  Combo apex;              ///< partial, not pinned: the cone apex on the crack's front
 };
 
 void tet_box(const TetMesh& m, const Tet& t, Vec3& lo, Vec3& hi) {
@@ -248,13 +236,9 @@ class Cutter {
 
   // Signs of nodes (once per node), cases of tets, cut points of crossing edges.
   void classify() {
-    m_tets.resize(m_cands.size());
-    for (std::size_t ci = 0; ci < m_cands.size(); ++ci) classify_one(ci);
-  }
-
-  void classify_one(std::size_t ci) {
     CutStats& st = m_result.stats;
-    {
+    m_tets.resize(m_cands.size());
+    for (std::size_t ci = 0; ci < m_cands.size(); ++ci) {
       const Tet& t = m_mesh.tets[m_cands[ci]];
       TetInfo& info = m_tets[ci];
       bool pos = false, neg = false;
@@ -269,7 +253,7 @@ class Cutter {
       info.straddles = pos && neg;
       ++st.per_code[info.code];
       ++st.per_case[static_cast<int>(case_table()[info.code].canonical)];
-      if (!info.straddles) return;
+      if (!info.straddles) continue;
       // Geometrically complete: every cut point and coplanar node inside the polygon.
       bool complete = true;
       std::array<int, 2> zeros{-1, -1};
@@ -287,12 +271,14 @@ class Cutter {
         }
       }
       info.complete = complete;
-      // The outline crossing the section's side along a coplanar edge: the edge gets the
-      // crossings as points (decide_faces), every tet around it agreeing.
+      // Pinned: the outline crosses the section's side along a coplanar edge.
       if (!complete && nz == 2) {
         const std::int32_t a = t[zeros[0]], b = t[zeros[1]];
-        if (!(m_nodes[a].inside && m_nodes[b].inside) && !cop_edge(a, b).empty())
-          m_keep_edges.insert(edge_key(a, b));
+        const NodeInfo &na = m_nodes[a], &nb = m_nodes[b];
+        if (!(na.inside && nb.inside)) {
+          const V2 pa = m_blade.to_plane(m_mesh.x[a]), pb = m_blade.to_plane(m_mesh.x[b]);
+          info.pinned = !crossings(pa, pb).empty() || na.strict || nb.strict;
+        }
       }
       if (!complete) analyse_partial(t, info);
     }
@@ -345,13 +331,6 @@ class Cutter {
       const double r = (r0.x() * d.y() - r0.y() * d.x()) / den;
       if (r < -1e-12 || r > 1.0 + 1e-12) continue;
       if (s * len <= m_tol || (1.0 - s) * len <= m_tol) continue;
-      // A proper crossing: both ends more than tol from the outline's line, on opposite sides
-      // (a segment along the outline, e.g. an earlier step's crack front under this step's
-      // trailing edge, has no crossing).
-      const double el = e.norm();
-      const double du = (e.x() * (u.y() - b0.y()) - e.y() * (u.x() - b0.x())) / el;
-      const double dw = (e.x() * (w.y() - b0.y()) - e.y() * (w.x() - b0.x())) / el;
-      if (!((du > m_tol && dw < -m_tol) || (du < -m_tol && dw > m_tol))) continue;
       out.push_back(s);
     }
     std::sort(out.begin(), out.end());
@@ -502,20 +481,18 @@ class Cutter {
       const std::size_t n = cf.corners.size();
       for (std::size_t k = 0; k < n; ++k)
         area += area2d(c, cf.corners[k].p2, cf.corners[(k + 1) % n].p2);
-      if (!(area > m_tol * m_tol)) continue;
+      if (!(area > m_tol * diam)) continue;
       m_pfaces.emplace(key, std::move(cf));
     }
     // Only the edges of clipped faces are split.
     std::unordered_map<std::uint64_t, std::vector<CopPoint>> kept;
-    for (std::uint64_t k : m_keep_edges)
-      if (!m_cop_edges[k].empty()) kept.emplace(k, m_cop_edges[k]);
     for (const auto& [key, cf] : m_pfaces)
       for (const auto& fe : kFaceEdges) {
         const std::uint64_t k = edge_key(key[fe[0]], key[fe[1]]);
         if (!m_cop_edges[k].empty()) kept.emplace(k, m_cop_edges[k]);
       }
     m_cop_edges = std::move(kept);
-    // Straddling tets holding a coplanar edge with crossings are split by the plane there.
+    // Straddling tets holding a coplanar edge with crossings cannot open along it: pinned.
     for (std::size_t ci = 0; ci < m_cands.size(); ++ci) {
       TetInfo& info = m_tets[ci];
       if (!info.straddles) continue;
@@ -525,6 +502,7 @@ class Cutter {
           if (info.sign[i] == Sign::kZero && info.sign[j] == Sign::kZero &&
               has_cop_points(t[i], t[j])) {
             info.complete = false;
+            info.pinned = true;
             info.interacts = true;
           }
     }
@@ -700,47 +678,7 @@ class Cutter {
 
   // An edge opens iff its cut point is strictly inside and no pinned tet holds it.
   void decide_edges() {
-    // A partial tet the blade meets is split by the plane (emit_plane_split): all its crossing
-    // edges get a point (welded where outside the blade), and the tets around them are split
-    // there too.
-    for (std::size_t ci = 0; ci < m_cands.size(); ++ci) {
-      const TetInfo& info = m_tets[ci];
-      if (!plane_split(info)) continue;
-      const Tet& t = m_mesh.tets[m_cands[ci]];
-      for (int i = 0; i < 4; ++i)
-        for (int j = i + 1; j < 4; ++j)
-          if (static_cast<int>(info.sign[i]) * static_cast<int>(info.sign[j]) < 0)
-            m_edges[edge_key(t[i], t[j])].split = true;
-    }
-    // Every tet around such an edge is split there: candidates the blade's box missed (the
-    // edge's point lies outside the blade) are added and classified (they straddle and the blade
-    // misses them).
-    std::vector<std::uint64_t> forced;
-    for (const auto& [key, e] : m_edges)
-      if (e.split && !e.inside) forced.push_back(key);
-    std::sort(forced.begin(), forced.end());
-    if (!forced.empty()) {
-      std::unordered_set<std::int32_t> known(m_cands.begin(), m_cands.end());
-      std::vector<std::int32_t> found;
-      for (std::uint64_t key : forced) {
-        const auto a = static_cast<std::int32_t>(key >> 32);
-        const auto b = static_cast<std::int32_t>(key & 0xffffffffu);
-        found.clear();
-        m_query(m_mesh.x[a].cwiseMin(m_mesh.x[b]), m_mesh.x[a].cwiseMax(m_mesh.x[b]), found);
-        std::sort(found.begin(), found.end());
-        for (std::int32_t ti : found) {
-          const Tet& t = m_mesh.tets[ti];
-          if (std::count(t.begin(), t.end(), a) == 0 || std::count(t.begin(), t.end(), b) == 0 ||
-              !known.insert(ti).second)
-            continue;
-          m_cands.push_back(ti);
-          m_tets.emplace_back();
-          classify_one(m_cands.size() - 1);
-        }
-      }
-    }
     for (auto& [key, e] : m_edges) {
-      e.split = e.split || e.inside;
       e.open = e.strict;
       for (std::int32_t ci : e.tets)
         e.open = e.open && !m_tets[static_cast<std::size_t>(ci)].pinned;
@@ -815,10 +753,6 @@ class Cutter {
       const auto key = face_key_of(sv[i], *u);
       if (key[0] == -2) return false;
       Vec3 next = u->combo.cur(m_mesh);
-      if (key[0] == -1 && u->support[1] < 0 && has_cop_points(a, u->support[0])) {
-        const std::vector<CopPoint>& cps = cop_points(a, u->support[0]);
-        next = (a < u->support[0] ? cps.front() : cps.back()).combo.cur(m_mesh);
-      }
       if (key[0] >= 0) {
         const auto it = m_faces.find(key);
         if (it != m_faces.end() && !it->second.points.empty()) {
@@ -983,41 +917,110 @@ class Cutter {
     return fp.id;
   }
 
-  // A straddling tet that is not complete: finds the face points on its faces (where the
-  // blade's outline crosses its section's sides) and whether the blade meets its section (a
-  // section vertex inside the grown polygon, or a face point); such a tet is split by the plane
-  // (emit_plane_split). A section that cannot be ordered (a sliver) is split welded.
+  // A straddling tet that is not complete: finds the face points on its faces, whether the
+  // blade meets it at all, and where the crack's front runs inside it: S = section ∩ blade is
+  // opened by coning every piece from one apex on the front (the midpoint of a single chord, or
+  // the blade's corner where two chords meet), so the crack is exactly the fan from the apex
+  // over S's sides on the tet's faces. Fronts that no single point sees (two chords apart, or
+  // two of the blade's corners inside) pin the tet.
   void analyse_partial(const Tet& t, TetInfo& info) {
     const std::vector<SecVert> sv = section(t, info);
     const std::size_t ns = sv.size();
+    struct SPoint {
+      V2 p2;
+      Combo combo;
+      bool boundary = true;
+    };
+    std::vector<SPoint> sp;  // S's corners
+    double diam = 0.0;
+    for (std::size_t i = 0; i < ns; ++i)
+      for (std::size_t j = i + 1; j < ns; ++j) diam = std::max(diam, (sv[i].p2 - sv[j].p2).norm());
     for (std::size_t i = 0; i < ns; ++i) {
       const SecVert& u = sv[i];
       const SecVert& w = sv[(i + 1) % ns];
-      info.interacts = info.interacts || u.inside;
+      if (u.inside) {
+        sp.push_back({u.p2, u.combo, true});
+        info.interacts = true;
+      }
       const auto key = face_key_of(u, w);
       if (key[0] == -2) {
         info.pinned = true;  // unordered section (a sliver): no opening here
-        info.sliver = true;
         continue;
       }
-      if (key[0] == -1) continue;  // along a coplanar edge (its crossings: decide_faces)
+      if (key[0] == -1) continue;  // along a coplanar edge (pinned in classify when crossed)
       const FaceEntry& fe = face_points(key, u, w);
-      info.interacts = info.interacts || !fe.points.empty();
+      const SecVert& a = u.label < w.label ? u : w;
+      const SecVert& b = u.label < w.label ? w : u;
+      for (const FacePoint& fp : fe.points) {
+        sp.push_back({a.p2 + fp.s * (b.p2 - a.p2), fp.combo, true});
+        info.interacts = true;
+      }
     }
-  }
-
-  [[nodiscard]] static bool plane_split(const TetInfo& info) {
-    return info.straddles && !info.complete && info.interacts && !info.sliver;
-  }
-  // A straddling tet holding a crossing edge that gets a point.
-  [[nodiscard]] bool has_split_edge(const Tet& t, const TetInfo& info) const {
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j)
-        if (static_cast<int>(info.sign[i]) * static_cast<int>(info.sign[j]) < 0) {
-          const auto it = m_edges.find(edge_key(t[i], t[j]));
-          if (it != m_edges.end() && it->second.split) return true;
-        }
-    return false;
+    for (std::size_t k = 0; k < m_blade2.size(); ++k) {
+      double margin = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < ns; ++i) {
+        const V2 e = sv[(i + 1) % ns].p2 - sv[i].p2;
+        const V2 q = m_blade2[k] - sv[i].p2;
+        margin = std::min(margin, (e.x() * q.y() - e.y() * q.x()) / e.norm());
+      }
+      if (margin > m_tol) sp.push_back({m_blade2[k], barycentric(t, m_blade.points()[k]), false});
+    }
+    if (info.pinned || !info.interacts) return;
+    // S's corners counter-clockwise; its sides on the section's boundary ("runs") or across it
+    // (the front).
+    V2 c = V2::Zero();
+    for (const SPoint& p : sp) c += p.p2;
+    c /= static_cast<double>(sp.size());
+    std::sort(sp.begin(), sp.end(), [&](const SPoint& a, const SPoint& b) {
+      return std::atan2(a.p2.y() - c.y(), a.p2.x() - c.x()) <
+             std::atan2(b.p2.y() - c.y(), b.p2.x() - c.x());
+    });
+    const std::size_t n = sp.size();
+    double area = 0.0;
+    for (std::size_t k = 0; k < n; ++k) area += area2d(c, sp[k].p2, sp[(k + 1) % n].p2);
+    if (n < 3 || !(area > m_tol * diam)) {
+      info.pinned = true;
+      return;
+    }
+    auto on_section_boundary = [&](const V2& q) {
+      for (std::size_t i = 0; i < ns; ++i) {
+        const V2 e = sv[(i + 1) % ns].p2 - sv[i].p2;
+        const double l2 = e.squaredNorm();
+        const double s = std::clamp(e.dot(q - sv[i].p2) / l2, 0.0, 1.0);
+        if ((sv[i].p2 + s * e - q).norm() <= 1e-9 * diam) return true;
+      }
+      return false;
+    };
+    std::vector<char> front(n, 0);
+    std::size_t fronts = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const SPoint &p = sp[k], &q = sp[(k + 1) % n];
+      front[k] = !(p.boundary && q.boundary && on_section_boundary(0.5 * (p.p2 + q.p2)));
+      fronts += front[k] ? 1 : 0;
+    }
+    // One chain of front sides: its start is a front side after a run.
+    std::size_t chains = 0, first = 0;
+    for (std::size_t k = 0; k < n; ++k)
+      if (front[k] && !front[(k + n - 1) % n]) {
+        ++chains;
+        first = k;
+      }
+    if (chains != 1 || fronts > 2) {
+      info.pinned = true;
+      return;
+    }
+    info.apex = Combo{};
+    if (fronts == 1) {
+      info.apex.add(sp[first].combo, 0.5);
+      info.apex.add(sp[(first + 1) % n].combo, 0.5);
+    } else {
+      const SPoint& mid = sp[(first + 1) % n];
+      if (mid.boundary) {
+        info.pinned = true;
+        return;
+      }
+      info.apex = mid.combo;
+    }
   }
 
   // Barycentric combination of tet t's nodes giving point p (current positions).
@@ -1032,162 +1035,16 @@ class Cutter {
     return out;
   }
 
-  // A pinned tet, or one the blade misses holding a crossing edge with a point: every face
-  // triangulated by the face rule, coned from the centroid of its section, welded. The apex lies
-  // on the plane, strictly inside the tet (every node of a straddling tet supports a section
-  // vertex), so no cone edge crosses the plane: the pieces' crossing edges are the tet's own
-  // crossing edges that have no point yet, and a later cut in the plane never meets a crossing
-  // edge the original mesh did not have (no slivers re-split step after step).
+  // A partial (or pinned) tet: every face triangulated by the face rule, coned from the apex.
   void emit_partial(const Tet& t, const TetInfo& info, std::uint16_t g) {
-    const std::vector<SecVert> sv = section(t, info);
-    Combo apex;
-    for (const SecVert& v : sv) apex.add(v.combo, 1.0 / static_cast<double>(sv.size()));
+    Combo apex = info.apex;
+    if (info.pinned) {
+      apex = Combo{};
+      for (int k = 0; k < 4; ++k) apex.add(t[k], 0.25);
+    }
     const std::int32_t aid = m_weld.add_point(apex.parent());
     ++m_result.stats.steiner_points;
-    for (const auto& f : kFaces) emit_face(t, info, f, aid, apex, aid, apex, g);
-  }
-
-  // A partial tet the blade meets, split by the plane: each side's piece (convex) is coned from
-  // its own Steiner point (the mean of its corners) over its faces' parts (the face rule) and the
-  // section Sigma. Sigma is triangulated with S = Sigma ∩ blade's outline as constraints and an
-  // opened pair of nodes at S's centroid joined to S's corners, so the crack opens over S and
-  // closes on the blade's outline; the rest of Sigma stays welded. No piece straddles the plane,
-  // so later cuts in the same plane only clip coplanar faces (decide_faces) instead of
-  // re-splitting slivers.
-  void emit_plane_split(const Tet& t, const TetInfo& info, std::uint16_t g) {
-    const std::vector<SecVert> sv = section(t, info);
-    const std::size_t ns = sv.size();
-    struct SP {
-      V2 p2;
-      Combo combo;
-      std::int32_t pos = -1, neg = -1;
-    };
-    std::vector<SP> pts;
-    std::vector<int> corners;  // S's corners, indices into pts
-    double diam = 0.0;
-    for (std::size_t i = 0; i < ns; ++i)
-      for (std::size_t j = i + 1; j < ns; ++j) diam = std::max(diam, (sv[i].p2 - sv[j].p2).norm());
-    for (std::size_t i = 0; i < ns; ++i) {
-      const SecVert& u = sv[i];
-      SP p{u.p2, u.combo};
-      if (u.support[1] < 0) {
-        p.pos = node_id(u.support[0], true);
-        p.neg = u.support[0];
-      } else {
-        Combo unused;
-        p.pos = edge_point_id(u.support[0], u.support[1], true, unused);
-        p.neg = edge_point_id(u.support[0], u.support[1], false, unused);
-      }
-      if (u.inside) corners.push_back(static_cast<int>(pts.size()));
-      pts.push_back(p);
-      const SecVert& w = sv[(i + 1) % ns];
-      const auto key = face_key_of(u, w);
-      if (key[0] == -1 && u.support[1] < 0 && w.support[1] < 0) {
-        // Along a coplanar edge: its crossings (decide_faces), welded.
-        const std::int32_t a = u.support[0], b = w.support[0];
-        std::vector<CopPoint>& cps = cop_points(a, b);
-        const bool fwd = a < b;
-        for (std::size_t k = 0; k < cps.size(); ++k) {
-          CopPoint& cp = cps[fwd ? k : cps.size() - 1 - k];
-          SP q{(1.0 - (fwd ? cp.s : 1.0 - cp.s)) * u.p2 + (fwd ? cp.s : 1.0 - cp.s) * w.p2,
-               cp.combo};
-          q.pos = q.neg = cop_point_id(cp);
-          corners.push_back(static_cast<int>(pts.size()));
-          pts.push_back(q);
-        }
-        continue;
-      }
-      if (key[0] < 0) continue;
-      const auto it = m_faces.find(key);
-      if (it == m_faces.end()) continue;
-      std::vector<FacePoint>& fps = it->second.points;
-      const bool fwd = u.label < w.label;
-      const SecVert& a = fwd ? u : w;
-      const SecVert& b = fwd ? w : u;
-      for (std::size_t k = 0; k < fps.size(); ++k) {
-        FacePoint& fp = fps[fwd ? k : fps.size() - 1 - k];
-        SP q{a.p2 + fp.s * (b.p2 - a.p2), fp.combo};
-        q.pos = q.neg = face_point_id(fp);
-        corners.push_back(static_cast<int>(pts.size()));
-        pts.push_back(q);
-      }
-    }
-    for (std::size_t k = 0; k < m_blade2.size(); ++k) {
-      double margin = std::numeric_limits<double>::infinity();
-      for (std::size_t i = 0; i < ns; ++i) {
-        const V2 e = sv[(i + 1) % ns].p2 - sv[i].p2;
-        const V2 q = m_blade2[k] - sv[i].p2;
-        margin = std::min(margin, (e.x() * q.y() - e.y() * q.x()) / e.norm());
-      }
-      if (!(margin > m_tol)) continue;
-      SP q{m_blade2[k], barycentric(t, m_blade.points()[k])};
-      q.pos = q.neg = m_weld.add_point(q.combo.parent());
-      ++m_result.stats.steiner_points;
-      corners.push_back(static_cast<int>(pts.size()));
-      pts.push_back(q);
-    }
-    // S's outline and the opened pair at its centroid.
-    std::vector<std::array<int, 2>> constraints;
-    if (corners.size() >= 3 && !info.pinned) {  // a pinned tet is split welded
-      V2 c = V2::Zero();
-      for (int k : corners) c += pts[static_cast<std::size_t>(k)].p2;
-      c /= static_cast<double>(corners.size());
-      std::sort(corners.begin(), corners.end(), [&](int x, int y) {
-        const V2 &px = pts[static_cast<std::size_t>(x)].p2,
-                 &py = pts[static_cast<std::size_t>(y)].p2;
-        return std::atan2(px.y() - c.y(), px.x() - c.x()) <
-               std::atan2(py.y() - c.y(), py.x() - c.x());
-      });
-      const std::size_t n = corners.size();
-      double area = 0.0;
-      for (std::size_t k = 0; k < n; ++k)
-        area += area2d(c, pts[static_cast<std::size_t>(corners[k])].p2,
-                       pts[static_cast<std::size_t>(corners[(k + 1) % n])].p2);
-      if (area > m_tol * m_tol) {
-        SP q{c, Combo{}};
-        for (int k : corners)
-          q.combo.add(pts[static_cast<std::size_t>(k)].combo, 1.0 / static_cast<double>(n));
-        q.pos = m_weld.add_point(q.combo.parent());
-        q.neg = m_weld.add_point(q.combo.parent());
-        m_result.stats.steiner_points += 2;
-        const int centre = static_cast<int>(pts.size());
-        pts.push_back(q);
-        for (std::size_t k = 0; k < n; ++k) {
-          constraints.push_back({corners[k], corners[(k + 1) % n]});
-          constraints.push_back({centre, corners[k]});
-        }
-      }
-    }
-    std::vector<V2> p2;
-    for (const SP& q : pts) p2.push_back(q.p2);
-    const auto tris = triangulate_section(p2, constraints, 1e-9 * diam);
-    double sec_area = 0.0, tri_area = 0.0;
-    for (std::size_t i = 0; i < ns; ++i)
-      sec_area += area2d(sv[0].p2, sv[i].p2, sv[(i + 1) % ns].p2);
-    for (const auto& tr : tris) tri_area += area2d(p2[tr[0]], p2[tr[1]], p2[tr[2]]);
-    if (!(std::abs(tri_area - sec_area) <= 1e-9 * diam * diam)) ++m_result.stats.degenerate_tets;
-    // Each side's Steiner point.
-    std::array<Combo, 2> apex;  // positive, negative
-    std::array<double, 2> count{0.0, 0.0};
-    for (int k = 0; k < 4; ++k)
-      if (info.sign[k] != Sign::kZero) count[info.sign[k] == Sign::kPos ? 0 : 1] += 1.0;
-    for (int s = 0; s < 2; ++s) {
-      const double nn = count[static_cast<std::size_t>(s)] + static_cast<double>(ns);
-      for (int k = 0; k < 4; ++k)
-        if (info.sign[k] == (s == 0 ? Sign::kPos : Sign::kNeg))
-          apex[static_cast<std::size_t>(s)].add(t[k], 1.0 / nn);
-      for (const SecVert& v : sv) apex[static_cast<std::size_t>(s)].add(v.combo, 1.0 / nn);
-    }
-    const std::int32_t pid = m_weld.add_point(apex[0].parent());
-    const std::int32_t nid = m_weld.add_point(apex[1].parent());
-    m_result.stats.steiner_points += 2;
-    for (const auto& tr : tris) {
-      const SP &a = pts[static_cast<std::size_t>(tr[0])], &b = pts[static_cast<std::size_t>(tr[1])],
-               &c = pts[static_cast<std::size_t>(tr[2])];
-      emit_tet({pid, a.pos, b.pos, c.pos}, {&apex[0], &a.combo, &b.combo, &c.combo}, g);
-      emit_tet({nid, a.neg, b.neg, c.neg}, {&apex[1], &a.combo, &b.combo, &c.combo}, g);
-    }
-    for (const auto& f : kFaces) emit_face(t, info, f, pid, apex[0], nid, apex[1], g);
+    for (const auto& f : kFaces) emit_face(t, info, f, aid, apex, g);
   }
 
   // One point of a face's triangulation: ids on the positive and negative side.
@@ -1204,8 +1061,8 @@ class Cutter {
   // constrained triangulation (cutting/section_triangulation.h) of the face's nodes, existing cut
   // points and face points, in affine coordinates from the face's sorted node ids, with the
   // section side's parts inside the blade as constraints.
-  void emit_face(const Tet& t, const TetInfo& info, const std::array<int, 3>& f, std::int32_t pid,
-                 const Combo& papex, std::int32_t nid, const Combo& napex, std::uint16_t g) {
+  void emit_face(const Tet& t, const TetInfo& info, const std::array<int, 3>& f, std::int32_t aid,
+                 const Combo& apex, std::uint16_t g) {
     std::array<Sign, 3> sg{info.sign[f[0]], info.sign[f[1]], info.sign[f[2]]};
     const bool has_pos = std::count(sg.begin(), sg.end(), Sign::kPos) > 0;
     const bool has_neg = std::count(sg.begin(), sg.end(), Sign::kNeg) > 0;
@@ -1219,8 +1076,8 @@ class Cutter {
       return p;
     };
     auto cone = [&](const FPoint& a, const FPoint& b, const FPoint& c, bool pos) {
-      emit_tet({pos ? pid : nid, pos ? a.pos : a.neg, pos ? b.pos : b.neg, pos ? c.pos : c.neg},
-               {pos ? &papex : &napex, &a.combo, &b.combo, &c.combo}, g);
+      emit_tet({aid, pos ? a.pos : a.neg, pos ? b.pos : b.neg, pos ? c.pos : c.neg},
+               {&apex, &a.combo, &b.combo, &c.combo}, g);
     };
     // Side of a triangle from its original nodes: +1, -1, or 0 when it crosses the plane.
     auto tri_side = [](const FPoint& a, const FPoint& b, const FPoint& c) {
@@ -1270,7 +1127,7 @@ class Cutter {
       const int i = f[k], j = f[(k + 1) % 3];
       if (static_cast<int>(info.sign[i]) * static_cast<int>(info.sign[j]) >= 0) continue;
       const EdgeInfo& e = m_edges[edge_key(t[i], t[j])];
-      if (!e.split) continue;
+      if (!e.inside) continue;
       has_edge[k] = true;
       FPoint& p = fp[static_cast<std::size_t>(3 + k)];
       p.pos = edge_point_id(t[i], t[j], true, p.combo);
@@ -1364,7 +1221,11 @@ class Cutter {
     std::vector<std::array<int, 2>> constraints;
     for (std::size_t k = 0; k + 1 < along.size(); ++k) {
       if (along[k] < 0 || along[k + 1] < 0) continue;
-      constraints.push_back({along[k], along[k + 1]});
+      Combo mid;
+      mid.add(along_combo[k], 0.5);
+      mid.add(along_combo[k + 1], 0.5);
+      if (m_blade.inside_margin(mid.cur(m_mesh)) >= 0.0)
+        constraints.push_back({along[k], along[k + 1]});
     }
     std::vector<V2> uv;
     for (const FPoint& p : pts) uv.push_back(p.uv);
@@ -1381,25 +1242,13 @@ class Cutter {
   void emit() {
     CutStats& st = m_result.stats;
     TopologyDelta& d = m_result.delta;
-    std::vector<std::size_t> order(m_cands.size());  // candidates by ascending tet id
-    for (std::size_t ci = 0; ci < order.size(); ++ci) order[ci] = ci;
-    std::sort(order.begin(), order.end(),
-              [&](std::size_t x, std::size_t y) { return m_cands[x] < m_cands[y]; });
-    for (const std::size_t ci : order) {
+    for (std::size_t ci = 0; ci < m_cands.size(); ++ci) {
       const TetInfo& info = m_tets[ci];
       const std::int32_t ti = m_cands[ci];
       const Tet& t = m_mesh.tets[ti];
       const CaseEntry& c = case_table()[info.code];
       if (info.straddles && !info.complete) {
-        if (plane_split(info)) {
-          ++st.tets_partial;
-          st.tets_pinned += info.pinned ? 1 : 0;
-          d.removed_tets.push_back(ti);
-          emit_plane_split(t, info, m_mesh.group[ti]);
-          continue;
-        }
-        // The blade misses it: left whole unless a neighbour split one of its crossing edges.
-        if (!info.pinned && !has_split_edge(t, info)) continue;
+        if (!info.interacts) continue;  // the blade misses it: left whole
         ++st.tets_partial;
         st.tets_pinned += info.pinned ? 1 : 0;
         d.removed_tets.push_back(ti);
@@ -1418,7 +1267,7 @@ class Cutter {
           cloned = cloned || (info.sign[k] == Sign::kZero && m_weld.find_clone(t[k]));
         }
         if (!flat && needs_cop_split(t, info)) {
-          ++st.tets_partial;
+          ++st.tets_split;
           d.removed_tets.push_back(ti);
           emit_cop_split(t, info, m_mesh.group[ti]);
           continue;
@@ -1462,9 +1311,8 @@ class Cutter {
       m_pfaces;  ///< welded coplanar faces partly under the blade
   std::unordered_map<std::uint64_t, std::vector<CopPoint>> m_cop_edges;  ///< coplanar edges
   std::unordered_map<std::array<std::int32_t, 3>, CopFaceTris, FaceKeyHash>
-      m_cop_faces;                                 ///< triangulations of split coplanar faces
-  std::vector<CopPoint> m_no_points;               ///< always empty
-  std::unordered_set<std::uint64_t> m_keep_edges;  ///< crossed coplanar edges of partial tets
+      m_cop_faces;                    ///< triangulations of split coplanar faces
+  std::vector<CopPoint> m_no_points;  ///< always empty
 };
 
 }  // namespace

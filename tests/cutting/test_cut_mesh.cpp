@@ -336,13 +336,8 @@ namespace serosa::cutting {
 namespace {
 
 // Growth per cut is bounded by the patterns (a complete tet gives at most 6 tets: two prisms of
-// three; a relabelled tet 1) and, for a partial tet, by its triangulations: its section has at
-// most 4 corners, 2 outline crossings per side (8), 4 blade corners and a centroid, n <= 17
-// points, so at most 2n - 5 = 29 triangles, coned from each side (58); each face has at most 3
-// nodes, 2 cut points and 2 crossings, at most 9 triangles (36): 94 in all. Tets split where a
-// clipped coplanar face or edge passes (cut_mesh decide_faces, at most 21) and neighbours coned
-// from their section's centroid (four faces of at most three triangles: 12) stay below that. The
-// numbers are reported: tets created per cut and minimum quality.
+// three; a relabelled tet 1; a partial tet at most 12: four faces of at most three triangles,
+// coned), and the numbers are reported: tets created per cut and minimum quality after it.
 TEST(CutMesh, GrowthIsBoundedAndReported) {
   std::mt19937 rng(17);
   std::normal_distribution<double> g;
@@ -356,7 +351,7 @@ TEST(CutMesh, GrowthIsBoundedAndReported) {
     const testing::Applied a = testing::cut_and_check(m, blade, i % 2 == 1);
     ASSERT_TRUE(a.report.ok) << testing::problems(a.report);
     const CutStats& st = a.result.stats;
-    EXPECT_LE(st.tets_added, 6 * st.tets_split + st.tets_relabelled + 94 * st.tets_partial);
+    EXPECT_LE(st.tets_added, 6 * st.tets_split + st.tets_relabelled + 12 * st.tets_partial);
     max_added = std::max(max_added, st.tets_added - st.tets_removed);
     total_added += st.tets_added - st.tets_removed;
     min_quality = std::min(min_quality, a.report.min_quality);
@@ -378,8 +373,8 @@ namespace {
 
 // Partial cuts open exactly the blade's area: the crack's two sides together cover twice the
 // part of the section the blade covers, whatever the blade's outline does inside the tets
-// (crossing faces without cutting edges, corners inside tets, tips on nodes, two corners in one
-// tet, strips across a tet: every partial tet is split by the plane, the blade's part opened).
+// (crossing faces without cutting edges, corners inside tets, tips on nodes). Pinned tets (a
+// front no single apex sees) stop the crack short; they are counted.
 TEST(CutMesh, PartialCrackCoversExactlyTheBlade) {
   std::mt19937 rng(8);
   std::uniform_real_distribution<double> u(0.3, 3.7);
@@ -426,9 +421,9 @@ TEST(CutMesh, PartialCrackCoversExactlyTheBlade) {
   std::printf("partial blades inside a 4^3 grid: %d opened exactly, %d with pinned tets\n",
               exact_cases, pinned_cases);
   // Blades about a tet wide: many have two corners in one tet or pass through one as a strip
-  // (two fronts); none pins a tet any more.
-  EXPECT_GT(exact_cases, 100);
-  EXPECT_EQ(pinned_cases, 0);
+  // (two fronts), which pins it. Both kinds must occur here, and the exact ones must be many.
+  EXPECT_GT(exact_cases, 20);
+  EXPECT_GT(pinned_cases, 0);
 }
 
 TEST(CutMesh, HalfCoveringBladeOpensExactlyItsPart) {
