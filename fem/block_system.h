@@ -1,7 +1,8 @@
 // The system matrix A of fem/system_matrix.h in 3x3 block storage, for CG (the CSR form stays for
 // CHOLMOD). Same pattern, same storage index space: node a's blocks, one per neighbour b in its
 // sorted neighbour list (pattern.nbr, position k), sit at
-//   9 * nbr.start[a] + 9 k,  row-major (entry (3a+i, 3b+j) at + 3 i + j),
+//   9 * nbr.start[a] + 9 k,  column-major (entry (3a+i, 3b+j) at + i + 3 j: the SpMV takes
+//   rows 0-1 of a column as one SSE2 pair),
 // where the CSR keeps the same 9 * count values as three rows. Against the CSR this
 //  * reads one neighbour id per block in the SpMV (the CSR's col array: one int per entry),
 //  * fills each node's blocks in a small scratch (L1) in double and writes them once (the CSR fill

@@ -121,6 +121,13 @@ TEST(BlockSystem, EqualsCsrFillInDoubleAndRoundsOnlyTheEntriesInFloat) {
   multiply(abs_a, absx, bound);
   multiply_blocks<double>(pat, bd, x, yd);
   multiply_blocks<float>(pat, bf, x, yf);
+  {  // the fused x . Ax equals the product's dot, for both storages
+    std::vector<double> y2(n3);
+    EXPECT_NEAR(multiply_blocks_dot<double>(pat, bd, x, y2), dot(x, yd), 1e-12 * dot(absx, bound));
+    EXPECT_EQ(y2, yd);
+    EXPECT_NEAR(multiply_blocks_dot<float>(pat, bf, x, y2), dot(x, yf), 1e-12 * dot(absx, bound));
+    EXPECT_EQ(y2, yf);
+  }
   for (std::size_t i = 0; i < n3; ++i) {
     EXPECT_NEAR(yd[i], y[i], 1e-12 * bound[i]) << i;
     EXPECT_NEAR(yf[i], y[i], 1e-7 * bound[i]) << i;
