@@ -37,8 +37,8 @@ void fill_blocks(const TetMesh& mesh, const FemElements& el, const SystemPattern
         const std::span<const std::int32_t> incs = p.incident_of(ui);
         for (std::size_t q = 0; q < incs.size(); ++q) {
           const auto inc = static_cast<std::size_t>(incs[q]);
-          if (q + 2 < incs.size()) {  // the fill waits on these scattered per-tet reads
-            const auto tn = static_cast<std::size_t>(incs[q + 2]) / 4;
+          if (q + 4 < incs.size()) {  // the fill waits on these scattered per-tet reads
+            const auto tn = static_cast<std::size_t>(incs[q + 4]) / 4;
             __builtin_prefetch(&p.block[tn]);
             __builtin_prefetch(&rg[4 * tn]);
             __builtin_prefetch(&rg[4 * tn + 3]);
