@@ -27,6 +27,38 @@ void ImplicitIntegrator::rebuild_solver_structure(const TetMesh& mesh) {
   if (m_config.solver.kind == SolverKind::cholmod) m_analyzed = m_cholmod.analyze(m_a);
 }
 
+namespace {
+
+// Capacity beyond the current count that a rebuild leaves in per-tet and per-node arrays, so that
+// the tets and nodes later cuts append (update()) do not reallocate and copy whole arrays (a copy
+// of every per-tet array costs more than the local update itself on 100k+ tets). Reserved but
+// untouched memory costs no page faults.
+constexpr double kCutSpare = 0.5;
+
+template <class T>
+void reserve_spare(std::vector<T>& v, std::size_t count) {
+  v.reserve(count + static_cast<std::size_t>(kCutSpare * static_cast<double>(count)));
+}
+
+}  // namespace
+
+void ImplicitIntegrator::reserve_for_cuts(TetMesh& mesh) {
+  const auto m = static_cast<std::size_t>(mesh.num_tets());
+  const auto n = static_cast<std::size_t>(mesh.num_nodes());
+  reserve_spare(m_el.elements, m);
+  reserve_spare(m_el.node_mass, n);
+  reserve_spare(m_el.node_damping, n);
+  reserve_spare(mesh.mass, n);
+  reserve_spare(m_q, m);
+  reserve_spare(m_q_prev, m);
+  reserve_spare(m_rot, m);
+  reserve_spare(m_scale, m);
+  reserve_spare(m_rg, 4 * m);
+  reserve_spare(m_fe, 4 * m);
+  for (std::vector<double>* v : {&m_rhs, &m_dv, &m_pcg.r, &m_pcg.z, &m_pcg.p, &m_pcg.ap})
+    reserve_spare(*v, 3 * n);
+}
+
 void ImplicitIntegrator::rebuild(TetMesh& mesh) {
   mesh.fill_node_state();
   build_elements(mesh, m_config, m_el);
@@ -37,6 +69,7 @@ void ImplicitIntegrator::rebuild(TetMesh& mesh) {
   m_dv.assign(3 * static_cast<std::size_t>(mesh.num_nodes()), 0.0);
   m_rot.assign(static_cast<std::size_t>(mesh.num_tets()), Mat3::Identity());
   rebuild_solver_structure(mesh);
+  reserve_for_cuts(mesh);
   m_built = true;
   m_energy_pending = false;
 }

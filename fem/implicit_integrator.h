@@ -112,6 +112,7 @@ class ImplicitIntegrator {
 
  private:
   void rebuild_solver_structure(const TetMesh& mesh);
+  void reserve_for_cuts(TetMesh& mesh);
   void update_plasticity(const TetMesh& mesh, double dt_s);
 
   const FemConfig m_config;
