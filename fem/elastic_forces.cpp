@@ -30,32 +30,38 @@ void element_forces(const TetElement& e, const Mat3& r, const Tet& tet, std::spa
                     std::span<const Vec3> v, double k_v, std::span<Vec3, 4> out,
                     const Mat3* plastic) {
   const Mat3 f = nodal_gradient(e, x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]]);
-  Mat3 g = r.transpose() * f - Mat3::Identity();
-  if (k_v != 0.0)
-    g += k_v * (r.transpose() * nodal_gradient(e, v[tet[0]], v[tet[1]], v[tet[2]], v[tet[3]]));
-  Mat3 eps = 0.5 * (g + g.transpose());
-  if (plastic != nullptr) eps -= *plastic;
-  // P = -V R sigma: f_a = P b_a
-  const Mat3 p = -e.volume_m3 * (r * linear_stress(e, eps));
-  for (std::size_t a = 0; a < 4; ++a) out[a] = p * e.grad[a];
+  const Mat3 fv = k_v != 0.0 ? nodal_gradient(e, v[tet[0]], v[tet[1]], v[tet[2]], v[tet[3]])
+                             : Mat3::Zero().eval();
+  (void)element_forces_energy(e, r, f, fv, k_v, out, plastic);
 }
 
-double corotated_energy(const TetElement& e, const Mat3& r, const Mat3& f, const Mat3* plastic) {
-  const Mat3 g = r.transpose() * f;
+namespace {
+
+// eps = sym(G) - I (- eps_p), G = R^T F.
+Mat3 corotated_strain(const Mat3& g, const Mat3* plastic) {
   Mat3 eps = 0.5 * (g + g.transpose()) - Mat3::Identity();
   if (plastic != nullptr) eps -= *plastic;
+  return eps;
+}
+
+// V (mu eps:eps + lambda/2 tr(eps)^2), J.
+double strain_energy(const TetElement& e, const Mat3& eps) {
   const double tr = eps.trace();
   return e.volume_m3 * (e.mu_pa * eps.squaredNorm() + 0.5 * e.lambda_pa * tr * tr);
 }
 
+}  // namespace
+
+double corotated_energy(const TetElement& e, const Mat3& r, const Mat3& f, const Mat3* plastic) {
+  return strain_energy(e, corotated_strain(r.transpose() * f, plastic));
+}
+
 double element_forces_energy(const TetElement& e, const Mat3& r, const Mat3& f, const Mat3& fv,
                              double k_v, std::span<Vec3, 4> out, const Mat3* plastic) {
+  // P = -V R sigma(eps + k_v sym(R^T F_v)): f_a = P b_a; the energy is of eps alone.
   const Mat3 rt = r.transpose();
-  const Mat3 g = rt * f;
-  Mat3 eps = 0.5 * (g + g.transpose()) - Mat3::Identity();
-  if (plastic != nullptr) eps -= *plastic;
-  const double tr = eps.trace();
-  const double energy = e.volume_m3 * (e.mu_pa * eps.squaredNorm() + 0.5 * e.lambda_pa * tr * tr);
+  Mat3 eps = corotated_strain(rt * f, plastic);
+  const double energy = strain_energy(e, eps);
   if (k_v != 0.0) {
     const Mat3 gv = rt * fv;
     eps += (0.5 * k_v) * (gv + gv.transpose());
