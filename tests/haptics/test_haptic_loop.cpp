@@ -418,9 +418,12 @@ TEST(HapticLoopThread, StallGivesZeroThenResumesWithoutReplay) {
   // The stall happened inside tick `after - 1` (poll slept): the next tick is the gap tick.
   EXPECT_FALSE(dev.record(after).cmd.enable);
   EXPECT_EQ(force_norm(dev.record(after).cmd), 0.0);
-  // No burst of replayed ticks: the next few commands are spaced about one period apart.
+  // No burst of replayed ticks: the next few commands are spaced about one period apart. A
+  // replayed tick would follow within microseconds; an on-time tick after a late one can come
+  // ~0.5 ms after it (wake-up jitter, seen at 0.47 ms under ASan on a busy 2-core VM), so the
+  // bound is a fifth of the period.
   for (std::size_t i = after + 1; i < std::min(after + 4, dev.count()); ++i) {
-    EXPECT_GT(dev.record(i).time_s - dev.record(i - 1).time_s, 0.5e-3);
+    EXPECT_GT(dev.record(i).time_s - dev.record(i - 1).time_s, 0.2e-3);
   }
 }
 
