@@ -5,6 +5,8 @@
 #include <type_traits>
 #include <vector>
 
+#include <omp.h>
+
 #include "fem/parallel.h"
 
 namespace serosa::fem {
@@ -14,11 +16,20 @@ std::size_t block_storage(const SystemPattern& p) { return 9 * p.nbr.data.size()
 template <class T>
 void fill_blocks(const TetMesh& mesh, const FemElements& el, const SystemPattern& p,
                  std::span<const Vec3> rg, std::span<const TetScale> scale, double dt_s,
-                 std::span<T> blocks) {
+                 std::span<T> blocks, std::vector<double>& scratch) {
   T* out = blocks.data();
+  // One slice of the scratch per thread, for one node's blocks (9 per neighbour, summed in
+  // double): sized here, so it allocates only when the pattern's widest row or the thread count
+  // grows, never in a steady step.
+  std::int32_t widest = 0;
+  for (std::int32_t i = 0; i < p.nodes; ++i)
+    widest = std::max(widest, p.nbr.count[static_cast<std::size_t>(i)]);
+  const auto slice = static_cast<std::size_t>(9 * widest);
+  const auto threads = static_cast<std::size_t>(omp_get_max_threads());
+  if (scratch.size() < threads * slice) scratch.resize(threads * slice);
 #pragma omp parallel if (p.nodes >= kParallelMin)
   {
-    std::vector<double> s;  // node's blocks, 9 per neighbour, summed in double
+    double* s = scratch.data() + slice * static_cast<std::size_t>(omp_get_thread_num());
 #pragma omp for schedule(static)
     for (std::int32_t i = 0; i < p.nodes; ++i) {
       const auto ui = static_cast<std::size_t>(i);
@@ -26,7 +37,7 @@ void fill_blocks(const TetMesh& mesh, const FemElements& el, const SystemPattern
       const auto len = static_cast<std::size_t>(9 * p.nbr.count[ui]);
       // Diagonal block's offset in the node's storage: 9 * (index of i in its neighbour list).
       const auto self = static_cast<std::size_t>(3 * (p.diag_start[ui] - base));
-      s.assign(len, 0.0);
+      std::fill(s, s + len, 0.0);
       if (node_constrained(mesh, el, ui)) {
         const double diag = el.node_mass[ui] > 0.0 ? el.node_mass[ui] : 1.0;
         s[self] = s[self + 4] = s[self + 8] = diag;
@@ -73,7 +84,7 @@ void fill_blocks(const TetMesh& mesh, const FemElements& el, const SystemPattern
           }
           for (std::size_t cb = 0; cb < 4; ++cb) {
             if (!live[cb]) continue;
-            double* blk = s.data() + 3 * static_cast<std::size_t>(p.block[t][4 * ca + cb] - base);
+            double* blk = s + 3 * static_cast<std::size_t>(p.block[t][4 * ca + cb] - base);
             for (int k = 0; k < 9; ++k) blk[k] += e[k][cb];
           }
         }
@@ -145,12 +156,6 @@ double multiply_blocks_dot(const SystemPattern& p, std::span<const T> blocks,
 }
 
 template <class T>
-void multiply_blocks(const SystemPattern& p, std::span<const T> blocks, std::span<const double> x,
-                     std::span<double> y) {
-  (void)multiply_blocks_dot(p, blocks, x, y);
-}
-
-template <class T>
 void blocks_inverse_diagonal(const SystemPattern& p, std::span<const T> blocks,
                              std::span<double> inv_diag) {
 #pragma omp parallel for schedule(static) if (p.nodes >= kParallelMin)
@@ -181,14 +186,10 @@ void blocks_to_csr(const SystemPattern& p, std::span<const T> blocks, CsrMatrix&
 
 template void fill_blocks<double>(const TetMesh&, const FemElements&, const SystemPattern&,
                                   std::span<const Vec3>, std::span<const TetScale>, double,
-                                  std::span<double>);
+                                  std::span<double>, std::vector<double>&);
 template void fill_blocks<float>(const TetMesh&, const FemElements&, const SystemPattern&,
                                  std::span<const Vec3>, std::span<const TetScale>, double,
-                                 std::span<float>);
-template void multiply_blocks<double>(const SystemPattern&, std::span<const double>,
-                                      std::span<const double>, std::span<double>);
-template void multiply_blocks<float>(const SystemPattern&, std::span<const float>,
-                                     std::span<const double>, std::span<double>);
+                                 std::span<float>, std::vector<double>&);
 template double multiply_blocks_dot<double>(const SystemPattern&, std::span<const double>,
                                             std::span<const double>, std::span<double>);
 template double multiply_blocks_dot<float>(const SystemPattern&, std::span<const float>,

@@ -16,6 +16,7 @@
 
 #include <array>
 #include <span>
+#include <vector>
 
 #include "engine/tet_mesh.h"
 #include "fem/csr_matrix.h"
@@ -41,19 +42,16 @@ using TetScale = std::array<double, 2>;
 
 /// Fills the blocks (block_storage() values; gaps left untouched) of
 /// A = M + dt C + dt^2 K_R from the rotated gradients rg (4m, rotated_gradients()) and the tet
-/// scales (m, tet_scale() with the same dt_s).
+/// scales (m, tet_scale() with the same dt_s). scratch: the caller's, kept between calls (one
+/// node's row per thread; grown only when the pattern's widest row grows).
 template <class T>
 void fill_blocks(const TetMesh& mesh, const FemElements& el, const SystemPattern& pattern,
                  std::span<const Vec3> rg, std::span<const TetScale> scale, double dt_s,
-                 std::span<T> blocks);
+                 std::span<T> blocks, std::vector<double>& scratch);
 
-/// y = A x (x, y: (3n), distinct), accumulated in double. Parallel over nodes.
-template <class T>
-void multiply_blocks(const SystemPattern& pattern, std::span<const T> blocks,
-                     std::span<const double> x, std::span<double> y);
-
-/// multiply_blocks() that also returns x . y, summed over fixed node chunks (fem/parallel.h
-/// chunked: the same bits for any thread count), in the same pass: CG's p . Ap (fem/pcg.h).
+/// y = A x (x, y: (3n), distinct), accumulated in double, parallel over nodes; returns x . y,
+/// summed over fixed node chunks (fem/parallel.h chunked: the same bits for any thread count) in
+/// the same pass: CG's p . Ap (fem/pcg.h).
 template <class T>
 [[nodiscard]] double multiply_blocks_dot(const SystemPattern& pattern, std::span<const T> blocks,
                                          std::span<const double> x, std::span<double> y);

@@ -249,13 +249,13 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
     };
   } else if (m_config.solver.float_matrix) {  // CG: 3x3 blocks (fem/block_system.h)
     m_blocks_f.resize(block_storage(m_pattern));
-    fill_blocks<float>(mesh, m_el, m_pattern, m_rg, m_scale, dt_s, m_blocks_f);
+    fill_blocks<float>(mesh, m_el, m_pattern, m_rg, m_scale, dt_s, m_blocks_f, m_fill_scratch);
     apply_a_dot = [this](std::span<const double> x, std::span<double> y) {
       return multiply_blocks_dot<float>(m_pattern, m_blocks_f, x, y);
     };
   } else {
     m_blocks_d.resize(block_storage(m_pattern));
-    fill_blocks<double>(mesh, m_el, m_pattern, m_rg, m_scale, dt_s, m_blocks_d);
+    fill_blocks<double>(mesh, m_el, m_pattern, m_rg, m_scale, dt_s, m_blocks_d, m_fill_scratch);
     apply_a_dot = [this](std::span<const double> x, std::span<double> y) {
       return multiply_blocks_dot<double>(m_pattern, m_blocks_d, x, y);
     };

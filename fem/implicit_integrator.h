@@ -118,19 +118,20 @@ class ImplicitIntegrator {
   const FemConfig m_config;
   FemElements m_el;
   SystemPattern m_pattern;
-  CsrMatrix m_a;                   // (3n x 3n) system matrix (CHOLMOD; pattern for all)
-  std::vector<double> m_blocks_d;  // A in 3x3 blocks for CG (fem/block_system.h), double
-  std::vector<float> m_blocks_f;   // the same in float (solver.float_matrix)
-  std::vector<TetScale> m_scale;   // (m) per-tet stiffness scales of the fill, this step
-  std::vector<Quat> m_q;           // (m) per-tet rotation, warm start of the next step
-  std::vector<Quat> m_q_prev;      // (m) the rotation a step before, for the extrapolated start
-  std::vector<Mat3> m_rot;         // (m) R_e of the current step
-  std::vector<Vec3> m_rg;          // (4m) rotated gradients R_e b_a of the current step, 1/m
-  std::vector<Mat3> m_plastic;     // (m) plastic strain eps_p (plasticity on), 1
-  SystemOperator m_op;             // matrix-free system (solver.matrix_free)
-  std::vector<Vec3> m_fe;          // (4m) per-tet corner forces of the right-hand side, N
-  std::vector<double> m_rhs;       // (3n) b = dt (...), N s
-  std::vector<double> m_dv;        // (3n) velocity change, m/s (CG warm start)
+  CsrMatrix m_a;                       // (3n x 3n) system matrix (CHOLMOD; pattern for all)
+  std::vector<double> m_blocks_d;      // A in 3x3 blocks for CG (fem/block_system.h), double
+  std::vector<float> m_blocks_f;       // the same in float (solver.float_matrix)
+  std::vector<double> m_fill_scratch;  // fill_blocks' per-thread row sums (no step allocates)
+  std::vector<TetScale> m_scale;       // (m) per-tet stiffness scales of the fill, this step
+  std::vector<Quat> m_q;               // (m) per-tet rotation, warm start of the next step
+  std::vector<Quat> m_q_prev;          // (m) the rotation a step before, for the extrapolated start
+  std::vector<Mat3> m_rot;             // (m) R_e of the current step
+  std::vector<Vec3> m_rg;              // (4m) rotated gradients R_e b_a of the current step, 1/m
+  std::vector<Mat3> m_plastic;         // (m) plastic strain eps_p (plasticity on), 1
+  SystemOperator m_op;                 // matrix-free system (solver.matrix_free)
+  std::vector<Vec3> m_fe;              // (4m) per-tet corner forces of the right-hand side, N
+  std::vector<double> m_rhs;           // (3n) b = dt (...), N s
+  std::vector<double> m_dv;            // (3n) velocity change, m/s (CG warm start)
   PcgScratch m_pcg;
   CholmodSolver m_cholmod;  // cholmod: factor of A
   bool m_analyzed = false;
