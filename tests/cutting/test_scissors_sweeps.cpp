@@ -1,9 +1,13 @@
-// A scissors closing over a beam as many small per-step sweeps (issue 3, partial cuts): each
-// step's polygon is a thin triangle from the hinge sharing its trailing edge with the previous
-// step's leading edge, so every step cuts the mesh the previous steps made, along their crack
-// front. The crack stops where the blade ends, but tets the blade has crossed open: at the end
-// the beam is in two pieces, one on each side, with volume conserved, and every intermediate
-// mesh passes the invariant checker.
+// A scissors closing over a beam in many small steps (issue 3, partial cuts). Two ways to cut it:
+//  - step by step: each step's polygon is the thin triangle from the hinge it swept in that step,
+//    sharing its trailing edge with the previous step's leading edge, so every step cuts the mesh
+//    the previous steps made along their crack front;
+//  - swept so far: each step's polygon is the whole sector the blade has swept since the stroke
+//    began (hinge plus the arc of the tip), cut into the mesh the previous steps made. This is the
+//    region app::CuttingStage cuts for a stationary stroke (there once, when the jaws stop).
+// The crack stops where the blade ends, but tets the blade has crossed open: at the end the beam
+// is in two pieces, one on each side, with volume conserved, and every intermediate mesh passes
+// the invariant checker.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,6 +23,8 @@ namespace {
 
 using testing::problems;
 
+enum class Polygon { kStep, kSweptSoFar };
+
 struct SweepRun {
   TetMesh mesh;
   int steps_done = 0;
@@ -27,16 +33,22 @@ struct SweepRun {
 };
 
 // A scissors blade hinged at `hinge`, rotating in the plane through it with unit normal n (in-
-// plane axes e1, e2) from angle a0 to a1 (rad) in `steps` steps; each step's polygon is the
-// triangle (hinge, tip before, tip after), cut and checked in turn.
+// plane axes e1, e2) from angle a0 to a1 (rad) in `steps` steps; each step's polygon (the
+// triangle (hinge, tip before, tip after), or the hinge and the tip's positions from the first
+// to this step) is cut and checked in turn.
 SweepRun scissors(const TetMesh& beam, const Vec3& hinge, const Vec3& n, double length, double a0,
-                  double a1, int steps) {
+                  double a1, int steps, Polygon kind = Polygon::kStep) {
   SweepRun run{beam, 0, 0, {}};
   const Vec3 a = n.unitOrthogonal(), b = n.cross(a);
   auto tip = [&](double t) -> Vec3 { return hinge + length * (std::cos(t) * a + std::sin(t) * b); };
   for (int k = 0; k < steps; ++k) {
     const double s0 = a0 + (a1 - a0) * k / steps, s1 = a0 + (a1 - a0) * (k + 1) / steps;
-    auto blade = ConvexPolygon::make({hinge, tip(s0), tip(s1)});
+    std::vector<Vec3> corners{hinge, tip(s0), tip(s1)};
+    if (kind == Polygon::kSweptSoFar) {
+      corners.resize(1);
+      for (int j = 0; j <= k + 1; ++j) corners.push_back(tip(a0 + (a1 - a0) * j / steps));
+    }
+    auto blade = ConvexPolygon::make(corners);
     if (!blade) continue;
     const CutResult r = cut_mesh(run.mesh, *blade);
     TetMesh after = run.mesh;
@@ -118,15 +130,18 @@ TEST(ScissorsSweeps, SmallStepsCutABeamThrough) {
       {&jittered, Vec3(4.0 * h, -h, h), Vec3::UnitX(), "jittered beam, x = 4h"},
   };
   for (const Case& c : cases)
-    for (int steps : {2, 4, 20}) {
-      if (c.mesh == &beam && c.n != Vec3::UnitX() && steps == 20) continue;  // below (DISABLED)
-      const SweepRun run = scissors(*c.mesh, c.hinge, c.n, 5.0 * h, a0, a1, steps);
-      const std::string what = std::string(c.name) + ", " + std::to_string(steps) + " steps";
-      std::printf("scissors %s: %d tets, pinned %lld, pieces %d\n", what.c_str(),
-                  run.mesh.num_tets(), static_cast<long long>(run.pinned),
-                  count_components(run.mesh));
-      expect_cut_through(*c.mesh, run, c.n, c.hinge, 1e-9 * h, what);
-    }
+    for (int steps : {2, 4, 20})
+      for (Polygon kind : {Polygon::kStep, Polygon::kSweptSoFar}) {
+        const bool step = kind == Polygon::kStep;
+        if (step && c.mesh == &beam && c.n != Vec3::UnitX() && steps == 20) continue;  // below
+        const SweepRun run = scissors(*c.mesh, c.hinge, c.n, 5.0 * h, a0, a1, steps, kind);
+        const std::string what = std::string(c.name) + ", " + std::to_string(steps) + " steps" +
+                                 (step ? ", step by step" : ", swept so far");
+        std::printf("scissors %s: %d tets, pinned %lld, pieces %d\n", what.c_str(),
+                    run.mesh.num_tets(), static_cast<long long>(run.pinned),
+                    count_components(run.mesh));
+        expect_cut_through(*c.mesh, run, c.n, c.hinge, 1e-9 * h, what);
+      }
 }
 
 // In a plane of grid faces (x = 4h) every node on the plane has coplanar faces wider than a
@@ -147,17 +162,24 @@ TEST(ScissorsSweeps, SmallStepsCutABeamThroughAlongGridFaces) {
   }
 }
 
-// DISABLED: fails today. The tilted plane in 20 steps pins 20 tets over steps 9-12 and stays in
-// one piece: tets whose section a step's triangle only touches (fewer than 3 corners of the
-// blade's part: "area" pins), crosses as a strip (two fronts) or crosses along a coplanar edge
-// are split fully welded, and the welded pieces then block the crack in the next steps.
-TEST(ScissorsSweeps, DISABLED_SmallStepsCutABeamThroughTilted20Steps) {
+// The known limit of cutting step by step, off the grid planes: the tilted plane in 20 thin steps
+// pins tets over steps 9-12, tets whose section a step's triangle only grazes (S has no area),
+// crosses as a strip (two fronts no single apex sees) or crosses along a coplanar edge. A pinned
+// tet is split with every node welded, and no later thin step covers it again, so the beam stays
+// in one piece. Every intermediate mesh still passes the invariant checker (asserted here); the
+// pieces are reported, not asserted. Cut with the sector swept so far (the test above), the next
+// step covers the pinned tets and opens them, and the beam falls in two.
+TEST(ScissorsSweeps, SmallStepsTiltedIn20ThinStepsKeepEveryInvariant) {
   const double h = 0.01;
   const TetMesh beam = fixtures::box(8, 2, 2, 1, h);
   const double a0 = 80.0 * 3.141592653589793 / 180.0, a1 = -a0;
   const Vec3 hinge(4.5 * h, -h, h), n = Vec3(1.0, 0.15, -0.1).normalized();
-  const SweepRun run = scissors(beam, hinge, n, 5.0 * h, a0, a1, 20);
-  expect_cut_through(beam, run, n, hinge, 1e-9 * h, "tilted, 20 steps");
+  const SweepRun run = scissors(beam, hinge, n, 5.0 * h, a0, a1, 20, Polygon::kStep);
+  ASSERT_TRUE(run.failure.empty()) << run.failure;
+  EXPECT_EQ(run.steps_done, 20);
+  EXPECT_GT(run.pinned, 0);  // the limit described above; if this fails, it is gone: update
+  std::printf("scissors tilted, 20 thin steps: %d tets, pinned %lld, pieces %d\n",
+              run.mesh.num_tets(), static_cast<long long>(run.pinned), count_components(run.mesh));
 }
 
 }  // namespace
