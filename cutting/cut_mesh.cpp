@@ -74,6 +74,17 @@
 //    scissors closing in steps thinner than the grid's faces opens the crack step by step.
 // 6. Output: the touched tets (cut, or one-sided tets that take a clone) are removed, their
 //    pieces added with the same group, each piece oriented positively by its rest volume.
+// 7. Second pass (CutOptions::reopen_pinned, off by default). A pinned tet whose S has area is
+//    coned (still welded) from S's centre c instead of its own centroid: c lies on the plane,
+//    strictly inside the blade, so every piece has c as a coplanar node inside the blade and a
+//    section that is a triangle from c (one front at most) or a fan face (c, p, q) in the plane.
+//    The tets whose boxes meet the grown blade box are then rebuilt as a small local mesh after
+//    the first delta and cut again by the same blade with the same tolerance: c is cloned, the
+//    fan faces are clipped along the outline, the straddling pieces are cut as partial tets with
+//    one front, and what the first pass already opened is left alone. The two deltas are composed
+//    into one against the input mesh (new nodes' parents flattened to its nodes; every point of a
+//    pinned tet is a combination of its four). Where the composition is impossible (more than
+//    four parents, or an unused node) the first pass's delta is kept and second_pass_failed set.
 #include "cutting/cut_mesh.h"
 
 #include <algorithm>
@@ -156,6 +167,8 @@ struct TetInfo {
   bool pinned = false;     ///< partial, but the crack cannot stop inside it: split welded
   bool interacts = false;  ///< partial: the blade meets its section (else left whole)
   Combo apex;              ///< partial, not pinned: the cone apex on the crack's front
+  Combo centre;            ///< pinned with has_centre: a point strictly inside S, on the plane
+  bool has_centre = false;
 };
 
 void tet_box(const TetMesh& m, const Tet& t, Vec3& lo, Vec3& hi) {
@@ -195,9 +208,16 @@ struct SecVert {
 // Everything one cut needs while it builds the delta.
 class Cutter {
  public:
+  // fixed_tol > 0: classify with this tolerance (m) instead of one from the local edge length
+  // (the second pass uses the first's).
   Cutter(const TetMesh& mesh, const ConvexPolygon& blade, const CutOptions& options,
-         const TetBoxQuery& query)
-      : m_mesh(mesh), m_blade(blade), m_options(options), m_query(query), m_weld(mesh.num_nodes()) {
+         const TetBoxQuery& query, double fixed_tol = 0.0)
+      : m_mesh(mesh),
+        m_blade(blade),
+        m_options(options),
+        m_query(query),
+        m_weld(mesh.num_nodes()),
+        m_fixed_tol(fixed_tol) {
     for (const Vec3& p : blade.points()) m_blade2.push_back(blade.to_plane(p));
   }
 
@@ -224,7 +244,7 @@ class Cutter {
       for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j) h = std::max(h, (m_mesh.x[t[i]] - m_mesh.x[t[j]]).norm());
     }
-    m_tol = m_options.classify_rel * h;
+    m_tol = m_fixed_tol > 0.0 ? m_fixed_tol : m_options.classify_rel * h;
     m_result.stats.tolerance_m = m_tol;
     const Vec3 grow = Vec3::Constant(2.0 * m_tol);
     m_query(m_blade.box_min() - grow, m_blade.box_max() + grow, m_cands);
@@ -917,6 +937,31 @@ class Cutter {
     return fp.id;
   }
 
+  // S's centre (the mean of its corners, which lies strictly inside S when S has area) if it lies
+  // inside the blade by more than tol: a pinned tet is coned from it.
+  template <class SPointVec>
+  void find_centre(const SPointVec& sp, double diam, TetInfo& info) const {
+    info.has_centre = false;
+    if (sp.size() < 3) return;
+    V2 c = V2::Zero();
+    for (const auto& p : sp) c += p.p2;
+    c /= static_cast<double>(sp.size());
+    std::vector<V2> ring;
+    for (const auto& p : sp) ring.push_back(p.p2);
+    std::sort(ring.begin(), ring.end(), [&](const V2& a, const V2& b) {
+      return std::atan2(a.y() - c.y(), a.x() - c.x()) < std::atan2(b.y() - c.y(), b.x() - c.x());
+    });
+    double area = 0.0;
+    for (std::size_t k = 0; k < ring.size(); ++k)
+      area += area2d(c, ring[k], ring[(k + 1) % ring.size()]);
+    if (!(area > m_tol * diam)) return;
+    Combo centre;
+    for (const auto& p : sp) centre.add(p.combo, 1.0 / static_cast<double>(sp.size()));
+    if (!(m_blade.inside_margin(centre.cur(m_mesh)) > m_tol)) return;
+    info.centre = centre;
+    info.has_centre = true;
+  }
+
   // A straddling tet that is not complete: finds the face points on its faces, whether the
   // blade meets it at all, and where the crack's front runs inside it: S = section ∩ blade is
   // opened by coning every piece from one apex on the front (the midpoint of a single chord, or
@@ -965,6 +1010,7 @@ class Cutter {
       }
       if (margin > m_tol) sp.push_back({m_blade2[k], barycentric(t, m_blade.points()[k]), false});
     }
+    find_centre(sp, diam, info);
     if (info.pinned || !info.interacts) return;
     // S's corners counter-clockwise; its sides on the section's boundary ("runs") or across it
     // (the front).
@@ -1038,7 +1084,9 @@ class Cutter {
   // A partial (or pinned) tet: every face triangulated by the face rule, coned from the apex.
   void emit_partial(const Tet& t, const TetInfo& info, std::uint16_t g) {
     Combo apex = info.apex;
-    if (info.pinned) {
+    if (info.pinned && info.has_centre && m_options.reopen_pinned) {
+      apex = info.centre;
+    } else if (info.pinned) {
       apex = Combo{};
       for (int k = 0; k < 4; ++k) apex.add(t[k], 0.25);
     }
@@ -1251,6 +1299,7 @@ class Cutter {
         if (!info.interacts) continue;  // the blade misses it: left whole
         ++st.tets_partial;
         st.tets_pinned += info.pinned ? 1 : 0;
+        st.pinned_centred += info.pinned && info.has_centre && m_options.reopen_pinned ? 1 : 0;
         d.removed_tets.push_back(ti);
         emit_partial(t, info, m_mesh.group[ti]);
         continue;
@@ -1296,6 +1345,7 @@ class Cutter {
   WeldMap m_weld;
   CutResult m_result;
   double m_tol = 0.0;
+  double m_fixed_tol = 0.0;
   std::vector<V2> m_blade2;           ///< the blade's corners in plane coordinates, m
   std::vector<std::int32_t> m_cands;  ///< candidate tet ids, ascending
   std::vector<TetInfo> m_tets;        ///< per candidate
@@ -1327,10 +1377,173 @@ TetBoxQuery brute_force_query(const TetMesh& mesh) {
   };
 }
 
+namespace {
+
+// The second pass (design note, point 7): the first pass's result is rebuilt locally (the tets
+// whose boxes meet the grown blade box, after the first delta), cut again by the same blade with
+// the same tolerance, and the two deltas are composed into one against `mesh`. Returns false
+// (and leaves `first` as it was) when the composition is not possible: a new node whose parents,
+// flattened to nodes of `mesh`, are more than four, or a node of the first pass no tet uses.
+bool second_pass(const TetMesh& mesh, const ConvexPolygon& blade, const CutOptions& options,
+                 const TetBoxQuery& query, CutResult& first) {
+  const TopologyDelta& d1 = first.delta;
+  const double tol = first.stats.tolerance_m;
+  const std::int32_t n_old = mesh.num_nodes();
+  const auto n1 = static_cast<std::int32_t>(d1.added_nodes.size());
+  // Local mesh: original candidates the first pass kept, then the first pass's pieces.
+  std::vector<std::int32_t> cands;
+  const Vec3 grow = Vec3::Constant(2.0 * tol);
+  query(blade.box_min() - grow, blade.box_max() + grow, cands);
+  std::sort(cands.begin(), cands.end());
+  cands.erase(std::unique(cands.begin(), cands.end()), cands.end());
+  TetMesh local;
+  std::vector<std::int32_t> global_of;                 // local node -> global id (new: n_old + k)
+  std::unordered_map<std::int32_t, std::int32_t> lid;  // global id -> local node
+  auto local_node = [&](std::int32_t g) {
+    auto [it, fresh] = lid.try_emplace(g, static_cast<std::int32_t>(global_of.size()));
+    if (fresh) {
+      global_of.push_back(g);
+      Vec3 r = Vec3::Zero(), x = Vec3::Zero();
+      if (g < n_old) {
+        r = mesh.rest[static_cast<std::size_t>(g)];
+        x = mesh.x[static_cast<std::size_t>(g)];
+      } else {
+        const NodeParent& p = d1.added_nodes[static_cast<std::size_t>(g - n_old)];
+        for (int k = 0; k < p.count; ++k) {
+          r += p.weights[k] * mesh.rest[static_cast<std::size_t>(p.nodes[k])];
+          x += p.weights[k] * mesh.x[static_cast<std::size_t>(p.nodes[k])];
+        }
+      }
+      local.rest.push_back(r);
+      local.x.push_back(x);
+    }
+    return it->second;
+  };
+  std::vector<std::int32_t> origin;  // local tet -> global old tet id, or -1 - (added index)
+  auto add_local = [&](const Tet& t, std::uint16_t g, std::int32_t o) {
+    local.tets.push_back({local_node(t[0]), local_node(t[1]), local_node(t[2]), local_node(t[3])});
+    local.group.push_back(g);
+    origin.push_back(o);
+  };
+  for (std::int32_t ti : cands)
+    if (!std::binary_search(d1.removed_tets.begin(), d1.removed_tets.end(), ti))
+      add_local(mesh.tets[static_cast<std::size_t>(ti)], mesh.group[static_cast<std::size_t>(ti)],
+                ti);
+  for (std::size_t k = 0; k < d1.added_tets.size(); ++k)
+    add_local(d1.added_tets[k], d1.added_groups[k], -1 - static_cast<std::int32_t>(k));
+  local.fill_node_state();
+  const std::int32_t n_local = local.num_nodes();
+  const CutResult second = Cutter(local, blade, options, brute_force_query(local), tol).run();
+  const TopologyDelta& d2 = second.delta;
+  if (d2.empty()) return true;
+  // Compose.
+  TopologyDelta out;
+  out.removed_tets = d1.removed_tets;
+  std::vector<char> dropped(d1.added_tets.size(), 0);
+  std::int64_t originals = 0;
+  for (std::int32_t lt : d2.removed_tets) {
+    const std::int32_t o = origin[static_cast<std::size_t>(lt)];
+    if (o >= 0) {
+      out.removed_tets.push_back(o);
+      ++originals;
+    } else {
+      dropped[static_cast<std::size_t>(-1 - o)] = 1;
+    }
+  }
+  std::sort(out.removed_tets.begin(), out.removed_tets.end());
+  auto global_node = [&](std::int32_t l) {
+    return l < n_local ? global_of[static_cast<std::size_t>(l)] : n_old + n1 + (l - n_local);
+  };
+  for (std::size_t k = 0; k < d1.added_tets.size(); ++k)
+    if (!dropped[k]) {
+      out.added_tets.push_back(d1.added_tets[k]);
+      out.added_groups.push_back(d1.added_groups[k]);
+    }
+  for (std::size_t k = 0; k < d2.added_tets.size(); ++k) {
+    const Tet& t = d2.added_tets[k];
+    out.added_tets.push_back(
+        {global_node(t[0]), global_node(t[1]), global_node(t[2]), global_node(t[3])});
+    out.added_groups.push_back(d2.added_groups[k]);
+  }
+  out.added_nodes = d1.added_nodes;
+  for (const NodeParent& p : d2.added_nodes) {
+    std::array<std::int32_t, 8> ids{};
+    std::array<double, 8> w{};
+    int count = 0;
+    auto add = [&](std::int32_t id, double weight) {
+      for (int k = 0; k < count; ++k)
+        if (ids[static_cast<std::size_t>(k)] == id) {
+          w[static_cast<std::size_t>(k)] += weight;
+          return true;
+        }
+      if (count == 8) return false;
+      ids[static_cast<std::size_t>(count)] = id;
+      w[static_cast<std::size_t>(count++)] = weight;
+      return true;
+    };
+    bool ok = true;
+    for (int k = 0; k < p.count && ok; ++k) {
+      const std::int32_t g = global_of[static_cast<std::size_t>(p.nodes[k])];
+      if (g < n_old) {
+        ok = add(g, p.weights[k]);
+        continue;
+      }
+      const NodeParent& q = d1.added_nodes[static_cast<std::size_t>(g - n_old)];
+      for (int l = 0; l < q.count && ok; ++l) ok = add(q.nodes[l], p.weights[k] * q.weights[l]);
+    }
+    // Parents with (rounding-)zero weight are dropped; more than four left cannot be stored.
+    NodeParent f;
+    double sum = 0.0;
+    for (int k = 0; k < count && ok; ++k) {
+      if (std::abs(w[static_cast<std::size_t>(k)]) <= 1e-15) continue;
+      if (f.count == 4) ok = false;
+      if (!ok) break;
+      f.nodes[f.count] = ids[static_cast<std::size_t>(k)];
+      f.weights[f.count] = w[static_cast<std::size_t>(k)];
+      sum += f.weights[f.count];
+      ++f.count;
+    }
+    if (!ok || f.count == 0) return false;
+    for (int k = 0; k < f.count; ++k) f.weights[k] /= sum;
+    out.added_nodes.push_back(f);
+  }
+  // Every new node is used.
+  std::vector<char> used(out.added_nodes.size(), 0);
+  for (const Tet& t : out.added_tets)
+    for (std::int32_t v : t)
+      if (v >= n_old) used[static_cast<std::size_t>(v - n_old)] = 1;
+  if (std::find(used.begin(), used.end(), 0) != used.end()) return false;
+  CutStats st = first.stats;
+  const CutStats& s2 = second.stats;
+  st.second_pass_tets = s2.tets_removed;
+  st.second_pass_originals = originals;
+  st.tets_pinned = s2.tets_pinned;
+  st.pinned_centred = s2.pinned_centred;
+  st.degenerate_tets += s2.degenerate_tets;
+  st.edge_pairs += s2.edge_pairs;
+  st.edge_singles += s2.edge_singles;
+  st.clones += s2.clones;
+  st.clones_on_outline += s2.clones_on_outline;
+  st.steiner_points += s2.steiner_points;
+  st.face_points += s2.face_points;
+  st.tets_removed = static_cast<std::int64_t>(out.removed_tets.size());
+  st.tets_added = static_cast<std::int64_t>(out.added_tets.size());
+  st.nodes_added = static_cast<std::int64_t>(out.added_nodes.size());
+  first.delta = std::move(out);
+  first.stats = st;
+  return true;
+}
+
+}  // namespace
+
 CutResult cut_mesh(const TetMesh& mesh, const ConvexPolygon& blade, const CutOptions& options,
                    const TetBoxQuery& query) {
   const TetBoxQuery brute = query ? TetBoxQuery{} : brute_force_query(mesh);
-  return Cutter(mesh, blade, options, query ? query : brute).run();
+  const TetBoxQuery& q = query ? query : brute;
+  CutResult r = Cutter(mesh, blade, options, q).run();
+  if (r.stats.pinned_centred > 0 && !second_pass(mesh, blade, options, q, r))
+    ++r.stats.second_pass_failed;
+  return r;
 }
 
 }  // namespace serosa::cutting

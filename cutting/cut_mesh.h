@@ -19,6 +19,12 @@ struct CutOptions {
   /// classify_rel * h of the plane is on it (sign 0), where h is the longest edge of the tets
   /// whose boxes meet the blade's box. Also the in-plane tolerance of "inside the polygon".
   double classify_rel = 1e-6;
+  /// Second pass (cut_mesh.cpp design note, point 7): a pinned tet is coned from a point inside
+  /// the part of its section the blade covers, and the pieces are cut again by the same blade,
+  /// which opens most of what the pin kept welded. On blades about a tet wide the crack then
+  /// covers 89 % of the blade's area on average instead of 10 %, but the mesh gets more and
+  /// thinner tets (docs/BENCHMARKS.md "Cutting", second pass): off by default.
+  bool reopen_pinned = false;
 };
 
 /// What a cut did. Counts are over the tets and nodes of the mesh before the cut.
@@ -28,7 +34,11 @@ struct CutStats {
   std::int64_t tets_relabelled = 0;  ///< one-sided tets that took a clone of a coplanar node
   std::int64_t tets_partial = 0;     ///< tets the blade's outline crosses: cut up to it, coned
   std::int64_t tets_pinned = 0;      ///< of those, split fully welded (the crack stops before them)
-  std::int64_t tets_removed = 0;     ///< = tets_split + tets_relabelled + tets_partial
+  std::int64_t pinned_centred = 0;   ///< of those, coned from a point inside S: cut again
+  std::int64_t second_pass_tets = 0;       ///< tets the second pass cut (mostly first-pass pieces)
+  std::int64_t second_pass_originals = 0;  ///< of those, tets of the mesh before the cut
+  std::int64_t second_pass_failed = 0;     ///< 1 when the second pass could not be composed
+  std::int64_t tets_removed = 0;  ///< = split + relabelled + partial + second_pass_originals
   std::int64_t tets_added = 0;
   std::int64_t nodes_added = 0;
   std::int64_t edge_pairs = 0;         ///< opened cut edges (two nodes each)

@@ -13,6 +13,9 @@
 //                         edges (max and area-weighted mean), and their area (both sides of the
 //                         crack; the pattern method's is exactly twice the blade's section of the
 //                         mesh). Measured by cutting/cut_accuracy.h, as `serosa bench cutting`.
+//   BM_SecondPass/s/p     pattern cuts by blades of half-size s/10 cells inside the 48k mesh,
+//                         CutOptions::reopen_pinned off (p = 0) or on (1): time, crack area over
+//                         twice the blade's, tets created and still pinned, minimum quality.
 // Time per cut = candidate query through the TetBvh + the cut + apply(mesh, delta) +
 // TetBvh::update. The mesh and its BVH are built once per size; after each timed cut they are
 // reset outside the timing (manual timing of exactly those four steps) by copy assignment from the
@@ -104,7 +107,8 @@ double us(Clock::time_point a, Clock::time_point b) {
 /// counters. first_cut_us: the first cut on a fresh copy of the mesh given spare capacity by
 /// reserve_for_cuts and a BVH built from it, as the app has right after loading (no per-tet
 /// array reallocates in that cut), not in the average.
-CutResult run_cuts(benchmark::State& state, Fixture& f, const ConvexPolygon& b, CutMethod method) {
+CutResult run_cuts(benchmark::State& state, Fixture& f, const ConvexPolygon& b, CutMethod method,
+                   const CutOptions& options = {}) {
   {
     // As the app after loading: spare capacity in the mesh (CuttingStage::step) and a BVH built
     // from it (with its own spare; a copied TetBvh would have none).
@@ -112,7 +116,7 @@ CutResult run_cuts(benchmark::State& state, Fixture& f, const ConvexPolygon& b, 
     reserve_for_cuts(mesh);
     TetBvh bvh(mesh);
     const auto t0 = Clock::now();
-    CutResult r = cut_with(method, mesh, b, {}, bvh.as_query());
+    CutResult r = cut_with(method, mesh, b, options, bvh.as_query());
     const auto t1 = Clock::now();
     apply(mesh, r.delta);
     const auto t2 = Clock::now();
@@ -125,7 +129,7 @@ CutResult run_cuts(benchmark::State& state, Fixture& f, const ConvexPolygon& b, 
   // Warm-up: grows the working copy's arrays once.
   reset(f);
   {
-    CutResult r = cut_with(method, f.mesh, b, {}, f.bvh->as_query());
+    CutResult r = cut_with(method, f.mesh, b, options, f.bvh->as_query());
     apply(f.mesh, r.delta);
     f.bvh->update(f.mesh, r.delta);
   }
@@ -134,7 +138,7 @@ CutResult run_cuts(benchmark::State& state, Fixture& f, const ConvexPolygon& b, 
   CutResult last;
   for (auto _ : state) {
     const auto t0 = Clock::now();
-    CutResult r = cut_with(method, f.mesh, b, {}, f.bvh->as_query());
+    CutResult r = cut_with(method, f.mesh, b, options, f.bvh->as_query());
     const auto t1 = Clock::now();
     apply(f.mesh, r.delta);
     const auto t2 = Clock::now();
@@ -203,6 +207,10 @@ void BM_Method(benchmark::State& state) {
     state.counters["cut_area_cm2"] = a.cut_area_m2 * 1e4;
     state.counters["tets_created"] = static_cast<double>(r.stats.tets_added - r.stats.tets_removed);
     state.counters["nodes_added"] = static_cast<double>(r.stats.nodes_added);
+    if (method == CutMethod::kPattern) {  // partial tets split welded: the crack stops short there
+      state.counters["tets_partial"] = static_cast<double>(r.stats.tets_partial);
+      state.counters["tets_pinned"] = static_cast<double>(r.stats.tets_pinned);
+    }
     if (method == CutMethod::kSnap) {  // crossing edges snapping could not resolve
       SnapStats st;
       (void)snap_cut(f.pristine, b, {}, f.pristine_bvh->as_query(), &st);
@@ -212,6 +220,34 @@ void BM_Method(benchmark::State& state) {
   }
   run_cuts(state, f, b, method);
 }
+// The second pass (CutOptions::reopen_pinned) on blades about a tet wide, inside the 48k mesh:
+// half-size range(0) / 10 cells, second pass off (0) or on (1). Counters: what the cut opened
+// (crack area over twice the blade's area), tets created, tets still pinned, minimum quality.
+void BM_SecondPass(benchmark::State& state) {
+  Fixture& f = fixture(20);
+  const ConvexPolygon b =
+      blade(Vec3(10.3, 10.15, 9.85), static_cast<double>(state.range(0)) / 10.0);
+  CutOptions o;
+  o.reopen_pinned = state.range(1) != 0;
+  state.SetLabel(o.reopen_pinned ? "second pass" : "one pass");
+  {
+    TetMesh after = f.pristine;
+    CutResult r = cut_mesh(after, b, o, f.pristine_bvh->as_query());
+    apply(after, r.delta);
+    const CutAccuracy a = measure_cut(f.pristine, after, b, kH);
+    state.counters["opened"] = a.cut_area_m2 / (2.0 * b.area());
+    state.counters["min_quality"] = a.min_quality;
+    state.counters["tets_created"] = static_cast<double>(r.stats.tets_added - r.stats.tets_removed);
+    state.counters["tets_pinned"] = static_cast<double>(r.stats.tets_pinned);
+  }
+  run_cuts(state, f, b, CutMethod::kPattern, o);
+}
+BENCHMARK(BM_SecondPass)
+    ->ArgsProduct({{5, 10, 20, 40}, {0, 1}})
+    ->Iterations(10)
+    ->UseManualTime()
+    ->Unit(benchmark::kMicrosecond);
+
 BENCHMARK(BM_Method)
     ->ArgsProduct({{0, 1, 2}, {0, 1}})
     ->Iterations(10)

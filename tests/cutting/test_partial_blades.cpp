@@ -19,8 +19,9 @@ using testing::problems;
 
 // Cuts, then applies with apply() catching its rejection, then checks the invariants.
 ::testing::AssertionResult cut_applies_and_checks(const TetMesh& m, const ConvexPolygon& blade,
-                                                  TetMesh* out = nullptr) {
-  const CutResult r = cut_mesh(m, blade);
+                                                  TetMesh* out = nullptr,
+                                                  const CutOptions& options = {}) {
+  const CutResult r = cut_mesh(m, blade, options);
   TetMesh after = m;
   TopologyDelta d = r.delta;
   try {
@@ -75,7 +76,7 @@ Vec3 tip_point(const TetMesh& m, const Tet& t, int kind, std::mt19937& rng) {
 // face, on an edge or exactly on a node, the rest of it reaching out of the mesh or staying
 // inside; in random planes and in the grid's own planes (many coplanar nodes). Every delta is
 // accepted by apply() and passes the invariant checker, and the mesh stays in one piece.
-TEST(PartialBlades, RandomTipsGiveAcceptedValidDeltas) {
+void random_tips(const CutOptions& options) {
   const double h = 0.01;
   const TetMesh exact = fixtures::box(6, 4, 4, 1, h);
   TetMesh jittered = fixtures::grid(4, h, 0.2, 5);
@@ -113,7 +114,7 @@ TEST(PartialBlades, RandomTipsGiveAcceptedValidDeltas) {
     auto blade = ConvexPolygon::make(pts);
     if (!blade) continue;
     TetMesh after;
-    ASSERT_TRUE(cut_applies_and_checks(m, *blade, &after))
+    ASSERT_TRUE(cut_applies_and_checks(m, *blade, &after, options))
         << "case " << i << " tip kind " << kind << " blade " << blade->points().size();
     EXPECT_EQ(count_components(after), 1) << "case " << i;
     ++per_kind[static_cast<std::size_t>(kind)];
@@ -123,10 +124,19 @@ TEST(PartialBlades, RandomTipsGiveAcceptedValidDeltas) {
   EXPECT_GT(opened, cases / 4);
 }
 
+TEST(PartialBlades, RandomTipsGiveAcceptedValidDeltas) { random_tips({}); }
+
+// The same blades with the second pass (CutOptions::reopen_pinned).
+TEST(PartialBlades, RandomTipsGiveAcceptedValidDeltasWithTheSecondPass) {
+  CutOptions o;
+  o.reopen_pinned = true;
+  random_tips(o);
+}
+
 // Partial blades one after another on the same mesh (each cutting the mesh the previous ones
 // made, tips landing on earlier cut points and crack fronts): every delta still applies and
 // passes the checker.
-TEST(PartialBlades, SuccessivePartialCutsStayValid) {
+void successive_partial_cuts(const CutOptions& options) {
   const double h = 0.01;
   std::mt19937 rng(77);
   std::normal_distribution<double> g;
@@ -150,10 +160,19 @@ TEST(PartialBlades, SuccessivePartialCutsStayValid) {
            tip + len(rng) * h * (std::cos(phase + 1.0) * e1 + std::sin(phase + 1.0) * e2)});
       if (!blade) continue;
       TetMesh after;
-      ASSERT_TRUE(cut_applies_and_checks(m, *blade, &after)) << "run " << run << " step " << step;
+      ASSERT_TRUE(cut_applies_and_checks(m, *blade, &after, options))
+          << "run " << run << " step " << step;
       m = std::move(after);
     }
   }
+}
+
+TEST(PartialBlades, SuccessivePartialCutsStayValid) { successive_partial_cuts({}); }
+
+TEST(PartialBlades, SuccessivePartialCutsStayValidWithTheSecondPass) {
+  CutOptions o;
+  o.reopen_pinned = true;
+  successive_partial_cuts(o);
 }
 
 }  // namespace

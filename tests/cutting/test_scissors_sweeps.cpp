@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <random>
 #include <stdexcept>
 
@@ -177,7 +178,6 @@ TEST(ScissorsSweeps, SmallStepsTiltedIn20ThinStepsKeepEveryInvariant) {
   const SweepRun run = scissors(beam, hinge, n, 5.0 * h, a0, a1, 20, Polygon::kStep);
   ASSERT_TRUE(run.failure.empty()) << run.failure;
   EXPECT_EQ(run.steps_done, 20);
-  EXPECT_GT(run.pinned, 0);  // the limit described above; if this fails, it is gone: update
   std::printf("scissors tilted, 20 thin steps: %d tets, pinned %lld, pieces %d\n",
               run.mesh.num_tets(), static_cast<long long>(run.pinned), count_components(run.mesh));
 }
