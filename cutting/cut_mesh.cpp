@@ -1010,7 +1010,7 @@ class Cutter {
       }
       if (margin > m_tol) sp.push_back({m_blade2[k], barycentric(t, m_blade.points()[k]), false});
     }
-    find_centre(sp, diam, info);
+    if (m_options.reopen_pinned) find_centre(sp, diam, info);
     if (info.pinned || !info.interacts) return;
     // S's corners counter-clockwise; its sides on the section's boundary ("runs") or across it
     // (the front).
@@ -1084,7 +1084,7 @@ class Cutter {
   // A partial (or pinned) tet: every face triangulated by the face rule, coned from the apex.
   void emit_partial(const Tet& t, const TetInfo& info, std::uint16_t g) {
     Combo apex = info.apex;
-    if (info.pinned && info.has_centre && m_options.reopen_pinned) {
+    if (info.pinned && info.has_centre) {
       apex = info.centre;
     } else if (info.pinned) {
       apex = Combo{};
@@ -1299,7 +1299,7 @@ class Cutter {
         if (!info.interacts) continue;  // the blade misses it: left whole
         ++st.tets_partial;
         st.tets_pinned += info.pinned ? 1 : 0;
-        st.pinned_centred += info.pinned && info.has_centre && m_options.reopen_pinned ? 1 : 0;
+        st.pinned_centred += info.pinned && info.has_centre ? 1 : 0;
         d.removed_tets.push_back(ti);
         emit_partial(t, info, m_mesh.group[ti]);
         continue;
