@@ -27,6 +27,9 @@ struct CutCheckOptions {
   /// Nodes within this distance (m) of the plane count as on it in the exact clipped volume:
   /// the cut's own classification tolerance (CutStats::tolerance_m).
   double plane_tol_m = 0.0;
+  /// Nodes left in no tet are allowed: a stroke cut by ProgressiveCut releases the nodes of its
+  /// previous pieces at every step, so `after` is checked against the mesh before the stroke.
+  bool unused_nodes_ok = false;
 };
 
 struct CutCheckReport {
@@ -46,9 +49,10 @@ struct CutCheckReport {
 
 /// Checks `after` = `before` cut by `blade` (geometry in current positions x; volumes in rest):
 /// engine's check_mesh (finite, positive volumes, faces shared by at most two tets, consistent
-/// orientation); no new unreferenced node; total and per-group volume conserved; every boundary
-/// face of `after` was a boundary face of `before`, lies on its surface, or lies on the blade
-/// polygon; with expect_separated, no tet crosses the polygon.
+/// orientation); no new unreferenced node (unless unused_nodes_ok); total and per-group
+/// volume conserved; every boundary face of `after` was a boundary face of
+/// `before`, lies on its surface, or lies on the blade polygon; with expect_separated, no tet
+/// crosses the polygon.
 [[nodiscard]] CutCheckReport check_cut(const TetMesh& before, const TetMesh& after,
                                        const ConvexPolygon& blade,
                                        const CutCheckOptions& options = {});

@@ -16,6 +16,7 @@
 #include <stdexcept>
 
 #include "cut_helpers.h"
+#include "cutting/progressive_cut.h"
 #include "mesh_fixtures.h"
 
 namespace serosa::cutting {
@@ -23,7 +24,7 @@ namespace {
 
 using testing::problems;
 
-enum class Polygon { kStep, kSweptSoFar };
+enum class Polygon { kStep, kSweptSoFar, kProgressive };
 
 struct SweepRun {
   TetMesh mesh;
@@ -39,6 +40,7 @@ struct SweepRun {
 SweepRun scissors(const TetMesh& beam, const Vec3& hinge, const Vec3& n, double length, double a0,
                   double a1, int steps, Polygon kind = Polygon::kStep) {
   SweepRun run{beam, 0, 0, {}};
+  ProgressiveCut stroke;
   const Vec3 a = n.unitOrthogonal(), b = n.cross(a);
   auto tip = [&](double t) -> Vec3 { return hinge + length * (std::cos(t) * a + std::sin(t) * b); };
   for (int k = 0; k < steps; ++k) {
@@ -50,7 +52,8 @@ SweepRun scissors(const TetMesh& beam, const Vec3& hinge, const Vec3& n, double 
     }
     auto blade = ConvexPolygon::make(corners);
     if (!blade) continue;
-    const CutResult r = cut_mesh(run.mesh, *blade);
+    const bool progressive = kind == Polygon::kProgressive;
+    const CutResult r = progressive ? stroke.cut(run.mesh, *blade) : cut_mesh(run.mesh, *blade);
     TetMesh after = run.mesh;
     TopologyDelta d = r.delta;
     try {
@@ -59,10 +62,21 @@ SweepRun scissors(const TetMesh& beam, const Vec3& hinge, const Vec3& n, double 
       run.failure = "step " + std::to_string(k) + ": apply() rejected: " + e.what();
       return run;
     }
+    if (progressive) {
+      stroke.applied(after, d);
+      if (!stroke.last_step().extended && k > 0) {
+        run.failure = "step " + std::to_string(k) + " did not extend the stroke";
+        return run;
+      }
+    }
     CutCheckOptions co;
     co.geometry_tol_m = 4.0 * r.stats.tolerance_m + 1e-12;
     co.plane_tol_m = r.stats.tolerance_m;
-    const CutCheckReport rep = check_cut(run.mesh, after, *blade, co);
+    // A progressive step is checked as what it is: the mesh before the stroke cut by the region
+    // swept so far (its nodes released from the previous step's pieces are in no tet).
+    co.unused_nodes_ok = progressive;
+    const CutCheckReport rep = progressive ? check_cut(beam, after, *stroke.region(), co)
+                                           : check_cut(run.mesh, after, *blade, co);
     if (!rep.ok || r.stats.degenerate_tets != 0) {
       run.failure = "step " + std::to_string(k) + ": " + problems(rep);
       return run;
@@ -131,12 +145,14 @@ TEST(ScissorsSweeps, SmallStepsCutABeamThrough) {
   };
   for (const Case& c : cases)
     for (int steps : {2, 4, 20})
-      for (Polygon kind : {Polygon::kStep, Polygon::kSweptSoFar}) {
+      for (Polygon kind : {Polygon::kStep, Polygon::kSweptSoFar, Polygon::kProgressive}) {
         const bool step = kind == Polygon::kStep;
         if (step && c.mesh == &beam && c.n != Vec3::UnitX() && steps == 20) continue;  // below
         const SweepRun run = scissors(*c.mesh, c.hinge, c.n, 5.0 * h, a0, a1, steps, kind);
         const std::string what = std::string(c.name) + ", " + std::to_string(steps) + " steps" +
-                                 (step ? ", step by step" : ", swept so far");
+                                 (step                           ? ", step by step"
+                                  : kind == Polygon::kSweptSoFar ? ", swept so far"
+                                                                 : ", progressive");
         std::printf("scissors %s: %d tets, pinned %lld, pieces %d\n", what.c_str(),
                     run.mesh.num_tets(), static_cast<long long>(run.pinned),
                     count_components(run.mesh));
@@ -179,6 +195,10 @@ TEST(ScissorsSweeps, SmallStepsTiltedIn20ThinStepsKeepEveryInvariant) {
   EXPECT_EQ(run.steps_done, 20);
   std::printf("scissors tilted, 20 thin steps: %d tets, pinned %lld, pieces %d\n",
               run.mesh.num_tets(), static_cast<long long>(run.pinned), count_components(run.mesh));
+  const SweepRun pro = scissors(beam, hinge, n, 5.0 * h, a0, a1, 20, Polygon::kProgressive);
+  std::printf("scissors tilted, 20 thin steps, progressive: %d tets, pinned %lld, pieces %d\n",
+              pro.mesh.num_tets(), static_cast<long long>(pro.pinned), count_components(pro.mesh));
+  expect_cut_through(beam, pro, n, hinge, 1e-9 * h, "tilted, 20 steps, progressive");
 }
 
 }  // namespace

@@ -1,0 +1,262 @@
+#include "cutting/progressive_cut.h"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+namespace serosa::cutting {
+namespace {
+
+using V2 = Eigen::Vector2d;
+
+double cross2(const V2& o, const V2& a, const V2& b) {
+  return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+}
+
+double area2d(const std::vector<V2>& p) {
+  double a = 0.0;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const V2& u = p[k];
+    const V2& w = p[(k + 1) % p.size()];
+    a += u.x() * w.y() - u.y() * w.x();
+  }
+  return 0.5 * a;
+}
+
+// Convex polygon `subject` clipped by the counter-clockwise convex polygon `clip` (Sutherland-
+// Hodgman; both convex, so the result is their intersection).
+std::vector<V2> clip_convex(std::vector<V2> subject, const std::vector<V2>& clip) {
+  for (std::size_t k = 0; k < clip.size() && !subject.empty(); ++k) {
+    const V2& a = clip[k];
+    const V2& b = clip[(k + 1) % clip.size()];
+    std::vector<V2> out;
+    for (std::size_t i = 0; i < subject.size(); ++i) {
+      const V2& p = subject[i];
+      const V2& q = subject[(i + 1) % subject.size()];
+      const double sp = cross2(a, b, p), sq = cross2(a, b, q);
+      if (sp >= 0.0) out.push_back(p);
+      if ((sp >= 0.0) != (sq >= 0.0)) out.push_back(p + (sp / (sp - sq)) * (q - p));
+    }
+    subject = std::move(out);
+  }
+  return subject;
+}
+
+}  // namespace
+
+std::optional<ConvexPolygon> convex_union(const ConvexPolygon& a, const ConvexPolygon& b,
+                                          double plane_rel, double area_rel) {
+  const Vec3 lo = a.box_min().cwiseMin(b.box_min()), hi = a.box_max().cwiseMax(b.box_max());
+  const double size = (hi - lo).norm();
+  if (!(size > 0.0)) return std::nullopt;
+  for (const Vec3& p : b.points())
+    if (!(std::abs(a.signed_distance(p)) <= plane_rel * size)) return std::nullopt;
+  // Both outlines in a's plane coordinates, counter-clockwise about a's normal.
+  std::vector<V2> pa, pb;
+  for (const Vec3& p : a.points()) pa.push_back(a.to_plane(p));
+  for (const Vec3& p : b.points()) pb.push_back(a.to_plane(p));
+  if (area2d(pa) < 0.0) std::reverse(pa.begin(), pa.end());
+  if (area2d(pb) < 0.0) std::reverse(pb.begin(), pb.end());
+  const double overlap = std::abs(area2d(clip_convex(pb, pa)));
+  const double union_area = std::abs(area2d(pa)) + std::abs(area2d(pb)) - overlap;
+  // The hull of every corner (Andrew's monotone chain; points closer than 1e-12 of the size
+  // merged, collinear points dropped), keeping each hull point's world position.
+  struct P {
+    V2 q;
+    Vec3 x;
+  };
+  std::vector<P> pts;
+  for (std::size_t k = 0; k < pa.size(); ++k) pts.push_back({pa[k], a.points()[k]});
+  for (std::size_t k = 0; k < pb.size(); ++k)
+    pts.push_back({a.to_plane(b.points()[k]), b.points()[k]});
+  std::sort(pts.begin(), pts.end(), [](const P& u, const P& w) {
+    return u.q.x() < w.q.x() || (u.q.x() == w.q.x() && u.q.y() < w.q.y());
+  });
+  std::vector<P> uniq;
+  for (const P& p : pts) {
+    bool dup = false;
+    for (const P& u : uniq) dup = dup || (u.q - p.q).norm() <= 1e-12 * size;
+    if (!dup) uniq.push_back(p);
+  }
+  if (uniq.size() < 3) return std::nullopt;
+  std::vector<P> hull(2 * uniq.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < uniq.size(); ++i) {
+    while (k >= 2 && cross2(hull[k - 2].q, hull[k - 1].q, uniq[i].q) <= 0.0) --k;
+    hull[k++] = uniq[i];
+  }
+  for (std::size_t i = uniq.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && cross2(hull[k - 2].q, hull[k - 1].q, uniq[i].q) <= 0.0) --k;
+    hull[k++] = uniq[i];
+  }
+  hull.resize(k - 1);
+  std::vector<V2> h2;
+  std::vector<Vec3> corners;
+  for (const P& p : hull) {
+    h2.push_back(p.q);
+    corners.push_back(p.x);
+  }
+  const double hull_area = area2d(h2);
+  if (!(hull_area - union_area <= area_rel * hull_area)) return std::nullopt;
+  // Counter-clockwise about a's normal: the union keeps a's orientation (its positive side).
+  return ConvexPolygon::make(std::move(corners));
+}
+
+CutResult ProgressiveCut::cut(const TetMesh& mesh, const ConvexPolygon& blade,
+                              const TetBoxQuery& query) {
+  m_pending.reset();
+  m_last = {};
+  if (m_region && mesh.topology_version != m_version) end();
+  std::optional<ConvexPolygon> region;
+  if (m_region) {
+    region = convex_union(*m_region, blade);
+    if (!region) end();
+  }
+  if (region) {
+    m_last.extended = true;
+    if (region->area() <= m_region->area() * (1.0 + 1e-12)) {
+      // Nothing new swept: the region is already cut.
+      m_last.inside = true;
+      m_pending = Pending{m_region, {}, 0, m_nodes, true};
+      return {};
+    }
+  } else {
+    region = blade;
+  }
+
+  // The mesh before the stroke, around the region: the current tets the region's (grown) box
+  // meets, less the stroke's pieces, plus the stroke's originals. Every tet the cut looks at
+  // (those whose boxes meet the blade's box grown by twice the tolerance, and the tets around
+  // their nodes and edges near the blade) is among them: the box is grown by the longest edge.
+  const TetBoxQuery brute = query ? TetBoxQuery{} : brute_force_query(mesh);
+  const TetBoxQuery& q = query ? query : brute;
+  auto is_piece = [&](std::int32_t t) {
+    return std::binary_search(m_pieces.begin(), m_pieces.end(), t);
+  };
+  std::vector<std::int32_t> cands;
+  q(region->box_min(), region->box_max(), cands);
+  double longest = 0.0;
+  auto grow_longest = [&](const Tet& t) {
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        longest = std::max(longest, (mesh.x[static_cast<std::size_t>(t[i])] -
+                                     mesh.x[static_cast<std::size_t>(t[j])])
+                                        .norm());
+  };
+  for (std::int32_t t : cands)
+    if (!is_piece(t)) grow_longest(mesh.tets[static_cast<std::size_t>(t)]);
+  for (const Original& o : m_originals) grow_longest(o.tet);
+  const Vec3 grow = Vec3::Constant(longest + 1e-12);
+  cands.clear();
+  q(region->box_min() - grow, region->box_max() + grow, cands);
+  std::sort(cands.begin(), cands.end());
+  cands.erase(std::unique(cands.begin(), cands.end()), cands.end());
+
+  TetMesh local;
+  std::vector<std::int32_t> global_of;                 // local node -> node of `mesh`
+  std::unordered_map<std::int32_t, std::int32_t> lid;  // node of `mesh` -> local node
+  std::vector<std::int32_t> origin;  // local tet -> tet of `mesh`, or -1 - (original index)
+  auto add_local = [&](const Tet& t, std::uint16_t g, std::int32_t o) {
+    Tet lt{};
+    for (int k = 0; k < 4; ++k) {
+      auto [it, fresh] = lid.try_emplace(t[k], static_cast<std::int32_t>(global_of.size()));
+      if (fresh) {
+        global_of.push_back(t[k]);
+        local.rest.push_back(mesh.rest[static_cast<std::size_t>(t[k])]);
+        local.x.push_back(mesh.x[static_cast<std::size_t>(t[k])]);
+      }
+      lt[k] = it->second;
+    }
+    local.tets.push_back(lt);
+    local.group.push_back(g);
+    origin.push_back(o);
+  };
+  for (std::size_t k = 0; k < m_originals.size(); ++k)
+    add_local(m_originals[k].tet, m_originals[k].group, -1 - static_cast<std::int32_t>(k));
+  for (std::int32_t t : cands)
+    if (!is_piece(t))
+      add_local(mesh.tets[static_cast<std::size_t>(t)], mesh.group[static_cast<std::size_t>(t)], t);
+  local.fill_node_state();
+  CutResult lr = cut_mesh(local, *region, m_options);
+  const TopologyDelta& ld = lr.delta;
+
+  // Compose: remove the stroke's pieces and the current tets the cut removes; add the cut's
+  // pieces (local ids mapped back, new nodes appended after the mesh's), then the originals the
+  // cut leaves whole.
+  const std::int32_t n_cur = mesh.num_nodes();
+  const auto n_local = static_cast<std::int32_t>(global_of.size());
+  auto global_node = [&](std::int32_t l) {
+    return l < n_local ? global_of[static_cast<std::size_t>(l)] : n_cur + (l - n_local);
+  };
+  TopologyDelta out;
+  out.removed_tets = m_pieces;
+  std::vector<char> cut_original(m_originals.size(), 0);
+  Pending next;
+  for (std::int32_t lt : ld.removed_tets) {
+    const std::int32_t o = origin[static_cast<std::size_t>(lt)];
+    if (o >= 0) {
+      out.removed_tets.push_back(o);
+      next.originals.push_back(
+          {mesh.tets[static_cast<std::size_t>(o)], mesh.group[static_cast<std::size_t>(o)]});
+    } else {
+      cut_original[static_cast<std::size_t>(-1 - o)] = 1;
+      next.originals.push_back(m_originals[static_cast<std::size_t>(-1 - o)]);
+    }
+  }
+  std::sort(out.removed_tets.begin(), out.removed_tets.end());
+  for (std::size_t k = 0; k < ld.added_tets.size(); ++k) {
+    const Tet& t = ld.added_tets[k];
+    out.added_tets.push_back(
+        {global_node(t[0]), global_node(t[1]), global_node(t[2]), global_node(t[3])});
+    out.added_groups.push_back(ld.added_groups[k]);
+  }
+  for (std::size_t k = 0; k < m_originals.size(); ++k)
+    if (!cut_original[k]) {
+      out.added_tets.push_back(m_originals[k].tet);
+      out.added_groups.push_back(m_originals[k].group);
+      ++m_last.originals_restored;
+    }
+  for (const NodeParent& p : ld.added_nodes) {
+    NodeParent g = p;
+    for (int k = 0; k < p.count; ++k)
+      g.nodes[static_cast<std::size_t>(k)] = global_node(p.nodes[k]);
+    out.added_nodes.push_back(g);
+  }
+  m_last.pieces_replaced = static_cast<std::int64_t>(m_pieces.size());
+  m_last.nodes_released = m_nodes;
+  next.region = region;
+  next.pieces = ld.added_tets.size();
+  next.nodes = static_cast<std::int32_t>(ld.added_nodes.size());
+  m_pending = std::move(next);
+  lr.delta = std::move(out);
+  return lr;
+}
+
+void ProgressiveCut::applied(const TetMesh& mesh, const TopologyDelta& delta) {
+  if (!m_pending) return;
+  Pending& p = *m_pending;
+  if (!p.keep) {
+    if (delta.slot_of_added.size() < p.pieces) {  // not the delta cut() returned
+      end();
+      return;
+    }
+    m_pieces.assign(delta.slot_of_added.begin(),
+                    delta.slot_of_added.begin() + static_cast<std::ptrdiff_t>(p.pieces));
+    std::sort(m_pieces.begin(), m_pieces.end());
+    m_originals = std::move(p.originals);
+    m_nodes = p.nodes;
+  }
+  m_region = std::move(p.region);
+  m_version = mesh.topology_version;
+  m_pending.reset();
+}
+
+void ProgressiveCut::end() {
+  m_region.reset();
+  m_originals.clear();
+  m_pieces.clear();
+  m_nodes = 0;
+  m_pending.reset();
+}
+
+}  // namespace serosa::cutting
