@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 
 namespace serosa::cutting {
 namespace {
@@ -152,30 +151,39 @@ CutResult ProgressiveCut::cut(const TetMesh& mesh, const ConvexPolygon& blade,
   std::sort(cands.begin(), cands.end());
   cands.erase(std::unique(cands.begin(), cands.end()), cands.end());
 
-  TetMesh local;
-  std::vector<std::int32_t> global_of;                 // local node -> node of `mesh`
-  std::unordered_map<std::int32_t, std::int32_t> lid;  // node of `mesh` -> local node
+  // Local node ids follow the order of the mesh's ids, so that every rule keyed by the smallest
+  // node id (quad diagonals, face fans) decides as it would in the whole mesh.
   std::vector<std::int32_t> origin;  // local tet -> tet of `mesh`, or -1 - (original index)
-  auto add_local = [&](const Tet& t, std::uint16_t g, std::int32_t o) {
-    Tet lt{};
-    for (int k = 0; k < 4; ++k) {
-      auto [it, fresh] = lid.try_emplace(t[k], static_cast<std::int32_t>(global_of.size()));
-      if (fresh) {
-        global_of.push_back(t[k]);
-        local.rest.push_back(mesh.rest[static_cast<std::size_t>(t[k])]);
-        local.x.push_back(mesh.x[static_cast<std::size_t>(t[k])]);
-      }
-      lt[k] = it->second;
-    }
-    local.tets.push_back(lt);
-    local.group.push_back(g);
-    origin.push_back(o);
-  };
-  for (std::size_t k = 0; k < m_originals.size(); ++k)
-    add_local(m_originals[k].tet, m_originals[k].group, -1 - static_cast<std::int32_t>(k));
+  std::vector<Tet> tets;
+  std::vector<std::uint16_t> groups;
+  for (std::size_t k = 0; k < m_originals.size(); ++k) {
+    tets.push_back(m_originals[k].tet);
+    groups.push_back(m_originals[k].group);
+    origin.push_back(-1 - static_cast<std::int32_t>(k));
+  }
   for (std::int32_t t : cands)
-    if (!is_piece(t))
-      add_local(mesh.tets[static_cast<std::size_t>(t)], mesh.group[static_cast<std::size_t>(t)], t);
+    if (!is_piece(t)) {
+      tets.push_back(mesh.tets[static_cast<std::size_t>(t)]);
+      groups.push_back(mesh.group[static_cast<std::size_t>(t)]);
+      origin.push_back(t);
+    }
+  std::vector<std::int32_t> global_of;  // local node -> node of `mesh`, ascending
+  for (const Tet& t : tets) global_of.insert(global_of.end(), t.begin(), t.end());
+  std::sort(global_of.begin(), global_of.end());
+  global_of.erase(std::unique(global_of.begin(), global_of.end()), global_of.end());
+  TetMesh local;
+  for (std::int32_t g : global_of) {
+    local.rest.push_back(mesh.rest[static_cast<std::size_t>(g)]);
+    local.x.push_back(mesh.x[static_cast<std::size_t>(g)]);
+  }
+  for (std::size_t k = 0; k < tets.size(); ++k) {
+    Tet lt{};
+    for (int i = 0; i < 4; ++i)
+      lt[i] = static_cast<std::int32_t>(
+          std::lower_bound(global_of.begin(), global_of.end(), tets[k][i]) - global_of.begin());
+    local.tets.push_back(lt);
+    local.group.push_back(groups[k]);
+  }
   local.fill_node_state();
   CutResult lr = cut_mesh(local, *region, m_options);
   const TopologyDelta& ld = lr.delta;

@@ -1,10 +1,13 @@
-// A scissors closing over a beam in many small steps (issue 3, partial cuts). Two ways to cut it:
+// A scissors closing over a beam in many small steps (issue 3, partial cuts). Three ways to cut it:
 //  - step by step: each step's polygon is the thin triangle from the hinge it swept in that step,
-//    sharing its trailing edge with the previous step's leading edge, so every step cuts the mesh
-//    the previous steps made along their crack front;
+//    sharing its trailing edge with the previous step's leading edge, cut with cut_mesh into the
+//    mesh the previous steps made, along their crack front;
 //  - swept so far: each step's polygon is the whole sector the blade has swept since the stroke
-//    began (hinge plus the arc of the tip), cut into the mesh the previous steps made. This is the
-//    region app::CuttingStage cuts for a stationary stroke (there once, when the jaws stop).
+//    began (hinge plus the arc of the tip), cut with cut_mesh into the mesh the previous steps
+//    made;
+//  - progressive: each step's thin triangle goes to one ProgressiveCut (cutting/progressive_cut.h),
+//    which re-cuts the tets the stroke touched, as they were before it, by the sector swept so
+//    far; every step is checked against the beam before the stroke and that sector.
 // The crack stops where the blade ends, but tets the blade has crossed open: at the end the beam
 // is in two pieces, one on each side, with volume conserved, and every intermediate mesh passes
 // the invariant checker.
@@ -178,14 +181,15 @@ TEST(ScissorsSweeps, SmallStepsCutABeamThroughAlongGridFaces) {
   }
 }
 
-// The known limit of cutting step by step, off the grid planes: the tilted plane in 20 thin steps
-// pins tets over steps 9-12, tets whose section a step's triangle only grazes (S has no area),
-// crosses as a strip (two fronts no single apex sees) or crosses along a coplanar edge. A pinned
-// tet is split with every node welded, and no later thin step covers it again, so the beam stays
-// in one piece. Every intermediate mesh still passes the invariant checker (asserted here); the
-// pieces are reported, not asserted. Cut with the sector swept so far (the test above), the next
-// step covers the pinned tets and opens them, and the beam falls in two.
-TEST(ScissorsSweeps, SmallStepsTiltedIn20ThinStepsKeepEveryInvariant) {
+// The limit of cutting thin steps one by one with cut_mesh, off the grid planes, and what lifts
+// it. The tilted plane in 20 thin steps pins tets over steps 9-12, tets whose section a step's
+// triangle only grazes (S has no area), crosses as a strip (two fronts no single apex sees) or
+// crosses along a coplanar edge. A pinned tet is split with every node welded, and no later thin
+// step covers it again, so cut step by step the beam stays in one piece (every intermediate mesh
+// still passes the invariant checker: asserted; the pieces are reported, not asserted). Cut as
+// one progressive stroke, every step is one cut of the sector swept so far, and the beam falls
+// in two (asserted).
+TEST(ScissorsSweeps, SmallStepsTiltedIn20ThinStepsSeparateOnlyAsAStroke) {
   const double h = 0.01;
   const TetMesh beam = fixtures::box(8, 2, 2, 1, h);
   const double a0 = 80.0 * 3.141592653589793 / 180.0, a1 = -a0;
