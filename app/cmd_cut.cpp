@@ -1,7 +1,10 @@
 // serosa cut MESH --polygon "x,y,z x,y,z x,y,z[ ...]" [--polygon ...] --out OUT.msh
-//            [--method pattern|remove|snap] [--json]
+//            [--method pattern|remove|snap] [--stroke] [--json]
 // Applies each convex planar polygon in turn (world coordinates, m) with the chosen method
-// (cutting/cut_method.h), writes the result as Gmsh 2.2 ASCII (rest positions, each tet's group as
+// (cutting/cut_method.h); with --stroke (pattern method) the polygons are the steps of one
+// progressive stroke (cutting/progressive_cut.h: consecutive coplanar polygons whose union is
+// convex are cut as the region swept so far, and the nodes a step releases are dropped from the
+// output). Writes the result as Gmsh 2.2 ASCII (rest positions, each tet's group as
 // its physical tag) and prints a summary: tets, nodes, volume and minimum quality before and
 // after, tets created, and the time of each cut (shared/DESIGN.md "Contracts"). A cut's time is
 // the candidate query through the BVH, the cut itself, apply() and the BVH's local update.
@@ -20,6 +23,7 @@
 #include "app/command.h"
 #include "cutting/convex_polygon.h"
 #include "cutting/cut_method.h"
+#include "cutting/progressive_cut.h"
 #include "cutting/reserve.h"
 #include "cutting/tet_bvh.h"
 #include "engine/input_error.h"
@@ -39,6 +43,7 @@ struct CutArgs {
   std::vector<std::string> polygons;  // one --polygon value each, applied in order
   std::string out;                    // output .msh (Gmsh 2.2 ASCII)
   std::string method = "pattern";     // pattern | remove | snap
+  bool stroke = false;                // the polygons are one progressive stroke (pattern only)
   bool json = false;                  // one JSON object on stdout instead of text
 };
 
@@ -109,12 +114,46 @@ nlohmann::json to_json(const MeshSummary& s) {
           {"min_quality", s.min_quality}};
 }
 
+// Drops the nodes no tet uses (a progressive stroke's released nodes), keeping the others' order.
+void drop_unused_nodes(TetMesh& mesh) {
+  mesh.fill_node_state();
+  std::vector<std::int32_t> id(static_cast<std::size_t>(mesh.num_nodes()), -1);
+  for (const Tet& t : mesh.tets)
+    for (std::int32_t v : t) id[static_cast<std::size_t>(v)] = 0;
+  std::int32_t next = 0;
+  for (std::size_t i = 0; i < id.size(); ++i) {
+    if (id[i] < 0) continue;
+    id[i] = next;
+    const auto to = static_cast<std::size_t>(next++);
+    mesh.rest[to] = mesh.rest[i];
+    mesh.x[to] = mesh.x[i];
+    mesh.v[to] = mesh.v[i];
+    mesh.mass[to] = mesh.mass[i];
+    mesh.fixed[to] = mesh.fixed[i];
+  }
+  const auto n = static_cast<std::size_t>(next);
+  mesh.rest.resize(n);
+  mesh.x.resize(n);
+  mesh.v.resize(n);
+  mesh.mass.resize(n);
+  mesh.fixed.resize(n);
+  for (Tet& t : mesh.tets)
+    for (std::int32_t& v : t) v = id[static_cast<std::size_t>(v)];
+  ++mesh.topology_version;
+}
+
 int run_cut(const CutArgs& args) {
   const auto method = cutting::parse_cut_method(args.method);
   if (!method) {
     std::string where = "--method \"";
     where.append(args.method).append("\"");
     throw InputError(where, 0, "unknown cut method", "pattern, remove or snap");
+  }
+  if (args.stroke && *method != cutting::CutMethod::kPattern) {
+    std::string where = "--stroke with --method \"";
+    where.append(args.method).append("\"");
+    throw InputError(where, 0, "a progressive stroke re-cuts with the pattern method only",
+                     "--method pattern (the default)");
   }
   std::vector<cutting::ConvexPolygon> blades;
   for (std::size_t k = 0; k < args.polygons.size(); ++k)
@@ -128,6 +167,7 @@ int run_cut(const CutArgs& args) {
   const MeshSummary before = summarize(mesh);
   cutting::reserve_for_cuts(mesh);  // spare capacity: no cut reallocates the per-tet arrays
   cutting::TetBvh bvh(mesh);        // (the BVH reserves its own)
+  cutting::ProgressiveCut stroke;
 
   // Each cut: candidates through the BVH, the cut, apply(), the BVH's local update.
   nlohmann::json cuts = nlohmann::json::array();
@@ -136,20 +176,32 @@ int run_cut(const CutArgs& args) {
   for (std::size_t k = 0; k < blades.size(); ++k) {
     cutting::reserve_for_cuts(mesh);  // O(1) unless the spare ran low (untimed)
     const auto t0 = std::chrono::steady_clock::now();
-    cutting::CutResult r = cutting::cut_with(*method, mesh, blades[k], {}, bvh.as_query());
+    cutting::CutResult r = args.stroke
+                               ? stroke.cut(mesh, blades[k], bvh.as_query())
+                               : cutting::cut_with(*method, mesh, blades[k], {}, bvh.as_query());
     apply(mesh, r.delta);
+    if (args.stroke) stroke.applied(mesh, r.delta);
     bvh.update(mesh, r.delta);
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     total_ms += ms;
-    created += r.stats.tets_added;
-    cuts.push_back({{"polygon", k + 1},
-                    {"time_ms", ms},
-                    {"candidates", r.stats.candidates},
-                    {"tets_removed", r.stats.tets_removed},
-                    {"tets_added", r.stats.tets_added},
-                    {"nodes_added", r.stats.nodes_added}});
+    // The delta's own sizes: a stroke step also removes the previous step's pieces.
+    const auto removed = static_cast<std::int64_t>(r.delta.removed_tets.size());
+    const auto added = static_cast<std::int64_t>(r.delta.added_tets.size());
+    created += added;
+    nlohmann::json c{{"polygon", k + 1},
+                     {"time_ms", ms},
+                     {"candidates", r.stats.candidates},
+                     {"tets_removed", removed},
+                     {"tets_added", added},
+                     {"nodes_added", static_cast<std::int64_t>(r.delta.added_nodes.size())}};
+    if (args.stroke) {
+      c["extends_stroke"] = stroke.last_step().extended;
+      c["nodes_released"] = stroke.last_step().nodes_released;
+    }
+    cuts.push_back(std::move(c));
   }
+  if (args.stroke) drop_unused_nodes(mesh);
   write_gmsh22(args.out, mesh, false, read.group_names);
   const MeshSummary after = summarize(mesh);
 
@@ -157,6 +209,7 @@ int run_cut(const CutArgs& args) {
     const nlohmann::json j{{"mesh", args.mesh},
                            {"out", args.out},
                            {"method", std::string(cutting::to_string(*method))},
+                           {"stroke", args.stroke},
                            {"quality_measure", "mean_ratio"},
                            {"before", to_json(before)},
                            {"after", to_json(after)},
@@ -197,6 +250,9 @@ void add_cut_command(CLI::App& app, Action& action) {
       ->take_all();
   cmd->add_option("--out", args->out, "Output mesh (Gmsh 2.2 ASCII)")->required();
   cmd->add_option("--method", args->method, "pattern (default), remove or snap");
+  cmd->add_flag("--stroke", args->stroke,
+                "The polygons are the steps of one scissors stroke: coplanar steps whose union is "
+                "convex are cut as the region swept so far (pattern method)");
   cmd->add_flag("--json", args->json, "Print one JSON object instead of text");
   cmd->callback([&action, args] { action = [args] { return run_cut(*args); }; });
 }

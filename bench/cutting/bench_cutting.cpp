@@ -16,6 +16,11 @@
 //   BM_SecondPass/s/p     pattern cuts by blades of half-size s/10 cells inside the 48k mesh,
 //                         CutOptions::reopen_pinned off (p = 0) or on (1): time, crack area over
 //                         twice the blade's, tets created and still pinned, minimum quality.
+//   BM_Stroke/k/m         a scissors blade 12 cells long closing over a corner of the 48k mesh
+//                         in k thin steps in an oblique plane, cut step by step with cut_mesh
+//                         (m = 0) or as one ProgressiveCut stroke (m = 1): time of the whole
+//                         stroke, tets created, crack area over twice the swept sector's
+//                         section of the mesh, minimum quality, pieces.
 // Time per cut = candidate query through the TetBvh + the cut + apply(mesh, delta) +
 // TetBvh::update. The mesh and its BVH are built once per size; after each timed cut they are
 // reset outside the timing (manual timing of exactly those four steps) by copy assignment from the
@@ -40,6 +45,7 @@
 #include "cutting/convex_polygon.h"
 #include "cutting/cut_accuracy.h"
 #include "cutting/cut_method.h"
+#include "cutting/progressive_cut.h"
 #include "cutting/reserve.h"
 #include "cutting/snap_cut.h"
 #include "cutting/tet_bvh.h"
@@ -247,6 +253,57 @@ BENCHMARK(BM_SecondPass)
     ->Iterations(10)
     ->UseManualTime()
     ->Unit(benchmark::kMicrosecond);
+
+// A stroke of range(0) thin steps (a scissors blade of 12 cells closing by 80 degrees in an
+// oblique plane through a corner of the 48k mesh), step by step with cut_mesh (range(1) = 0) or as
+// one ProgressiveCut (1). Each iteration cuts the pristine mesh (reset untimed); the time is the
+// whole stroke (query, cut, apply, BVH update per step). Counters from the last iteration.
+void BM_Stroke(benchmark::State& state) {
+  Fixture& f = fixture(20);
+  const int steps = static_cast<int>(state.range(0));
+  const bool progressive = state.range(1) != 0;
+  state.SetLabel(progressive ? "progressive" : "step by step");
+  const Vec3 n = Vec3(1.0, 0.31, 0.17).normalized();
+  const Vec3 a = n.cross(Vec3(0.13, 1.0, 0.29)).normalized(), b = n.cross(a);
+  const Vec3 hinge = Vec3(3.1, 2.05, 1.95) * kH;
+  const double length = 12.0 * kH, a0 = 0.0, a1 = 80.0 * 3.141592653589793 / 180.0;
+  auto tip = [&](double t) -> Vec3 { return hinge + length * (std::cos(t) * a + std::sin(t) * b); };
+  std::vector<ConvexPolygon> polys;
+  std::vector<Vec3> sector{hinge};
+  for (int k = 0; k <= steps; ++k) sector.push_back(tip(a0 + (a1 - a0) * k / steps));
+  for (int k = 0; k < steps; ++k)
+    polys.push_back(ConvexPolygon({hinge, sector[k + 1], sector[k + 2]}));
+  const ConvexPolygon whole(sector);
+  std::int64_t tets_after = 0;
+  for (auto _ : state) {
+    reset(f);
+    ProgressiveCut stroke;
+    const auto t0 = Clock::now();
+    for (const ConvexPolygon& p : polys) {
+      CutResult r = progressive ? stroke.cut(f.mesh, p, f.bvh->as_query())
+                                : cut_mesh(f.mesh, p, {}, f.bvh->as_query());
+      apply(f.mesh, r.delta);
+      if (progressive) stroke.applied(f.mesh, r.delta);
+      f.bvh->update(f.mesh, r.delta);
+    }
+    state.SetIterationTime(std::chrono::duration<double>(Clock::now() - t0).count());
+    tets_after = f.mesh.num_tets();
+  }
+  const CutAccuracy acc = measure_cut(f.pristine, f.mesh, whole, kH);
+  TetMesh once = f.pristine;
+  CutResult r1 = cut_mesh(once, whole, {}, f.pristine_bvh->as_query());
+  apply(once, r1.delta);
+  const CutAccuracy one = measure_cut(f.pristine, once, whole, kH);
+  state.counters["tets_created"] = static_cast<double>(tets_after - f.pristine.num_tets());
+  state.counters["opened_vs_one_cut"] = acc.cut_area_m2 / one.cut_area_m2;
+  state.counters["min_quality"] = acc.min_quality;
+  reset(f);
+}
+BENCHMARK(BM_Stroke)
+    ->ArgsProduct({{1, 4, 16, 64}, {0, 1}})
+    ->Iterations(3)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
 
 BENCHMARK(BM_Method)
     ->ArgsProduct({{0, 1, 2}, {0, 1}})

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -110,6 +111,46 @@ TEST(CliCut, NegativeCoordinatesParse) {
   EXPECT_GT(r.summary.at("after").at("tets").get<int>(), 480);
 }
 
+// A scissors blade hinged beside the beam, closing in 20 thin steps in a tilted plane (n) across
+// the section at x ~ 0.05: the triangles (hinge, tip before, tip after), full precision.
+std::string fan_flags() {
+  const Vec3 n = Vec3(1.0, 0.15, -0.1).normalized(), hinge(0.0523, -0.011, 0.001);
+  const Vec3 a = n.unitOrthogonal(), b = n.cross(a);
+  auto tip = [&](double t) -> Vec3 { return hinge + 0.03 * (std::cos(t) * a + std::sin(t) * b); };
+  auto point = [](const Vec3& p) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "%.17g,%.17g,%.17g", p.x(), p.y(), p.z());
+    return std::string(buf);
+  };
+  std::string flags;
+  const int steps = 20;
+  for (int k = 0; k < steps; ++k) {
+    const double s0 = 2.0 * (0.5 - static_cast<double>(k) / steps);
+    const double s1 = 2.0 * (0.5 - static_cast<double>(k + 1) / steps);
+    flags += " --polygon '" + point(hinge) + " " + point(tip(1.5 * s0)) + " " +
+             point(tip(1.5 * s1)) + "'";
+  }
+  return flags;
+}
+
+// --stroke: the 20 steps are one progressive stroke; the beam separates, every step after the
+// first extends the stroke, volume is kept, and the released nodes are not written.
+TEST(CliCut, StrokeOfThinStepsCutsTheBeamThrough) {
+  const CutRun r = cut("stroke", "--stroke" + fan_flags());
+  ASSERT_EQ(r.cli.code, 0) << r.cli.out;
+  EXPECT_TRUE(r.summary.at("stroke").get<bool>());
+  ASSERT_EQ(r.summary.at("cuts").size(), 20U);
+  for (std::size_t k = 1; k < 20; ++k)
+    EXPECT_TRUE(r.summary.at("cuts")[k].at("extends_stroke").get<bool>()) << k;
+  EXPECT_EQ(cutting::count_components(r.out), 2);
+  const MeshCheckReport mc = check_mesh(r.out);
+  EXPECT_TRUE(mc.valid);
+  EXPECT_EQ(mc.unreferenced_nodes, 0);
+  EXPECT_EQ(r.out.num_nodes(), r.summary.at("after").at("nodes").get<int>());
+  const double v0 = r.summary.at("before").at("volume_m3").get<double>();
+  EXPECT_NEAR(r.summary.at("after").at("volume_m3").get<double>(), v0, 1e-12 * v0);
+}
+
 // Bad flags: exit 1, the message names the flag and the offending value.
 void expect_rejected(const std::string& flags, const std::string& needle) {
   const fs::path out = out_dir("cli_cut_bad") / "out.msh";
@@ -131,6 +172,8 @@ TEST(CliCut, BadPolygonsExitOneNamingFlagAndValue) {
   expect_rejected("--polygon " + covering(0.05) + " --polygon '0,0,0 1,0,nan 0,1,0'",
                   "--polygon #2");
   expect_rejected("--polygon " + covering(0.05) + " --method chop", "--method \"chop\"");
+  expect_rejected("--polygon " + covering(0.05) + " --method remove --stroke",
+                  "--stroke with --method \"remove\"");
 }
 
 }  // namespace
