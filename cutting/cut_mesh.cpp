@@ -217,7 +217,7 @@ class Cutter {
         m_options(options),
         m_query(query),
         m_weld(mesh.num_nodes()),
-        m_fixed_tol(fixed_tol) {
+        m_fixed_tol(fixed_tol > 0.0 ? fixed_tol : options.tolerance_m) {
     for (const Vec3& p : blade.points()) m_blade2.push_back(blade.to_plane(p));
   }
 

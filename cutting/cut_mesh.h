@@ -19,6 +19,9 @@ struct CutOptions {
   /// classify_rel * h of the plane is on it (sign 0), where h is the longest edge of the tets
   /// whose boxes meet the blade's box. Also the in-plane tolerance of "inside the polygon".
   double classify_rel = 1e-6;
+  /// When > 0: the classification tolerance itself (m), instead of classify_rel * h
+  /// (ProgressiveCut re-cuts a local mesh with the tolerance of the whole mesh).
+  double tolerance_m = 0.0;
   /// Second pass (cut_mesh.cpp design note, point 7): a pinned tet is coned from a point inside
   /// the part of its section the blade covers, and the pieces are cut again by the same blade,
   /// which opens most of what the pin kept welded. On blades about a tet wide the crack then

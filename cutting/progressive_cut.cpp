@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace serosa::cutting {
 namespace {
@@ -123,46 +124,87 @@ CutResult ProgressiveCut::cut(const TetMesh& mesh, const ConvexPolygon& blade,
     region = blade;
   }
 
-  // The mesh before the stroke, around the region: the current tets the region's (grown) box
-  // meets, less the stroke's pieces, plus the stroke's originals. Every tet the cut looks at
-  // (those whose boxes meet the blade's box grown by twice the tolerance, and the tets around
-  // their nodes and edges near the blade) is among them: the box is grown by the longest edge.
   const TetBoxQuery brute = query ? TetBoxQuery{} : brute_force_query(mesh);
   const TetBoxQuery& q = query ? query : brute;
+  if (!m_region) {
+    // A new stroke: the mesh is the mesh before it. One plain cut; all it removes are originals,
+    // all it adds the stroke's pieces.
+    CutResult r = cut_mesh(mesh, *region, m_options, q);
+    Pending next;
+    for (std::int32_t t : r.delta.removed_tets)
+      next.originals.push_back(
+          {mesh.tets[static_cast<std::size_t>(t)], mesh.group[static_cast<std::size_t>(t)]});
+    next.region = region;
+    next.pieces = r.delta.added_tets.size();
+    next.nodes = static_cast<std::int32_t>(r.delta.added_nodes.size());
+    m_pending = std::move(next);
+    return r;
+  }
+
+  // The mesh before the stroke, around the region: the current tets the region's box grown by
+  // twice the tolerance meets (every tet the cut looks at), less the stroke's pieces, plus the
+  // stroke's originals; of those, only tets with a node within twice the tolerance of the plane
+  // (the others are one-sided, and no decision of the cut depends on them). The tolerance is
+  // the one cut_mesh would take on the mesh before the stroke (the longest edge of the tets the
+  // region's box meets), passed to the local cut.
   auto is_piece = [&](std::int32_t t) {
     return std::binary_search(m_pieces.begin(), m_pieces.end(), t);
   };
+  auto meets = [&](const Tet& t, const Vec3& lo, const Vec3& hi) {
+    Vec3 tlo = mesh.x[static_cast<std::size_t>(t[0])], thi = tlo;
+    for (int k = 1; k < 4; ++k) {
+      tlo = tlo.cwiseMin(mesh.x[static_cast<std::size_t>(t[k])]);
+      thi = thi.cwiseMax(mesh.x[static_cast<std::size_t>(t[k])]);
+    }
+    return (tlo.array() <= hi.array()).all() && (thi.array() >= lo.array()).all();
+  };
   std::vector<std::int32_t> cands;
   q(region->box_min(), region->box_max(), cands);
-  double longest = 0.0;
-  auto grow_longest = [&](const Tet& t) {
+  double h = 0.0;
+  auto grow_h = [&](const Tet& t) {
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j)
-        longest = std::max(longest, (mesh.x[static_cast<std::size_t>(t[i])] -
-                                     mesh.x[static_cast<std::size_t>(t[j])])
-                                        .norm());
+        h = std::max(
+            h, (mesh.x[static_cast<std::size_t>(t[i])] - mesh.x[static_cast<std::size_t>(t[j])])
+                   .norm());
   };
   for (std::int32_t t : cands)
-    if (!is_piece(t)) grow_longest(mesh.tets[static_cast<std::size_t>(t)]);
-  for (const Original& o : m_originals) grow_longest(o.tet);
-  const Vec3 grow = Vec3::Constant(longest + 1e-12);
+    if (!is_piece(t) &&
+        meets(mesh.tets[static_cast<std::size_t>(t)], region->box_min(), region->box_max()))
+      grow_h(mesh.tets[static_cast<std::size_t>(t)]);
+  for (const Original& o : m_originals)
+    if (meets(o.tet, region->box_min(), region->box_max())) grow_h(o.tet);
+  CutOptions local_options = m_options;
+  const double tol =
+      m_options.tolerance_m > 0.0 ? m_options.tolerance_m : m_options.classify_rel * h;
+  local_options.tolerance_m = tol;
+  const Vec3 grow = Vec3::Constant(2.0 * tol + 1e-12 * (1.0 + h));
   cands.clear();
   q(region->box_min() - grow, region->box_max() + grow, cands);
   std::sort(cands.begin(), cands.end());
   cands.erase(std::unique(cands.begin(), cands.end()), cands.end());
+  auto near_plane = [&](const Tet& t) {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (std::int32_t v : t) {
+      const double phi = region->signed_distance(mesh.x[static_cast<std::size_t>(v)]);
+      lo = std::min(lo, phi);
+      hi = std::max(hi, phi);
+    }
+    return lo <= 2.0 * tol && hi >= -2.0 * tol;
+  };
 
   // Local node ids follow the order of the mesh's ids, so that every rule keyed by the smallest
   // node id (quad diagonals, face fans) decides as it would in the whole mesh.
   std::vector<std::int32_t> origin;  // local tet -> tet of `mesh`, or -1 - (original index)
   std::vector<Tet> tets;
   std::vector<std::uint16_t> groups;
-  for (std::size_t k = 0; k < m_originals.size(); ++k) {
+  for (std::size_t k = 0; k < m_originals.size(); ++k) {  // all of them: each is cut or put back
     tets.push_back(m_originals[k].tet);
     groups.push_back(m_originals[k].group);
     origin.push_back(-1 - static_cast<std::int32_t>(k));
   }
   for (std::int32_t t : cands)
-    if (!is_piece(t)) {
+    if (!is_piece(t) && near_plane(mesh.tets[static_cast<std::size_t>(t)])) {
       tets.push_back(mesh.tets[static_cast<std::size_t>(t)]);
       groups.push_back(mesh.group[static_cast<std::size_t>(t)]);
       origin.push_back(t);
@@ -185,7 +227,7 @@ CutResult ProgressiveCut::cut(const TetMesh& mesh, const ConvexPolygon& blade,
     local.group.push_back(groups[k]);
   }
   local.fill_node_state();
-  CutResult lr = cut_mesh(local, *region, m_options);
+  CutResult lr = cut_mesh(local, *region, local_options);
   const TopologyDelta& ld = lr.delta;
 
   // Compose: remove the stroke's pieces and the current tets the cut removes; add the cut's

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <random>
 #include <string>
 
@@ -165,12 +166,21 @@ struct StrokeReport {
 // Cuts `m0` by `polygons` in turn through one ProgressiveCut; after every step: apply() accepts
 // the delta, the mesh passes check_cut against m0 and the region, equals cut_mesh(m0, region)
 // geometrically, and the nodes in no tet are exactly the nodes released so far.
-StrokeReport run_stroke(const TetMesh& m0, const std::vector<ConvexPolygon>& polygons) {
+// With `move`, the tissue moves between steps (as the FEM moves it): move(k, x) displaces every
+// current position before step k, and the reference is m0 with its nodes where they are now.
+using Motion = std::function<void(int, TetMesh&)>;
+StrokeReport run_stroke(const TetMesh& m0_rest, const std::vector<ConvexPolygon>& polygons,
+                        const Motion& move = {}) {
   StrokeReport rep;
-  rep.mesh = m0;
+  rep.mesh = m0_rest;
   ProgressiveCut stroke;
+  TetMesh m0 = m0_rest;
   for (std::size_t k = 0; k < polygons.size(); ++k) {
     const std::string at = "step " + std::to_string(k) + ": ";
+    if (move) {
+      move(static_cast<int>(k), rep.mesh);
+      for (std::size_t i = 0; i < m0.x.size(); ++i) m0.x[i] = rep.mesh.x[i];
+    }
     const CutResult r = stroke.cut(rep.mesh, polygons[k]);
     TetMesh after = rep.mesh;
     TopologyDelta d = r.delta;
@@ -266,6 +276,30 @@ TEST(ProgressiveCut, EveryStepEqualsOneCutOfTheRegionSweptSoFar) {
     std::printf("stroke %s, %d steps: %d tets, %lld nodes released\n", c.name, c.steps,
                 rep.mesh.num_tets(), static_cast<long long>(rep.released));
   }
+}
+
+// The same while the tissue moves between steps (a smooth displacement of up to 0.05 of a cell
+// that changes every step, as the FEM would move it): every step still equals one cut, of the
+// mesh before the stroke with its nodes where they are now, by the region swept so far; the
+// stroke's pieces are re-made from the originals' nodes, never re-cut.
+TEST(ProgressiveCut, EveryStepEqualsOneCutWhileTheTissueMoves) {
+  const double h = 0.01;
+  const TetMesh beam = fixtures::box(8, 2, 2, 1, h);
+  const Motion move = [h](int k, TetMesh& m) {
+    for (std::size_t i = 0; i < m.x.size(); ++i) {
+      const Vec3& r = m.rest[i];
+      m.x[i] = r + 0.05 * h *
+                       Vec3(std::sin(40.0 * r.y() + 0.3 * k), std::sin(30.0 * r.z() + 0.2 * k),
+                            std::sin(20.0 * r.x() - 0.1 * k));
+    }
+  };
+  const double a0 = 80.0 * kPi / 180.0;
+  const Vec3 n = Vec3(1.0, 0.15, -0.1).normalized();
+  const StrokeReport rep =
+      run_stroke(beam, fan(Vec3(4.5 * h, -h, h), n, 5.0 * h, a0, -a0, 20), move);
+  ASSERT_TRUE(rep.failure.empty()) << rep.failure;
+  EXPECT_EQ(rep.extended, 19);
+  EXPECT_EQ(count_components(rep.mesh), 2);
 }
 
 // Random strokes: fans from random hinges in random planes (some exactly through grid nodes and
