@@ -15,7 +15,10 @@
 // the arc of the blade tips, convex), when the jaws stop closing, close completely, or the
 // scissors move off the stroke's plane; a stroke that closed fully is a single sector across
 // both blades. Steps in which the scissors move while closing sweep per step as before
-// (cutting/blade_sweep.h: the quad between the two poses of each blade).
+// (cutting/blade_sweep.h: the quad between the two poses of each blade). cutting::ProgressiveCut
+// would give the same single-cut result step by step (the wound opening while the jaws close),
+// but the two blades sweep two sectors that are one convex region only once the jaws meet, and
+// moving strokes sweep quads in changing planes, so the stage does not use it (yet).
 #pragma once
 
 #include <cstdint>

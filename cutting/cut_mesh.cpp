@@ -63,6 +63,9 @@
 //    cannot stop the crack there (the edge would need a point every tet around it agrees on): it
 //    is "pinned", split the same way but with every node welded, and the crack stops at its
 //    neighbours (the one remaining case where the crack stops short of the polygon's edge).
+//    A stroke of thin steps, each cut here into the previous steps' pieces, pins tets no later
+//    step covers again and re-splits the pieces ahead of its front: cut such strokes with
+//    cutting/progressive_cut.h, which re-cuts the pre-stroke tets by the region swept so far.
 //    A straddling tet the blade does not meet is left whole.
 //    Coplanar faces partly under the blade (the paper's coplanar-face clipping, decide_faces): a
 //    face lying in the plane, still welded, that the blade covers only partly (with positive
