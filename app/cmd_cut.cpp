@@ -3,13 +3,14 @@
 // Applies each convex planar polygon in turn (world coordinates, m) with the chosen method
 // (cutting/cut_method.h); with --stroke (pattern method) the polygons are the steps of one
 // progressive stroke (cutting/progressive_cut.h: consecutive coplanar polygons whose union is
-// convex are cut as the region swept so far, and the nodes a step releases are dropped from the
-// output). Writes the result as Gmsh 2.2 ASCII (rest positions, each tet's group as
-// its physical tag) and prints a summary: tets, nodes, volume and minimum quality before and
-// after, tets created, and the time of each cut (shared/DESIGN.md "Contracts"). A cut's time is
-// the candidate query through the BVH, the cut itself, apply() and the BVH's local update.
-// Bad flags (a polygon that does not parse, has fewer than 3 points, is not planar or not
-// convex; an unknown method) are InputErrors naming the flag and its value: exit 1.
+// convex are cut as the region swept so far; the nodes in no tet, which each step releases, are
+// dropped from the output, and a stroke's "tets created" are its pieces at its end). Writes the
+// result as Gmsh 2.2 ASCII (rest positions, each tet's group as its physical tag) and prints a
+// summary: tets, nodes, volume and minimum quality before and after, tets created, and the time of
+// each cut (shared/DESIGN.md "Contracts"). A cut's time is the candidate query through the BVH, the
+// cut itself, apply() and the BVH's local update. Bad flags (a polygon that does not parse, has
+// fewer than 3 points, is not planar or not convex; an unknown method) are InputErrors naming the
+// flag and its value: exit 1.
 #include <charconv>
 #include <chrono>
 #include <cstdio>
@@ -114,7 +115,8 @@ nlohmann::json to_json(const MeshSummary& s) {
           {"min_quality", s.min_quality}};
 }
 
-// Drops the nodes no tet uses (a progressive stroke's released nodes), keeping the others' order.
+// Drops the nodes no tet uses (a progressive stroke's released nodes, and any the input had),
+// keeping the others' order.
 void drop_unused_nodes(TetMesh& mesh) {
   mesh.fill_node_state();
   std::vector<std::int32_t> id(static_cast<std::size_t>(mesh.num_nodes()), -1);
@@ -176,6 +178,9 @@ int run_cut(const CutArgs& args) {
   for (std::size_t k = 0; k < blades.size(); ++k) {
     cutting::reserve_for_cuts(mesh);  // O(1) unless the spare ran low (untimed)
     const auto t0 = std::chrono::steady_clock::now();
+    // A stroke's tets created are its pieces when it ends (one cut of its region), not the sum
+    // of the steps' deltas, which re-add the pieces every step.
+    const auto pieces_before = static_cast<std::int64_t>(stroke.num_pieces());
     cutting::CutResult r = args.stroke
                                ? stroke.cut(mesh, blades[k], bvh.as_query())
                                : cutting::cut_with(*method, mesh, blades[k], {}, bvh.as_query());
@@ -188,7 +193,7 @@ int run_cut(const CutArgs& args) {
     // The delta's own sizes: a stroke step also removes the previous step's pieces.
     const auto removed = static_cast<std::int64_t>(r.delta.removed_tets.size());
     const auto added = static_cast<std::int64_t>(r.delta.added_tets.size());
-    created += added;
+    if (!args.stroke) created += added;
     nlohmann::json c{{"polygon", k + 1},
                      {"time_ms", ms},
                      {"candidates", r.stats.candidates},
@@ -196,12 +201,16 @@ int run_cut(const CutArgs& args) {
                      {"tets_added", added},
                      {"nodes_added", static_cast<std::int64_t>(r.delta.added_nodes.size())}};
     if (args.stroke) {
+      if (!stroke.last_step().extended) created += pieces_before;  // the previous stroke ended
       c["extends_stroke"] = stroke.last_step().extended;
       c["nodes_released"] = stroke.last_step().nodes_released;
     }
     cuts.push_back(std::move(c));
   }
-  if (args.stroke) drop_unused_nodes(mesh);
+  if (args.stroke) {
+    created += static_cast<std::int64_t>(stroke.num_pieces());
+    drop_unused_nodes(mesh);
+  }
   write_gmsh22(args.out, mesh, false, read.group_names);
   const MeshSummary after = summarize(mesh);
 

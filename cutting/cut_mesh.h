@@ -20,7 +20,8 @@ struct CutOptions {
   /// whose boxes meet the blade's box. Also the in-plane tolerance of "inside the polygon".
   double classify_rel = 1e-6;
   /// When > 0: the classification tolerance itself (m), instead of classify_rel * h
-  /// (ProgressiveCut re-cuts a local mesh with the tolerance of the whole mesh).
+  /// (ProgressiveCut re-cuts a local mesh with the tolerance of the whole mesh). cut_mesh only:
+  /// the removal and snapping baselines always use classify_rel * h.
   double tolerance_m = 0.0;
   /// Second pass (cut_mesh.cpp design note, point 7): a pinned tet is coned from a point inside
   /// the part of its section the blade covers, and the pieces are cut again by the same blade,

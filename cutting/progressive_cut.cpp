@@ -55,7 +55,7 @@ std::optional<ConvexPolygon> convex_union(const ConvexPolygon& a, const ConvexPo
   std::vector<V2> pa, pb;
   for (const Vec3& p : a.points()) pa.push_back(a.to_plane(p));
   for (const Vec3& p : b.points()) pb.push_back(a.to_plane(p));
-  if (area2d(pa) < 0.0) std::reverse(pa.begin(), pa.end());
+  // (a's own outline is counter-clockwise in its own frame; b's may turn the other way.)
   if (area2d(pb) < 0.0) std::reverse(pb.begin(), pb.end());
   const double overlap = std::abs(area2d(clip_convex(pb, pa)));
   const double union_area = std::abs(area2d(pa)) + std::abs(area2d(pb)) - overlap;
@@ -117,8 +117,10 @@ CutResult ProgressiveCut::cut(const TetMesh& mesh, const ConvexPolygon& blade,
     if (region->area() <= m_region->area() * (1.0 + 1e-12)) {
       // Nothing new swept: the region is already cut.
       m_last.inside = true;
-      m_pending = Pending{m_region, {}, 0, m_nodes, true};
-      return {};
+      m_pending = Pending{m_region, {}, 0, m_nodes, true, mesh.topology_version, 0, 0, m_tolerance};
+      CutResult none;
+      none.stats.tolerance_m = m_tolerance;
+      return none;
     }
   } else {
     region = blade;
@@ -137,6 +139,10 @@ CutResult ProgressiveCut::cut(const TetMesh& mesh, const ConvexPolygon& blade,
     next.region = region;
     next.pieces = r.delta.added_tets.size();
     next.nodes = static_cast<std::int32_t>(r.delta.added_nodes.size());
+    next.version = mesh.topology_version;
+    next.removed = r.delta.removed_tets.size();
+    next.added = r.delta.added_tets.size();
+    next.tolerance_m = r.stats.tolerance_m;
     m_pending = std::move(next);
     return r;
   }
@@ -277,6 +283,10 @@ CutResult ProgressiveCut::cut(const TetMesh& mesh, const ConvexPolygon& blade,
   next.region = region;
   next.pieces = ld.added_tets.size();
   next.nodes = static_cast<std::int32_t>(ld.added_nodes.size());
+  next.version = mesh.topology_version;
+  next.removed = out.removed_tets.size();
+  next.added = out.added_tets.size();
+  next.tolerance_m = lr.stats.tolerance_m;
   m_pending = std::move(next);
   lr.delta = std::move(out);
   return lr;
@@ -284,12 +294,21 @@ CutResult ProgressiveCut::cut(const TetMesh& mesh, const ConvexPolygon& blade,
 
 void ProgressiveCut::applied(const TetMesh& mesh, const TopologyDelta& delta) {
   if (!m_pending) return;
-  Pending& p = *m_pending;
+  Pending p = std::move(*m_pending);
+  m_pending.reset();
+  // The delta cut() returned, applied to the mesh it was made for: same sizes, and (when it
+  // changed anything) made against that version, with the slots apply() filled in.
+  bool ours = delta.removed_tets.size() == p.removed && delta.added_tets.size() == p.added;
+  if (ours && !delta.empty())
+    ours = delta.version_before == p.version && delta.version_after == mesh.topology_version &&
+           delta.slot_of_added.size() == p.added;
+  if (ours && delta.empty())
+    ours = mesh.topology_version == p.version || delta.version_before == p.version;
+  if (!ours) {
+    end();
+    return;
+  }
   if (!p.keep) {
-    if (delta.slot_of_added.size() < p.pieces) {  // not the delta cut() returned
-      end();
-      return;
-    }
     m_pieces.assign(delta.slot_of_added.begin(),
                     delta.slot_of_added.begin() + static_cast<std::ptrdiff_t>(p.pieces));
     std::sort(m_pieces.begin(), m_pieces.end());
@@ -297,8 +316,8 @@ void ProgressiveCut::applied(const TetMesh& mesh, const TopologyDelta& delta) {
     m_nodes = p.nodes;
   }
   m_region = std::move(p.region);
+  m_tolerance = p.tolerance_m;
   m_version = mesh.topology_version;
-  m_pending.reset();
 }
 
 void ProgressiveCut::end() {

@@ -15,17 +15,24 @@
 // closing scissors, the next quad of a blade pushed along a line) extends the region, and the
 // step's delta replaces the stroke's pieces by the pieces of the originals (and of every other
 // tet the larger region reaches) cut by the whole region: the earlier steps' pieces are never cut
-// again. So after every step the mesh is exactly the mesh before the stroke cut once by the
-// region swept so far (up to node numbering): the crack covers the whole swept region with no
-// pins a thin step would leave, the tets created do not depend on how finely the stroke was
-// stepped, and cut_mesh's invariants hold step by step (check_cut against the region).
+// again. So after every step the mesh is the mesh before the stroke cut once by the region swept
+// so far (up to node numbering and the quad diagonals that follow it): the crack covers the whole
+// swept region with no pins a thin step would leave, on static tissue the tets created do not
+// depend on how finely the stroke was stepped, and cut_mesh's invariants hold step by step
+// (check_cut of the pre-stroke mesh against the region).
 //
 // The price: every step re-cuts the whole region (time grows with the stroke, not the step), and
 // the nodes of the previous step's pieces are released (left in no tet; FEM keeps released nodes
-// still and massless) in favour of new ones at the same places, interpolated from the originals'
-// nodes. A polygon off the stroke's plane, or whose union with the region is not convex, or any
-// topology change not made by this object in between (another cut, another tool), ends the
-// stroke: the step then begins a new one from the mesh as it is.
+// still and massless) in favour of new ones interpolated from the originals' nodes where they are
+// now. The region is fixed in space and the originals are re-cut in their current positions: if
+// the tissue moves during the stroke, the earlier part of the crack is re-made where the region
+// meets the tissue now (not where it met it then), the crack's opening and its nodes' velocities
+// are reset to the originals' affine motion at every step, and the count of tets created is that
+// of one cut of the moved mesh. That suits a blade closing in a fraction of a second over tissue
+// that barely moves; for tissue that drifts, end() the stroke. A polygon off the stroke's plane,
+// or whose union with the region is not convex, or any topology change not made by this object in
+// between (another cut, another tool), ends the stroke: the step then begins a new one from the
+// mesh as it is.
 #pragma once
 
 #include <cstdint>
@@ -69,8 +76,10 @@ class ProgressiveCut {
                               const TetBoxQuery& query = {});
 
   /// Records that the delta the last cut() returned was applied to `mesh` (its filled-in
-  /// slot_of_added locate the stroke's new pieces). Without this call the next cut() begins a
-  /// new stroke.
+  /// slot_of_added locate the stroke's new pieces). A delta that is not that one (other sizes, or
+  /// made against another topology version) ends the stroke. Without this call the step is
+  /// forgotten: the next cut() goes on from the stroke as it was if the mesh did not change, and
+  /// begins a new stroke if it did (the step's delta applied).
   void applied(const TetMesh& mesh, const TopologyDelta& delta);
 
   /// Ends the stroke: the next cut() begins a new one from the mesh as it is then.
@@ -80,6 +89,8 @@ class ProgressiveCut {
   /// The region the stroke has cut so far (after applied()); std::nullopt between strokes.
   [[nodiscard]] const std::optional<ConvexPolygon>& region() const { return m_region; }
   [[nodiscard]] const StrokeStep& last_step() const { return m_last; }
+  /// Tets standing in the mesh for the stroke's originals (the pieces of one cut by region()).
+  [[nodiscard]] std::size_t num_pieces() const { return m_pieces.size(); }
   [[nodiscard]] const CutOptions& options() const { return m_options; }
 
  private:
@@ -90,9 +101,13 @@ class ProgressiveCut {
   struct Pending {
     std::optional<ConvexPolygon> region;
     std::vector<Original> originals;
-    std::size_t pieces = 0;  ///< the delta's first `pieces` added tets are the stroke's pieces
-    std::int32_t nodes = 0;  ///< the stroke's nodes after the step (the delta's new nodes)
-    bool keep = false;       ///< nothing changed: keep the stroke as it is
+    std::size_t pieces = 0;     ///< the delta's first `pieces` added tets are the stroke's pieces
+    std::int32_t nodes = 0;     ///< the stroke's nodes after the step (the delta's new nodes)
+    bool keep = false;          ///< nothing changed: keep the stroke as it is
+    std::uint64_t version = 0;  ///< mesh topology_version the delta was made against
+    std::size_t removed = 0;    ///< the delta's sizes (applied() recognises it by them)
+    std::size_t added = 0;
+    double tolerance_m = 0.0;
   };
 
   CutOptions m_options;
@@ -101,6 +116,7 @@ class ProgressiveCut {
   std::vector<std::int32_t> m_pieces;     ///< (sorted) tet ids of the stroke's pieces now
   std::int32_t m_nodes = 0;               ///< nodes the stroke's pieces brought in
   std::uint64_t m_version = 0;            ///< mesh topology_version after the last step
+  double m_tolerance = 0.0;               ///< classification tolerance of the last step, m
   std::optional<Pending> m_pending;
   StrokeStep m_last;
 };

@@ -19,8 +19,8 @@
 //   BM_Stroke/k/m         a scissors blade 12 cells long closing over a corner of the 48k mesh
 //                         in k thin steps in an oblique plane, cut step by step with cut_mesh
 //                         (m = 0) or as one ProgressiveCut stroke (m = 1): time of the whole
-//                         stroke, tets created, crack area over twice the swept sector's
-//                         section of the mesh, minimum quality. Step by step, a run whose mesh
+//                         stroke, tets created, crack area over that of one cut_mesh by the
+//                         whole sector, minimum quality. Step by step, a run whose mesh
 //                         passes 1M tets stops with an error (it about doubles per step).
 // Time per cut = candidate query through the TetBvh + the cut + apply(mesh, delta) +
 // TetBvh::update. The mesh and its BVH are built once per size; after each timed cut they are

@@ -147,6 +147,11 @@ TEST(CliCut, StrokeOfThinStepsCutsTheBeamThrough) {
   EXPECT_TRUE(mc.valid);
   EXPECT_EQ(mc.unreferenced_nodes, 0);
   EXPECT_EQ(r.out.num_nodes(), r.summary.at("after").at("nodes").get<int>());
+  // Tets created: the stroke's pieces at its end (one cut of the sector), not the sum of the
+  // steps' deltas.
+  const int created = r.summary.at("tets_created").get<int>();
+  EXPECT_GE(created, r.out.num_tets() - r.summary.at("before").at("tets").get<int>());
+  EXPECT_LE(created, r.out.num_tets());
   const double v0 = r.summary.at("before").at("volume_m3").get<double>();
   EXPECT_NEAR(r.summary.at("after").at("volume_m3").get<double>(), v0, 1e-12 * v0);
 }

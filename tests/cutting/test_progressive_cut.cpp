@@ -407,6 +407,14 @@ TEST(ProgressiveCut, OtherPlanesForeignChangesAndGapsBeginANewStroke) {
   EXPECT_FALSE(stroke.active());
   step(fan(hinge, n2, 5.0 * h, -0.4, -0.6, 1).front());
   EXPECT_FALSE(stroke.last_step().extended);
+  // applied() with another delta than the one cut() returned: the stroke ends.
+  ASSERT_TRUE(stroke.active());
+  (void)stroke.cut(m, fan(hinge, n2, 5.0 * h, -0.6, -0.8, 1).front());
+  TopologyDelta foreign = cut_mesh(m, testing::square(Vec3::UnitX(), Vec3(6.5 * h, h, h), h)).delta;
+  ASSERT_FALSE(foreign.empty());
+  apply(m, foreign);
+  stroke.applied(m, foreign);
+  EXPECT_FALSE(stroke.active());
   EXPECT_TRUE(check_mesh(m).problems.empty());
 }
 

@@ -189,7 +189,7 @@ TEST(ScissorsSweeps, SmallStepsCutABeamThroughAlongGridFaces) {
 // still passes the invariant checker: asserted; the pieces are reported, not asserted). Cut as
 // one progressive stroke, every step is one cut of the sector swept so far, and the beam falls
 // in two (asserted).
-TEST(ScissorsSweeps, SmallStepsTiltedIn20ThinStepsSeparateOnlyAsAStroke) {
+TEST(ScissorsSweeps, SmallStepsTiltedIn20ThinStepsKeepEveryInvariantAndSeparateAsAStroke) {
   const double h = 0.01;
   const TetMesh beam = fixtures::box(8, 2, 2, 1, h);
   const double a0 = 80.0 * 3.141592653589793 / 180.0, a1 = -a0;
