@@ -42,27 +42,36 @@
 //    holding it has both its section sides from the node starting inside the blade, no flat
 //    tet holds it, and both sides use it. So a node on the blade's outline opens when the far
 //    side is already open: a scissors closing in many thin steps, each step's trailing edge on
-//    the previous step's crack front (its apex and face points), carries the crack on. A
-//    straddling tet is
-//    complete when its whole section (the polygon Sigma of its cut points and coplanar nodes)
-//    lies in the grown polygon; it takes the patterns of point 2. Otherwise the blade's edge
-//    ends inside it (partial cut; the paper's end cases), and it is cut exactly along
-//    S = Sigma ∩ blade:
+//    the previous step's crack front (its apex and face points), carries the crack on.
+//    A straddling tet is complete when its whole section (the polygon Sigma of its cut points
+//    and coplanar nodes) lies in the grown polygon; it takes the patterns of point 2. Otherwise
+//    the blade's edge ends inside it (partial cut; the paper's end cases), and the crack in it
+//    is cut along S = Sigma ∩ blade (convex):
 //      - face points: where the blade's outline crosses the section's side in a tet face (the
 //        "blade crosses a face without cutting its edges" case), one welded node each, computed
 //        once per face (keyed by the face) so both tets sharing the face agree;
 //      - tip points: the blade's corners strictly inside Sigma, one welded node each;
-//      - Sigma is triangulated with S's outline as constraints (cutting/section_triangulation.h)
-//        plus an opened pair of nodes at S's centroid joined to S's corners, so the crack opens
-//        over all of S and closes exactly on the blade's outline;
-//      - each side's piece (the tet clipped by the plane, convex) is coned from its own Steiner
-//        point over its boundary: the section triangles and the face parts (faces without face
-//        points split by split_face, the patterns' rule; faces with face points fanned from their
-//        smallest node on that side, the same in both tets sharing the face).
+//      - every face of the tet is triangulated so that both tets sharing it agree (split_face,
+//        the patterns' rule, or, with face points, a constrained triangulation with the
+//        section side's parts under the blade as edges: cutting/section_triangulation.h), and
+//        the tet is coned from one welded apex on the plane. The crack in the tet is then the
+//        fan from the apex over S's sides on the tet's faces (its "runs") that have an end that
+//        opens; it lies in S since S is convex and the apex is in S.
+//      - The apex: the midpoint of the front when S has one side across the section, the
+//        blade's corner when two front sides meet there; the fan is then exactly S. Otherwise
+//        (S a strip with two fronts, two or more blade corners in the tet, fronts meeting on the
+//        section's boundary) no point touches every front side: the apex is the front-side
+//        midpoint or blade corner whose fan covers most of S, and the crack misses the rest of
+//        S in this tet (CutStats::tets_short). So does a tet whose runs have no end that opens
+//        (a blade too small to cut an edge: only face points and tip points on its outline).
+//      - S with no area (the blade grazes the tet: a point or a segment of Sigma on the
+//        outline): split welded, coned from the tet's centroid (tets_grazed).
 //    A straddling tet whose section side along a coplanar EDGE is crossed by the blade's outline
 //    cannot stop the crack there (the edge would need a point every tet around it agrees on): it
-//    is "pinned", split the same way but with every node welded, and the crack stops at its
-//    neighbours (the one remaining case where the crack stops short of the polygon's edge).
+//    is "pinned", split the same way but coned from its centroid with every node welded, and
+//    its edges and nodes stay welded in its neighbours too (tets_pinned). So is a tet whose
+//    section is not a convex polygon in rounding (a sliver), and one whose S has no area but
+//    holds a corner strictly inside the blade.
 //    A stroke of thin steps, each cut here into the previous steps' pieces, pins tets no later
 //    step covers again and re-splits the pieces ahead of its front: cut such strokes with
 //    cutting/progressive_cut.h, which re-cuts the pre-stroke tets by the region swept so far.
@@ -77,14 +86,16 @@
 //    scissors closing in steps thinner than the grid's faces opens the crack step by step.
 // 6. Output: the touched tets (cut, or one-sided tets that take a clone) are removed, their
 //    pieces added with the same group, each piece oriented positively by its rest volume.
-// 7. Second pass (CutOptions::reopen_pinned, off by default). A pinned tet whose S has area is
-//    coned (still welded) from S's centre c instead of its own centroid: c lies on the plane,
+// 7. Second pass (CutOptions::reopen_pinned, off by default). A pinned tet whose S has area, and
+//    a partial tet whose fan would miss part of S (counting only runs with an end strictly inside
+//    the blade), is coned (still welded) from S's centre c instead: c lies on the plane,
 //    strictly inside the blade, so every piece has c as a coplanar node inside the blade and a
 //    section that is a triangle from c (one front at most) or a fan face (c, p, q) in the plane.
 //    The tets whose boxes meet the grown blade box are then rebuilt as a small local mesh after
 //    the first delta and cut again by the same blade with the same tolerance: c is cloned, the
 //    fan faces are clipped along the outline, the straddling pieces are cut as partial tets with
-//    one front, and what the first pass already opened is left alone. The two deltas are composed
+//    one front, and what the first pass already opened is left alone (there is no third pass:
+//    a piece the second pass cannot open fully is fanned as in point 5). The deltas are composed
 //    into one against the input mesh (new nodes' parents flattened to its nodes; every point of a
 //    pinned tet is a combination of its four). Where the composition is impossible (more than
 //    four parents, or an unused node) the first pass's delta is kept and second_pass_failed set.
@@ -162,6 +173,18 @@ struct Combo {
   }
 };
 
+// A corner of S that may open: a coplanar node (node >= 0) or a cut point (edge != 0); face
+// points and blade corners (neither) are welded.
+struct OpenKey {
+  std::int32_t node = -1;
+  std::uint64_t edge = 0;
+};
+// A side of S on the section's boundary (a "run"), in plane coordinates (m).
+struct RunSide {
+  V2 a = V2::Zero(), b = V2::Zero();
+  OpenKey ka, kb;
+};
+
 struct TetInfo {
   std::array<Sign, 4> sign{};
   int code = 0;
@@ -172,6 +195,12 @@ struct TetInfo {
   Combo apex;              ///< partial, not pinned: the cone apex on the crack's front
   Combo centre;            ///< pinned with has_centre: a point strictly inside S, on the plane
   bool has_centre = false;
+  /// Partial, not pinned: S's sides on the section's boundary (the crack is the fan from the
+  /// apex over those with an end that opens), the apex and S's area, in plane coordinates.
+  std::vector<RunSide> runs;
+  V2 apex2 = V2::Zero();
+  double s_area = 0.0;  ///< m^2
+  bool grazed = false;  ///< pinned, but S has no area and no corner that could open
 };
 
 void tet_box(const TetMesh& m, const Tet& t, Vec3& lo, Vec3& hi) {
@@ -206,6 +235,7 @@ struct SecVert {
   Combo combo;
   V2 p2 = V2::Zero();   ///< in-plane coordinates, m
   bool inside = false;  ///< inside the polygon grown by tol
+  bool strict = false;  ///< inside by more than tol (may open)
 };
 
 // Everything one cut needs while it builds the delta.
@@ -870,6 +900,7 @@ class Cutter {
         v.support = {t[i], -1};
         v.combo.add(t[i], 1.0);
         v.inside = m_nodes[t[i]].inside;
+        v.strict = m_nodes[t[i]].strict;
         sv.push_back(v);
       }
       for (int j = i + 1; j < 4; ++j) {
@@ -881,6 +912,7 @@ class Cutter {
         v.combo.add(std::min(t[i], t[j]), 1.0 - e.t);
         v.combo.add(std::max(t[i], t[j]), e.t);
         v.inside = e.inside;
+        v.strict = e.strict;
         sv.push_back(v);
       }
     }
@@ -969,8 +1001,9 @@ class Cutter {
   // blade meets it at all, and where the crack's front runs inside it: S = section ∩ blade is
   // opened by coning every piece from one apex on the front (the midpoint of a single chord, or
   // the blade's corner where two chords meet), so the crack is exactly the fan from the apex
-  // over S's sides on the tet's faces. Fronts that no single point sees (two chords apart, or
-  // two of the blade's corners inside) pin the tet.
+  // over S's sides on the tet's faces. Fronts that no single point touches (two chords apart,
+  // or two of the blade's corners inside) get the apex whose fan covers most of S (design note,
+  // point 5).
   void analyse_partial(const Tet& t, TetInfo& info) {
     const std::vector<SecVert> sv = section(t, info);
     const std::size_t ns = sv.size();
@@ -978,8 +1011,11 @@ class Cutter {
       V2 p2;
       Combo combo;
       bool boundary = true;
+      OpenKey key;
+      bool strict = false;  ///< a section corner strictly inside the blade (may open)
     };
-    std::vector<SPoint> sp;  // S's corners
+    std::vector<SPoint> sp;   // S's corners
+    bool any_strict = false;  // a corner of S that may open
     double diam = 0.0;
     for (std::size_t i = 0; i < ns; ++i)
       for (std::size_t j = i + 1; j < ns; ++j) diam = std::max(diam, (sv[i].p2 - sv[j].p2).norm());
@@ -987,7 +1023,13 @@ class Cutter {
       const SecVert& u = sv[i];
       const SecVert& w = sv[(i + 1) % ns];
       if (u.inside) {
-        sp.push_back({u.p2, u.combo, true});
+        any_strict = any_strict || u.strict;
+        OpenKey key;
+        if (u.support[1] < 0)
+          key.node = u.support[0];
+        else
+          key.edge = u.label;
+        sp.push_back({u.p2, u.combo, true, key, u.strict});
         info.interacts = true;
       }
       const auto key = face_key_of(u, w);
@@ -1000,7 +1042,7 @@ class Cutter {
       const SecVert& a = u.label < w.label ? u : w;
       const SecVert& b = u.label < w.label ? w : u;
       for (const FacePoint& fp : fe.points) {
-        sp.push_back({a.p2 + fp.s * (b.p2 - a.p2), fp.combo, true});
+        sp.push_back({a.p2 + fp.s * (b.p2 - a.p2), fp.combo, true, {}, false});
         info.interacts = true;
       }
     }
@@ -1011,7 +1053,8 @@ class Cutter {
         const V2 q = m_blade2[k] - sv[i].p2;
         margin = std::min(margin, (e.x() * q.y() - e.y() * q.x()) / e.norm());
       }
-      if (margin > m_tol) sp.push_back({m_blade2[k], barycentric(t, m_blade.points()[k]), false});
+      if (margin > m_tol)
+        sp.push_back({m_blade2[k], barycentric(t, m_blade.points()[k]), false, {}, false});
     }
     if (m_options.reopen_pinned) find_centre(sp, diam, info);
     if (info.pinned || !info.interacts) return;
@@ -1028,7 +1071,11 @@ class Cutter {
     double area = 0.0;
     for (std::size_t k = 0; k < n; ++k) area += area2d(c, sp[k].p2, sp[(k + 1) % n].p2);
     if (n < 3 || !(area > m_tol * diam)) {
+      // S has no area: nothing opens here; split welded like a pinned tet. When no corner of
+      // S is strictly inside the blade, no edge or node of the tet could open anyway: the blade
+      // only grazes it (a point or a segment of its section on the blade's outline).
       info.pinned = true;
+      info.grazed = !any_strict;
       return;
     }
     auto on_section_boundary = [&](const V2& q) {
@@ -1054,22 +1101,80 @@ class Cutter {
         ++chains;
         first = k;
       }
-    if (chains != 1 || fronts > 2) {
-      info.pinned = true;
-      return;
-    }
+    info.s_area = area;
+    for (std::size_t k = 0; k < n; ++k)
+      if (!front[k])
+        info.runs.push_back({sp[k].p2, sp[(k + 1) % n].p2, sp[k].key, sp[(k + 1) % n].key});
+    // The fan from q over the runs with an end that may open (strictly inside): the crack, at
+    // most.
+    auto fan_area = [&](const V2& q) {
+      double a = 0.0;
+      for (std::size_t k = 0; k < n; ++k)
+        if (!front[k] && (sp[k].strict || sp[(k + 1) % n].strict))
+          a += area2d(q, sp[k].p2, sp[(k + 1) % n].p2);
+      return a;
+    };
     info.apex = Combo{};
-    if (fronts == 1) {
+    if (chains == 1 && fronts == 1) {
       info.apex.add(sp[first].combo, 0.5);
       info.apex.add(sp[(first + 1) % n].combo, 0.5);
-    } else {
-      const SPoint& mid = sp[(first + 1) % n];
-      if (mid.boundary) {
-        info.pinned = true;
-        return;
-      }
-      info.apex = mid.combo;
+      info.apex2 = 0.5 * (sp[first].p2 + sp[(first + 1) % n].p2);
+    } else if (chains == 1 && fronts == 2 && !sp[(first + 1) % n].boundary) {
+      info.apex = sp[(first + 1) % n].combo;
+      info.apex2 = sp[(first + 1) % n].p2;
     }
+    if (info.apex.count > 0 &&
+        (!m_options.reopen_pinned || fan_area(info.apex2) >= (1.0 - 1e-9) * area))
+      return;
+    // No point touches every front side (two runs, more than two front sides, or two front
+    // sides meeting on the section's boundary). The second pass, when on, cones such a tet
+    // from S's centre and cuts it again; otherwise the crack here is the fan from the apex
+    // that covers most of S: the midpoint of a front side or a blade corner inside the
+    // section. The fan lies in S (S is convex), so the crack stays on the blade; it misses the
+    // part of S beyond the front sides away from the apex (counted in tets_short).
+    if (m_options.reopen_pinned && info.has_centre) {
+      info.pinned = true;
+      info.runs.clear();
+      return;
+    }
+    if (info.apex.count > 0) return;
+    double best = -1.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      if (front[k]) {
+        const V2 mid = 0.5 * (sp[k].p2 + sp[(k + 1) % n].p2);
+        const double a = fan_area(mid);
+        if (a > best) {
+          best = a;
+          info.apex = Combo{};
+          info.apex.add(sp[k].combo, 0.5);
+          info.apex.add(sp[(k + 1) % n].combo, 0.5);
+          info.apex2 = mid;
+        }
+      }
+      if (!sp[k].boundary) {
+        const double a = fan_area(sp[k].p2);
+        if (a > best) {
+          best = a;
+          info.apex = sp[k].combo;
+          info.apex2 = sp[k].p2;
+        }
+      }
+    }
+  }
+
+  // Partial tet, not pinned: whether its crack (the fan from the apex over S's runs with an end
+  // that opens) misses part of S. After decide_edges and decide_clones.
+  [[nodiscard]] bool crack_short(const TetInfo& info) const {
+    auto opens = [&](const OpenKey& k) {
+      if (k.node >= 0) return m_weld.find_clone(k.node).has_value();
+      if (k.edge == 0) return false;
+      const auto it = m_edges.find(k.edge);
+      return it != m_edges.end() && it->second.open;
+    };
+    double opened = 0.0;
+    for (const RunSide& r : info.runs)
+      if (opens(r.ka) || opens(r.kb)) opened += area2d(info.apex2, r.a, r.b);
+    return !(opened >= (1.0 - 1e-9) * info.s_area);
   }
 
   // Barycentric combination of tet t's nodes giving point p (current positions).
@@ -1301,8 +1406,10 @@ class Cutter {
       if (info.straddles && !info.complete) {
         if (!info.interacts) continue;  // the blade misses it: left whole
         ++st.tets_partial;
-        st.tets_pinned += info.pinned ? 1 : 0;
+        st.tets_pinned += info.pinned && !info.grazed ? 1 : 0;
+        st.tets_grazed += info.grazed ? 1 : 0;
         st.pinned_centred += info.pinned && info.has_centre ? 1 : 0;
+        st.tets_short += !info.pinned && crack_short(info) ? 1 : 0;
         d.removed_tets.push_back(ti);
         emit_partial(t, info, m_mesh.group[ti]);
         continue;
@@ -1436,7 +1543,9 @@ bool second_pass(const TetMesh& mesh, const ConvexPolygon& blade, const CutOptio
     add_local(d1.added_tets[k], d1.added_groups[k], -1 - static_cast<std::int32_t>(k));
   local.fill_node_state();
   const std::int32_t n_local = local.num_nodes();
-  const CutResult second = Cutter(local, blade, options, brute_force_query(local), tol).run();
+  CutOptions once = options;  // no third pass: what the second pass cannot open, it fans
+  once.reopen_pinned = false;
+  const CutResult second = Cutter(local, blade, once, brute_force_query(local), tol).run();
   const TopologyDelta& d2 = second.delta;
   if (d2.empty()) return true;
   // Compose.
@@ -1522,6 +1631,8 @@ bool second_pass(const TetMesh& mesh, const ConvexPolygon& blade, const CutOptio
   st.second_pass_originals = originals;
   st.tets_pinned = s2.tets_pinned;
   st.pinned_centred = s2.pinned_centred;
+  st.tets_short += s2.tets_short;
+  st.tets_grazed += s2.tets_grazed;
   st.degenerate_tets += s2.degenerate_tets;
   st.edge_pairs += s2.edge_pairs;
   st.edge_singles += s2.edge_singles;

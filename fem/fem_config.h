@@ -47,6 +47,14 @@ struct SolverSettings {
   /// rounded to a relative 6e-8, which perturbs the solution far below CG tolerances >= 1e-6
   /// (docs/BENCHMARKS.md "FEM" measures it). Off by default; CHOLMOD always uses double.
   bool float_matrix = false;
+  /// Divergence guard: when the previous step gained energy (StepStatus::energy_gain: a capped
+  /// CG on a sliver-laden cut mesh can inject energy, step after step, and grow without bound),
+  /// take the gain back out of the kinetic energy before this step: every velocity scaled by
+  /// sqrt(1 - gain / E_kin) (to zero at most). Only flagged steps are touched; a converged solve
+  /// never flags. Off by default: positions or velocities set between steps (a grasper moving
+  /// the nodes it holds) also count as a gain unless restart_energy_balance() is called, and
+  /// would be damped away.
+  bool remove_energy_gain = false;
   /// pcg_cholmod: factor in a background thread (true) or on the step that needs it (false).
   bool background_factor = true;
   /// pcg_cholmod: the background factorization starts this many ms late. For tests that need

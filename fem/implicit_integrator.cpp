@@ -145,6 +145,11 @@ void ImplicitIntegrator::update(TetMesh& mesh, const TopologyDelta& delta) {
 }
 
 StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const Vec3> f_ext) {
+  return step_from(mesh, dt_s, f_ext, m_config.solver.remove_energy_gain);
+}
+
+StepStatus ImplicitIntegrator::step_from(TetMesh& mesh, double dt_s, std::span<const Vec3> f_ext,
+                                         bool may_remove) {
   if (m_el.topology_version != mesh.topology_version ||
       m_el.elements.size() != static_cast<std::size_t>(mesh.num_tets()) ||
       m_el.node_mass.size() != static_cast<std::size_t>(mesh.num_nodes()) ||
@@ -229,6 +234,19 @@ StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const 
     }
   }
   m_energy_pending = false;
+  if (st.energy_gain && may_remove && kinetic_before > 0.0) {
+    // Take the gain out of the kinetic energy and run the step from the slowed state (the
+    // forces above used v).
+    const double s = std::sqrt(std::max(0.0, 1.0 - st.energy_change_j / kinetic_before));
+    for (Vec3& v : mesh.v) v *= s;
+    StepStatus again = step_from(mesh, dt_s, f_ext, false);
+    again.energy_gain = true;
+    again.converged = false;
+    again.energy_j = st.energy_j;
+    again.energy_change_j = st.energy_change_j;
+    again.energy_removed_j = (1.0 - s * s) * kinetic_before;
+    return again;
+  }
 
   // 4-5. Solve A dv = b, A = M + dt C + dt^2 K_R: assembled (CHOLMOD always, CG unless
   // matrix_free) or applied matrix-free (fem/system_matrix.h).

@@ -62,6 +62,8 @@ struct StepStatus {
   /// residual norm, though its quadratic decreased): converged = false and this flag.
   bool residual_growth = false;
   double energy_j = 0.0;  ///< mechanical energy at the start of this step (as above), J
+  /// Kinetic energy taken out before this step (SolverSettings::remove_energy_gain), J.
+  double energy_removed_j = 0.0;
   /// energy_j - (energy at the start of the previous step + the external work over it), J.
   double energy_change_j = 0.0;
 };
@@ -114,6 +116,9 @@ class ImplicitIntegrator {
   void rebuild_solver_structure(const TetMesh& mesh);
   void reserve_for_cuts(TetMesh& mesh);
   void update_plasticity(const TetMesh& mesh, double dt_s);
+  /// step(); `may_remove`: the energy gain of the previous step may be taken out (then the
+  /// step runs again from the slowed state, once).
+  StepStatus step_from(TetMesh& mesh, double dt_s, std::span<const Vec3> f_ext, bool may_remove);
 
   const FemConfig m_config;
   FemElements m_el;

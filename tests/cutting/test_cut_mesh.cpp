@@ -385,19 +385,25 @@ namespace {
 
 // What 200 random partial blades about a tet wide opened (PartialCrack tests below).
 struct Coverage {
-  int exact_cases = 0, pinned_cases = 0;
-  double min_opened = 1.0, sum_opened = 0.0;  // pinned cases: crack area / twice the blade's
-  [[nodiscard]] double mean_opened() const {
-    return pinned_cases > 0 ? sum_opened / pinned_cases : 1.0;
+  int cases = 0, exact_cases = 0, flagged_cases = 0;
+  double min_opened = 1.0, sum_opened = 0.0, sum_short = 0.0;  // crack area / twice the blade's
+  [[nodiscard]] int short_cases() const { return cases - exact_cases; }
+  [[nodiscard]] double mean_opened() const { return cases > 0 ? sum_opened / cases : 1.0; }
+  [[nodiscard]] double mean_short() const {  // over the cases that are not exact
+    return short_cases() > 0 ? sum_short / short_cases() : 1.0;
   }
 };
 
-// Partial cuts open exactly the blade's area: the crack's two sides together cover twice the
-// part of the section the blade covers, whatever the blade's outline does inside the tets
-// (crossing faces without cutting edges, corners inside tets, tips on nodes). Pinned tets (a
-// front no single apex sees) stop the crack short; they are counted, and the share of the
-// blade's area the crack covers in those cases is measured.
+// Partial cuts open the blade's area: the crack's two sides together cover twice the part of
+// the section the blade covers, whatever the blade's outline does inside the tets (crossing faces
+// without cutting edges, corners inside tets, tips on nodes). Where a tet's crack cannot cover
+// its part (tets_pinned: a front along a coplanar edge; tets_short: no apex touches every front
+// side, or no point of the part opens), the cut is flagged; every cut not flagged must open
+// exactly the blade's area. The share of the blade the crack covers is measured and reported.
 Coverage partial_crack(const CutOptions& options) {
+  // "Exactly": to 1e-5 of the blade's area. A tet whose part under the blade is thinner than
+  // the classification tolerance (1e-6 of the edge length) is grazed, not opened.
+  constexpr double kExact = 1e-5;
   Coverage cov;
   std::mt19937 rng(8);
   std::uniform_real_distribution<double> u(0.3, 3.7);
@@ -433,45 +439,50 @@ Coverage partial_crack(const CutOptions& options) {
     EXPECT_EQ(a.result.stats.degenerate_tets, 0) << i;
     EXPECT_EQ(a.result.stats.second_pass_failed, 0) << i;
     EXPECT_EQ(count_components(a.after), 1) << i;
-    if (a.result.stats.tets_pinned > 0) {
-      ++cov.pinned_cases;
-      const double opened = a.report.blade_face_area_m2 / (2.0 * blade->area());
-      EXPECT_LE(opened, 1.0 + 1e-9) << i;
-      cov.min_opened = std::min(cov.min_opened, opened);
-      cov.sum_opened += opened;
-      continue;
+    const double opened = a.report.blade_face_area_m2 / (2.0 * blade->area());
+    EXPECT_LE(opened, 1.0 + 1e-9) << i;
+    const bool flagged = a.result.stats.tets_pinned > 0 || a.result.stats.tets_short > 0;
+    if (!flagged) {
+      EXPECT_NEAR(opened, 1.0, kExact) << i;
     }
-    ++cov.exact_cases;
-    EXPECT_NEAR(a.report.blade_face_area_m2, 2.0 * blade->area(), 1e-9 * blade->area()) << i;
+    ++cov.cases;
+    cov.flagged_cases += flagged ? 1 : 0;
+    cov.sum_opened += opened;
+    cov.min_opened = std::min(cov.min_opened, opened);
+    if (std::abs(opened - 1.0) <= kExact) {
+      ++cov.exact_cases;
+    } else {
+      cov.sum_short += opened;
+    }
   }
   std::printf(
-      "partial blades inside a 4^3 grid%s: %d opened exactly, %d with pinned tets (there the "
-      "crack covers %.3f of the blade's area on average, %.3f at the least)\n",
-      options.reopen_pinned ? " (second pass)" : "", cov.exact_cases, cov.pinned_cases,
-      cov.mean_opened(), cov.min_opened);
+      "partial blades inside a 4^3 grid%s: %d cuts, %d opened exactly (%d flagged); the crack "
+      "covers %.3f of the blade's area on average, %.3f over the other %d, %.3f at the least\n",
+      options.reopen_pinned ? " (second pass)" : "", cov.cases, cov.exact_cases, cov.flagged_cases,
+      cov.mean_opened(), cov.mean_short(), cov.short_cases(), cov.min_opened);
   return cov;
 }
 
 TEST(CutMesh, PartialCrackCoversExactlyTheBlade) {
   const Coverage cov = partial_crack({});
-  // Blades about a tet wide: many have two corners in one tet or pass through one as a strip
-  // (two fronts), which pins it. Both kinds must occur here, and the exact ones must be many.
+  // Blades about a tet wide: many have two corners in one tet or pass through one as a strip,
+  // or cut no edge strictly inside (nothing on their outline can open in one pass). Both kinds
+  // must occur here, and the exact ones must be many.
   EXPECT_GT(cov.exact_cases, 20);
-  EXPECT_GT(cov.pinned_cases, 0);
+  EXPECT_GT(cov.short_cases(), 0);
 }
 
-// The second pass (CutOptions::reopen_pinned) cuts the pinned tets again from a point inside the
-// blade's part of their section: every invariant still holds, the exact cases stay exact, and
-// where pins remain the crack covers far more of the blade (0.10 -> 0.89 of its area on average
-// here; docs/BENCHMARKS.md "Cutting").
+// The second pass (CutOptions::reopen_pinned) cuts the tets no single apex opens fully again,
+// from a point inside the blade's part of their section: every invariant still holds, the
+// exact cases stay exact, and most cuts open exactly (docs/BENCHMARKS.md "Cutting").
 TEST(CutMesh, PartialCrackWithTheSecondPassCoversMostOfTheBlade) {
   const Coverage one = partial_crack({});
   CutOptions o;
   o.reopen_pinned = true;
   const Coverage two = partial_crack(o);
   EXPECT_GE(two.exact_cases, one.exact_cases);
-  EXPECT_GT(two.mean_opened(), 0.8);
-  EXPECT_GT(two.mean_opened(), 4.0 * one.mean_opened());
+  EXPECT_GT(two.mean_opened(), 0.9);
+  EXPECT_GT(two.mean_opened(), one.mean_opened() + 0.2);
 }
 
 TEST(CutMesh, HalfCoveringBladeOpensExactlyItsPart) {

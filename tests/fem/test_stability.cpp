@@ -198,5 +198,49 @@ TEST(DivergenceGuard, CappedSolveThatInjectsEnergyIsFlagged) {
   EXPECT_GT(flagged, 0);
 }
 
+// SolverSettings::remove_energy_gain: each flagged gain is taken back out of the kinetic energy
+// (all of it when the kinetic energy suffices, never more), and nothing is taken when no step is
+// flagged. A kick given by hand is a gain like any other.
+TEST(DivergenceGuard, RemovingAGainTakesItOutOfTheKineticEnergy) {
+  TetMesh m = soft_bar();
+  for (std::size_t t = 0; t < m.tets.size(); ++t) m.group[t] = t % 2 == 0 ? 1 : 2;
+  FemConfig c = soft(SolverKind::pcg);
+  c.materials[1] = FemMaterial{3000.0, 0.45, 1000.0, 0.0, 0.0};
+  c.materials[2] = FemMaterial{3e7, 0.45, 1000.0, 0.0, 0.0};
+  c.solver.max_iterations = 2;
+  c.solver.tolerance = 1e-12;
+  c.solver.remove_energy_gain = true;
+  ImplicitIntegrator integ(c);
+  int flagged = 0;
+  for (int s = 0; s < 400; ++s) {
+    const StepStatus st = integ.step(m, 0.01);
+    ASSERT_TRUE(st.applied);
+    if (!st.energy_gain) {
+      EXPECT_EQ(st.energy_removed_j, 0.0) << s;
+      continue;
+    }
+    ++flagged;
+    EXPECT_FALSE(st.converged);
+    EXPECT_GT(st.energy_removed_j, 0.0) << s;
+    EXPECT_LE(st.energy_removed_j, st.energy_change_j * (1.0 + 1e-12)) << s;
+  }
+  EXPECT_GT(flagged, 0);
+  for (std::size_t i = 0; i < m.x.size(); ++i) ASSERT_TRUE(m.x[i].allFinite());
+
+  // A converged run, nearly at rest, then a kick (~0.015 J against ~3e-4 J dissipated per step):
+  // the kick's energy is the gain, all of it taken out on the next step.
+  TetMesh k = soft_bar();
+  FemConfig ck = soft(SolverKind::cholmod);
+  ck.solver.remove_energy_gain = true;
+  ImplicitIntegrator ik(ck);
+  for (int s = 0; s < 300; ++s) ASSERT_EQ(ik.step(k, 0.01).energy_removed_j, 0.0);
+  for (std::size_t i = 0; i < k.v.size(); ++i)
+    if (k.fixed[i] == 0) k.v[i] += Vec3(0.0, 0.0, 0.1);
+  const StepStatus st = ik.step(k, 0.01);
+  EXPECT_TRUE(st.energy_gain);
+  EXPECT_GT(st.energy_change_j, 0.0);
+  EXPECT_NEAR(st.energy_removed_j, st.energy_change_j, 1e-9 * st.energy_change_j);
+}
+
 }  // namespace
 }  // namespace serosa::fem
