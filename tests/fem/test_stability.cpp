@@ -31,6 +31,19 @@ FemConfig soft(SolverKind kind) {
   return c;
 }
 
+// The soft bar's tets alternating between 3 kPa (group 1) and `stiff_pa` (group 2), Rayleigh
+// damping `damping` on both, solved by CG capped at `iterations` with a tolerance it cannot reach.
+FemConfig alternating_stiffness(TetMesh& m, double stiff_pa, double damping, int iterations,
+                                double tolerance) {
+  for (std::size_t t = 0; t < m.tets.size(); ++t) m.group[t] = t % 2 == 0 ? 1 : 2;
+  FemConfig c = soft(SolverKind::pcg);
+  c.materials[1] = FemMaterial{3000.0, 0.45, 1000.0, damping, damping};
+  c.materials[2] = FemMaterial{stiff_pa, 0.45, 1000.0, damping, damping};
+  c.solver.max_iterations = iterations;
+  c.solver.tolerance = tolerance;
+  return c;
+}
+
 // Kinetic energy plus gravitational potential relative to rest (J). Starting at rest, a
 // dissipative step keeps kinetic + gravitational + elastic energy <= 0, so this is <= 0 (elastic
 // energy >= 0); and the bar, clamped at x = 0 and 0.3 m long, cannot fall further than its
@@ -117,12 +130,7 @@ TEST(Stability, UnconvergedSolveIsReportedNotHidden) {
   // A 1e6 stiffness contrast with a 3-iteration cap cannot converge: the status says so, and the
   // (finite, energy-reducing) result is still applied.
   TetMesh m = soft_bar();
-  for (std::size_t t = 0; t < m.tets.size(); ++t) m.group[t] = t % 2 == 0 ? 1 : 2;
-  FemConfig c = soft(SolverKind::pcg);
-  c.materials[1] = FemMaterial{3000.0, 0.45, 1000.0, 0.1, 0.1};
-  c.materials[2] = FemMaterial{3e9, 0.45, 1000.0, 0.1, 0.1};
-  c.solver.max_iterations = 3;
-  c.solver.tolerance = 1e-10;
+  const FemConfig c = alternating_stiffness(m, 3e9, 0.1, 3, 1e-10);
   ImplicitIntegrator integ(c);
   for (int s = 0; s < 20; ++s) {
     const StepStatus st = integ.step(m, 0.01);
@@ -178,12 +186,7 @@ TEST(DivergenceGuard, ConvergedStepsNeverFlagAndAnEnergyGainIsFlagged) {
 // then; each such step is flagged (never reported as converged), and the state stays finite.
 TEST(DivergenceGuard, CappedSolveThatInjectsEnergyIsFlagged) {
   TetMesh m = soft_bar();
-  for (std::size_t t = 0; t < m.tets.size(); ++t) m.group[t] = t % 2 == 0 ? 1 : 2;
-  FemConfig c = soft(SolverKind::pcg);
-  c.materials[1] = FemMaterial{3000.0, 0.45, 1000.0, 0.0, 0.0};
-  c.materials[2] = FemMaterial{3e7, 0.45, 1000.0, 0.0, 0.0};
-  c.solver.max_iterations = 2;
-  c.solver.tolerance = 1e-12;
+  const FemConfig c = alternating_stiffness(m, 3e7, 0.0, 2, 1e-12);
   ImplicitIntegrator integ(c);
   int flagged = 0;
   for (int s = 0; s < 400; ++s) {
@@ -203,12 +206,7 @@ TEST(DivergenceGuard, CappedSolveThatInjectsEnergyIsFlagged) {
 // flagged. A kick given by hand is a gain like any other.
 TEST(DivergenceGuard, RemovingAGainTakesItOutOfTheKineticEnergy) {
   TetMesh m = soft_bar();
-  for (std::size_t t = 0; t < m.tets.size(); ++t) m.group[t] = t % 2 == 0 ? 1 : 2;
-  FemConfig c = soft(SolverKind::pcg);
-  c.materials[1] = FemMaterial{3000.0, 0.45, 1000.0, 0.0, 0.0};
-  c.materials[2] = FemMaterial{3e7, 0.45, 1000.0, 0.0, 0.0};
-  c.solver.max_iterations = 2;
-  c.solver.tolerance = 1e-12;
+  FemConfig c = alternating_stiffness(m, 3e7, 0.0, 2, 1e-12);
   c.solver.remove_energy_gain = true;
   ImplicitIntegrator integ(c);
   int flagged = 0;
