@@ -8,8 +8,8 @@
 // One closing stroke, one cut. While the scissors stay put (hinge within kStrokeHingeTol, blade
 // plane within kStrokeAngleTol of where the stroke began) the per-step sweeps of one stroke are
 // all in the same plane, side by side: cut one by one, each is a strip a fraction of a tet wide
-// whose outline runs through every tet it meets, so the cutting core splits those tets welded
-// ("pinned", the crack does not open) and splits the same tets again at the next step (the
+// whose outline runs through every tet it meets, so the cutting core opens those tets short of
+// the blade or not at all, and splits the same tets again at the next step (the
 // appendix transection grew from 3.8k to 245k tets in 18 steps and stayed one piece). So the
 // stage accumulates the stroke and cuts once, with the whole swept sector (hinge plus points on
 // the arc of the blade tips, convex), when the jaws stop closing, close completely, or the

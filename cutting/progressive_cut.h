@@ -3,8 +3,8 @@
 //
 // Cutting each step's thin polygon into the mesh the earlier steps made (cut_mesh alone) fails on
 // thin steps off the grid planes: a step a fraction of a tet wide crosses tets as strips or
-// grazes them, so cut_mesh pins them (splits them welded) and no later step covers that part of
-// the blade again: the crack keeps welded gaps and the organ does not come apart. And the
+// grazes them, so cut_mesh opens them short of the blade or not at all, and no later step covers
+// that part of the blade again: the crack keeps welded gaps and the organ does not come apart. The
 // pieces ahead of each step's crack front are split again by the next step, so the mesh grows
 // geometrically with the steps (docs/BENCHMARKS.md "Cutting", mesh growth).
 //

@@ -182,13 +182,13 @@ TEST(ScissorsSweeps, SmallStepsCutABeamThroughAlongGridFaces) {
 }
 
 // The limit of cutting thin steps one by one with cut_mesh, off the grid planes, and what lifts
-// it. The tilted plane in 20 thin steps pins tets over steps 9-12, tets whose section a step's
-// triangle only grazes (S has no area), crosses as a strip (two fronts no single apex sees) or
-// crosses along a coplanar edge. A pinned tet is split with every node welded, and no later thin
-// step covers it again, so cut step by step the beam stays in one piece (every intermediate mesh
-// still passes the invariant checker: asserted; the pieces are reported, not asserted). Cut as
-// one progressive stroke, every step is one cut of the sector swept so far, and the beam falls
-// in two (asserted).
+// it. The tilted plane in 20 thin steps meets tets whose section a step's triangle only grazes
+// (S has no area: split welded), crosses as a strip (two fronts no single apex touches: the crack
+// there is fanned short of the blade) or crosses along a coplanar edge (pinned: split with every
+// node welded). No later thin step covers those parts again, so cut step by step the beam stays
+// in one piece (every intermediate mesh still passes the invariant checker: asserted; the pieces
+// are reported, not asserted). Cut as one progressive stroke, every step is one cut of the sector
+// swept so far, and the beam falls in two (asserted).
 TEST(ScissorsSweeps, SmallStepsTiltedIn20ThinStepsKeepEveryInvariantAndSeparateAsAStroke) {
   const double h = 0.01;
   const TetMesh beam = fixtures::box(8, 2, 2, 1, h);
