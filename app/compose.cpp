@@ -46,6 +46,9 @@ fem::FemConfig fem_config(const Scene& scene, const AssembledScene& assembled) {
   c.solver.kind = to_fem(scene.solver.kind);
   c.solver.tolerance = scene.solver.tolerance;
   c.solver.max_iterations = scene.solver.max_iterations;
+  // A capped CG's energy gains are taken back out (the grasper, the one stage that moves nodes
+  // between steps, tells the FEM stage so: ToolContactStage -> FemStage::nodes_moved_by_caller).
+  c.solver.remove_energy_gain = true;
   c.gravity_on = scene.settings.has(Effect::kGravity);
   c.gravity_mps2 = scene.settings.gravity_mps2;
   return c;

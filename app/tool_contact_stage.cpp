@@ -176,6 +176,7 @@ void ToolContactStage::step(const StepContext& ctx, SimState& state) {
           mesh.x[un] = target;
           mesh.fixed[un] = 1;
         }
+        if (m_fem) m_fem->nodes_moved_by_caller();  // the jaws' work, not the solve's
       }
     }
 

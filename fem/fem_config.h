@@ -51,9 +51,10 @@ struct SolverSettings {
   /// CG on a sliver-laden cut mesh can inject energy, step after step, and grow without bound),
   /// take the gain back out of the kinetic energy before this step: every velocity scaled by
   /// sqrt(1 - gain / E_kin) (to zero at most). Only flagged steps are touched; a converged solve
-  /// never flags. Off by default: positions or velocities set between steps (a grasper moving
-  /// the nodes it holds) also count as a gain unless restart_energy_balance() is called, and
-  /// would be damped away.
+  /// never flags. Off by default here: positions or velocities set between steps also count as
+  /// a gain unless restart_energy_balance() is called, and would be damped away. The app turns
+  /// it on (app/compose.cpp): its grasper reports the nodes it moves
+  /// (FemStage::nodes_moved_by_caller).
   bool remove_energy_gain = false;
   /// pcg_cholmod: factor in a background thread (true) or on the step that needs it (false).
   bool background_factor = true;

@@ -38,6 +38,11 @@ class FemStage final : public Stage {
   /// Tells the stage about a topology change already applied to `state.mesh`, so that it
   /// updates only the affected elements (cutting publishes the delta between steps).
   void on_topology_change(SimState& state, const TopologyDelta& delta);
+  /// Tells the stage that the caller set x or v of some nodes since the last step (a grasper
+  /// moving the nodes it holds): that is the caller's work, not a gain of the last solve, so
+  /// the next step's divergence guard skips its energy check (ImplicitIntegrator::
+  /// restart_energy_balance) instead of flagging it and starting the solve cold.
+  void nodes_moved_by_caller() { m_integrator.restart_energy_balance(); }
 
   [[nodiscard]] const StepStatus& last_status() const noexcept { return m_last; }
   [[nodiscard]] const FemStageStats& stats() const noexcept { return m_stats; }

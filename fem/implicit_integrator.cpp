@@ -165,8 +165,9 @@ StepStatus ImplicitIntegrator::step_from(TetMesh& mesh, double dt_s, std::span<c
   // 1-2. Per tet: rotation (warm-started from the last step), rotated gradients R b_a, and the
   // corner forces f_el(x) - (beta + dt) K_R v.
   int inverted = 0;
-  double elastic_before = 0.0;  // J, corotated elastic energy at x with this step's R
-#pragma omp parallel for schedule(static) reduction(+ : inverted, elastic_before) if (m >= kParallelMin)
+  double elastic_before = 0.0;    // J, corotated elastic energy at x with this step's R
+  double stiffness_volume = 0.0;  // sum of (lambda + 2 mu) V over active tets, J
+#pragma omp parallel for schedule(static) reduction(+ : inverted, elastic_before, stiffness_volume) if (m >= kParallelMin)
   for (std::int32_t t = 0; t < m; ++t) {
     const auto ut = static_cast<std::size_t>(t);
     const TetElement& e = m_el.elements[ut];
@@ -180,6 +181,7 @@ StepStatus ImplicitIntegrator::step_from(TetMesh& mesh, double dt_s, std::span<c
       }
       continue;
     }
+    stiffness_volume += (e.lambda_pa + 2.0 * e.mu_pa) * e.volume_m3;
     const Tet& nd = mesh.tets[ut];
     const Mat3 f = nodal_gradient(e, mesh.x[nd[0]], mesh.x[nd[1]], mesh.x[nd[2]], mesh.x[nd[3]]);
     if (f.determinant() <= 0.0) ++inverted;
@@ -227,8 +229,12 @@ StepStatus ImplicitIntegrator::step_from(TetMesh& mesh, double dt_s, std::span<c
   st.energy_j = kinetic_before + elastic_before;
   if (m_energy_pending) {
     st.energy_change_j = st.energy_j - m_energy_before - m_energy_work;
+    // Relative to the energies involved, with a floor for a mesh (nearly) at rest, where those
+    // are rounding noise: the elastic energy of a uniform strain kEnergyFloorStrain.
+    const double floor_j = 0.5 * kEnergyFloorStrain * kEnergyFloorStrain * stiffness_volume;
     if (!(st.energy_change_j <=
-          kEnergyGainTolerance * (m_energy_before + st.energy_j + std::abs(m_energy_work)))) {
+          kEnergyGainTolerance * (m_energy_before + st.energy_j + std::abs(m_energy_work)) +
+              floor_j)) {
       st.energy_gain = true;
       std::fill(m_dv.begin(), m_dv.end(), 0.0);  // no warm start from an energy-injecting dv
     }

@@ -68,8 +68,14 @@ struct StepStatus {
   double energy_change_j = 0.0;
 };
 
-/// Relative tolerance of StepStatus::energy_gain: gain > tol * (E_before + E_after + |W_ext|).
+/// Relative tolerance of StepStatus::energy_gain: gain > tol * (E_before + E_after + |W_ext|)
+/// + the floor below.
 inline constexpr double kEnergyGainTolerance = 1e-4;
+/// Floor of StepStatus::energy_gain: gains under the elastic energy of the whole mesh at this
+/// uniform strain, 1/2 sum (lambda + 2 mu) V eps^2, are not flagged. Near rest every energy is
+/// rounding noise (a beam at rest "gained" 9e-34 J of 1e-32 J), and a real divergence grows
+/// past this floor within a few steps.
+inline constexpr double kEnergyFloorStrain = 1e-8;
 
 class ImplicitIntegrator {
  public:
