@@ -136,16 +136,21 @@ std::int32_t tip_node(const TetMesh& m) {
 // Quaternion of that frame: rotation about x by +90 degrees.
 const std::string kDown = "0.7071067811865476,0.7071067811865476,0,0";
 
-TEST(Grasper, GrabsLiftsAndLetsGo) {
-  const fs::path dir = out_dir("grasper");
-  // Jaw tips 3 mm into the beam (top at y = 5 mm) near its end; open, close, lift 5 mm, open.
+// A grasper over the beam's end, jaw tips 3 mm into it (top at y = 5 mm): open, close (t = 0.05),
+// lift 5 mm (t = 0.15), open (t = 0.20).
+std::unique_ptr<BeamRun> grab_lift_release(const fs::path& dir) {
   const std::string csv =
       "0.00,grasper,0.095,0.002,0," + kDown + ",0.9\n" + "0.02,grasper,0.095,0.002,0," + kDown +
       ",0.9\n" + "0.05,grasper,0.095,0.002,0," + kDown + ",0.0\n" + "0.15,grasper,0.095,0.007,0," +
       kDown + ",0.0\n" + "0.20,grasper,0.095,0.007,0," + kDown + ",0.9\n";
   const std::string tool =
       "[[tool]]\nname = \"grasper\"\nkind = \"grasper\"\ndevice = \"script:path.csv\"\n";
-  auto run = beam_with_tools(dir, "\"fem\", \"surface\", \"contact\"", tool, csv);
+  return beam_with_tools(dir, "\"fem\", \"surface\", \"contact\"", tool, csv);
+}
+
+TEST(Grasper, GrabsLiftsAndLetsGo) {
+  const fs::path dir = out_dir("grasper");
+  auto run = grab_lift_release(dir);
   ASSERT_NE(run->comp.contact, nullptr);
   SimState& s = run->assembled.state;
   const std::vector<std::uint8_t> fixed0 = s.mesh.fixed;
@@ -171,13 +176,7 @@ TEST(Grasper, GrabsLiftsAndLetsGo) {
 // a grab, lift and release may be flagged.
 TEST(Grasper, MovingTheHeldNodesIsNotAnEnergyGainOfTheSolve) {
   const fs::path dir = out_dir("grasper_energy");
-  const std::string csv =
-      "0.00,grasper,0.095,0.002,0," + kDown + ",0.9\n" + "0.02,grasper,0.095,0.002,0," + kDown +
-      ",0.9\n" + "0.05,grasper,0.095,0.002,0," + kDown + ",0.0\n" + "0.15,grasper,0.095,0.007,0," +
-      kDown + ",0.0\n" + "0.20,grasper,0.095,0.007,0," + kDown + ",0.9\n";
-  const std::string tool =
-      "[[tool]]\nname = \"grasper\"\nkind = \"grasper\"\ndevice = \"script:path.csv\"\n";
-  auto run = beam_with_tools(dir, "\"fem\", \"surface\", \"contact\"", tool, csv);
+  auto run = grab_lift_release(dir);
   ASSERT_NE(run->comp.fem, nullptr);
   SimState& s = run->assembled.state;
   int held_steps = 0, flagged = 0;
