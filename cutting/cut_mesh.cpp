@@ -108,6 +108,7 @@
 #include "cutting/patterns.h"
 #include "cutting/section_triangulation.h"
 #include "cutting/subdivide.h"
+#include "cutting/tet_extent.h"
 #include "cutting/weld_map.h"
 
 namespace serosa::cutting {
@@ -203,14 +204,6 @@ struct TetInfo {
   bool grazed = false;  ///< pinned, but S has no area and no corner that could open
 };
 
-void tet_box(const TetMesh& m, const Tet& t, Vec3& lo, Vec3& hi) {
-  lo = hi = m.x[t[0]];
-  for (int k = 1; k < 4; ++k) {
-    lo = lo.cwiseMin(m.x[t[k]]);
-    hi = hi.cwiseMax(m.x[t[k]]);
-  }
-}
-
 // A face point: where the blade's outline crosses the section's side in one tet face.
 struct FacePoint {
   double s = 0.0;  ///< parameter from the side's first endpoint (smaller label) to the second
@@ -271,12 +264,7 @@ class Cutter {
     std::vector<std::int32_t> first;
     m_query(m_blade.box_min(), m_blade.box_max(), first);
     if (first.empty()) return false;
-    double h = 0.0;
-    for (std::int32_t ti : first) {
-      const Tet& t = m_mesh.tets[ti];
-      for (int i = 0; i < 4; ++i)
-        for (int j = i + 1; j < 4; ++j) h = std::max(h, (m_mesh.x[t[i]] - m_mesh.x[t[j]]).norm());
-    }
+    const double h = longest_edge_m(m_mesh, first);
     m_tol = m_fixed_tol > 0.0 ? m_fixed_tol : m_options.classify_rel * h;
     m_result.stats.tolerance_m = m_tol;
     const Vec3 grow = Vec3::Constant(2.0 * m_tol);

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "cutting/tet_extent.h"
+
 namespace serosa::cutting {
 namespace {
 
@@ -157,23 +159,14 @@ CutResult ProgressiveCut::cut(const TetMesh& mesh, const ConvexPolygon& blade,
     return std::binary_search(m_pieces.begin(), m_pieces.end(), t);
   };
   auto meets = [&](const Tet& t, const Vec3& lo, const Vec3& hi) {
-    Vec3 tlo = mesh.x[static_cast<std::size_t>(t[0])], thi = tlo;
-    for (int k = 1; k < 4; ++k) {
-      tlo = tlo.cwiseMin(mesh.x[static_cast<std::size_t>(t[k])]);
-      thi = thi.cwiseMax(mesh.x[static_cast<std::size_t>(t[k])]);
-    }
+    Vec3 tlo, thi;
+    tet_box(mesh, t, tlo, thi);
     return (tlo.array() <= hi.array()).all() && (thi.array() >= lo.array()).all();
   };
   std::vector<std::int32_t> cands;
   q(region->box_min(), region->box_max(), cands);
   double h = 0.0;
-  auto grow_h = [&](const Tet& t) {
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j)
-        h = std::max(
-            h, (mesh.x[static_cast<std::size_t>(t[i])] - mesh.x[static_cast<std::size_t>(t[j])])
-                   .norm());
-  };
+  auto grow_h = [&](const Tet& t) { h = std::max(h, longest_edge_m(mesh, t)); };
   for (std::int32_t t : cands)
     if (!is_piece(t) &&
         meets(mesh.tets[static_cast<std::size_t>(t)], region->box_min(), region->box_max()))

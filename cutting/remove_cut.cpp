@@ -5,6 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include "cutting/tet_extent.h"
+
 namespace serosa::cutting {
 namespace {
 
@@ -91,12 +93,7 @@ CutResult remove_cut(const TetMesh& mesh, const ConvexPolygon& blade, const CutO
   std::vector<std::int32_t> first;
   q(blade.box_min(), blade.box_max(), first);
   if (first.empty()) return result;
-  double h = 0.0;
-  for (std::int32_t ti : first) {
-    const Tet& t = mesh.tets[static_cast<std::size_t>(ti)];
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j) h = std::max(h, (mesh.x[t[i]] - mesh.x[t[j]]).norm());
-  }
+  const double h = longest_edge_m(mesh, first);
   const double tol = options.classify_rel * h;
   result.stats.tolerance_m = tol;
   std::vector<std::int32_t> cands;

@@ -6,6 +6,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "cutting/tet_extent.h"
 #include "cutting/weld_map.h"
 #include "engine/mesh_quality.h"
 
@@ -55,13 +56,7 @@ class Snapper {
 
  private:
   double max_edge(const std::vector<std::int32_t>& tets) const {
-    double h = 0.0;
-    for (std::int32_t ti : tets) {
-      const Tet& t = m_mesh.tets[static_cast<std::size_t>(ti)];
-      for (int i = 0; i < 4; ++i)
-        for (int j = i + 1; j < 4; ++j) h = std::max(h, (m_mesh.x[t[i]] - m_mesh.x[t[j]]).norm());
-    }
-    return h;
+    return longest_edge_m(m_mesh, tets);
   }
 
   // Candidates: every tet around every node a move or a split may touch. A moved node ends a

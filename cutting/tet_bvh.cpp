@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "cutting/tet_extent.h"
+
 namespace serosa::cutting {
 namespace {
 
@@ -69,12 +71,8 @@ TetBvh::TetBvh(const TetMesh& mesh, double spare) : m_spare(spare) {
 }
 
 void TetBvh::set_box(const TetMesh& mesh, std::int32_t ti) {
-  const Tet& t = mesh.tets[ti];
-  Vec3 lo = mesh.x[t[0]], hi = mesh.x[t[0]];
-  for (int k = 1; k < 4; ++k) {
-    lo = lo.cwiseMin(mesh.x[t[k]]);
-    hi = hi.cwiseMax(mesh.x[t[k]]);
-  }
+  Vec3 lo, hi;
+  tet_box(mesh, mesh.tets[static_cast<std::size_t>(ti)], lo, hi);
   m_lo[static_cast<std::size_t>(ti)] = lo;
   m_hi[static_cast<std::size_t>(ti)] = hi;
 }
