@@ -251,6 +251,8 @@ Json run_headless(const HeadlessOptions& options) {
     report["fem"] = {{"steps", st.steps},
                      {"not_converged", st.not_converged},
                      {"rejected", st.rejected},
+                     {"energy_gains", st.energy_gains},
+                     {"energy_removed_j", st.energy_removed_j},
                      {"last_iterations", comp.fem->last_status().iterations},
                      {"last_residual", comp.fem->last_status().residual}};
   }

@@ -28,6 +28,8 @@ void FemStage::step(const StepContext& ctx, SimState& state) {
   ++m_stats.steps;
   if (!m_last.converged) ++m_stats.not_converged;
   if (!m_last.applied) ++m_stats.rejected;
+  if (m_last.energy_gain) ++m_stats.energy_gains;
+  m_stats.energy_removed_j += m_last.energy_removed_j;
 }
 
 }  // namespace serosa::fem

@@ -22,6 +22,10 @@ struct FemStageStats {
   std::uint64_t rejected = 0;       ///< steps not applied (non-finite or diverged solve)
   std::uint64_t rebuilds = 0;       ///< full precomputes (first step, unseen topology changes)
   std::uint64_t updates = 0;        ///< incremental updates from TopologyDeltas
+  /// Steps whose previous step gained energy (StepStatus::energy_gain: a capped solve injected it)
+  std::uint64_t energy_gains = 0;
+  /// Kinetic energy taken back out over those (SolverSettings::remove_energy_gain), J
+  double energy_removed_j = 0.0;
 };
 
 class FemStage final : public Stage {

@@ -34,6 +34,8 @@ TEST(Headless, BeamSceneRunsAndReportsWhatItSimulated) {
   EXPECT_TRUE(fs::exists(dir / "report.json"));
   EXPECT_EQ(report["effects"]["simulated"][0], "fem");
   EXPECT_EQ(report["fem"]["rejected"], 0);
+  EXPECT_EQ(report["fem"]["energy_gains"], 0);  // converged solves only dissipate
+  EXPECT_EQ(report["fem"]["energy_removed_j"], 0.0);
   // The exported mesh is the final state: same topology, deformed positions.
   const TetMesh final_mesh = read_mesh(dir / "final.msh");
   EXPECT_EQ(final_mesh.num_tets(), report["mesh_final"]["tets"].get<int>());
