@@ -66,12 +66,17 @@
 //        (a blade too small to cut an edge: only face points and tip points on its outline).
 //      - S with no area (the blade grazes the tet: a point or a segment of Sigma on the
 //        outline): split welded, coned from the tet's centroid (tets_grazed).
-//    A straddling tet whose section side along a coplanar EDGE is crossed by the blade's outline
-//    cannot stop the crack there (the edge would need a point every tet around it agrees on): it
-//    is "pinned", split the same way but coned from its centroid with every node welded, and
-//    its edges and nodes stay welded in its neighbours too (tets_pinned). So is a tet whose
-//    section is not a convex polygon in rounding (a sliver), and one whose S has no area but
-//    holds a corner strictly inside the blade.
+//    A straddling tet whose section side lies along a coplanar EDGE (two nodes on the plane)
+//    that the blade's outline crosses: the crossings become welded nodes on that edge (cop_edge,
+//    keyed by the edge, so every tet around it splits there: one-sided ones are fanned from
+//    their opposite edge, faces holding the edge are fanned from their third node), and they
+//    are corners of S like face points, so the crack stops exactly on the outline there too.
+//    A tet that cannot stop the crack is "pinned": split the same way but coned from its
+//    centroid with every node welded, its edges and nodes welded in its neighbours too
+//    (tets_pinned). That is a tet whose section is not a convex polygon in rounding (a sliver),
+//    one whose S has no area but holds a corner strictly inside the blade, and one whose
+//    coplanar edge has one end strictly inside and the other outside with no crossing found
+//    more than tol from both (rounding).
 //    A stroke of thin steps, each cut here into the previous steps' pieces, pins tets no later
 //    step covers again and re-splits the pieces ahead of its front: cut such strokes with
 //    cutting/progressive_cut.h, which re-cuts the pre-stroke tets by the region swept so far.
@@ -81,9 +86,10 @@
 //    area) is clipped along the blade's outline: the outline's crossings of its edges become
 //    welded nodes (keyed by the edge, so every tet around the edge splits there: one-sided tets
 //    holding the face are coned from their off-plane node over the face's triangulation, those
-//    holding only the edge are fanned from the opposite edge, straddling ones are pinned), and
-//    the part under the blade is fanned from an opened pair of nodes at its centroid. So a
-//    scissors closing in steps thinner than the grid's faces opens the crack step by step.
+//    holding only the edge are fanned from the opposite edge, straddling ones stop S there as
+//    above), and the part under the blade is fanned from an opened pair of nodes at its
+//    centroid. So a scissors closing in steps thinner than the grid's faces opens the crack step
+//    by step.
 // 6. Output: the touched tets (cut, or one-sided tets that take a clone) are removed, their
 //    pieces added with the same group, each piece oriented positively by its rest volume.
 // 7. Second pass (CutOptions::reopen_pinned, off by default). A pinned tet whose S has area, and
@@ -312,13 +318,19 @@ class Cutter {
         }
       }
       info.complete = complete;
-      // Pinned: the outline crosses the section's side along a coplanar edge.
+      // Where the outline crosses the section's side along a coplanar edge, the crossings
+      // become welded nodes on the edge (cop_edge), shared by every tet around it, and the crack
+      // stops there (analyse_partial). Pinned only when one end is strictly inside, the other
+      // outside, and no crossing lies more than tol from both.
       if (!complete && nz == 2) {
         const std::int32_t a = t[zeros[0]], b = t[zeros[1]];
         const NodeInfo &na = m_nodes[a], &nb = m_nodes[b];
         if (!(na.inside && nb.inside)) {
-          const V2 pa = m_blade.to_plane(m_mesh.x[a]), pb = m_blade.to_plane(m_mesh.x[b]);
-          info.pinned = !crossings(pa, pb).empty() || na.strict || nb.strict;
+          if (!cop_edge(a, b).empty()) {
+            m_front_edges.push_back(edge_key(a, b));
+          } else {
+            info.pinned = na.strict || nb.strict;
+          }
         }
       }
       if (!complete) analyse_partial(t, info);
@@ -439,8 +451,8 @@ class Cutter {
   // Coplanar faces of the candidates (a face two candidates share is still welded; one a single
   // candidate holds is already open or on the surface); the welded ones the blade covers only
   // partly (with positive area) are clipped along its outline: their edges get the outline's
-  // crossings, every tet around such an edge is split there, and straddling tets holding one are
-  // pinned (split welded).
+  // crossings, every tet around such an edge is split there; so are the coplanar edges along
+  // partial tets' sections that the outline crosses (classify).
   void decide_faces() {
     for (const auto& [id, tets] : m_zero_tets)
       for (std::int32_t ci : tets) {
@@ -525,18 +537,23 @@ class Cutter {
       if (!(area > m_tol * diam)) continue;
       m_pfaces.emplace(key, std::move(cf));
     }
-    // Only the edges of clipped faces are split.
+    // Only the edges of clipped faces, and the coplanar section sides partial tets stop the
+    // crack on (classify), are split.
     std::unordered_map<std::uint64_t, std::vector<CopPoint>> kept;
     for (const auto& [key, cf] : m_pfaces)
       for (const auto& fe : kFaceEdges) {
         const std::uint64_t k = edge_key(key[fe[0]], key[fe[1]]);
         if (!m_cop_edges[k].empty()) kept.emplace(k, m_cop_edges[k]);
       }
+    for (const std::uint64_t k : m_front_edges)
+      if (!m_cop_edges[k].empty()) kept.emplace(k, m_cop_edges[k]);
     m_cop_edges = std::move(kept);
-    // Straddling tets holding a coplanar edge with crossings cannot open along it: pinned.
+    // A partial tet holding a coplanar edge with crossings has them on its section's side
+    // (analyse_partial). A complete one cannot (both ends inside the convex blade), save in
+    // rounding: pinned.
     for (std::size_t ci = 0; ci < m_cands.size(); ++ci) {
       TetInfo& info = m_tets[ci];
-      if (!info.straddles) continue;
+      if (!info.straddles || !info.complete) continue;
       const Tet& t = m_mesh.tets[m_cands[ci]];
       for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j)
@@ -794,6 +811,10 @@ class Cutter {
       const auto key = face_key_of(sv[i], *u);
       if (key[0] == -2) return false;
       Vec3 next = u->combo.cur(m_mesh);
+      if (key[0] == -1 && has_cop_points(a, u->support[0])) {  // along a coplanar edge
+        const std::vector<CopPoint>& pts = cop_points(a, u->support[0]);
+        next = (a < u->support[0] ? pts.front() : pts.back()).combo.cur(m_mesh);
+      }
       if (key[0] >= 0) {
         const auto it = m_faces.find(key);
         if (it != m_faces.end() && !it->second.points.empty()) {
@@ -1025,7 +1046,17 @@ class Cutter {
         info.pinned = true;  // unordered section (a sliver): no opening here
         continue;
       }
-      if (key[0] == -1) continue;  // along a coplanar edge (pinned in classify when crossed)
+      if (key[0] == -1) {  // along a coplanar edge: the outline's crossings of it (classify)
+        const SecVert& lo = u.support[0] < w.support[0] ? u : w;
+        const SecVert& hi = u.support[0] < w.support[0] ? w : u;
+        const std::int32_t na = u.support[0], nb = w.support[0];
+        if (m_nodes[na].inside && m_nodes[nb].inside) continue;  // no crossing (classify)
+        for (const CopPoint& cp : cop_edge(na, nb)) {
+          sp.push_back({lo.p2 + cp.s * (hi.p2 - lo.p2), cp.combo, true, {}, false});
+          info.interacts = true;
+        }
+        continue;
+      }
       const FaceEntry& fe = face_points(key, u, w);
       const SecVert& a = u.label < w.label ? u : w;
       const SecVert& b = u.label < w.label ? w : u;
@@ -1458,6 +1489,7 @@ class Cutter {
   std::unordered_map<std::array<std::int32_t, 3>, ClipFace, FaceKeyHash>
       m_pfaces;  ///< welded coplanar faces partly under the blade
   std::unordered_map<std::uint64_t, std::vector<CopPoint>> m_cop_edges;  ///< coplanar edges
+  std::vector<std::uint64_t> m_front_edges;  ///< coplanar section sides the outline crosses
   std::unordered_map<std::array<std::int32_t, 3>, CopFaceTris, FaceKeyHash>
       m_cop_faces;                    ///< triangulations of split coplanar faces
   std::vector<CopPoint> m_no_points;  ///< always empty

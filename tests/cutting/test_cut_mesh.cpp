@@ -574,5 +574,32 @@ TEST(CutMesh, HalfCoveringBladeOpensExactlyItsPart) {
   }
 }
 
+// The plane x + y = 2 holds vertical grid edges, and the Kuhn tets around them straddle it with
+// two nodes on it: the blade's outline z = zc crosses those coplanar edges. The crossings become
+// welded nodes on the edges (every tet around an edge shares them), so the crack stops exactly
+// on the outline: its area is the blade's part of the section, 2 sqrt(2) zc, on each side.
+TEST(CutMesh, OutlineAcrossCoplanarEdgesStopsTheCrackExactlyThere) {
+  for (const bool slanted : {false, true}) {
+    const TetMesh m = fixtures::grid(4);
+    for (const double zc : {0.5, 1.3, 2.75}) {
+      // The outline from (3, -1, zc - d) to (-1, 3, zc + d): z = zc - d/10 ... zc + d/10 over the
+      // section, zc on average.
+      const double d = slanted ? 0.2 : 0.0;
+      const ConvexPolygon blade(
+          {Vec3(-1, 3, -1), Vec3(3, -1, -1), Vec3(3, -1, zc - d), Vec3(-1, 3, zc + d)});
+      const Applied a = cut_and_check(m, blade);
+      ASSERT_TRUE(a.report.ok) << problems(a.report);
+      EXPECT_EQ(a.result.stats.tets_pinned, 0) << zc;
+      EXPECT_EQ(a.result.stats.tets_short, 0) << zc;
+      EXPECT_GT(a.result.stats.face_points, 0) << zc;  // the crossings of the coplanar edges
+      EXPECT_EQ(count_components(a.after), 1) << zc;
+      // The section x + y = 2 inside the cube: s = (x - y) / sqrt(2) in [-sqrt(2), sqrt(2)], z
+      // in [0, 4]; the blade covers z up to the outline (linear in s when slanted).
+      const double expect = 2.0 * std::sqrt(2.0) * zc;
+      EXPECT_NEAR(a.report.blade_face_area_m2, 2.0 * expect, 1e-9) << zc << " " << slanted;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace serosa::cutting
