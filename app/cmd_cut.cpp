@@ -9,15 +9,20 @@
 // summary: tets, nodes, volume and minimum quality before and after, tets created, and the time of
 // each cut (shared/DESIGN.md "Contracts"). A cut's time is the candidate query through the BVH, the
 // cut itself, apply() and the BVH's local update. Bad flags (a polygon that does not parse, has
-// fewer than 3 points, is not planar or not convex; an unknown method) are InputErrors naming the
-// flag and its value: exit 1.
+// fewer than 3 points, is not planar or not convex; an unknown method; an --out that is a
+// directory or lies in no existing directory) are InputErrors naming the flag and its value:
+// exit 1, before any cut runs. A polygon that changes nothing is a warning (stderr, and the JSON's
+// "warnings"). Debug builds check every pattern cut with cutting::check_cut (a broken invariant is
+// our bug: exit 2).
 #include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -27,6 +32,7 @@
 #include "cutting/progressive_cut.h"
 #include "cutting/reserve.h"
 #include "cutting/tet_bvh.h"
+#include "cutting/validate.h"
 #include "engine/input_error.h"
 #include "engine/mesh_check.h"
 #include "engine/mesh_io.h"
@@ -164,6 +170,14 @@ int run_cut(const CutArgs& args) {
   if (!std::filesystem::exists(args.mesh, ec))
     throw InputError(args.mesh, 0, "no such file", "an existing mesh file");
 
+  // The output's place is checked before any cut runs (a long run must not end on a typo).
+  const std::filesystem::path out(args.out);
+  if (std::filesystem::is_directory(out, ec))
+    throw InputError("--out " + args.out, 0, "is a directory", "a file path (.msh)");
+  if (out.has_parent_path() && !std::filesystem::is_directory(out.parent_path(), ec))
+    throw InputError("--out " + args.out, 0, "its directory does not exist",
+                     "a path in an existing directory");
+
   MeshReadReport read;
   TetMesh mesh = read_mesh(args.mesh, {}, &read);
   const MeshSummary before = summarize(mesh);
@@ -173,6 +187,7 @@ int run_cut(const CutArgs& args) {
 
   // Each cut: candidates through the BVH, the cut, apply(), the BVH's local update.
   nlohmann::json cuts = nlohmann::json::array();
+  nlohmann::json warnings = nlohmann::json::array();
   std::int64_t created = 0;
   double total_ms = 0.0;
   for (std::size_t k = 0; k < blades.size(); ++k) {
@@ -184,7 +199,23 @@ int run_cut(const CutArgs& args) {
     cutting::CutResult r = args.stroke
                                ? stroke.cut(mesh, blades[k], bvh.as_query())
                                : cutting::cut_with(*method, mesh, blades[k], {}, bvh.as_query());
+#ifndef NDEBUG
+    // Debug builds check every single cut with the invariant checker (cutting/validate.h).
+    std::optional<TetMesh> unchecked;
+    if (!args.stroke && *method == cutting::CutMethod::kPattern) unchecked = mesh;
+#endif
     apply(mesh, r.delta);
+#ifndef NDEBUG
+    if (unchecked) {
+      cutting::CutCheckOptions co;
+      co.geometry_tol_m = 4.0 * r.stats.tolerance_m + 1e-12;
+      co.plane_tol_m = r.stats.tolerance_m;
+      const cutting::CutCheckReport check = cutting::check_cut(*unchecked, mesh, blades[k], co);
+      if (!check.ok)
+        throw std::logic_error("cut " + std::to_string(k + 1) +
+                               " broke an invariant: " + check.problems.front());
+    }
+#endif
     if (args.stroke) stroke.applied(mesh, r.delta);
     bvh.update(mesh, r.delta);
     const double ms =
@@ -206,6 +237,15 @@ int run_cut(const CutArgs& args) {
       c["nodes_released"] = stroke.last_step().nodes_released;
     }
     cuts.push_back(std::move(c));
+    // A polygon that changes nothing is almost always a mistake in its coordinates: said, not
+    // silent (the output is still written).
+    if (r.delta.empty()) {
+      std::string w = "polygon " + std::to_string(k + 1) + " changed nothing: ";
+      w.append(r.stats.candidates == 0 ? "its bounding box meets no tet of the mesh"
+                                       : "it crosses no tet of the mesh");
+      warnings.push_back(w);
+      if (!args.json) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    }
   }
   if (args.stroke) {
     created += static_cast<std::int64_t>(stroke.num_pieces());
@@ -224,7 +264,8 @@ int run_cut(const CutArgs& args) {
                            {"after", to_json(after)},
                            {"tets_created", created},
                            {"total_time_ms", total_ms},
-                           {"cuts", cuts}};
+                           {"cuts", cuts},
+                           {"warnings", warnings}};
     std::printf("%s\n", j.dump(2).c_str());
   } else {
     std::printf("cut %s with %zu polygon(s), method %s -> %s\n", args.mesh.c_str(), blades.size(),

@@ -77,7 +77,7 @@ Composition compose(const Scene& scene, const AssembledScene& assembled, Compose
   std::unique_ptr<CuttingStage> cutting_stage;
   if (listed(Effect::kCutting)) {
     CuttingStageOptions co;
-    co.validate = options.validate_cuts;
+    co.validate = options.validate_cuts || kCheckEveryCutByDefault;  // always in debug builds
     cutting_stage = std::make_unique<CuttingStage>(scene, co);
   }
   std::unique_ptr<ToolContactStage> contact_stage;

@@ -30,7 +30,8 @@ struct ComposeOptions {
   /// Replaces the scripted "tools" stage as the source of tool inputs (replay feeds recorded
   /// inputs this way). Null: tools driven by a script get a ScriptToolStage.
   std::unique_ptr<Stage> tool_input;
-  /// Check every cut's invariants (cutting/validate.h); costly, for tests.
+  /// Check every cut's invariants (cutting/validate.h); costly, for tests (always on in debug
+  /// builds: kCheckEveryCutByDefault).
   bool validate_cuts = false;
   /// The haptic loop asks for SCHED_FIFO and runs its gap monitor (the trainee session).
   bool realtime_haptics = false;

@@ -73,9 +73,16 @@ struct CutApplied {
 /// Told about each cut right after it is applied to state.mesh, in registration order.
 using CutListener = std::function<void(SimState&, const CutApplied&)>;
 
+#ifdef NDEBUG
+inline constexpr bool kCheckEveryCutByDefault = false;
+#else
+inline constexpr bool kCheckEveryCutByDefault = true;  ///< debug builds check every cut
+#endif
+
 struct CuttingStageOptions {
-  /// Check every cut with cutting::check_cut (costly: copies the mesh; tests turn it on).
-  bool validate = false;
+  /// Check every cut with cutting::check_cut (costly: copies the mesh). On in debug builds; tests
+  /// and `serosa headless --validate-cuts` turn it on in the others.
+  bool validate = kCheckEveryCutByDefault;
 };
 
 /// Totals over the stage's life.

@@ -1,16 +1,26 @@
 #include "cutting/convex_polygon.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 namespace serosa::cutting {
 namespace {
 
 double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return a.x() * b.y() - a.y() * b.x();
+}
+
+// Four significant digits, any magnitude (std::to_string prints 6e-8 as "0.000000").
+std::string short_number(double v) {
+  std::array<char, 32> buf{};
+  std::snprintf(buf.data(), buf.size(), "%.4g", v);
+  return buf.data();
 }
 
 }  // namespace
@@ -46,7 +56,8 @@ std::optional<std::string> ConvexPolygon::build(std::vector<Vec3> points, double
     newell += (points[i] - centroid).cross(points[(i + 1) % k] - centroid);
   const double area = 0.5 * newell.norm();
   if (!(area > 1e-12 * diameter * diameter))
-    return std::string("ConvexPolygon: zero area (points are collinear)");
+    return std::string(
+        "ConvexPolygon: zero area (points are collinear, or their order crosses itself)");
   const Vec3 n = newell.normalized();
   const double d = n.dot(centroid);
 
@@ -54,8 +65,8 @@ std::optional<std::string> ConvexPolygon::build(std::vector<Vec3> points, double
   for (std::size_t i = 0; i < k; ++i) {
     const double off = std::abs(n.dot(points[i]) - d);
     if (off > planarity_tol * diameter)
-      return "ConvexPolygon: point " + std::to_string(i) + " is " + std::to_string(off) +
-             " m off the plane (tolerance " + std::to_string(planarity_tol * diameter) + " m)";
+      return "ConvexPolygon: point " + std::to_string(i) + " is " + short_number(off) +
+             " m off the plane (tolerance " + short_number(planarity_tol * diameter) + " m)";
   }
 
   // In-plane basis and coordinates.

@@ -79,7 +79,7 @@ CutCheckReport check_cut(const TetMesh& before, const TetMesh& after, const Conv
   for (const auto& [g, v] : mb.group_volume_m3) {
     const auto it = mc.group_volume_m3.find(g);
     const double va = it == mc.group_volume_m3.end() ? 0.0 : it->second;
-    if (std::abs(va - v) > options.volume_rel * scale)
+    if (std::abs(va - v) > options.volume_rel * std::abs(v))  // relative to the group's own
       problem("group " + std::to_string(g) + " volume changed from " + str(v) + " to " + str(va));
   }
   for (const auto& [g, v] : mc.group_volume_m3)

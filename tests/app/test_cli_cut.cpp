@@ -181,5 +181,31 @@ TEST(CliCut, BadPolygonsExitOneNamingFlagAndValue) {
                   "--stroke with --method \"remove\"");
 }
 
+// A bad --out is found before any cut runs (exit 1, naming the flag), and an existing file there
+// is left as it was.
+TEST(CliCut, BadOutExitsOneBeforeCutting) {
+  const fs::path dir = out_dir("cli_cut_bad_out");
+  for (const std::string& bad : {(dir / "no_such_dir" / "out.msh").string(), dir.string()}) {
+    const CliResult r = run_serosa("cut '" + source("assets/beam_coarse.msh").string() +
+                                   "' --polygon " + covering(0.05) + " --out '" + bad + "'");
+    EXPECT_EQ(r.code, 1) << bad << "\n" << r.out;
+    EXPECT_NE(r.out.find("--out " + bad), std::string::npos) << r.out;
+  }
+}
+
+// A polygon that changes nothing (it misses the mesh, or lies beside it) is said, in the JSON
+// summary's "warnings" and on stderr, not silently written as an unchanged mesh.
+TEST(CliCut, PolygonThatChangesNothingIsWarned) {
+  const CutRun far = cut("misses", "--polygon '5,5,5 6,5,5 6,6,5'");
+  ASSERT_EQ(far.cli.code, 0) << far.cli.out;
+  ASSERT_EQ(far.summary["warnings"].size(), 1u);
+  EXPECT_NE(far.summary["warnings"][0].get<std::string>().find("polygon 1 changed nothing"),
+            std::string::npos);
+  EXPECT_EQ(far.summary["after"]["tets"], far.summary["before"]["tets"]);
+  const CutRun hit = cut("hits", "--polygon " + covering(0.05));
+  ASSERT_EQ(hit.cli.code, 0) << hit.cli.out;
+  EXPECT_TRUE(hit.summary["warnings"].empty());
+}
+
 }  // namespace
 }  // namespace serosa::app

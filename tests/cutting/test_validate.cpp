@@ -84,5 +84,29 @@ TEST(CheckCut, NamesEveryBrokenInvariant) {
   EXPECT_FALSE(check_cut(m, overshared, blade).ok);
 }
 
+// Per-group volume is conserved relative to the group's own volume, not the mesh's: a one-tet
+// group among 384 whose volume changes by ~1e-10 of itself (3e-13 of the mesh's) is named.
+TEST(CheckCut, PerGroupVolumeIsRelativeToTheGroup) {
+  TetMesh m = fixtures::grid(4);
+  m.group[0] = 3;
+  const Tet& t = m.tets[0];
+  std::int32_t inner = -1;  // tet 0's node inside the cube: moving it keeps the total volume
+  for (std::int32_t v : t)
+    if ((m.rest[static_cast<std::size_t>(v)].array() > 0.5).all() &&
+        (m.rest[static_cast<std::size_t>(v)].array() < 3.5).all())
+      inner = v;
+  ASSERT_GE(inner, 0);
+  TetMesh moved = m;
+  moved.rest[static_cast<std::size_t>(inner)] += Vec3(1e-10, 2e-10, -1e-10);
+  const double dv = std::abs(moved.rest_volume(0) - m.rest_volume(0));
+  ASSERT_GT(dv, 1e-11 * m.rest_volume(0));
+  ASSERT_LT(dv, 1e-12 * 64.0);  // under the mesh-relative bound
+  const ConvexPolygon far = testing::square(Vec3::UnitZ(), Vec3(10, 10, 10), 1.0);
+  const CutCheckReport r = check_cut(m, moved, far);
+  EXPECT_TRUE(mentions(r, "group 3 volume")) << testing::problems(r);
+  EXPECT_FALSE(mentions(r, "total volume")) << testing::problems(r);
+  EXPECT_TRUE(check_cut(m, m, far).ok);
+}
+
 }  // namespace
 }  // namespace serosa::cutting
