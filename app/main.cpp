@@ -22,7 +22,9 @@ int main(int argc, char** argv) {
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return cli.exit(e);
+    // --help and --version exit 0; a missing or unknown argument is bad input: exit 1, as every
+    // other input error (CLI11's own codes, 100 and up, are not part of our contract).
+    return cli.exit(e) == 0 ? 0 : 1;
   }
   // Bad input is the user's to fix: say what and where, exit 1. Anything else is our bug: exit 2.
   try {

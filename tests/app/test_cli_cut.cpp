@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "app_test_util.h"
 #include "cutting/validate.h"
@@ -191,6 +192,26 @@ TEST(CliCut, BadOutExitsOneBeforeCutting) {
     EXPECT_EQ(r.code, 1) << bad << "\n" << r.out;
     EXPECT_NE(r.out.find("--out " + bad), std::string::npos) << r.out;
   }
+}
+
+// A missing argument or an unknown flag is bad input like any other: exit 1 (not CLI11's own
+// codes), with the parser's message; --help exits 0.
+TEST(CliCut, ArgumentErrorsExitOne) {
+  std::string mesh = "'";
+  mesh.append(source("assets/beam_coarse.msh").string()).append("'");
+  std::string out = " --out '";
+  out.append((out_dir("cli_cut_args") / "o.msh").string()).append("'");
+  std::vector<std::string> cases(3, "cut ");
+  cases[0].append(out);                                                // no mesh, no polygon
+  cases[1].append(mesh).append(out);                                   // no polygon
+  cases[2].append(mesh).append(" --polygon ").append(covering(0.05));  // an unknown flag
+  cases[2].append(out).append(" --frobnicate");
+  for (const std::string& args : cases) {
+    const CliResult r = run_serosa(args);
+    EXPECT_EQ(r.code, 1) << args << "\n" << r.out;
+    EXPECT_FALSE(r.out.empty()) << args;
+  }
+  EXPECT_EQ(run_serosa("cut --help").code, 0);
 }
 
 // A polygon that changes nothing (it misses the mesh, or lies beside it) is said, in the JSON
