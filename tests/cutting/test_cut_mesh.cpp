@@ -441,9 +441,11 @@ double fully_covered_area(const TetMesh& m, const ConvexPolygon& blade) {
 // Partial cuts open the blade's area: the crack's two sides together cover twice the part of
 // the section the blade covers, whatever the blade's outline does inside the tets (crossing faces
 // without cutting edges, corners inside tets, tips on nodes). Where a tet's crack cannot cover
-// its part (tets_pinned: a front along a coplanar edge; tets_short: no apex touches every front
-// side, or no point of the part opens), the cut is flagged; every cut not flagged must open
-// exactly the blade's area. The share of the blade the crack covers is measured and reported.
+// its part (tets_pinned: S without area holding a corner strictly inside, or a sliver section;
+// tets_short: no apex touches every front side, or no point of the part opens), the cut is
+// flagged; every cut not flagged must open exactly the blade's area. Every cut with no pin must
+// open at least the blade's part of the tets it covers wholly. The share of the blade the crack
+// covers is measured and reported.
 Coverage partial_crack(const CutOptions& options, double radius_m = 0.3) {
   // "Exactly": to 1e-5 of the blade's area. A tet whose part under the blade is thinner than
   // the classification tolerance (1e-6 of the edge length) is grazed, not opened.
