@@ -21,6 +21,8 @@ fem::SolverKind to_fem(SolverKind k) {
       return fem::SolverKind::cholmod;
     case SolverKind::kPcgCholmod:
       return fem::SolverKind::pcg_cholmod;
+    case SolverKind::kPcgLagged:
+      return fem::SolverKind::pcg_lagged;
   }
   return fem::SolverKind::pcg;
 }

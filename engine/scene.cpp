@@ -24,9 +24,10 @@ constexpr NameTable<Effect, kNumEffects> kEffectNames{{{Effect::kFem, "fem"},
                                                        {Effect::kRecord, "record"}}};
 constexpr NameTable<Quality, 3> kQualityNames{
     {{Quality::kFast, "fast"}, {Quality::kBalanced, "balanced"}, {Quality::kAccurate, "accurate"}}};
-constexpr NameTable<SolverKind, 3> kSolverNames{{{SolverKind::kPcg, "pcg"},
+constexpr NameTable<SolverKind, 4> kSolverNames{{{SolverKind::kPcg, "pcg"},
                                                  {SolverKind::kCholmod, "cholmod"},
-                                                 {SolverKind::kPcgCholmod, "pcg-cholmod"}}};
+                                                 {SolverKind::kPcgCholmod, "pcg-cholmod"},
+                                                 {SolverKind::kPcgLagged, "pcg-lagged"}}};
 constexpr NameTable<ToolKind, 3> kToolKindNames{{{ToolKind::kScissors, "scissors"},
                                                  {ToolKind::kGrasper, "grasper"},
                                                  {ToolKind::kEndoscope, "endoscope"}}};

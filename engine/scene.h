@@ -50,7 +50,7 @@ inline constexpr Effect kAllEffects[kNumEffects] = {
 // Enumerated settings. Each has a name <-> enum pair; names are the scene-file spellings.
 
 enum class Quality : std::uint8_t { kFast, kBalanced, kAccurate };
-enum class SolverKind : std::uint8_t { kPcg, kCholmod, kPcgCholmod };
+enum class SolverKind : std::uint8_t { kPcg, kCholmod, kPcgCholmod, kPcgLagged };
 enum class ToolKind : std::uint8_t { kScissors, kGrasper, kEndoscope };
 enum class DeviceKind : std::uint8_t { kRig, kRigEmulated, kMouse, kScript };
 enum class Hand : std::uint8_t { kLeft, kRight };

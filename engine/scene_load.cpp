@@ -550,7 +550,7 @@ class Loader {
     check_keys(t, p, {"kind", "tolerance", "max_iterations"});
     if (const auto* n = t.get("kind")) {
       s.kind = enum_value<SolverKind>(*n, sub(p, "kind"), solver_kind_from_name,
-                                      "pcg, cholmod, pcg-cholmod");
+                                      "pcg, cholmod, pcg-cholmod, pcg-lagged");
     }
     if (const auto* n = t.get("tolerance")) {
       s.tolerance =

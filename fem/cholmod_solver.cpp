@@ -57,7 +57,9 @@ struct CholmodSolver::Impl {
   }
 };
 
-CholmodSolver::CholmodSolver() : m_impl(std::make_unique<Impl>()) {}
+CholmodSolver::CholmodSolver(Layout layout) : m_impl(std::make_unique<Impl>()) {
+  if (layout == Layout::simplicial) m_impl->common.supernodal = CHOLMOD_SIMPLICIAL;
+}
 CholmodSolver::~CholmodSolver() = default;
 
 bool CholmodSolver::analyze(const CsrMatrix& a) {

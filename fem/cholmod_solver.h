@@ -6,6 +6,7 @@
 // out of this header.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <span>
 
@@ -16,7 +17,13 @@ namespace serosa::fem {
 
 class CholmodSolver {
  public:
-  CholmodSolver();
+  /// How CHOLMOD lays out the factor: its own choice (supernodal when the fill pays for dense
+  /// blocks), or simplicial (column by column, no BLAS): on meshes of a few thousand nodes its
+  /// triangular solves are cheaper, which is what a preconditioner applied every CG iteration
+  /// needs (docs/BENCHMARKS.md "FEM").
+  enum class Layout : std::uint8_t { automatic, simplicial };
+
+  explicit CholmodSolver(Layout layout = Layout::automatic);
   ~CholmodSolver();
   CholmodSolver(const CholmodSolver&) = delete;
   CholmodSolver& operator=(const CholmodSolver&) = delete;

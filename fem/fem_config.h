@@ -30,6 +30,8 @@ enum class SolverKind : std::uint8_t {
   cholmod,      ///< CHOLMOD supernodal Cholesky, numeric factorization every step
   pcg_cholmod,  ///< CG preconditioned by a CHOLMOD factor of the rest-state system, factored in
                 ///< a background thread after each topology change (Jacobi until ready)
+  pcg_lagged,   ///< CG preconditioned by a CHOLMOD factor of a recent step's system matrix,
+                ///< refreshed in the background on a deterministic schedule (fem/lagged_factor.h)
 };
 
 /// Linear solver settings of the implicit step.
@@ -56,11 +58,18 @@ struct SolverSettings {
   /// it on (app/compose.cpp): its grasper reports the nodes it moves
   /// (FemStage::nodes_moved_by_caller).
   bool remove_energy_gain = false;
-  /// pcg_cholmod: factor in a background thread (true) or on the step that needs it (false).
+  /// pcg_cholmod, pcg_lagged: factor in a background thread (true) or on the step that needs it
+  /// (false; pcg_lagged then gives the same bits either way).
   bool background_factor = true;
   /// pcg_cholmod: the background factorization starts this many ms late. For tests that need
   /// "the factor is not ready yet" deterministically; 0 otherwise.
   int factor_delay_ms = 0;
+  /// pcg_lagged: a solve that needed more CG iterations than this asks for a refreshed factor of
+  /// its own matrix. Lower: more factorizations (background CPU), fewer iterations per step.
+  int refresh_iterations = 2;
+  /// pcg_lagged: a refresh asked for at step k preconditions from step k + this on (the
+  /// background thread has that many steps to factor; the step waits if it has not finished).
+  int factor_lag_steps = 12;
 };
 
 /// Plastic flow (Müller & Gross 2004, section 5), the "plasticity" effect. Per tet, the plastic

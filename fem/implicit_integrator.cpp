@@ -68,6 +68,7 @@ void ImplicitIntegrator::rebuild(TetMesh& mesh) {
   m_plastic.clear();
   m_dv.assign(3 * static_cast<std::size_t>(mesh.num_nodes()), 0.0);
   m_rot.assign(static_cast<std::size_t>(mesh.num_tets()), Mat3::Identity());
+  m_lagged.clear();
   rebuild_solver_structure(mesh);
   reserve_for_cuts(mesh);
   m_built = true;
@@ -145,9 +146,13 @@ void ImplicitIntegrator::update(TetMesh& mesh, const TopologyDelta& delta) {
 }
 
 StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const Vec3> f_ext) {
-  return step_from(mesh, dt_s, f_ext, m_config.solver.remove_energy_gain);
+  const StepStatus st = step_from(mesh, dt_s, f_ext, m_config.solver.remove_energy_gain);
+  ++m_steps;
+  return st;
 }
 
+// One step as its stages: the per-tet pass, the right-hand side, the energy guard (which may
+// slow the state and take the step again), the system, the solve, the update.
 StepStatus ImplicitIntegrator::step_from(TetMesh& mesh, double dt_s, std::span<const Vec3> f_ext,
                                          bool may_remove) {
   if (m_el.topology_version != mesh.topology_version ||
@@ -155,19 +160,63 @@ StepStatus ImplicitIntegrator::step_from(TetMesh& mesh, double dt_s, std::span<c
       m_el.node_mass.size() != static_cast<std::size_t>(mesh.num_nodes()) ||
       m_pattern.topology_version != mesh.topology_version)
     rebuild(mesh);
-  const std::int32_t n = mesh.num_nodes();
-  const std::int32_t m = mesh.num_tets();
   StepStatus st;
+  if (m_config.plasticity.on) m_plastic.resize(mesh.tets.size(), Mat3::Zero());
+  const ElementPass pass = element_pass(mesh, dt_s);
+  st.inverted_tets = pass.inverted;
+  const double kinetic_j = assemble_rhs(mesh, dt_s, f_ext);
+  check_energy_balance(pass, kinetic_j, st);
+  if (st.energy_gain && may_remove && kinetic_j > 0.0) {
+    // Take the gain out of the kinetic energy and run the step from the slowed state (the
+    // forces above used v).
+    const double s = std::sqrt(std::max(0.0, 1.0 - st.energy_change_j / kinetic_j));
+    for (Vec3& v : mesh.v) v *= s;
+    StepStatus again = step_from(mesh, dt_s, f_ext, false);
+    again.energy_gain = true;
+    again.converged = false;
+    again.energy_j = st.energy_j;
+    again.energy_change_j = st.energy_change_j;
+    again.energy_removed_j = (1.0 - s * s) * kinetic_j;
+    return again;
+  }
 
+  if (!m_config.solver.warm_start) std::fill(m_dv.begin(), m_dv.end(), 0.0);
+  const SystemProduct a = assemble_system(mesh, dt_s);
+  const SolveStatus ss = solve_system(mesh, dt_s, a, st);
+  st.converged = ss.converged && !st.energy_gain;
+  st.iterations = ss.iterations;
+  st.residual = ss.residual;
+  if (ss.residual > 1.0) {  // worse than dv = 0 in the residual norm
+    st.residual_growth = true;
+    st.converged = false;
+  }
+  // Never apply a non-finite or diverged solution (worse than dv = 0: phi > 0).
+  if (!ss.finite || !std::isfinite(ss.residual) || !(ss.energy <= 0.0)) {
+    std::fill(m_dv.begin(), m_dv.end(), 0.0);
+    st.applied = false;
+    st.converged = false;
+    return st;
+  }
+  const double work_j = apply_update(mesh, dt_s, f_ext);
+  // The energy balance of this step is checked at the start of the next one (divergence guard:
+  // StepStatus::energy_gain), where the rotations of x' come for free.
+  m_energy_before = kinetic_j + pass.elastic_j;
+  m_energy_work = work_j;
+  m_energy_pending = true;
+  if (m_config.plasticity.on) update_plasticity(mesh, dt_s);
+  st.applied = true;
+  return st;
+}
+
+ImplicitIntegrator::ElementPass ImplicitIntegrator::element_pass(const TetMesh& mesh,
+                                                                 double dt_s) {
+  const std::int32_t m = mesh.num_tets();
   const bool plastic = m_config.plasticity.on;
-  if (plastic) m_plastic.resize(static_cast<std::size_t>(m), Mat3::Zero());
   m_scale.resize(static_cast<std::size_t>(m));
-  // 1-2. Per tet: rotation (warm-started from the last step), rotated gradients R b_a, and the
-  // corner forces f_el(x) - (beta + dt) K_R v.
   int inverted = 0;
-  double elastic_before = 0.0;    // J, corotated elastic energy at x with this step's R
-  double stiffness_volume = 0.0;  // sum of (lambda + 2 mu) V over active tets, J
-#pragma omp parallel for schedule(static) reduction(+ : inverted, elastic_before, stiffness_volume) if (m >= kParallelMin)
+  double elastic = 0.0;
+  double stiffness_volume = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : inverted, elastic, stiffness_volume) if (m >= kParallelMin)
   for (std::int32_t t = 0; t < m; ++t) {
     const auto ut = static_cast<std::size_t>(t);
     const TetElement& e = m_el.elements[ut];
@@ -200,21 +249,24 @@ StepStatus ImplicitIntegrator::step_from(TetMesh& mesh, double dt_s, std::span<c
     for (std::size_t c = 0; c < 4; ++c) m_rg[4 * ut + c] = m_rot[ut] * e.grad[c];
     m_scale[ut] = tet_scale(e, dt_s);
     const Mat3 fv = nodal_gradient(e, mesh.v[nd[0]], mesh.v[nd[1]], mesh.v[nd[2]], mesh.v[nd[3]]);
-    elastic_before += element_forces_energy(e, m_rot[ut], f, fv, e.beta_s + dt_s, out,
-                                            plastic ? &m_plastic[ut] : nullptr);
+    elastic += element_forces_energy(e, m_rot[ut], f, fv, e.beta_s + dt_s, out,
+                                     plastic ? &m_plastic[ut] : nullptr);
   }
-  st.inverted_tets = inverted;
+  return {inverted, elastic, stiffness_volume};
+}
 
-  // 3. Right-hand side b_i = dt (f_ext_i + m_i g - c_i v_i + sum_e f_e,i), 0 on constrained nodes.
+double ImplicitIntegrator::assemble_rhs(const TetMesh& mesh, double dt_s,
+                                        std::span<const Vec3> f_ext) {
+  const std::int32_t n = mesh.num_nodes();
   const Vec3 g = m_config.gravity_on ? m_config.gravity_mps2 : Vec3::Zero();
   const bool has_ext = f_ext.size() == static_cast<std::size_t>(n);
-  double kinetic_before = 0.0;  // J
-#pragma omp parallel for schedule(static) reduction(+ : kinetic_before) if (n >= kParallelMin)
+  double kinetic = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : kinetic) if (n >= kParallelMin)
   for (std::int32_t i = 0; i < n; ++i) {
     const auto ui = static_cast<std::size_t>(i);
     Vec3 b = Vec3::Zero();
     if (!node_constrained(mesh, m_el, ui)) {
-      kinetic_before += 0.5 * m_el.node_mass[ui] * mesh.v[ui].squaredNorm();
+      kinetic += 0.5 * m_el.node_mass[ui] * mesh.v[ui].squaredNorm();
       b = m_el.node_mass[ui] * g - m_el.node_damping[ui] * mesh.v[ui];
       if (has_ext) b += f_ext[ui];
       for (const std::int32_t ic : m_pattern.incident_of(ui))
@@ -223,15 +275,19 @@ StepStatus ImplicitIntegrator::step_from(TetMesh& mesh, double dt_s, std::span<c
     }
     for (int c = 0; c < 3; ++c) m_rhs[3 * ui + static_cast<std::size_t>(c)] = b[c];
   }
+  return kinetic;
+}
 
-  // Divergence guard (energy) for the previous step: its result x, v (what this step starts
-  // from, rotations extracted above) against its starting energy plus the external work.
-  st.energy_j = kinetic_before + elastic_before;
+// The previous step's result x, v (what this step starts from, rotations extracted by the element
+// pass) against its starting energy plus the external work over it.
+void ImplicitIntegrator::check_energy_balance(const ElementPass& pass, double kinetic_j,
+                                              StepStatus& st) {
+  st.energy_j = kinetic_j + pass.elastic_j;
   if (m_energy_pending) {
     st.energy_change_j = st.energy_j - m_energy_before - m_energy_work;
     // Relative to the energies involved, with a floor for a mesh (nearly) at rest, where those
     // are rounding noise: the elastic energy of a uniform strain kEnergyFloorStrain.
-    const double floor_j = 0.5 * kEnergyFloorStrain * kEnergyFloorStrain * stiffness_volume;
+    const double floor_j = 0.5 * kEnergyFloorStrain * kEnergyFloorStrain * pass.stiffness_volume;
     if (!(st.energy_change_j <=
           kEnergyGainTolerance * (m_energy_before + st.energy_j + std::abs(m_energy_work)) +
               floor_j)) {
@@ -240,130 +296,14 @@ StepStatus ImplicitIntegrator::step_from(TetMesh& mesh, double dt_s, std::span<c
     }
   }
   m_energy_pending = false;
-  if (st.energy_gain && may_remove && kinetic_before > 0.0) {
-    // Take the gain out of the kinetic energy and run the step from the slowed state (the
-    // forces above used v).
-    const double s = std::sqrt(std::max(0.0, 1.0 - st.energy_change_j / kinetic_before));
-    for (Vec3& v : mesh.v) v *= s;
-    StepStatus again = step_from(mesh, dt_s, f_ext, false);
-    again.energy_gain = true;
-    again.converged = false;
-    again.energy_j = st.energy_j;
-    again.energy_change_j = st.energy_change_j;
-    again.energy_removed_j = (1.0 - s * s) * kinetic_before;
-    return again;
-  }
+}
 
-  // 4-5. Solve A dv = b, A = M + dt C + dt^2 K_R: assembled (CHOLMOD always, CG unless
-  // matrix_free) or applied matrix-free (fem/system_matrix.h).
-  if (!m_config.solver.warm_start) std::fill(m_dv.begin(), m_dv.end(), 0.0);
-  const bool cg_matrix_free =
-      m_config.solver.matrix_free && m_config.solver.kind != SolverKind::cholmod;
-  MatVec apply_a;         // matrix-free or CSR
-  MatVecDot apply_a_dot;  // blocks: the product and p . Ap in one pass
-  if (cg_matrix_free) {
-    prepare_operator(mesh, m_el, dt_s, m_op);
-    apply_a = [this, &mesh](std::span<const double> x, std::span<double> y) {
-      apply_operator(mesh, m_el, m_pattern, m_rg, m_op, x, y);
-    };
-  } else if (m_config.solver.kind == SolverKind::cholmod) {
-    fill_system(mesh, m_el, m_pattern, m_rg, dt_s, m_a);
-    apply_a = [this](std::span<const double> x, std::span<double> y) {
-      multiply_system(m_pattern, m_a, x, y);
-    };
-  } else if (m_config.solver.float_matrix) {  // CG: 3x3 blocks (fem/block_system.h)
-    m_blocks_f.resize(block_storage(m_pattern));
-    fill_blocks<float>(mesh, m_el, m_pattern, m_rg, m_scale, dt_s, m_blocks_f, m_fill_scratch);
-    apply_a_dot = [this](std::span<const double> x, std::span<double> y) {
-      return multiply_blocks_dot<float>(m_pattern, m_blocks_f, x, y);
-    };
-  } else {
-    m_blocks_d.resize(block_storage(m_pattern));
-    fill_blocks<double>(mesh, m_el, m_pattern, m_rg, m_scale, dt_s, m_blocks_d, m_fill_scratch);
-    apply_a_dot = [this](std::span<const double> x, std::span<double> y) {
-      return multiply_blocks_dot<double>(m_pattern, m_blocks_d, x, y);
-    };
-  }
-  SolveStatus ss;
-  if (m_config.solver.kind == SolverKind::cholmod) {
-    if (!m_analyzed) m_analyzed = m_cholmod.analyze(m_a);
-    if (m_analyzed && m_cholmod.factorize(m_a)) {
-      ss = m_cholmod.solve(m_rhs, m_dv);
-      // Residual of the direct solve, for the status: ||b - A dv|| / ||b||.
-      apply_a(m_dv, m_pcg.r);
-      for (std::size_t i = 0; i < m_rhs.size(); ++i) m_pcg.r[i] = m_rhs[i] - m_pcg.r[i];
-      const double rr = dot(m_pcg.r, m_pcg.r);
-      const double bn = std::sqrt(dot(m_rhs, m_rhs));
-      ss.residual = bn > 0.0 ? std::sqrt(rr) / bn : 0.0;
-      double phi = 0.0;  // -dv.(b + r) / 2
-      for (std::size_t i = 0; i < m_rhs.size(); ++i) phi -= 0.5 * m_dv[i] * (m_rhs[i] + m_pcg.r[i]);
-      ss.energy = phi;
-      ss.converged = ss.finite && ss.residual <= std::max(m_config.solver.tolerance, 1e-8);
-    } else {
-      ss.converged = false;
-      ss.finite = false;
-    }
-  } else {
-    Preconditioner precond;
-    if (m_config.solver.kind == SolverKind::pcg_cholmod) {
-      // Rest-state factor P = M + dt C_0 + dt^2 K_0 as preconditioner, computed in the background
-      // (fem/background_factor.h): until it is ready for this structure, Jacobi; after a dt
-      // change, the old factor until the new one is ready.
-      m_factor.poll();
-      CholmodSolver* factor = m_factor.factor_for(m_structure);
-      if ((factor == nullptr || m_factor.factor_dt() != dt_s) &&
-          !m_factor.requested(m_structure, dt_s)) {
-        m_rg_rest.resize(4 * static_cast<std::size_t>(m));
-        for (std::size_t t = 0; t < static_cast<std::size_t>(m); ++t)
-          for (std::size_t c = 0; c < 4; ++c) m_rg_rest[4 * t + c] = m_el.elements[t].grad[c];
-        CsrMatrix rest = m_a;
-        fill_system(mesh, m_el, m_pattern, m_rg_rest, dt_s, rest);
-        m_factor.request(std::move(rest), m_structure, dt_s, m_config.solver.factor_delay_ms);
-        if (!m_config.solver.background_factor) m_factor.wait();
-        factor = m_factor.factor_for(m_structure);
-      }
-      if (factor != nullptr)
-        precond.apply = [factor](std::span<const double> r, std::span<double> z) {
-          factor->solve(r, z);
-        };
-      else
-        st.factor_pending = true;
-    }
-    if (!precond.apply) {
-      m_pcg.inv_diag.resize(m_rhs.size());
-      if (cg_matrix_free)
-        operator_inverse_diagonal(m_el, m_pattern, m_rg, m_op, m_pcg.inv_diag);
-      else if (m_config.solver.float_matrix)
-        blocks_inverse_diagonal<float>(m_pattern, m_blocks_f, m_pcg.inv_diag);
-      else
-        blocks_inverse_diagonal<double>(m_pattern, m_blocks_d, m_pcg.inv_diag);
-      precond.inv_diag = m_pcg.inv_diag;
-    }
-    ss = apply_a_dot ? pcg(apply_a_dot, m_rhs, m_dv, m_config.solver.tolerance,
-                           m_config.solver.max_iterations, precond, m_pcg)
-                     : pcg(apply_a, m_rhs, m_dv, m_config.solver.tolerance,
-                           m_config.solver.max_iterations, precond, m_pcg);
-  }
-  st.converged = ss.converged;
-  st.iterations = ss.iterations;
-  st.residual = ss.residual;
-  if (st.energy_gain) st.converged = false;
-  if (ss.residual > 1.0) {  // worse than dv = 0 in the residual norm
-    st.residual_growth = true;
-    st.converged = false;
-  }
-
-  // 6. Guard: never apply a non-finite or diverged solution (worse than dv = 0: phi > 0).
-  if (!ss.finite || !std::isfinite(ss.residual) || !(ss.energy <= 0.0)) {
-    std::fill(m_dv.begin(), m_dv.end(), 0.0);
-    st.applied = false;
-    st.converged = false;
-    return st;
-  }
-
-  // 7. v' = v + dv, x' = x + dt v'; fixed nodes stay, and so do massless nodes (left in no
-  // active tet by a cut: they belong to no body, and would otherwise drift forever).
-  // Also the work of gravity and f_ext over the step: dt sum (m g + f) . v'.
+// Fixed nodes stay, and so do massless nodes (left in no active tet by a cut: they belong to no
+// body, and would otherwise drift forever).
+double ImplicitIntegrator::apply_update(TetMesh& mesh, double dt_s, std::span<const Vec3> f_ext) {
+  const std::int32_t n = mesh.num_nodes();
+  const Vec3 g = m_config.gravity_on ? m_config.gravity_mps2 : Vec3::Zero();
+  const bool has_ext = f_ext.size() == static_cast<std::size_t>(n);
   double work = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : work) if (n >= kParallelMin)
   for (std::int32_t i = 0; i < n; ++i) {
@@ -378,14 +318,7 @@ StepStatus ImplicitIntegrator::step_from(TetMesh& mesh, double dt_s, std::span<c
     if (has_ext) f += f_ext[ui];
     work += dt_s * f.dot(mesh.v[ui]);
   }
-  // The energy balance of this step is checked at the start of the next one (divergence guard:
-  // StepStatus::energy_gain), where the rotations of x' come for free.
-  m_energy_before = kinetic_before + elastic_before;
-  m_energy_work = work;
-  m_energy_pending = true;
-  if (plastic) update_plasticity(mesh, dt_s);
-  st.applied = true;
-  return st;
+  return work;
 }
 
 void ImplicitIntegrator::update_plasticity(const TetMesh& mesh, double dt_s) {
@@ -414,8 +347,11 @@ namespace serosa::fem {
 
 CsrMatrix ImplicitIntegrator::assembled_matrix() const {
   CsrMatrix a = m_a;
-  const bool blocks = !m_config.solver.matrix_free && m_config.solver.kind != SolverKind::cholmod;
-  if (blocks && m_config.solver.float_matrix && m_blocks_f.size() == block_storage(m_pattern))
+  const bool lagged = m_config.solver.kind == SolverKind::pcg_lagged;
+  const bool blocks =
+      lagged || (!m_config.solver.matrix_free && m_config.solver.kind != SolverKind::cholmod);
+  if (blocks && !lagged && m_config.solver.float_matrix &&
+      m_blocks_f.size() == block_storage(m_pattern))
     blocks_to_csr<float>(m_pattern, m_blocks_f, a);
   else if (blocks && m_blocks_d.size() == block_storage(m_pattern))
     blocks_to_csr<double>(m_pattern, m_blocks_d, a);

@@ -34,6 +34,7 @@
 #include "fem/csr_matrix.h"
 #include "fem/fem_config.h"
 #include "fem/fem_elements.h"
+#include "fem/lagged_factor.h"
 #include "fem/pcg.h"
 #include "fem/system_matrix.h"
 
@@ -66,6 +67,8 @@ struct StepStatus {
   double energy_removed_j = 0.0;
   /// energy_j - (energy at the start of the previous step + the external work over it), J.
   double energy_change_j = 0.0;
+  /// pcg_lagged: a refreshed factor of the system matrix was asked for after this step's solve.
+  bool factor_refresh = false;
 };
 
 /// Relative tolerance of StepStatus::energy_gain: gain > tol * (E_before + E_after + |W_ext|)
@@ -119,12 +122,50 @@ class ImplicitIntegrator {
   [[nodiscard]] const PatternUpdateStats& last_update() const { return m_last_update; }
 
  private:
+  /// What the per-tet pass of a step sums up.
+  struct ElementPass {
+    int inverted = 0;               ///< tets with det F <= 0
+    double elastic_j = 0.0;         ///< corotated elastic energy at x, J
+    double stiffness_volume = 0.0;  ///< sum of (lambda + 2 mu) V over active tets, J
+  };
+  /// The linear operator of this step's solve (one of the two is set).
+  struct SystemProduct {
+    MatVec apply;         ///< y = A x
+    MatVecDot apply_dot;  ///< y = A x, returning x . y
+  };
+
   void rebuild_solver_structure(const TetMesh& mesh);
   void reserve_for_cuts(TetMesh& mesh);
   void update_plasticity(const TetMesh& mesh, double dt_s);
   /// step(); `may_remove`: the energy gain of the previous step may be taken out (then the
   /// step runs again from the slowed state, once).
   StepStatus step_from(TetMesh& mesh, double dt_s, std::span<const Vec3> f_ext, bool may_remove);
+  /// Per tet: rotation (warm-started), rotated gradients, stiffness scales and the corner forces
+  /// f_el(x) - (beta + dt) K_R v of the right-hand side (m_fe).
+  ElementPass element_pass(const TetMesh& mesh, double dt_s);
+  /// b (m_rhs) = dt (f_ext + m g - c v + sum of corner forces), 0 on constrained nodes; returns
+  /// the kinetic energy of the free nodes, J.
+  double assemble_rhs(const TetMesh& mesh, double dt_s, std::span<const Vec3> f_ext);
+  /// The divergence guard's check of the previous step (StepStatus::energy_gain).
+  void check_energy_balance(const ElementPass& pass, double kinetic_j, StepStatus& st);
+  /// Fills A for the solver kind and returns its product.
+  SystemProduct assemble_system(const TetMesh& mesh, double dt_s);
+  /// Solves A dv = b with the configured solver (the linear-solver strategy).
+  SolveStatus solve_system(const TetMesh& mesh, double dt_s, const SystemProduct& a,
+                           StepStatus& st);
+  SolveStatus solve_direct(const SystemProduct& a);
+  SolveStatus solve_cg(const TetMesh& mesh, double dt_s, const SystemProduct& a, StepStatus& st);
+  /// The preconditioner of solve_cg (a CHOLMOD factor, or Jacobi when it leaves apply empty).
+  Preconditioner cg_preconditioner(const TetMesh& mesh, double dt_s, StepStatus& st);
+  /// pcg_lagged after the solve: asks for a refreshed factor when CG needed too many iterations
+  /// or the structure changed.
+  void schedule_refresh(int iterations, StepStatus& st);
+  /// m_node_rot from this step's element rotations (fem/lagged_factor.h, warping).
+  void update_node_rotations(const TetMesh& mesh);
+  /// Jacobi's inverse diagonal of this step's A, into m_pcg.inv_diag.
+  void fill_inverse_diagonal();
+  /// v' = v + dv, x' = x + dt v' on free nodes; returns the work of gravity and f_ext, J.
+  double apply_update(TetMesh& mesh, double dt_s, std::span<const Vec3> f_ext);
 
   const FemConfig m_config;
   FemElements m_el;
@@ -151,6 +192,13 @@ class ImplicitIntegrator {
   BackgroundFactor m_factor;
   std::uint64_t m_structure = 0;
   std::vector<Vec3> m_rg_rest;  // (4m) unrotated gradients b_a
+  // pcg_lagged: the factor of a recent step's A (fem/lagged_factor.h), computed from the blocks
+  // copied into m_a; m_steps counts steps (the factor's install schedule).
+  LaggedFactor m_lagged;
+  std::vector<std::uint8_t> m_free;  // (n) 1 where the node takes part in the solve
+  std::vector<Quat> m_node_rot;      // (n) the nodes' rotations this step (factor warping)
+  std::vector<Mat3> m_warp;          // (n) each node's turn since the installed factor's step
+  std::uint64_t m_steps = 0;
   std::vector<Tet> m_removed;   // scratch of update(): nodes of the removed tets
   PatternUpdateStats m_last_update;
   // Divergence guard: energy at the start of the last step and the external work over it, J.

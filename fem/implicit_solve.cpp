@@ -1,0 +1,181 @@
+// The linear-solver strategy of the implicit step: A dv = b with A = M + dt C + dt^2 K_R,
+// assembled (CHOLMOD always, CG unless matrix_free) or applied matrix-free, then solved directly
+// or by CG with a Jacobi or CHOLMOD-factor preconditioner (fem/implicit_integrator.h).
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "fem/block_system.h"
+#include "fem/implicit_integrator.h"
+
+namespace serosa::fem {
+
+ImplicitIntegrator::SystemProduct ImplicitIntegrator::assemble_system(const TetMesh& mesh,
+                                                                      double dt_s) {
+  const SolverSettings& s = m_config.solver;
+  SystemProduct a;
+  // pcg_lagged factors the assembled double blocks: never matrix-free or float.
+  const bool lagged = s.kind == SolverKind::pcg_lagged;
+  if (s.matrix_free && s.kind != SolverKind::cholmod && !lagged) {
+    prepare_operator(mesh, m_el, dt_s, m_op);
+    a.apply = [this, &mesh](std::span<const double> x, std::span<double> y) {
+      apply_operator(mesh, m_el, m_pattern, m_rg, m_op, x, y);
+    };
+  } else if (s.kind == SolverKind::cholmod) {
+    fill_system(mesh, m_el, m_pattern, m_rg, dt_s, m_a);
+    a.apply = [this](std::span<const double> x, std::span<double> y) {
+      multiply_system(m_pattern, m_a, x, y);
+    };
+  } else if (s.float_matrix && !lagged) {  // CG: 3x3 blocks (fem/block_system.h)
+    m_blocks_f.resize(block_storage(m_pattern));
+    fill_blocks<float>(mesh, m_el, m_pattern, m_rg, m_scale, dt_s, m_blocks_f, m_fill_scratch);
+    a.apply_dot = [this](std::span<const double> x, std::span<double> y) {
+      return multiply_blocks_dot<float>(m_pattern, m_blocks_f, x, y);
+    };
+  } else {
+    m_blocks_d.resize(block_storage(m_pattern));
+    fill_blocks<double>(mesh, m_el, m_pattern, m_rg, m_scale, dt_s, m_blocks_d, m_fill_scratch);
+    a.apply_dot = [this](std::span<const double> x, std::span<double> y) {
+      return multiply_blocks_dot<double>(m_pattern, m_blocks_d, x, y);
+    };
+  }
+  return a;
+}
+
+SolveStatus ImplicitIntegrator::solve_system(const TetMesh& mesh, double dt_s,
+                                             const SystemProduct& a, StepStatus& st) {
+  if (m_config.solver.kind == SolverKind::cholmod) return solve_direct(a);
+  return solve_cg(mesh, dt_s, a, st);
+}
+
+// CHOLMOD: symbolic analysis once per pattern, numeric factorization every step; the status
+// carries the direct solve's residual and quadratic like CG's.
+SolveStatus ImplicitIntegrator::solve_direct(const SystemProduct& a) {
+  SolveStatus ss;
+  if (!m_analyzed) m_analyzed = m_cholmod.analyze(m_a);
+  if (!m_analyzed || !m_cholmod.factorize(m_a)) {
+    ss.converged = false;
+    ss.finite = false;
+    return ss;
+  }
+  ss = m_cholmod.solve(m_rhs, m_dv);
+  a.apply(m_dv, m_pcg.r);
+  for (std::size_t i = 0; i < m_rhs.size(); ++i) m_pcg.r[i] = m_rhs[i] - m_pcg.r[i];
+  const double rr = dot(m_pcg.r, m_pcg.r);
+  const double bn = std::sqrt(dot(m_rhs, m_rhs));
+  ss.residual = bn > 0.0 ? std::sqrt(rr) / bn : 0.0;
+  double phi = 0.0;  // -dv.(b + r) / 2
+  for (std::size_t i = 0; i < m_rhs.size(); ++i) phi -= 0.5 * m_dv[i] * (m_rhs[i] + m_pcg.r[i]);
+  ss.energy = phi;
+  ss.converged = ss.finite && ss.residual <= std::max(m_config.solver.tolerance, 1e-8);
+  return ss;
+}
+
+SolveStatus ImplicitIntegrator::solve_cg(const TetMesh& mesh, double dt_s, const SystemProduct& a,
+                                         StepStatus& st) {
+  const SolverSettings& s = m_config.solver;
+  const Preconditioner precond = cg_preconditioner(mesh, dt_s, st);
+  const SolveStatus ss =
+      a.apply_dot ? pcg(a.apply_dot, m_rhs, m_dv, s.tolerance, s.max_iterations, precond, m_pcg)
+                  : pcg(a.apply, m_rhs, m_dv, s.tolerance, s.max_iterations, precond, m_pcg);
+  if (s.kind == SolverKind::pcg_lagged) schedule_refresh(ss.iterations, st);
+  return ss;
+}
+
+void ImplicitIntegrator::fill_inverse_diagonal() {
+  m_pcg.inv_diag.resize(m_rhs.size());
+  const bool lagged = m_config.solver.kind == SolverKind::pcg_lagged;
+  if (m_config.solver.matrix_free && !lagged)
+    operator_inverse_diagonal(m_el, m_pattern, m_rg, m_op, m_pcg.inv_diag);
+  else if (m_config.solver.float_matrix && !lagged)
+    blocks_inverse_diagonal<float>(m_pattern, m_blocks_f, m_pcg.inv_diag);
+  else
+    blocks_inverse_diagonal<double>(m_pattern, m_blocks_d, m_pcg.inv_diag);
+}
+
+Preconditioner ImplicitIntegrator::cg_preconditioner(const TetMesh& mesh, double dt_s,
+                                                     StepStatus& st) {
+  const SolverSettings& s = m_config.solver;
+  Preconditioner precond;
+  if (s.kind == SolverKind::pcg_cholmod) {
+    // Rest-state factor P = M + dt C_0 + dt^2 K_0, computed in the background
+    // (fem/background_factor.h): until it is ready for this structure, Jacobi; after a dt
+    // change, the old factor until the new one is ready.
+    m_factor.poll();
+    CholmodSolver* factor = m_factor.factor_for(m_structure);
+    if ((factor == nullptr || m_factor.factor_dt() != dt_s) &&
+        !m_factor.requested(m_structure, dt_s)) {
+      const auto m = static_cast<std::size_t>(mesh.num_tets());
+      m_rg_rest.resize(4 * m);
+      for (std::size_t t = 0; t < m; ++t)
+        for (std::size_t c = 0; c < 4; ++c) m_rg_rest[4 * t + c] = m_el.elements[t].grad[c];
+      CsrMatrix rest = m_a;
+      fill_system(mesh, m_el, m_pattern, m_rg_rest, dt_s, rest);
+      m_factor.request(std::move(rest), m_structure, dt_s, s.factor_delay_ms);
+      if (!s.background_factor) m_factor.wait();
+      factor = m_factor.factor_for(m_structure);
+    }
+    if (factor != nullptr) {
+      precond.apply = [factor](std::span<const double> r, std::span<double> z) {
+        factor->solve(r, z);
+      };
+      return precond;
+    }
+    st.factor_pending = true;
+  }
+  fill_inverse_diagonal();
+  precond.inv_diag = m_pcg.inv_diag;
+  if (s.kind == SolverKind::pcg_lagged) {
+    m_lagged.begin_step(m_steps);
+    // No factor for this structure (the first step, after a rebuild or a cut): factor this
+    // step's matrix now. An older factor with Jacobi on the new rows was tried: the slivers a
+    // cut leaves near the blade took CG 200 iterations, several times a factorization's cost.
+    update_node_rotations(mesh);
+    if (!m_lagged.ready() || m_lagged.structure() != m_structure) {
+      blocks_to_csr<double>(m_pattern, m_blocks_d, m_a);
+      m_lagged.factor_now(m_a, m_structure, m_node_rot);
+      st.factor_refresh = true;
+    }
+    if (m_lagged.ready()) {
+      const auto n = static_cast<std::size_t>(mesh.num_nodes());
+      m_free.resize(n);
+      for (std::size_t i = 0; i < n; ++i) m_free[i] = node_constrained(mesh, m_el, i) ? 0 : 1;
+      m_warp.resize(n);
+      m_lagged.warp(m_node_rot, m_warp);
+      precond.apply = [this](std::span<const double> r, std::span<double> z) {
+        m_lagged.apply(r, z, m_pcg.inv_diag, m_free, m_warp);
+      };
+    }
+  }
+  return precond;
+}
+
+// A node's rotation: the normalized sum of its tets' rotations (quaternions turned into one
+// hemisphere first), the identity for a node in no active tet.
+void ImplicitIntegrator::update_node_rotations(const TetMesh& mesh) {
+  const auto n = static_cast<std::size_t>(mesh.num_nodes());
+  m_node_rot.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    Eigen::Vector4d sum = Eigen::Vector4d::Zero();
+    for (const std::int32_t ic : m_pattern.incident_of(i)) {
+      const auto t = static_cast<std::size_t>(ic) / 4;
+      if (!m_el.elements[t].active()) continue;
+      const Eigen::Vector4d q = m_q[t].coeffs();
+      sum += sum.dot(q) < 0.0 ? Eigen::Vector4d(-q) : q;
+    }
+    const double norm = sum.norm();
+    m_node_rot[i] = norm > 0.0 ? Quat(Eigen::Vector4d(sum / norm)) : Quat::Identity();
+  }
+}
+
+void ImplicitIntegrator::schedule_refresh(int iterations, StepStatus& st) {
+  const SolverSettings& s = m_config.solver;
+  if (m_lagged.pending()) return;
+  if (iterations <= s.refresh_iterations) return;
+  blocks_to_csr<double>(m_pattern, m_blocks_d, m_a);
+  m_lagged.request(m_a, m_structure, m_steps + static_cast<std::uint64_t>(s.factor_lag_steps),
+                   s.background_factor, m_node_rot);
+  st.factor_refresh = true;
+}
+
+}  // namespace serosa::fem
