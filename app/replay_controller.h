@@ -1,5 +1,5 @@
 // ReplayController: the instructor's replay without a window (the core of `serosa replay` in a
-// window, shared/DESIGN.md; issue 8 item 5): plays a .lapr recording forward at a speed, pauses,
+// window; issue 8 item 5): plays a .lapr recording forward at a speed, pauses,
 // and seeks to any time. Forward seeks step on; backward seeks restart from a snapshot.
 //
 // Snapshots. While playing forward the controller keeps a copy of the SimState every
