@@ -1,7 +1,7 @@
 // serosa check MESH [--json] [--repair-inverted]: load and validate a mesh; print counts, volume
-// per group, quality, inverted/flat tets, overshared and boundary faces (shared/DESIGN.md
-// "Contracts"). Exit 0 on a valid mesh, 1 on bad input (the reader's InputError, printed by
-// main.cpp with file and line) or on a mesh that parses but is invalid (problems printed).
+// per group, quality, inverted/flat tets, overshared and boundary faces (docs/ARCHITECTURE.md
+// "External contracts"). Exit 0 on a valid mesh, 1 on bad input (the reader's InputError, printed
+// by main.cpp with file and line) or on a mesh that parses but is invalid (problems printed).
 #include <cstdio>
 #include <filesystem>
 #include <memory>

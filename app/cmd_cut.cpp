@@ -7,10 +7,10 @@
 // dropped from the output, and a stroke's "tets created" are its pieces at its end). Writes the
 // result as Gmsh 2.2 ASCII (rest positions, each tet's group as its physical tag) and prints a
 // summary: tets, nodes, volume and minimum quality before and after, tets created, and the time of
-// each cut (shared/DESIGN.md "Contracts"). A cut's time is the candidate query through the BVH, the
-// cut itself, apply() and the BVH's local update. Bad flags (a polygon that does not parse, has
-// fewer than 3 points, is not planar or not convex; an unknown method; an --out that is a
-// directory or lies in no existing directory) are InputErrors naming the flag and its value:
+// each cut (docs/ARCHITECTURE.md "External contracts"). A cut's time is the candidate query through
+// the BVH, the cut itself, apply() and the BVH's local update. Bad flags (a polygon that does not
+// parse, has fewer than 3 points, is not planar or not convex; an unknown method; an --out that is
+// a directory or lies in no existing directory) are InputErrors naming the flag and its value:
 // exit 1, before any cut runs. A polygon that changes nothing is a warning (stderr, and the JSON's
 // "warnings"). Debug builds check every pattern cut with cutting::check_cut (a broken invariant is
 // our bug: exit 2).

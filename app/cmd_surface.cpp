@@ -1,7 +1,8 @@
 // serosa surface MESH --out OUT.obj: the boundary surface of a tet mesh as OBJ, one OBJ group per
 // mesh group (named from Gmsh $PhysicalNames when the file has them), faces oriented outward
-// (shared/DESIGN.md "Contracts"). Refuses (exit 1) a mesh whose faces are shared by more than two
-// tets or that check_mesh finds invalid otherwise: its "surface" would not bound a solid.
+// (docs/ARCHITECTURE.md "External contracts"). Refuses (exit 1) a mesh whose faces are shared by
+// more than two tets or that check_mesh finds invalid otherwise: its "surface" would not bound a
+// solid.
 #include <cstdio>
 #include <filesystem>
 #include <memory>

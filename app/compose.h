@@ -1,5 +1,5 @@
 // The composition root: maps the scene's effects to the stages that implement them and hands
-// only those to the runner (shared/DESIGN.md "Effects: simulate only what the scene calls for").
+// only those to the runner (docs/ARCHITECTURE.md "Effects").
 // An effect the scene does not list is never constructed: no memory, no time.
 #pragma once
 
@@ -62,7 +62,7 @@ struct Composition {
 /// The Lamé parameters per group (stress metrics, grasp forces).
 [[nodiscard]] LameTable lame_table(const Scene& scene, const AssembledScene& assembled);
 
-/// Builds the stages for `scene` in the pipeline order of DESIGN.md (tools -> contact -> FEM ->
+/// Builds the stages for `scene` in the pipeline order (tools -> contact -> FEM ->
 /// cuts -> surface -> metrics -> publish -> record), only for listed effects.
 [[nodiscard]] Composition compose(const Scene& scene, const AssembledScene& assembled,
                                   ComposeOptions options = {});

@@ -1,9 +1,9 @@
 // The "cutting" stage: scissors cut the organs along the exact path of their blades
-// (shared/DESIGN.md "Cutting"). Each blade's edge runs from the jaw hinge to the blade tip
-// (app/tool_geometry.h); closing jaws sweep it. The swept polygon goes to cutting::cut_mesh
-// (candidates from a TetBvh over current positions), the resulting TopologyDelta is applied to
-// the mesh between FEM steps and handed to every listener (FEM, surface, metrics), which update
-// themselves incrementally.
+// (docs/ARCHITECTURE.md "Cutting, in the paper's terms"). Each blade's edge runs from the jaw hinge
+// to the blade tip (app/tool_geometry.h); closing jaws sweep it. The swept polygon goes to
+// cutting::cut_mesh (candidates from a TetBvh over current positions), the resulting TopologyDelta
+// is applied to the mesh between FEM steps and handed to every listener (FEM, surface, metrics),
+// which update themselves incrementally.
 //
 // One closing stroke, one cut. While the scissors stay put (hinge within kStrokeHingeTol, blade
 // plane within kStrokeAngleTol of where the stroke began) the per-step sweeps of one stroke are

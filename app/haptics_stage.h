@@ -10,7 +10,7 @@
 //    runs, the handles' tools stay where they are with zero force, a warning names the tools and
 //    the device, telemetry counts the "not_connected_ticks", and a rig plugged in later is
 //    picked up without a restart (UsbRig's hotplug).
-// Hand-offs (shared/DESIGN.md "Threads and hand-offs"), all through engine/seqlock.h:
+// Hand-offs (docs/ARCHITECTURE.md "Threads and hand-offs"), all through engine/seqlock.h:
 //   loop -> solver: each handle's ToolState, written every tick; this stage (right after the
 //     "tools" stage) takes the newest one at the step boundary and puts it into SimState::tools,
 //     so the record stage records exactly what the solver consumed and a replay reproduces the

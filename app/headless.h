@@ -1,5 +1,5 @@
 // A headless run of a scene: no window, no device; the solver pipeline as fast as it goes, with
-// a report, the final mesh and pictures on request (shared/DESIGN.md, `serosa headless`).
+// a report, the final mesh and pictures on request (docs/headless-report.md).
 #pragma once
 
 #include <atomic>

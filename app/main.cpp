@@ -1,4 +1,4 @@
-// serosa: the command line (shared/DESIGN.md "Contracts relied on from outside").
+// serosa: the command line (docs/ARCHITECTURE.md "External contracts").
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>

@@ -1,6 +1,6 @@
-// MouseTakeover: the instructor (or trainee) takes over a paused replay with the mouse
-// (issue 8 item 5, "branch from replay"). After ReplayController::branch() the replay's tools
-// follow a haptics::MouseKeyboardDevice instead of the recording:
+// MouseTakeover: the instructor (or trainee) takes over a paused replay with the mouse ("branch
+// from replay"). After ReplayController::branch() the replay's tools follow a
+// haptics::MouseKeyboardDevice instead of the recording:
 //  - handles: the first two tools that are not endoscopes (scene order) take handles 0 and 1;
 //  - each handle's trocar is put on its tool's shaft line through the pose at the branch (the
 //    pivot at the tool's `trocar` distance from the tip, else 10 cm back along the shaft), its

@@ -1,4 +1,4 @@
-// The "preset" block of a run's report (issue 9): what the scene's quality or accuracy_target
+// The "preset" block of a run's report: what the scene's quality or accuracy_target
 // chose from the measured curves (engine/presets.h), what that choice costs and delivers on the
 // reference scene it was measured on, and the solver settings the run actually used (explicit
 // [solver] and [render] keys win over the preset).

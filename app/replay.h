@@ -1,4 +1,4 @@
-// Instructor replay of a .lapr recording (shared/DESIGN.md `serosa replay`): rebuilds the scene
+// Instructor replay of a .lapr recording (docs/recording-format.md): rebuilds the scene
 // from the text in the recording's header, feeds the recorded tool inputs back step by step and,
 // with verify, checks every recorded state hash. A damaged recording replays up to its last good
 // chunk; the result says where it stopped.

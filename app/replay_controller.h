@@ -1,6 +1,6 @@
 // ReplayController: the instructor's replay without a window (the core of `serosa replay` in a
-// window, shared/DESIGN.md; issue 8 item 5): plays a .lapr recording forward at a speed, pauses,
-// and seeks to any time. Forward seeks step on; backward seeks restart from a snapshot.
+// window; tests drive it directly): plays a .lapr recording forward at a speed, pauses, and seeks
+// to any time. Forward seeks step on; backward seeks restart from a snapshot.
 //
 // Snapshots. While playing forward the controller keeps a copy of the SimState every
 // `snapshot_every_s` (and the start). The stages keep caches a SimState does not hold (FEM's

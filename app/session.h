@@ -21,7 +21,7 @@ struct SessionOptions {
 /// Opens a window on the scene and runs it in real time until the window closes, Ctrl-C (SIGINT
 /// or SIGTERM) arrives, or `seconds` of wall time passed (when > 0). Returns the exit code.
 ///
-/// Threads (shared/DESIGN.md "Threads and hand-offs"): the solver runs on its own thread at the
+/// Threads (docs/ARCHITECTURE.md "Threads and hand-offs"): the solver runs on its own thread at the
 /// scene's fixed dt, paced to real time (when a step takes longer than dt it runs in slow motion
 /// and says so), and after every step publishes a RenderFrame (surface, tet edges, tools,
 /// endoscope camera, overlay data) through a TripleBuffer; it never waits for drawing. When the

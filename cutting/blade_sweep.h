@@ -1,4 +1,5 @@
-// The convex polygon a blade edge sweeps between two solver steps (shared/DESIGN.md "Cutting").
+// The convex polygon a blade edge sweeps between two solver steps (docs/ARCHITECTURE.md
+// "Cutting, in the paper's terms").
 #pragma once
 
 #include <cstdint>

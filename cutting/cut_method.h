@@ -1,5 +1,5 @@
 // CutMethod: the three ways to cut a mesh by a blade polygon, behind one call, for the
-// accuracy-versus-time comparison (issue 3, item 6), `serosa cut --method` and the benchmarks.
+// accuracy-versus-time comparison, `serosa cut --method` and the benchmarks.
 //   pattern: the paper's pattern-based subdivision (cutting/cut_mesh.h): exact path, volume kept
 //   remove:  element removal (cutting/remove_cut.h): drop every tet the blade touches
 //   snap:    node snapping (cutting/snap_cut.h): move nearby nodes onto the plane, separate

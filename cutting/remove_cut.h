@@ -1,4 +1,4 @@
-// remove_cut: the element-removal baseline of issue 3 (item 6). Every tet the blade polygon
+// remove_cut: the element-removal baseline. Every tet the blade polygon
 // touches is dropped, nothing is subdivided and no node is created or moved. Same interface as
 // cut_mesh (a CutResult whose TopologyDelta engine's apply() performs), so the three methods can be
 // compared on the same blades (cutting/cut_method.h).

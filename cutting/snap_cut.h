@@ -1,4 +1,4 @@
-// snap_cut: the node-snapping baseline of issue 3 (item 6). The nodes nearest the blade are moved
+// snap_cut: the node-snapping baseline. The nodes nearest the blade are moved
 // onto its plane, then the mesh is separated along the faces that now lie in the plane within the
 // polygon. Same interface as cut_mesh (a CutResult whose TopologyDelta engine's apply()
 // performs); no tet is subdivided, so the tet count never changes.

@@ -1,4 +1,4 @@
-// The cut invariant checker (issue 3, item 8): used by the tests after every cut, and by debug
+// The cut invariant checker: used by the tests after every cut, and by debug
 // builds. Never throws on a bad mesh: it says what is wrong.
 #pragma once
 

@@ -1,5 +1,6 @@
 // Mesh files: read Gmsh 2.2 and 4.1 ASCII, TetGen .node/.ele and legacy VTK unstructured grids;
-// write Gmsh 2.2 ASCII, VTU (ParaView) and OBJ (boundary surface). shared/DESIGN.md "Contracts".
+// write Gmsh 2.2 ASCII, VTU (ParaView) and OBJ (boundary surface); docs/ARCHITECTURE.md
+// "External contracts".
 //
 // Every reader validates what it reads and throws InputError naming the file and the 1-based line
 // on bad input: truncated file, wrong counts, node ids out of range or duplicated, NaN/inf

@@ -1,4 +1,4 @@
-// Presets (issue 9): a scene's `quality` ("fast" | "balanced" | "accurate") or `accuracy_target`
+// Presets: a scene's `quality` ("fast" | "balanced" | "accurate") or `accuracy_target`
 // picks the solver settings and the Phong tessellation level from the accuracy-versus-time curves
 // `serosa bench` measured (docs/BENCHMARKS.md "Presets"): the cheapest measured setting whose
 // error is within the target. The curves are compiled in (engine/presets.cpp); a test checks them

@@ -1,5 +1,5 @@
 // Scene model: what a scene file describes (organs, materials, solver, tools, effects), parsed
-// and validated once by load_scene and read-only afterwards (shared/DESIGN.md "Model vs state").
+// and validated once by load_scene and read-only afterwards (docs/ARCHITECTURE.md "Data model").
 // Every key, its unit, default and range is documented in docs/scene-format.md; the defaults
 // below are the ones the loader applies when a key is absent.
 #pragma once

@@ -1,4 +1,4 @@
-// SimState: everything that changes while a scene runs (shared/DESIGN.md "Model vs state").
+// SimState: everything that changes while a scene runs (docs/ARCHITECTURE.md "State").
 #pragma once
 
 #include <cstdint>

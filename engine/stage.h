@@ -1,5 +1,5 @@
 // Stage: one step of the solver pipeline (take tool states -> contact -> FEM -> cuts -> surface
-// update -> metrics -> publish -> record; shared/DESIGN.md "Threads and hand-offs").
+// update -> metrics -> publish -> record; docs/ARCHITECTURE.md "The step").
 // app builds one stage per effect the scene lists and hands them, in that order, to the Runner.
 #pragma once
 

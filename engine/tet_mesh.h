@@ -1,4 +1,5 @@
-// TetMesh: the organ's tetrahedral mesh as a structure of arrays (shared/DESIGN.md "Data model").
+// TetMesh: the organ's tetrahedral mesh as a structure of arrays (docs/ARCHITECTURE.md
+// "Data model").
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// Tool path CSV: scripted tool poses over time (shared/DESIGN.md "Contracts").
+// Tool path CSV: scripted tool poses over time (docs/ARCHITECTURE.md "External contracts").
 //
 //   t,tool,px,py,pz,qw,qx,qy,qz,jaw
 //   0.0,grasper,0.05,0.04,0.0,1,0,0,0,0.6

@@ -1,5 +1,5 @@
 // TopologyDelta: what one topology change did, so that every consumer (FEM, surface, render)
-// updates itself incrementally instead of rebuilding (shared/DESIGN.md "Data model").
+// updates itself incrementally instead of rebuilding (docs/ARCHITECTURE.md "Data model").
 #pragma once
 
 #include <cstdint>

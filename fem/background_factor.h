@@ -1,9 +1,8 @@
-// BackgroundFactor: the CHOLMOD factor that preconditions CG in the pcg_cholmod solver, computed
-// in a background std::thread so that no solver step ever waits for a factorization (issue 4,
-// solver (c)). After a topology change the integrator requests the factor of the new rest-state
-// matrix and keeps stepping with Jacobi (the old factor has the old size) until it is ready;
-// after a change of dt it keeps using the old factor (still SPD, so still a valid
-// preconditioner) until the new one is ready.
+// BackgroundFactor: the CHOLMOD factor that preconditions CG in the pcg_cholmod solver, computed in
+// a background std::thread so that no solver step ever waits for a factorization. After a topology
+// change the integrator requests the factor of the new rest-state matrix and keeps stepping with
+// Jacobi (the old factor has the old size) until it is ready; after a change of dt it keeps using
+// the old factor (still SPD, so still a valid preconditioner) until the new one is ready.
 //
 // One job runs at a time. A request made while a job runs is queued (replacing any earlier queued
 // request) and started by the first poll() after the running job ends; a finished job whose

@@ -1,5 +1,6 @@
-// RenderFrame: the plain data the renderer draws (shared/STYLE.md "render/": a render stage fills
-// plain data with no GL; drawing is separate). No GL handles, no pointers into simulation state.
+// RenderFrame: the plain data the renderer draws. Filling it needs no GL and drawing it is a
+// separate step (render/frame_renderer.h), so the solver thread can build frames and tests can
+// check them without a context. No GL handles, no pointers into simulation state.
 #pragma once
 
 #include <array>

@@ -1,4 +1,4 @@
-// Cut faces (issue 5 item 3): which boundary faces a cut made (the wound), and which lie on the
+// Cut faces: which boundary faces a cut made (the wound), and which lie on the
 // organ's original surface.
 //
 // The rule, the same for full extraction and incremental update so that both give equal flags:

@@ -1,4 +1,4 @@
-// Collision BVH over the surface triangles (issue 5 item 5): closest point, ray and segment
+// Collision BVH over the surface triangles: closest point, ray and segment
 // queries for the tools, in current positions.
 //
 // Design. A binary tree of axis-aligned boxes whose leaves hold surface face slots (indices into

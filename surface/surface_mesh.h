@@ -1,5 +1,5 @@
 // SurfaceMesh: the boundary surface of a TetMesh, grouped by visual mesh (paper, "Surface
-// extraction"; shared/DESIGN.md "Data model").
+// extraction"; docs/ARCHITECTURE.md "Data model").
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// Render vertices and per-vertex normals of a SurfaceMesh (issue 5 item 3): area-weighted normals
+// Render vertices and per-vertex normals of a SurfaceMesh: area-weighted normals
 // per corner, split across cut edges (where a wound face meets an original one), across creases
 // sharper than a set angle, and between groups (each visual mesh has its own vertices).
 //

@@ -1,4 +1,4 @@
-// Incremental boundary update from a TopologyDelta (issue 5 item 2): only the faces of removed,
+// Incremental boundary update from a TopologyDelta: only the faces of removed,
 // added and moved tets are looked at, and the result equals a full extraction (same oriented
 // faces with the same tets in the same groups; the order inside a group may differ).
 #pragma once

@@ -1,4 +1,4 @@
-# Fails when a file includes a folder it may not (shared/DESIGN.md, three floors):
+# Fails when a file includes a folder it may not (docs/ARCHITECTURE.md "The three floors"):
 # engine/ includes no other floor; fem, cutting, surface, haptics, render include only engine.
 set(domains fem cutting surface haptics render)
 set(bad "")
@@ -21,6 +21,6 @@ foreach(folder engine ${domains})
 endforeach()
 if(bad)
   list(JOIN bad "\n" msg)
-  message(FATAL_ERROR "Floor violations (see shared/DESIGN.md):\n${msg}")
+  message(FATAL_ERROR "Floor violations (see docs/ARCHITECTURE.md):\n${msg}")
 endif()
 message(STATUS "floors respected")

@@ -1,4 +1,4 @@
-// The parts of `serosa bench` (issue 9), one file each (app/bench/part_<name>.cpp). Each measures
+// The parts of `serosa bench`, one file each (app/bench/part_<name>.cpp). Each measures
 // its knobs, accuracy against time, and returns tables, plots and monotonicity checks
 // (bench_table.h). With options.quick a part must finish in well under 30 s on the 2-core machine.
 #pragma once

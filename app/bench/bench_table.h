@@ -1,4 +1,4 @@
-// `serosa bench` (issue 9): the data every part of the accuracy-versus-time suite returns.
+// `serosa bench`: the data every part of the accuracy-versus-time suite returns.
 // A part measures one or more knobs; for each knob setting it adds a row to a Table (accuracy
 // and time side by side), names the Plots to draw from the tables (accuracy on one axis, time on
 // the other), and the MonotoneChecks that must hold on accuracy (never on timings: they drift).

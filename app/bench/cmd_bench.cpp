@@ -1,5 +1,5 @@
 // serosa bench [PART...] [--out DIR] [--quick] [--assets DIR] [--no-plots]
-// The accuracy-versus-time suite (issue 9): runs the named parts (none: all of them, in the
+// The accuracy-versus-time suite: runs the named parts (none: all of them, in the
 // registry's order, app/bench/bench_registry.cpp), writes each part's tables as <out>/<table>.csv,
 // a gnuplot script <out>/<plot>.gp per plot and, with gnuplot, <out>/<plot>.png; runs every
 // monotonicity check; prints a summary and writes <out>/summary.json. Exit 0 only when every part

@@ -1,4 +1,4 @@
-// `serosa bench fem` (issue 9, issue 4 item 9): what each FEM accuracy knob costs.
+// `serosa bench fem`: what each FEM accuracy knob costs.
 //  (a) Solver knobs on the SOFA box (config/sofa_box19k.toml: assets/box_19k.msh, 4 x 1 x 1 m,
 //      x = 0 fixed, E = 3000 Pa, nu = 0.45, rho = 1, Rayleigh 0.1 / 0.1, dt = 0.01 s; quick: the
 //      same box as a structured 16 x 4 x 4 grid, 1536 tets): after 100 steps (1 s), the

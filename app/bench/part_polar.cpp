@@ -1,4 +1,4 @@
-// `serosa bench polar` (issue 9): the rotation extraction of corotational FEM (fem/rotation.h)
+// `serosa bench polar`: the rotation extraction of corotational FEM (fem/rotation.h)
 // on random deformation gradients of four kinds, accuracy against time. For Müller et al.'s
 // iteration (extract_rotation) and the Newton variant (newton_rotation), each from a cold start
 // (q = identity, a tet's first step), the iteration cap is the knob: the mean error against the

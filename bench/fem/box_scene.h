@@ -1,4 +1,4 @@
-// The SOFA-matching box of docs/BENCHMARKS.md "FEM" (issue 4): a 4 x 1 x 1 m bar along x, the
+// The SOFA-matching box of docs/BENCHMARKS.md "FEM": a 4 x 1 x 1 m bar along x, the
 // x = 0 face fixed, gravity -9.81 m/s^2 along y, E = 3000 Pa, nu = 0.45, rho = 1 kg/m^3, Rayleigh
 // 0.1 (mass, 1/s) and 0.1 (stiffness, s), dt = 0.01 s. Either a structured mesh built here (sizes
 // 1k..200k tets in one code path) or the gmsh meshes assets/box_19k.msh and assets/box_95k.msh.

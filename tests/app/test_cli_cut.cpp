@@ -1,7 +1,7 @@
-// `serosa cut` end to end (shared/DESIGN.md "Contracts"): runs the built executable on the bundled
-// beam (assets/beam_coarse.msh: 0.1 x 0.01 x 0.01 m, x in [0, 0.1], 20 x 2 x 2 cubes of 5 mm) and
-// checks the exit code, the JSON summary and the Gmsh 2.2 file it writes, for each method, and
-// that bad --polygon and --method values exit 1 naming the flag and the value.
+// `serosa cut` end to end (docs/ARCHITECTURE.md "External contracts"): runs the built executable on
+// the bundled beam (assets/beam_coarse.msh: 0.1 x 0.01 x 0.01 m, x in [0, 0.1], 20 x 2 x 2 cubes of
+// 5 mm) and checks the exit code, the JSON summary and the Gmsh 2.2 file it writes, for each
+// method, and that bad --polygon and --method values exit 1 naming the flag and the value.
 #include <gtest/gtest.h>
 
 #include <cmath>

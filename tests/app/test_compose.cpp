@@ -1,4 +1,4 @@
-// Effects: app builds a stage only for what the scene lists (shared/DESIGN.md "Effects").
+// Effects: app builds a stage only for what the scene lists (docs/ARCHITECTURE.md "Effects").
 #include <gtest/gtest.h>
 
 #include <filesystem>

@@ -1,4 +1,4 @@
-// An effect the scene does not list costs nothing (shared/DESIGN.md "Effects"): no stage, no
+// An effect the scene does not list costs nothing (docs/ARCHITECTURE.md "Effects"): no stage, no
 // timer, no allocation in a step. This test executable replaces the global operator new with a
 // counting one, so it can compare the composed pipeline of a fem-only scene, step by step, with
 // a pipeline built by hand from exactly the stages that scene needs (tools, FEM, metrics) — while

@@ -63,7 +63,7 @@ TEST(Headless, AppendectomyWritesPictures) {
   for (const auto& f : report["frames"]) EXPECT_GT(fs::file_size(f.get<std::string>()), 1000u);
 }
 
-// Every field of the report a regression run is judged by (issue 8, items 6 and 7), each with a
+// Every field of the report a regression run is judged by (docs/headless-report.md), each with a
 // value that could be wrong: the scripted transection of the default scene, pictures on.
 TEST(Headless, ReportHasEveryFieldWithPlausibleValues) {
   const fs::path dir = out_dir("report_fields");

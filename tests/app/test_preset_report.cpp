@@ -1,5 +1,5 @@
 // The report says what the scene's preset chose from the measured curves and what it costs and
-// delivers (issue 9, presets), and the run uses those settings unless the scene overrides them.
+// delivers, and the run uses those settings unless the scene overrides them.
 #include <gtest/gtest.h>
 
 #include <fstream>

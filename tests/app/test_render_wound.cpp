@@ -1,9 +1,9 @@
-// What a person sees in the pictures of a simulated cut (issue 6, "Done when"), drawn by the
-// headless picture path (app/frame_pictures.h, used by `serosa headless --frames` and
-// `serosa replay --frames`): the organs, the instruments at their poses, the wound after a cut
-// (wound-material pixels, a dark saturated red no tissue material has: none before the cut, a
-// patch after) and the paper's three views, which differ. Images are compared by robust
-// statistics, never pixel by pixel. PNGs go to <build>/test-output/render/ for a person to look at.
+// What a person sees in the pictures of a simulated cut, drawn by the headless picture path
+// (app/frame_pictures.h, used by `serosa headless --frames` and `serosa replay --frames`): the
+// organs, the instruments at their poses, the wound after a cut (wound-material pixels, a dark
+// saturated red no tissue material has: none before the cut, a patch after) and the paper's three
+// views, which differ. Images are compared by robust statistics, never pixel by pixel. PNGs go to
+// <build>/test-output/render/ for a person to look at.
 //
 // OpenGL comes from EGL (Mesa llvmpipe in CI): no display needed. A machine without an offscreen
 // OpenGL 4 context FAILS these tests (CI installs Mesa), as the render tests do.

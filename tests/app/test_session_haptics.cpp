@@ -1,4 +1,4 @@
-// The haptic loop in the trainee session (issue 8): mouse-driven instruments through the 1 kHz
+// The haptic loop in the trainee session: mouse-driven instruments through the 1 kHz
 // loop, haptic contact planes from the collision BVH, the session under Xvfb with its report and
 // recording, and branching from a replay with the mouse (controller level and in the window).
 #include <gtest/gtest.h>

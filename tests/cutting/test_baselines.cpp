@@ -1,4 +1,4 @@
-// The two baselines of issue 3 (item 6) and the method dispatch: element removal
+// The two baseline cutting methods and the method dispatch: element removal
 // (cutting/remove_cut.h) and node snapping (cutting/snap_cut.h), each through the invariant
 // checker (cutting/validate.h) where its invariants apply to the method:
 //   remove: structure (finite, positive volumes, no face shared by more than two tets, consistent

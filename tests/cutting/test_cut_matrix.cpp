@@ -1,8 +1,8 @@
-// The property-test matrix of issue 3 item 9 on structured grids (exact coplanar nodes, edges and
+// The property-test matrix of the cutter on structured grids (exact coplanar nodes, edges and
 // faces) and jittered grids: per family of cuts, many random cuts, every invariant on every
 // one (cutting/validate.h; covering cuts also separate the mesh and split its volume exactly),
-// and the numbers item 9 asks to report: tets created per cut and the minimum element quality
-// (engine/mesh_quality.h mean ratio) after the cuts, per family.
+// and the numbers that say what the cuts cost the mesh: tets created per cut and the minimum
+// element quality (engine/mesh_quality.h mean ratio) after the cuts, per family.
 #include <gtest/gtest.h>
 
 #include <algorithm>

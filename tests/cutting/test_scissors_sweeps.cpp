@@ -1,4 +1,4 @@
-// A scissors closing over a beam in many small steps (issue 3, partial cuts). Three ways to cut it:
+// A scissors closing over a beam in many small steps (partial cuts). Three ways to cut it:
 //  - step by step: each step's polygon is the thin triangle from the hinge it swept in that step,
 //    sharing its trailing edge with the previous step's leading edge, cut with cut_mesh into the
 //    mesh the previous steps made, along their crack front;

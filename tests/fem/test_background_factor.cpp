@@ -1,4 +1,4 @@
-// pcg_cholmod (issue 4, solver (c)): the rest-state CHOLMOD factor is computed in a background
+// pcg_cholmod: the rest-state CHOLMOD factor is computed in a background
 // thread; a step after a topology change does not wait for it (it runs CG with Jacobi and says
 // so in its status) and converges; once the factor is ready CG uses it and needs fewer
 // iterations; results match the direct solver.

@@ -1,4 +1,4 @@
-// Stability after many cuts (issue 4 item 8): a bar changed by 50 random cut-like topology deltas
+// Stability after many cuts: a bar changed by 50 random cut-like topology deltas
 // (tets removed, or split at a random interior point into four, slivers included: synthetic,
 // because real scissor cuts of serosa::cutting grew a 24-tet bar to 357k tets in 47 cuts at the
 // time of writing, too large for a unit test), then run for 10,000 steps: every

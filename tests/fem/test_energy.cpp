@@ -1,4 +1,4 @@
-// Energy behaviour of the implicit step (issue 4 item 7): an undamped free vibration never gains
+// Energy behaviour of the implicit step: an undamped free vibration never gains
 // energy (backward Euler only dissipates).
 #include <gtest/gtest.h>
 

@@ -1,16 +1,16 @@
-// Issue 4 item 8 with REAL cuts: a small clamped bar cut 50 times by random small scissor blades
-// (serosa::cutting::cut_mesh, tests/fem/fem_cuts.h; partial cuts, slivers as they come: the blades
-// are 1-4 mm wide in 5 cm cells, since serosa::cutting refines ~30-250 tets into every cut and
-// wider blades grew the 144-tet bar past 400k tets in 50 cuts), the FEM state updated locally
-// after each cut (ImplicitIntegrator::update), one step after each cut under gravity, then 10,000
-// steps with gravity cancelled (pieces cut free would fall forever) and a cheap solver (CG capped
-// at 25 iterations, which on this sliver-laden mesh never reaches its tolerance), the divergence
-// guard taking every flagged energy gain back out of the kinetic energy
-// (SolverSettings::remove_energy_gain), for five seeds. Checked: every
-// step is applied with a clear status (converged, or the iteration cap reached and said so; an
-// energy gain beyond the work of the external forces, StepStatus::energy_gain, is flagged and
-// never reported as converged), positions and velocities stay finite, and the energy (kinetic +
-// elastic) never exceeds what the bar had when the long run started.
+// Stability after many cuts, with REAL cuts: a small clamped bar cut 50 times by random small
+// scissor blades (serosa::cutting::cut_mesh, tests/fem/fem_cuts.h; partial cuts, slivers as they
+// come: the blades are 1-4 mm wide in 5 cm cells, since serosa::cutting refines ~30-250 tets into
+// every cut and wider blades grew the 144-tet bar past 400k tets in 50 cuts), the FEM state updated
+// locally after each cut (ImplicitIntegrator::update), one step after each cut under gravity, then
+// 10,000 steps with gravity cancelled (pieces cut free would fall forever) and a cheap solver (CG
+// capped at 25 iterations, which on this sliver-laden mesh never reaches its tolerance), the
+// divergence guard taking every flagged energy gain back out of the kinetic energy
+// (SolverSettings::remove_energy_gain), for five seeds. Checked: every step is applied with a clear
+// status (converged, or the iteration cap reached and said so; an energy gain beyond the work of
+// the external forces, StepStatus::energy_gain, is flagged and never reported as converged),
+// positions and velocities stay finite, and the energy (kinetic + elastic) never exceeds what the
+// bar had when the long run started.
 #include <gtest/gtest.h>
 
 #include <chrono>

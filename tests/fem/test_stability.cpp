@@ -1,4 +1,4 @@
-// Stability on hard cases (issue 4 item 8): slivers down to quality ~1e-6 from near-degenerate
+// Stability on hard cases: slivers down to quality ~1e-6 from near-degenerate
 // splits, time steps from 1e-4 to 0.05 s, and a 1e6 stiffness contrast, for each solver: every
 // step is applied or clearly rejected, no NaN, and the energy stays bounded.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Issue 5 item 4, one set of nodes: the surface, its render vertices and its collision BVH name
+// One set of nodes: the surface, its render vertices and its collision BVH name
 // TetMesh nodes and read their positions from TetMesh::x; after deformation and subdivision every
 // surface vertex is the mechanical node it names.
 #include <gtest/gtest.h>

@@ -171,7 +171,7 @@ TEST(UpdateSurface, RejectsADeltaThatDoesNotFollowOn) {
   EXPECT_THROW((void)build_face_table(m, s), std::invalid_argument);  // s is not m's boundary
 }
 
-// Issue 5 item 4: one set of nodes. The surface names mechanical nodes; after deforming and
+// One set of nodes. The surface names mechanical nodes; after deforming and
 // cutting, every surface vertex is read from the mechanical node it names, with no copy to drift.
 TEST(UpdateSurface, SurfaceVerticesAreTheMechanicalNodes) {
   std::mt19937 rng(9);
