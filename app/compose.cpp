@@ -48,6 +48,9 @@ fem::FemConfig fem_config(const Scene& scene, const AssembledScene& assembled) {
   c.solver.kind = to_fem(scene.solver.kind);
   c.solver.tolerance = scene.solver.tolerance;
   c.solver.max_iterations = scene.solver.max_iterations;
+  c.solver.refresh_iterations = scene.solver.refresh_iterations;
+  c.solver.factor_lag_steps = scene.solver.factor_lag_steps;
+  c.solver.threads = scene.solver.threads;
   // A capped CG's energy gains are taken back out (the grasper, the one stage that moves nodes
   // between steps, tells the FEM stage so: ToolContactStage -> FemStage::nodes_moved_by_caller).
   c.solver.remove_energy_gain = true;

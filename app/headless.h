@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -38,6 +39,9 @@ struct HeadlessOptions {
 
 /// A state hash as the report writes it: 16 lower-case hex digits.
 [[nodiscard]] std::string hash_hex(std::uint64_t hash);
+
+/// The report's "step_time_ms" object: p50, p99 and max of the solver steps' wall times (ms).
+[[nodiscard]] nlohmann::json step_time_json(std::vector<double> ms);
 
 /// The report's "cutting" object (empty without a cutting stage).
 [[nodiscard]] nlohmann::json cutting_json(const Composition& comp);

@@ -7,9 +7,14 @@
 namespace serosa::app {
 
 nlohmann::json solver_report(const SolverSettings& solver) {
-  return {{"kind", std::string(solver_kind_name(solver.kind))},
-          {"tolerance", solver.tolerance},
-          {"max_iterations", solver.max_iterations}};
+  nlohmann::json j = {{"kind", std::string(solver_kind_name(solver.kind))},
+                      {"tolerance", solver.tolerance},
+                      {"max_iterations", solver.max_iterations}};
+  if (solver.kind == SolverKind::kPcgLagged) {
+    j["refresh_iterations"] = solver.refresh_iterations;
+    j["factor_lag_steps"] = solver.factor_lag_steps;
+  }
+  return j;
 }
 
 std::optional<nlohmann::json> preset_report(const Scene& scene) {

@@ -163,6 +163,11 @@ struct SolverSettings {
   SolverKind kind = SolverKind::kPcg;  ///< linear solver of the implicit step
   double tolerance = 1e-6;             ///< relative residual for PCG; > 0, < 1
   int max_iterations = 100;            ///< PCG iteration cap; >= 1
+  int refresh_iterations = 2;          ///< pcg-lagged: refresh the factor above this; >= 0
+  int factor_lag_steps = 12;           ///< pcg-lagged: steps a refresh may take; >= 1
+  /// OpenMP threads of the solver thread's loops; 1..256. One by default: on two cores the
+  /// other one serves the background factorization, the renderer and the haptic loop.
+  int threads = 1;
 };
 
 struct RenderSettings {

@@ -547,7 +547,9 @@ class Loader {
 
   void read_solver(const toml::table& t, SolverSettings& s) const {
     const std::string p = "solver";
-    check_keys(t, p, {"kind", "tolerance", "max_iterations"});
+    check_keys(t, p,
+               {"kind", "tolerance", "max_iterations", "refresh_iterations", "factor_lag_steps",
+                "threads"});
     if (const auto* n = t.get("kind")) {
       s.kind = enum_value<SolverKind>(*n, sub(p, "kind"), solver_kind_from_name,
                                       "pcg, cholmod, pcg-cholmod, pcg-lagged");
@@ -559,6 +561,18 @@ class Loader {
     if (const auto* n = t.get("max_iterations")) {
       s.max_iterations = static_cast<int>(
           ranged_int(*n, sub(p, "max_iterations"), 1, 1000000, "an integer within [1, 1000000]"));
+    }
+    if (const auto* n = t.get("refresh_iterations")) {
+      s.refresh_iterations = static_cast<int>(ranged_int(*n, sub(p, "refresh_iterations"), 0,
+                                                         1000000, "an integer within [0, 1000000]"));
+    }
+    if (const auto* n = t.get("threads")) {
+      s.threads = static_cast<int>(
+          ranged_int(*n, sub(p, "threads"), 1, 256, "a number of threads within [1, 256]"));
+    }
+    if (const auto* n = t.get("factor_lag_steps")) {
+      s.factor_lag_steps = static_cast<int>(ranged_int(*n, sub(p, "factor_lag_steps"), 1, 10000,
+                                                       "a number of steps within [1, 10000]"));
     }
   }
 

@@ -64,6 +64,10 @@ struct SolverSettings {
   /// pcg_cholmod: the background factorization starts this many ms late. For tests that need
   /// "the factor is not ready yet" deterministically; 0 otherwise.
   int factor_delay_ms = 0;
+  /// OpenMP threads of the parallel loops on the thread that steps the FEM stage (FemStage sets
+  /// them before each step; they also hold for the later stages on that thread); 0 leaves
+  /// OpenMP's own setting.
+  int threads = 0;
   /// pcg_lagged: a solve that needed more CG iterations than this asks for a refreshed factor of
   /// its own matrix. Lower: more factorizations (background CPU), fewer iterations per step.
   int refresh_iterations = 2;

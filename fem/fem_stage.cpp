@@ -1,5 +1,7 @@
 #include "fem/fem_stage.h"
 
+#include <omp.h>
+
 #include <utility>
 
 #include "engine/sim_state.h"
@@ -24,11 +26,14 @@ void FemStage::step(const StepContext& ctx, SimState& state) {
     m_built = true;
     ++m_stats.rebuilds;
   }
+  if (m_integrator.config().solver.threads > 0)
+    omp_set_num_threads(m_integrator.config().solver.threads);
   m_last = m_integrator.step(state.mesh, ctx.dt_s, m_f_ext);
   ++m_stats.steps;
   if (!m_last.converged) ++m_stats.not_converged;
   if (!m_last.applied) ++m_stats.rejected;
   if (m_last.energy_gain) ++m_stats.energy_gains;
+  if (m_last.factor_refresh) ++m_stats.factor_refreshes;
   m_stats.energy_removed_j += m_last.energy_removed_j;
 }
 

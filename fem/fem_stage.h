@@ -26,6 +26,8 @@ struct FemStageStats {
   std::uint64_t energy_gains = 0;
   /// Kinetic energy taken back out over those (SolverSettings::remove_energy_gain), J
   double energy_removed_j = 0.0;
+  /// pcg_lagged: factorizations of the system matrix asked for (StepStatus::factor_refresh)
+  std::uint64_t factor_refreshes = 0;
 };
 
 class FemStage final : public Stage {

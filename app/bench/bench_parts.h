@@ -20,6 +20,9 @@ PartResult run_polar_part(const BenchOptions& options);
 PartResult run_tessellation_part(const BenchOptions& options);
 /// Haptic coupling stiffness: force error and stability margin against loop time.
 PartResult run_haptics_part(const BenchOptions& options);
+/// The shipped appendectomy scenes, every stage: real-time factor and step-time distribution
+/// against the accuracy of each solver setting and dt (positions against the exact solve).
+PartResult run_scenes_part(const BenchOptions& options);
 /// Surface extraction full vs incremental, CPU vs GPU: the same result, time only.
 PartResult run_surface_part(const BenchOptions& options);
 

@@ -2,12 +2,22 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
 #include <fstream>
 #include <numeric>
 #include <stdexcept>
 
 namespace serosa::app::bench {
+
+std::string fmt_double(const char* format, ...) {
+  char buf[64];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(buf, sizeof buf, format, args);
+  va_end(args);
+  return buf;
+}
 
 void Table::add(std::string setting, std::vector<double> values) {
   if (values.size() != columns.size()) {

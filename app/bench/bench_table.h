@@ -78,6 +78,9 @@ struct PartResult {
   std::vector<std::string> notes;  ///< one-line readings printed in the summary
 };
 
+/// printf-formatted text of at most 63 characters (figures in notes and labels).
+[[gnu::format(printf, 1, 2)]] std::string fmt_double(const char* format, ...);
+
 /// The first violation of `check` on `table` as a message, or empty when it holds (or the table
 /// has fewer than two rows).
 [[nodiscard]] std::string check_monotone(const Table& table, const MonotoneCheck& check);

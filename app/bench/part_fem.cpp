@@ -93,15 +93,6 @@ void add_solver_row(Table& t, std::string setting, double knob, const SolverRun&
         {knob, r.timed.ms_per_step, r.error, r.sag, static_cast<double>(r.timed.not_converged)});
 }
 
-[[gnu::format(printf, 1, 2)]] std::string fmt_double(const char* format, ...) {
-  char buf[64];
-  va_list args;
-  va_start(args, format);
-  std::vsnprintf(buf, sizeof buf, format, args);
-  va_end(args);
-  return buf;
-}
-
 // What each quality preset (engine/presets.h) costs and delivers in this run: the settings the
 // preset picks from the compiled-in curves, run again on this box. On the full run (the box the
 // curves were measured on) each must deliver its target; on the quick box only the order holds.

@@ -1,0 +1,161 @@
+// `serosa bench scenes`: the shipped appendectomy scenes as the trainee runs them, every stage of
+// the step included. For each solver setting and dt: the real-time factor (simulated time over
+// the wall time of the steps), the step-time distribution (p50, p99, max, through the cut), and
+// the accuracy against the exact solve of the same scene (CHOLMOD, the scene's dt): the largest
+// max_i |x_i - x_exact_i| over the steps before the first cut, relative to the largest
+// displacement max_i |x_exact_i - x_exact_i(0)| reached so far (steps before it reaches 0.1 mm
+// are not judged: there is nothing to be relative to). A setting with a coarser dt is compared
+// at the reference's steps of the same time. The scenes' presets are chosen from these curves.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "app/assemble_state.h"
+#include "app/bench/bench_parts.h"
+#include "app/compose.h"
+#include "engine/scene.h"
+#include "engine/sim_state.h"
+
+namespace serosa::app::bench {
+
+namespace {
+
+constexpr double kJudgedFrom_m = 1e-4;  // displacement before which no error is judged
+
+struct Setting {
+  std::string label;
+  SolverKind kind = SolverKind::kPcgLagged;
+  double tolerance = 1e-4;
+  int max_iterations = 200;
+  int dt_ratio = 1;  // dt = dt_ratio x the scene's dt
+};
+
+struct Trajectory {
+  std::vector<std::vector<Vec3>> x;  // (steps before the first cut) x (n) positions, m
+  std::vector<double> step_ms;       // (steps) wall time of each step, ms
+  double simulated_s = 0.0;
+};
+
+// Runs `scene` with `s` for `seconds` of simulated time, keeping positions until the topology
+// first changes.
+Trajectory run(const Scene& base, const Setting& s, double seconds) {
+  Scene scene = base;
+  scene.solver.kind = s.kind;
+  scene.solver.tolerance = s.tolerance;
+  scene.solver.max_iterations = s.max_iterations;
+  scene.settings.dt_s = base.settings.dt_s * s.dt_ratio;
+  AssembledScene assembled = assemble_state(scene);
+  Composition comp = compose(scene, assembled);
+  SimState& state = assembled.state;
+  const std::uint64_t version0 = state.mesh.topology_version;
+  const auto steps = static_cast<std::int64_t>(std::llround(seconds / scene.settings.dt_s));
+  Trajectory t;
+  t.x.push_back(state.mesh.x);
+  for (std::int64_t k = 0; k < steps; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    comp.runner->step(state);
+    t.step_ms.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    if (state.mesh.topology_version == version0) t.x.push_back(state.mesh.x);
+  }
+  t.simulated_s = state.time_s;
+  return t;
+}
+
+// The largest relative error of `c` against the reference `ref` over the steps both have before
+// the first cut (c's step k is ref's step k * ratio).
+double relative_error(const Trajectory& c, const Trajectory& ref, int ratio) {
+  double worst = 0.0, reach = 0.0;
+  for (std::size_t k = 1; k < c.x.size(); ++k) {
+    const std::size_t kr = k * static_cast<std::size_t>(ratio);
+    if (kr >= ref.x.size()) break;
+    double diff = 0.0;
+    for (std::size_t i = 0; i < ref.x[kr].size(); ++i) {
+      reach = std::max(reach, (ref.x[kr][i] - ref.x[0][i]).norm());
+      diff = std::max(diff, (c.x[k][i] - ref.x[kr][i]).norm());
+    }
+    if (reach >= kJudgedFrom_m) worst = std::max(worst, diff / reach);
+  }
+  return worst;
+}
+
+double quantile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size())))];
+}
+
+void scene_curves(const BenchOptions& options, const std::string& file, const std::string& tag,
+                  double seconds, PartResult& result) {
+  const Scene scene = load_scene(options.assets_dir / ".." / "config" / file);
+  std::vector<Setting> settings;
+  if (options.quick) {
+    settings = {{"pcg-lagged 1e-4", SolverKind::kPcgLagged, 1e-4, 200, 1},
+                {"pcg-lagged 1e-6", SolverKind::kPcgLagged, 1e-6, 200, 1}};
+  } else {
+    settings = {{"cg jacobi 1e-4 cap 200", SolverKind::kPcg, 1e-4, 200, 1},
+                {"pcg-cholmod 1e-4", SolverKind::kPcgCholmod, 1e-4, 200, 1},
+                {"pcg-lagged 1e-2", SolverKind::kPcgLagged, 1e-2, 200, 1},
+                {"pcg-lagged 1e-3", SolverKind::kPcgLagged, 1e-3, 200, 1},
+                {"pcg-lagged 1e-4", SolverKind::kPcgLagged, 1e-4, 200, 1},
+                {"pcg-lagged 1e-6", SolverKind::kPcgLagged, 1e-6, 200, 1},
+                {"pcg-lagged 1e-4 dt x2", SolverKind::kPcgLagged, 1e-4, 200, 2},
+                {"pcg-lagged 1e-4 dt x4", SolverKind::kPcgLagged, 1e-4, 200, 4}};
+  }
+  const Trajectory ref = run(scene, {"cholmod (exact)", SolverKind::kCholmod, 1e-6, 1, 1}, seconds);
+  Table t{"scene_" + tag,
+          {"tolerance", "dt_s", "real_time_factor", "step_ms_p50", "step_ms_p99", "step_ms_max",
+           "rel_error"},
+          {},
+          {}};
+  const auto add = [&](const std::string& label, const Setting& s, const Trajectory& tr) {
+    double wall_s = 0.0;
+    for (double ms : tr.step_ms) wall_s += 1e-3 * ms;
+    t.add(label, {s.tolerance, scene.settings.dt_s * s.dt_ratio, tr.simulated_s / wall_s,
+                  quantile(tr.step_ms, 0.5), quantile(tr.step_ms, 0.99),
+                  quantile(tr.step_ms, 1.0), relative_error(tr, ref, s.dt_ratio)});
+  };
+  add("cholmod (exact)", {"", SolverKind::kCholmod, 1e-6, 1, 1}, ref);
+  Table sweep{"scene_" + tag + "_lagged_tolerance", t.columns, {}, {}};
+  for (const Setting& s : settings) {
+    add(s.label, s, run(scene, s, seconds));
+    if (s.kind == SolverKind::kPcgLagged && s.dt_ratio == 1) {
+      sweep.settings.push_back(t.settings.back());
+      sweep.rows.push_back(t.rows.back());
+    }
+  }
+  Plot p{"scene_" + tag,
+         "The " + tag + " scene (" + file + ", " + std::to_string(scene.tools.size()) +
+             " tools), " + std::to_string(static_cast<int>(seconds * 1000)) +
+             " ms of its procedure: real-time factor against accuracy",
+         "max position error / max displacement (before the cut)",
+         "real-time factor (simulated / wall)",
+         true,
+         true,
+         {{t.name, "rel_error", "real_time_factor", "solver setting, dt", true, true}}};
+  result.plots.push_back(std::move(p));
+  result.checks.push_back({sweep.name, "tolerance", "rel_error", Direction::increasing, 0.5, 1e-7,
+                           "pcg-lagged: the error falls as the tolerance tightens"});
+  for (std::size_t r = 0; r < t.rows.size(); ++r)
+    result.notes.push_back(
+        t.name + ": " + t.settings[r] + ": real-time factor " +
+        fmt_double("%.2f", t.rows[r][t.column("real_time_factor")]) + ", step p50/p99/max " +
+        fmt_double("%.2f", t.rows[r][t.column("step_ms_p50")]) + "/" +
+        fmt_double("%.2f", t.rows[r][t.column("step_ms_p99")]) + "/" +
+        fmt_double("%.2f", t.rows[r][t.column("step_ms_max")]) + " ms, error " +
+        fmt_double("%.1e", t.rows[r][t.column("rel_error")]));
+  result.tables.push_back(std::move(t));
+  result.tables.push_back(std::move(sweep));
+}
+
+}  // namespace
+
+PartResult run_scenes_part(const BenchOptions& options) {
+  PartResult result;
+  // The whole procedure (5 s, the transection included) in full; its first 0.4 s quick.
+  scene_curves(options, "appendectomy.toml", "appendectomy", options.quick ? 0.4 : 5.0, result);
+  return result;
+}
+
+}  // namespace serosa::app::bench
