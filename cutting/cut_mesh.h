@@ -1,5 +1,6 @@
 // cut_mesh: one scissor cut of a tet mesh by the convex polygon a blade swept (paper "Cutting
 // Algorithm"). Returns the change as a TopologyDelta for engine's apply(); never edits the mesh.
+// docs/cutting.md explains the algorithm and lists the files of its steps.
 #pragma once
 
 #include <array>
@@ -23,7 +24,7 @@ struct CutOptions {
   /// (ProgressiveCut re-cuts a local mesh with the tolerance of the whole mesh). cut_mesh only:
   /// the removal and snapping baselines always use classify_rel * h.
   double tolerance_m = 0.0;
-  /// Second pass (cut_mesh.cpp design note, point 7): a pinned tet, or a partial tet whose crack
+  /// Second pass (docs/cutting.md, point 7): a pinned tet, or a partial tet whose crack
   /// would miss part of the blade's share of its section, is coned from a point inside that
   /// share, and the pieces are cut again by the same blade. On 153 random blades about a tet
   /// wide the crack then covers 99.6 % of the blade's area on average instead of 60 %, and 147
@@ -39,7 +40,7 @@ struct CutStats {
   std::int64_t tets_relabelled = 0;  ///< one-sided tets that took a clone of a coplanar node
   std::int64_t tets_partial = 0;     ///< tets the blade's outline crosses: cut up to it, coned
   /// Of those, split welded with their edges and nodes welded in their neighbours too: the
-  /// crack stops before them (cut_mesh.cpp design note, point 5).
+  /// crack stops before them (docs/cutting.md, point 5).
   std::int64_t tets_pinned = 0;
   std::int64_t pinned_centred = 0;  ///< of those, coned from a point inside S: cut again
   /// Partial tets the blade only grazes (its share S of the section has no area): split welded.

@@ -1,5 +1,5 @@
 // The subdivision patterns of the canonical cases (complete cuts), as primitives over canonical
-// point labels. See cutting/cut_mesh.cpp for the design note.
+// point labels. See docs/cutting.md for the design.
 #pragma once
 
 #include <array>
