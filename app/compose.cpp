@@ -52,7 +52,7 @@ fem::FemConfig fem_config(const Scene& scene, const AssembledScene& assembled) {
   c.solver.factor_lag_steps = scene.solver.factor_lag_steps;
   c.solver.threads = scene.solver.threads;
   // A capped CG's energy gains are taken back out (the grasper, the one stage that moves nodes
-  // between steps, tells the FEM stage so: ToolContactStage -> FemStage::nodes_moved_by_caller).
+  // between steps, says so in SimState::handoff.nodes_moved).
   c.solver.remove_energy_gain = true;
   c.gravity_on = scene.settings.has(Effect::kGravity);
   c.gravity_mps2 = scene.settings.gravity_mps2;
@@ -85,14 +85,16 @@ Composition compose(const Scene& scene, const AssembledScene& assembled, Compose
     co.validate = options.validate_cuts || kCheckEveryCutByDefault;  // always in debug builds
     cutting_stage = std::make_unique<CuttingStage>(scene, co);
   }
+  // The haptic loop renders the contact stage's planes (not in a replay: no loop runs there).
+  const bool haptic_loop = listed(Effect::kHaptics) && !options.tool_input;
   std::unique_ptr<ToolContactStage> contact_stage;
   if (listed(Effect::kContact))
-    contact_stage = std::make_unique<ToolContactStage>(scene, lame_table(scene, assembled),
-                                                       fem_stage.get(), surface_stage.get());
+    contact_stage =
+        std::make_unique<ToolContactStage>(scene, lame_table(scene, assembled), haptic_loop);
+  // Metrics measure the tools and the cuts: a scene with no tool has nothing to score.
   std::unique_ptr<MetricsStage> metrics_stage;
-  if (fem_stage)
-    metrics_stage =
-        std::make_unique<MetricsStage>(scene, lame_table(scene, assembled), contact_stage.get());
+  if (fem_stage && !scene.tools.empty())
+    metrics_stage = std::make_unique<MetricsStage>(scene, lame_table(scene, assembled));
 
   // take tool states
   if (options.tool_input) {
@@ -105,7 +107,7 @@ Composition compose(const Scene& scene, const AssembledScene& assembled, Compose
     c.runner->add(std::move(tools));
   }
   // the haptic loop's handles override their scripted tools (a replay feeds recorded inputs)
-  if (listed(Effect::kHaptics) && !c.tool_input) {
+  if (haptic_loop) {
     HapticsStageOptions ho;
     ho.realtime = options.realtime_haptics;
     const TetMesh& mesh = assembled.state.mesh;
@@ -113,10 +115,6 @@ Composition compose(const Scene& scene, const AssembledScene& assembled, Compose
       Vec3 sum = Vec3::Zero();
       for (const Vec3& x : mesh.x) sum += x;
       ho.aim_m = sum / static_cast<double>(mesh.x.size());
-    }
-    if (contact_stage) {
-      contact_stage->enable_haptic_planes();
-      ho.contact = contact_stage.get();
     }
     auto haptics_stage = std::make_unique<HapticsStage>(scene, ho);
     c.haptics = haptics_stage.get();
@@ -150,23 +148,6 @@ Composition compose(const Scene& scene, const AssembledScene& assembled, Compose
   if (metrics_stage) {
     c.metrics = metrics_stage.get();
     c.runner->add(std::move(metrics_stage));
-  }
-  // Every consumer of topology updates itself from the cut's delta.
-  if (c.cutting) {
-    if (c.fem) {
-      fem::FemStage* f = c.fem;
-      c.cutting->add_listener(
-          [f](SimState& s, const CutApplied& cut) { f->on_topology_change(s, *cut.delta); });
-    }
-    if (c.surface) {
-      SurfaceStage* sf = c.surface;
-      c.cutting->add_listener(
-          [sf](SimState& s, const CutApplied& cut) { sf->on_topology_change(s.mesh, *cut.delta); });
-    }
-    if (c.metrics) {
-      MetricsStage* m = c.metrics;
-      c.cutting->add_listener([m](SimState&, const CutApplied& cut) { m->on_cut(cut); });
-    }
   }
   if (listed(Effect::kRender)) c.folded.push_back(Effect::kRender);
 

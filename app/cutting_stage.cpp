@@ -49,6 +49,7 @@ bool same_place(const ToolState& a, const ToolState& b) {
 }  // namespace
 
 void CuttingStage::step(const StepContext& ctx, SimState& state) {
+  state.handoff.cuts.clear();  // the FEM stage of this step has taken the last step's
   if (!m_scissors.empty()) cutting::reserve_for_cuts(state.mesh);  // no realloc in the first cut
   for (Scissors& s : m_scissors) {
     if (s.tool >= state.tools.size()) continue;
@@ -145,12 +146,11 @@ void CuttingStage::cut(const StepContext& ctx, SimState& state, std::size_t tool
   cutting::CutResult result = cutting::cut_mesh(mesh, polygon, m_cut_options, m_bvh->as_query());
   if (result.delta.empty()) return;
 
-  CutApplied applied;
+  CutEvent applied;
   applied.step = ctx.step;
   applied.tool = tool;
   applied.blade = blade;
-  applied.polygon = &polygon;
-  applied.stats = &result.stats;
+  applied.polygon_m = polygon.points();
   for (std::int32_t t : result.delta.removed_tets) {
     const Tet& tet = mesh.tets[static_cast<std::size_t>(t)];
     Vec3 c = Vec3::Zero();
@@ -162,7 +162,6 @@ void CuttingStage::cut(const StepContext& ctx, SimState& state, std::size_t tool
   if (m_options.validate) before = mesh;
 
   apply(mesh, result.delta);
-  applied.delta = &result.delta;
   m_bvh->update(mesh, result.delta);
   m_bvh_version = mesh.topology_version;
 
@@ -184,7 +183,8 @@ void CuttingStage::cut(const StepContext& ctx, SimState& state, std::size_t tool
         }
     }
   }
-  for (const CutListener& l : m_listeners) l(state, applied);
+  applied.delta = std::move(result.delta);
+  state.handoff.cuts.push_back(std::move(applied));
 }
 
 }  // namespace serosa::app

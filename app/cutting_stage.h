@@ -2,8 +2,8 @@
 // (docs/ARCHITECTURE.md "Cutting, in the paper's terms"). Each blade's edge runs from the jaw hinge
 // to the blade tip (app/tool_geometry.h); closing jaws sweep it. The swept polygon goes to
 // cutting::cut_mesh (candidates from a TetBvh over current positions), the resulting TopologyDelta
-// is applied to the mesh between FEM steps and handed to every listener (FEM, surface, metrics),
-// which update themselves incrementally.
+// is applied to the mesh between FEM steps and handed on in SimState::handoff.cuts, from which the
+// surface and metrics stages of this step and the FEM stage of the next update themselves.
 //
 // One closing stroke, one cut. While the scissors stay put (hinge within kStrokeHingeTol, blade
 // plane within kStrokeAngleTol of where the stroke began) the per-step sweeps of one stroke are
@@ -58,21 +58,6 @@ inline constexpr double kStrokeArcStep = 0.05;
                                                                    double a0, double a1,
                                                                    double length_m);
 
-/// One cut applied to the mesh, as listeners see it.
-struct CutApplied {
-  std::uint64_t step = 0;                           ///< solver step during which it happened
-  std::size_t tool = 0;                             ///< index into Scene::tools
-  int blade = 0;                                    ///< 0 or 1 (app/tool_geometry.h)
-  const cutting::ConvexPolygon* polygon = nullptr;  ///< the swept blade polygon, m
-  const TopologyDelta* delta = nullptr;             ///< applied: the filled-in fields are set
-  const cutting::CutStats* stats = nullptr;
-  std::vector<Vec3> removed_centroids_m;   ///< (r) current centroid of each removed tet, m
-  std::vector<double> removed_volumes_m3;  ///< (r) rest volume of each removed tet, m^3
-};
-
-/// Told about each cut right after it is applied to state.mesh, in registration order.
-using CutListener = std::function<void(SimState&, const CutApplied&)>;
-
 #ifdef NDEBUG
 inline constexpr bool kCheckEveryCutByDefault = false;
 #else
@@ -109,7 +94,6 @@ class CuttingStage final : public Stage {
   [[nodiscard]] std::string_view name() const noexcept override { return "cutting"; }
   void step(const StepContext& ctx, SimState& state) override;
 
-  void add_listener(CutListener listener) { m_listeners.push_back(std::move(listener)); }
   [[nodiscard]] const CuttingStageStats& stats() const noexcept { return m_stats; }
   [[nodiscard]] std::size_t num_scissors() const noexcept { return m_scissors.size(); }
 
@@ -133,7 +117,6 @@ class CuttingStage final : public Stage {
   std::uint64_t m_bvh_version = 0;
   std::uint64_t m_bvh_step = ~0ull;
   cutting::SweepWarnings m_sweep_warnings;
-  std::vector<CutListener> m_listeners;
   CuttingStageStats m_stats;
 };
 

@@ -8,7 +8,6 @@
 #include <string>
 #include <thread>
 
-#include "app/tool_contact_stage.h"
 #include "engine/input_error.h"
 #include "engine/sim_state.h"
 #include "engine/tool_path.h"
@@ -50,8 +49,7 @@ class NoRig final : public haptics::Device {
 
 }  // namespace
 
-HapticsStage::HapticsStage(const Scene& scene, const HapticsStageOptions& options)
-    : m_contact(options.contact) {
+HapticsStage::HapticsStage(const Scene& scene, const HapticsStageOptions& options) {
   std::optional<DeviceKind> kind;
   std::optional<std::filesystem::path> script;
   for (std::size_t i = 0; i < scene.tools.size(); ++i) {
@@ -196,12 +194,10 @@ void HapticsStage::step(const StepContext& ctx, SimState& state) {
     if (!m_tool[h] || *m_tool[h] >= state.tools.size()) continue;
     haptics::ToolContact& tc = model.tools[h];
     tc.sim_tip_m = state.tools[*m_tool[h]].tip_m;
-    if (m_contact != nullptr) {
-      const std::optional<haptics::ContactPlane> plane = m_contact->haptic_plane(*m_tool[h]);
-      if (plane) {
-        tc.contacts[0] = *plane;
-        tc.n_contacts = 1;
-      }
+    const auto& planes = state.handoff.contact_planes;
+    if (*m_tool[h] < planes.size() && planes[*m_tool[h]]) {
+      tc.contacts[0] = *planes[*m_tool[h]];
+      tc.n_contacts = 1;
     }
   }
   m_model.store(model);

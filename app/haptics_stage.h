@@ -17,7 +17,7 @@
 //     run bit for bit without the loop;
 //   solver -> loop: a ContactModel published each step: step, time, each handle's simulated tip
 //     and, with a contact stage, its local contact plane (the nearest organ surface point to the
-//     tip from the collision BVH, ToolContactStage::haptic_plane). The planes are the contact
+//     tip from the collision BVH, SimState::handoff.contact_planes). The planes are the contact
 //     stage's of the previous step (it runs after this stage): one solver step of latency.
 //   window -> loop: the mouse device's cumulative PointerInput.
 // Handles: the first two tools that are not endoscopes (scene order) take handles 0 and 1, except
@@ -54,7 +54,6 @@ struct LoopStatus;
 
 namespace serosa::app {
 
-class ToolContactStage;
 
 struct HapticsStageOptions {
   /// Ask for SCHED_FIFO and run the gap monitor (the trainee session); headless runs share the
@@ -62,8 +61,6 @@ struct HapticsStageOptions {
   bool realtime = false;
   /// Where mouse handles' trocar axes point, m (compose passes the organs' centroid).
   Vec3 aim_m = Vec3::Zero();
-  /// Source of the contact planes published to the loop (may be null: coupling tip only).
-  const ToolContactStage* contact = nullptr;
   /// Rig devices: how long the constructor waits for the rig to connect before it warns "rig not
   /// connected" and goes on, s.
   double rig_wait_s = 1.0;
@@ -102,7 +99,6 @@ class HapticsStage final : public Stage {
  private:
   std::array<std::optional<std::size_t>, haptics::kHandles> m_tool{};
   DeviceKind m_kind = DeviceKind::kScript;
-  const ToolContactStage* m_contact = nullptr;
   haptics::ContactModelChannel m_model;
   std::unique_ptr<haptics::Device> m_device;
   haptics::MouseKeyboardDevice* m_mouse = nullptr;  // m_device when it is the mouse

@@ -260,7 +260,7 @@ Json run_headless(const HeadlessOptions& options) {
   }
   if (comp.surface) {
     const auto& ss = comp.surface->stats();
-    report["surface"] = {{"faces", comp.surface->surface().num_faces()},
+    report["surface"] = {{"faces", state.handoff.surface.num_faces()},
                          {"rebuilds", ss.rebuilds},
                          {"updates", ss.updates},
                          {"failed_updates", ss.failed_updates}};

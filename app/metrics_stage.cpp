@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <limits>
 
-#include "app/cutting_stage.h"
-#include "app/tool_contact_stage.h"
 #include "app/tool_geometry.h"
 #include "engine/sim_state.h"
 
@@ -19,12 +17,10 @@ double distance_to_polyline(const Vec3& p, const std::vector<Vec3>& line) {
   return d;
 }
 
-MetricsStage::MetricsStage(const Scene& scene, LameTable lame, const ToolContactStage* contact,
-                           std::int64_t stress_every)
+MetricsStage::MetricsStage(const Scene& scene, LameTable lame, std::int64_t stress_every)
     : m_planned(scene.metrics.planned_cut_m),
       m_band(scene.metrics.cut_band_m),
       m_lame(std::move(lame)),
-      m_contact(contact),
       m_stress_every(std::max<std::int64_t>(stress_every, 1)) {
   for (const Tool& t : scene.tools) m_names.push_back(t.name);
   const std::size_t k = m_names.size();
@@ -44,8 +40,9 @@ void MetricsStage::step(const StepContext& ctx, SimState& state) {
     m_last_tip[i] = tip;
   }
   m_have_last = true;
-  if (m_contact) {
-    const auto& f = m_contact->tool_forces();
+  const auto& f = state.handoff.tool_force_n;
+  if (!f.empty()) {
+    m_forces = true;
     for (std::size_t i = 0; i < k && i < f.size(); ++i) {
       const double mag = f[i].norm();
       if (!(mag > 0.0)) continue;
@@ -54,11 +51,12 @@ void MetricsStage::step(const StepContext& ctx, SimState& state) {
       ++m_force_steps[i];
     }
   }
+  for (const CutEvent& cut : state.handoff.cuts) add_cut(cut);
   if (static_cast<std::int64_t>(ctx.step) % m_stress_every == 0)
     m_peak_stress = std::max(m_peak_stress, peak_von_mises_pa(state.mesh, m_lame));
 }
 
-void MetricsStage::on_cut(const CutApplied& cut) {
+void MetricsStage::add_cut(const CutEvent& cut) {
   for (std::size_t i = 0; i < cut.removed_volumes_m3.size(); ++i) {
     const double v = cut.removed_volumes_m3[i];
     m_cut_volume += v;
@@ -76,7 +74,7 @@ nlohmann::json MetricsStage::report() const {
   j["time_s"] = m_time;
   for (std::size_t i = 0; i < m_names.size(); ++i) {
     j["path_length_m"][m_names[i]] = m_path[i];
-    if (m_contact) {
+    if (m_forces) {
       j["force_max_n"][m_names[i]] = m_force_max[i];
       j["force_mean_n"][m_names[i]] =
           m_force_steps[i] > 0 ? m_force_sum[i] / static_cast<double>(m_force_steps[i]) : 0.0;

@@ -24,27 +24,23 @@
 #include "app/tissue_stress.h"
 #include "engine/math.h"
 #include "engine/scene.h"
+#include "engine/sim_state.h"
 #include "engine/stage.h"
 
 namespace serosa::app {
-
-struct CutApplied;
-class ToolContactStage;
 
 /// Distance from p to the polyline (k >= 1 points), m.
 [[nodiscard]] double distance_to_polyline(const Vec3& p, const std::vector<Vec3>& line);
 
 class MetricsStage final : public Stage {
  public:
-  /// contact may be null (no forces). stress_every: peak stress is sampled every that many steps
-  /// (1 = every step).
-  MetricsStage(const Scene& scene, LameTable lame, const ToolContactStage* contact,
-               std::int64_t stress_every = 1);
+  /// stress_every: peak stress is sampled every that many steps (1 = every step). The tools'
+  /// forces come from the contact stage (SimState::handoff.tool_force_n; without one, none are
+  /// reported), the cuts from the cutting stage (SimState::handoff.cuts).
+  MetricsStage(const Scene& scene, LameTable lame, std::int64_t stress_every = 1);
 
   [[nodiscard]] std::string_view name() const noexcept override { return "metrics"; }
   void step(const StepContext& ctx, SimState& state) override;
-  /// Called by the cutting stage for every cut (through compose's listener).
-  void on_cut(const CutApplied& cut);
 
   [[nodiscard]] nlohmann::json report() const;
 
@@ -61,8 +57,11 @@ class MetricsStage final : public Stage {
   std::vector<std::string> m_names;
   std::vector<Vec3> m_planned;
   double m_band;
+  /// Accounts one cut: volume, deviation from the planned line, collateral.
+  void add_cut(const CutEvent& cut);
+
   LameTable m_lame;
-  const ToolContactStage* m_contact;
+  bool m_forces = false;  // a contact stage hands tool forces over
   std::int64_t m_stress_every;
   double m_time = 0.0;
   std::vector<double> m_path;    // (tools)

@@ -7,26 +7,27 @@
 
 namespace serosa::app {
 
-void SurfaceStage::rebuild(const TetMesh& mesh) {
-  m_surface = surface::extract_surface(mesh);
-  m_table = surface::build_face_table(mesh, m_surface);
+void SurfaceStage::rebuild(SimState& state) {
+  state.handoff.surface = surface::extract_surface(state.mesh);
+  m_table = surface::build_face_table(state.mesh, state.handoff.surface);
   m_built = true;
   ++m_stats.rebuilds;
 }
 
 void SurfaceStage::step(const StepContext& /*ctx*/, SimState& state) {
-  if (!m_built || m_surface.topology_version != state.mesh.topology_version) rebuild(state.mesh);
-}
-
-void SurfaceStage::on_topology_change(const TetMesh& after, const TopologyDelta& delta) {
-  if (!m_built) return;  // the next step builds it from scratch anyway
-  try {
-    surface::update_surface(m_surface, m_table, after, delta);
-    ++m_stats.updates;
-  } catch (const std::invalid_argument&) {
-    ++m_stats.failed_updates;
-    rebuild(after);
+  surface::SurfaceMesh& s = state.handoff.surface;
+  const auto& cuts = state.handoff.cuts;
+  if (m_built && cuts.size() == 1 && s.topology_version == cuts.front().delta.version_before &&
+      state.mesh.topology_version == cuts.front().delta.version_after) {
+    try {
+      surface::update_surface(s, m_table, state.mesh, cuts.front().delta);
+      ++m_stats.updates;
+    } catch (const std::invalid_argument&) {
+      ++m_stats.failed_updates;
+      rebuild(state);
+    }
   }
+  if (!m_built || s.topology_version != state.mesh.topology_version) rebuild(state);
 }
 
 }  // namespace serosa::app

@@ -1,7 +1,9 @@
 // The "surface" stage: keeps the organs' boundary surface (surface/extract_surface.h) in step with
-// the mesh. A cut hands it the TopologyDelta (on_topology_change) and it updates incrementally
-// (surface/update_surface.h); its step only rebuilds when it missed a change (never in a normal
-// run: tests check updates > 0 and rebuilds == 1 after cuts).
+// the mesh, in SimState::handoff.surface, where contact, rendering and pictures read it. The cut of
+// the step (SimState::handoff.cuts) updates it incrementally (surface/update_surface.h); it is
+// extracted anew only on the first step and when it cannot follow the cuts (a step with several
+// cuts, whose deltas each describe the mesh between two of them: update_surface needs the mesh
+// right after its delta).
 #pragma once
 
 #include <cstdint>
@@ -26,20 +28,16 @@ class SurfaceStage final : public Stage {
   SurfaceStage() = default;
 
   [[nodiscard]] std::string_view name() const noexcept override { return "surface"; }
-  /// Rebuilds when the surface does not match the mesh's topology version; else nothing.
+  /// Follows the step's cut (incremental) or extracts anew; nothing when the topology is as
+  /// before.
   void step(const StepContext& ctx, SimState& state) override;
-  /// Updates the surface for `delta`, already applied to `after`.
-  void on_topology_change(const TetMesh& after, const TopologyDelta& delta);
 
-  /// The boundary surface (face node ids index the mesh's nodes). Empty before the first step.
-  [[nodiscard]] const surface::SurfaceMesh& surface() const noexcept { return m_surface; }
   [[nodiscard]] const SurfaceStageStats& stats() const noexcept { return m_stats; }
 
  private:
-  void rebuild(const TetMesh& mesh);
+  void rebuild(SimState& state);
 
-  surface::SurfaceMesh m_surface;
-  surface::FaceTable m_table;
+  surface::FaceTable m_table;  // faces of handoff.surface by their tet face (update_surface)
   bool m_built = false;
   SurfaceStageStats m_stats;
 };

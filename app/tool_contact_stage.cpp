@@ -3,10 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "app/surface_stage.h"
 #include "app/tool_geometry.h"
 #include "engine/sim_state.h"
-#include "fem/fem_stage.h"
 #include "surface/extract_surface.h"
 
 namespace serosa::app {
@@ -29,9 +27,8 @@ Mat3 frame_matrix(const ToolFrame& f) {
 
 }  // namespace
 
-ToolContactStage::ToolContactStage(const Scene& scene, LameTable lame, fem::FemStage* fem,
-                                   const SurfaceStage* surface)
-    : m_lame(std::move(lame)), m_fem(fem), m_surface(surface) {
+ToolContactStage::ToolContactStage(const Scene& scene, LameTable lame, bool haptic_planes)
+    : m_lame(std::move(lame)), m_haptic(haptic_planes) {
   for (const Tool& t : scene.tools) {
     m_kinds.push_back(t.kind);
     m_trocars.push_back(t.trocar_m);
@@ -41,14 +38,13 @@ ToolContactStage::ToolContactStage(const Scene& scene, LameTable lame, fem::FemS
   m_planes.resize(scene.tools.size());
 }
 
-std::optional<haptics::ContactPlane> ToolContactStage::haptic_plane(std::size_t tool) const {
-  return tool < m_planes.size() ? m_planes[tool] : std::nullopt;
+const surface::SurfaceMesh& ToolContactStage::boundary_surface(const SimState& state) const {
+  return m_own ? m_own_surface : state.handoff.surface;
 }
 
-void ToolContactStage::update_planes(const SimState& state) {
+void ToolContactStage::update_planes(SimState& state) {
   const TetMesh& mesh = state.mesh;
-  if (m_bvh_surface == nullptr) return;
-  const surface::SurfaceMesh& s = *m_bvh_surface;
+  const surface::SurfaceMesh& s = boundary_surface(state);
   if (m_bvh_version != mesh.topology_version) {
     m_bvh.build(s, mesh.x);
     m_bvh_version = mesh.topology_version;
@@ -68,12 +64,13 @@ void ToolContactStage::update_planes(const SimState& state) {
     const Vec3 n = (b - a).cross(c - a);
     if (!(n.norm() > 0.0)) continue;  // a degenerate face has no plane
     const Vec3 un = n.normalized();
-    haptics::ContactPlane p;
+    ContactPlane p;
     p.point_m = {hit->point.x(), hit->point.y(), hit->point.z()};
     p.normal = {un.x(), un.y(), un.z()};
     p.stiffness_Npm = kHapticStiffness;
     m_planes[i] = p;
   }
+  state.handoff.contact_planes = m_planes;
 }
 
 std::vector<std::size_t> ToolContactStage::grasped_counts() const {
@@ -84,12 +81,12 @@ std::vector<std::size_t> ToolContactStage::grasped_counts() const {
 
 void ToolContactStage::refresh_boundary(const SimState& state) {
   if (m_boundary_version == state.mesh.topology_version) return;
-  const bool fresh = m_surface != nullptr &&
-                     m_surface->surface().topology_version == state.mesh.topology_version &&
-                     !m_surface->surface().faces.empty();
-  if (!fresh) m_own_surface = surface::extract_surface(state.mesh);
-  const surface::SurfaceMesh& s = fresh ? m_surface->surface() : m_own_surface;
-  m_bvh_surface = &s;
+  // The surface stage's surface when it is current (it runs after this stage: current unless the
+  // topology changed since its last step), else one of our own.
+  const surface::SurfaceMesh& kept = state.handoff.surface;
+  m_own = !(kept.topology_version == state.mesh.topology_version && !kept.faces.empty());
+  if (m_own) m_own_surface = surface::extract_surface(state.mesh);
+  const surface::SurfaceMesh& s = boundary_surface(state);
   std::vector<std::uint8_t> on(static_cast<std::size_t>(state.mesh.num_nodes()), 0);
   for (const Tri& f : s.faces)
     for (std::int32_t n : f) on[static_cast<std::size_t>(n)] = 1;
@@ -138,6 +135,7 @@ void ToolContactStage::step(const StepContext& ctx, SimState& state) {
   m_force.assign(n, Vec3::Zero());
   m_contacts = 0;
   bool any_force = false;
+  state.handoff.nodes_moved = false;
 
   for (std::size_t i = 0; i < m_kinds.size() && i < state.tools.size(); ++i) {
     const ToolState& ts = state.tools[i];
@@ -176,7 +174,7 @@ void ToolContactStage::step(const StepContext& ctx, SimState& state) {
           mesh.x[un] = target;
           mesh.fixed[un] = 1;
         }
-        if (m_fem) m_fem->nodes_moved_by_caller();  // the jaws' work, not the solve's
+        state.handoff.nodes_moved = true;  // the jaws' work, not the solve's
       }
     }
 
@@ -211,13 +209,11 @@ void ToolContactStage::step(const StepContext& ctx, SimState& state) {
     }
   }
   if (m_haptic) update_planes(state);
-  if (m_fem) {
-    if (any_force) {
-      m_fem->set_external_forces(m_force);
-    } else {
-      m_fem->set_external_forces({});
-    }
-  }
+  state.handoff.tool_force_n = m_tool_force;
+  if (any_force)
+    state.handoff.external_force_n = m_force;
+  else
+    state.handoff.external_force_n.clear();
 }
 
 }  // namespace serosa::app

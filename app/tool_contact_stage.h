@@ -12,13 +12,17 @@
 //   that move with the tool). Opening past kGraspCloseRad + kGraspHysteresisRad lets go and
 //   restores their original Dirichlet flags. The grasp force is the tissue's elastic pull on the
 //   grabbed nodes (app/tissue_stress.h).
-// Each tool's total force on the tissue (N) is kept for metrics and the haptic model.
-// - Haptic contact planes (on when the haptic loop asks, enable_haptic_planes()): after the
+// Each tool's total force on the tissue (N) is handed on (SimState::handoff.tool_force_n) for
+// metrics and the haptic model; the node forces go to FEM (handoff.external_force_n).
+// - Haptic contact planes (on when the haptic loop is built): after the
 //   forces, per tool the organ surface point nearest its tip within kHapticRange (collision BVH,
 //   surface/surface_bvh.h, rebuilt on topology changes and refitted every step) with its face's
 //   outward normal and kHapticStiffness: the local contact plane the 1 kHz loop renders
-//   (haptics/contact_model.h). A tip pressed into the tissue is below that plane and feels a
-//   force along the outward normal, opposing the penetration.
+//   (haptics/contact_model.h), handed on in SimState::handoff.contact_planes. A tip pressed into
+//   the tissue is below that plane and feels a force along the outward normal, opposing the
+//   penetration.
+// The boundary is the surface stage's (SimState::handoff.surface) when it is current, else one this
+// stage extracts itself.
 #pragma once
 
 #include <cstdint>
@@ -30,17 +34,11 @@
 #include "engine/math.h"
 #include "engine/scene.h"
 #include "engine/stage.h"
-#include "haptics/contact_model.h"
+#include "engine/contact_plane.h"
 #include "surface/surface_bvh.h"
 #include "surface/surface_mesh.h"
 
-namespace serosa::fem {
-class FemStage;
-}
-
 namespace serosa::app {
-
-class SurfaceStage;
 
 inline constexpr double kJawRadius = 0.001;          ///< m
 inline constexpr double kContactStiffness = 200.0;   ///< N/m per node
@@ -53,25 +51,17 @@ inline constexpr double kHapticStiffness = 500.0;    ///< rendered contact stiff
 
 class ToolContactStage final : public Stage {
  public:
-  /// fem and surface may be null (no forces applied / boundary taken from the mesh itself).
-  ToolContactStage(const Scene& scene, LameTable lame, fem::FemStage* fem,
-                   const SurfaceStage* surface);
+  /// haptic_planes: compute the haptic contact planes (only when a haptic loop renders them:
+  /// no BVH, no cost otherwise).
+  ToolContactStage(const Scene& scene, LameTable lame, bool haptic_planes = false);
 
   [[nodiscard]] std::string_view name() const noexcept override { return "contact"; }
   void step(const StepContext& ctx, SimState& state) override;
 
-  /// (tools) force each tool exerted on the tissue in the last step, N (scene tool order).
-  [[nodiscard]] const std::vector<Vec3>& tool_forces() const noexcept { return m_tool_force; }
   /// (tools) number of nodes each tool holds (graspers).
   [[nodiscard]] std::vector<std::size_t> grasped_counts() const;
   /// Nodes pushed by contact in the last step, over all tools.
   [[nodiscard]] std::int64_t contacts() const noexcept { return m_contacts; }
-
-  /// Computes haptic contact planes from now on (off by default: no BVH, no cost).
-  void enable_haptic_planes() noexcept { m_haptic = true; }
-  /// Tool i's contact plane of the last step (scene tool order); none when planes are off, the
-  /// tool is an endoscope, or no surface lies within kHapticRange of its tip.
-  [[nodiscard]] std::optional<haptics::ContactPlane> haptic_plane(std::size_t tool) const;
 
  private:
   struct Grasp {
@@ -84,13 +74,12 @@ class ToolContactStage final : public Stage {
   void refresh_boundary(const SimState& state);
   void grab(SimState& state, std::size_t tool, Grasp& g);
   void release(SimState& state, Grasp& g);
-  void update_planes(const SimState& state);
+  void update_planes(SimState& state);
+  const surface::SurfaceMesh& boundary_surface(const SimState& state) const;
 
   std::vector<ToolKind> m_kinds;
   std::vector<std::optional<Vec3>> m_trocars;
   LameTable m_lame;
-  fem::FemStage* m_fem;
-  const SurfaceStage* m_surface;
   std::vector<Grasp> m_grasps;           // (tools)
   std::vector<std::int32_t> m_boundary;  // surface node ids
   std::uint64_t m_boundary_version = ~0ull;
@@ -100,10 +89,10 @@ class ToolContactStage final : public Stage {
   std::int64_t m_contacts = 0;
   bool m_haptic = false;
   surface::SurfaceMesh m_own_surface;  // the boundary when no surface stage keeps it
-  const surface::SurfaceMesh* m_bvh_surface = nullptr;
+  bool m_own = true;                   // the boundary in use is m_own_surface
   surface::SurfaceBvh m_bvh;
   std::uint64_t m_bvh_version = ~0ull;
-  std::vector<std::optional<haptics::ContactPlane>> m_planes;  // (tools)
+  std::vector<std::optional<ContactPlane>> m_planes;  // (tools), none: endoscope, out of range
 };
 
 }  // namespace serosa::app

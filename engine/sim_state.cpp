@@ -33,7 +33,17 @@ std::uint64_t state_hash(const SimState& s) {
   f.vec(s.mesh.group);
   f.vec(s.mesh.x);
   f.vec(s.mesh.v);
-  f.vec(s.tools);
+  // Field by field: a ToolState has padding, whose bytes copies need not keep.
+  for (const ToolState& t : s.tools) {
+    f.bytes(&t.tick, sizeof t.tick);
+    f.bytes(&t.time_s, sizeof t.time_s);
+    f.bytes(t.tip_m.data(), sizeof t.tip_m);
+    f.bytes(t.quat_wxyz.data(), sizeof t.quat_wxyz);
+    f.bytes(&t.jaw_rad, sizeof t.jaw_rad);
+    f.bytes(&t.buttons, sizeof t.buttons);
+  }
+  f.vec(s.handoff.external_force_n);
+  f.vec(s.handoff.tool_force_n);
   return f.h;
 }
 

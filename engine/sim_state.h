@@ -2,12 +2,49 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
+#include "engine/contact_plane.h"
+#include "engine/surface_mesh.h"
 #include "engine/tet_mesh.h"
 #include "engine/tool_state.h"
+#include "engine/topology_delta.h"
 
 namespace serosa {
+
+/// One cut applied to the mesh during a step, as the cutting stage hands it on.
+struct CutEvent {
+  std::uint64_t step = 0;                  ///< solver step during which it happened
+  std::size_t tool = 0;                    ///< index into Scene::tools
+  int blade = 0;                           ///< 0 or 1 (engine/tool_geometry.h)
+  std::vector<Vec3> polygon_m;             ///< (k) the swept blade polygon, m
+  TopologyDelta delta;                     ///< as applied (its filled-in fields set)
+  std::vector<Vec3> removed_centroids_m;   ///< (r) current centroid of each removed tet, m
+  std::vector<double> removed_volumes_m3;  ///< (r) rest volume of each removed tet, m^3
+};
+
+/// What the stages of a step hand to each other: one stage writes a field, later stages (of this
+/// step, or the next) read it; stages never call each other (docs/ARCHITECTURE.md "The step").
+struct StepHandoff {
+  /// contact -> FEM: external node forces for this step's solve, N; (n), or empty for none.
+  std::vector<Vec3> external_force_n;
+  /// contact -> FEM: held nodes were moved with the jaws this step (the jaws' work, which the
+  /// FEM's energy guard must not take for a gain of its solve).
+  bool nodes_moved = false;
+  /// contact -> metrics: each tool's force on the tissue this step, N; (tools), or empty when no
+  /// contact stage runs.
+  std::vector<Vec3> tool_force_n;
+  /// contact -> haptics: each tool's local contact plane; (tools), or empty when no haptic loop
+  /// asked for planes.
+  std::vector<std::optional<ContactPlane>> contact_planes;
+  /// cutting -> surface and metrics (this step) and FEM (the next step's): the cuts of this step,
+  /// in order; cleared by the cutting stage before it cuts.
+  std::vector<CutEvent> cuts;
+  /// surface -> contact, render, pictures: the boundary surface, kept up to date by the surface
+  /// stage (empty when no surface stage runs).
+  SurfaceMesh surface;
+};
 
 /// The mutable state of a running scene. The scene model (engine/scene.h) is read-only after load;
 /// this is what stages write. Copyable: snapshots, tests and benchmarks copy it.
@@ -16,9 +53,11 @@ struct SimState {
   std::uint64_t step = 0;        ///< solver steps taken
   TetMesh mesh;                  ///< all organs of the scene in one mesh (groups tell them apart)
   std::vector<ToolState> tools;  ///< (tools) latest consumed input per scene tool, scene order
+  StepHandoff handoff;           ///< what the stages of a step hand to each other
 };
 
-/// 64-bit FNV-1a hash of the state: time, step, topology, positions and velocities, tool inputs.
+/// 64-bit FNV-1a hash of the state: time, step, topology, positions and velocities, tool inputs,
+/// the forces handed from contact to FEM and metrics.
 /// Equal states (bit for bit) give equal hashes; used by recordings and regression reports.
 [[nodiscard]] std::uint64_t state_hash(const SimState& s);
 

@@ -10,16 +10,19 @@ namespace serosa::fem {
 
 FemStage::FemStage(FemConfig config) : m_integrator(std::move(config)) {}
 
-void FemStage::set_external_forces(std::span<const Vec3> f) { m_f_ext.assign(f.begin(), f.end()); }
-
-void FemStage::on_topology_change(SimState& state, const TopologyDelta& delta) {
+void FemStage::take_cuts(SimState& state) {
   if (!m_built) return;  // the first step builds everything anyway
-  m_integrator.update(state.mesh, delta);
-  m_seen_version = state.mesh.topology_version;
-  ++m_stats.updates;
+  for (const CutEvent& cut : state.handoff.cuts) {
+    if (cut.delta.version_before != m_seen_version) continue;  // seen, or not ours to follow
+    m_integrator.update(state.mesh, cut.delta);
+    m_seen_version = cut.delta.version_after;
+    ++m_stats.updates;
+  }
 }
 
 void FemStage::step(const StepContext& ctx, SimState& state) {
+  take_cuts(state);
+  if (state.handoff.nodes_moved) m_integrator.restart_energy_balance();
   if (!m_built || m_seen_version != state.mesh.topology_version) {
     m_integrator.rebuild(state.mesh);
     m_seen_version = state.mesh.topology_version;
@@ -28,7 +31,7 @@ void FemStage::step(const StepContext& ctx, SimState& state) {
   }
   if (m_integrator.config().solver.threads > 0)
     omp_set_num_threads(m_integrator.config().solver.threads);
-  m_last = m_integrator.step(state.mesh, ctx.dt_s, m_f_ext);
+  m_last = m_integrator.step(state.mesh, ctx.dt_s, state.handoff.external_force_n);
   ++m_stats.steps;
   if (!m_last.converged) ++m_stats.not_converged;
   if (!m_last.applied) ++m_stats.rejected;

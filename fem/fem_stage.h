@@ -1,6 +1,8 @@
 // FemStage: the "fem" stage of the solver pipeline (engine/stage.h). Each step advances
 // SimState::mesh by one implicit corotational step (fem/implicit_integrator.h). It owns the
-// integrator's caches; the FEM model (FemConfig) is fixed at construction.
+// integrator's caches; the FEM model (FemConfig) is fixed at construction. It reads what earlier
+// stages handed over in SimState::handoff: the cuts of the previous step (their deltas update the
+// integrator incrementally), the external forces and whether held nodes were moved.
 #pragma once
 
 #include <cstdint>
@@ -35,28 +37,24 @@ class FemStage final : public Stage {
   explicit FemStage(FemConfig config);
 
   [[nodiscard]] std::string_view name() const noexcept override { return "fem"; }
-  /// One implicit step of length ctx.dt_s on state.mesh, with the external forces last set.
+  /// One implicit step of length ctx.dt_s on state.mesh: first the cuts handed over since the
+  /// last step (incremental updates), then the solve with handoff.external_force_n (ignored
+  /// unless it holds one force per node). handoff.nodes_moved: the caller set x or v of some
+  /// nodes (a grasper moving those it holds), which is its work, not a gain of the last solve,
+  /// so the divergence guard skips its energy check (ImplicitIntegrator::restart_energy_balance)
+  /// instead of flagging it and starting the solve cold.
   void step(const StepContext& ctx, SimState& state) override;
-
-  /// External node forces (n), N, applied from the next step on (tool contact, grasping); an
-  /// empty span clears them. Sizes other than the node count are ignored at step time.
-  void set_external_forces(std::span<const Vec3> f);
-  /// Tells the stage about a topology change already applied to `state.mesh`, so that it
-  /// updates only the affected elements (cutting publishes the delta between steps).
-  void on_topology_change(SimState& state, const TopologyDelta& delta);
-  /// Tells the stage that the caller set x or v of some nodes since the last step (a grasper
-  /// moving the nodes it holds): that is the caller's work, not a gain of the last solve, so
-  /// the next step's divergence guard skips its energy check (ImplicitIntegrator::
-  /// restart_energy_balance) instead of flagging it and starting the solve cold.
-  void nodes_moved_by_caller() { m_integrator.restart_energy_balance(); }
 
   [[nodiscard]] const StepStatus& last_status() const noexcept { return m_last; }
   [[nodiscard]] const FemStageStats& stats() const noexcept { return m_stats; }
   [[nodiscard]] const ImplicitIntegrator& integrator() const noexcept { return m_integrator; }
 
  private:
+  /// The cuts in state.handoff that this stage has not seen, in order; a rebuild if they do not
+  /// follow the version it holds.
+  void take_cuts(SimState& state);
+
   ImplicitIntegrator m_integrator;
-  std::vector<Vec3> m_f_ext;  // (n) or empty
   StepStatus m_last;
   FemStageStats m_stats;
   std::uint64_t m_seen_version = 0;

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <type_traits>
 
+#include "engine/contact_plane.h"
 #include "engine/seqlock.h"
 #include "haptics/rig_protocol.h"
 
@@ -14,13 +15,7 @@ namespace serosa::haptics {
 
 inline constexpr std::size_t kMaxContacts = 4;
 
-/// One local contact: a half-space {x : (point - x) . normal <= 0} of the tissue around the
-/// contact. A proxy at depth d = (point - x) . normal > 0 feels stiffness * d along normal.
-struct ContactPlane {
-  std::array<double, 3> point_m{0.0, 0.0, 0.0};  ///< a point on the tissue surface, scene, m
-  std::array<double, 3> normal{0.0, 0.0, 1.0};   ///< unit outward normal (towards the tool)
-  double stiffness_Npm = 0.0;                    ///< local contact stiffness, N/m (>= 0)
-};
+using serosa::ContactPlane;  // engine/contact_plane.h: the contact stage hands it over
 
 /// One tool's part of the model.
 struct ToolContact {

@@ -160,7 +160,7 @@ TEST(Grasper, GrabsLiftsAndLetsGo) {
   const std::size_t held = run->comp.contact->grasped_counts()[0];
   EXPECT_GE(held, 3u);  // the beam's top nodes at x = 9, 9.5 and 10 cm
   EXPECT_GT(s.mesh.x[static_cast<std::size_t>(tip)].y(), y0 + 0.002);  // the end came up
-  EXPECT_GT(run->comp.contact->tool_forces()[0].y(), 0.0);             // it pulls the tissue up
+  EXPECT_GT(s.handoff.tool_force_n[0].y(), 0.0);  // it pulls the tissue up
   run->comp.runner->run(s, 12);                                        // t = 0.21: opened
   EXPECT_EQ(run->comp.contact->grasped_counts()[0], 0u);
   EXPECT_EQ(s.mesh.fixed, fixed0);
@@ -211,7 +211,7 @@ TEST(Contact, ShaftPressesTheBeamDownAndTwoToolsActAtOnce) {
   std::int64_t touching_steps = 0;
   for (int k = 0; k < 20; ++k) {
     pressed->comp.runner->step(s);
-    const auto& f = pressed->comp.contact->tool_forces();
+    const auto& f = s.handoff.tool_force_n;
     if (pressed->comp.contact->contacts() > 0) {
       ++touching_steps;
       EXPECT_LT(f[0].y(), 0.0) << "step " << k;  // pushes down
