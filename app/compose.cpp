@@ -2,15 +2,15 @@
 
 #include <algorithm>
 
-#include "app/cutting_stage.h"
-#include "app/haptics_stage.h"
-#include "app/metrics_stage.h"
-#include "app/script_tool_stage.h"
-#include "app/surface_stage.h"
-#include "app/tissue_stress.h"
 #include "app/tool_contact_stage.h"
+#include "cutting/cutting_stage.h"
+#include "engine/script_tool_stage.h"
 #include "engine/sim_state.h"
+#include "engine/tissue_stress.h"
 #include "fem/fem_stage.h"
+#include "haptics/haptics_stage.h"
+#include "metrics/metrics_stage.h"
+#include "surface/surface_stage.h"
 
 namespace serosa::app {
 fem::SolverKind to_fem(SolverKind k) {

@@ -7,23 +7,38 @@
 #include <vector>
 
 #include "app/assemble_state.h"
-#include "app/tissue_stress.h"
+#include "cutting/cutting_stage.h"
+#include "engine/record_stage.h"
 #include "engine/runner.h"
 #include "engine/scene.h"
+#include "engine/script_tool_stage.h"
+#include "engine/tissue_stress.h"
 #include "fem/fem_config.h"
-
-namespace serosa::fem {
-class FemStage;
-}
+#include "fem/fem_stage.h"
+#include "haptics/haptics_stage.h"
+#include "metrics/metrics_stage.h"
+#include "surface/surface_stage.h"
 
 namespace serosa::app {
 
-class ScriptToolStage;
-class HapticsStage;
-class CuttingStage;
-class SurfaceStage;
+// The stages, each in the folder of its domain; the composition root names them all.
+using cutting::CuttingStage;
+using cutting::CuttingStageOptions;
+using cutting::CuttingStageStats;
+using cutting::kCheckEveryCutByDefault;
+using haptics::HapticsStage;
+using haptics::HapticsStageOptions;
+using haptics::mouse_handle;
+using haptics::MouseHandle;
+using haptics::rig_trocar;
+using metrics::distance_to_polyline;
+using metrics::MetricsStage;
+using recording::hashed_step;
+using recording::RecordStage;
+using recording::ReplayInputStage;
+using recording::VerifyStage;
+using surface::SurfaceStage;
 class ToolContactStage;
-class MetricsStage;
 
 /// How to compose, beyond what the scene says.
 struct ComposeOptions {

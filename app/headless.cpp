@@ -14,23 +14,23 @@
 
 #include "app/assemble_state.h"
 #include "app/compose.h"
-#include "app/cutting_stage.h"
 #include "app/frame_pictures.h"
-#include "app/haptics_stage.h"
-#include "app/metrics_stage.h"
 #include "app/preset_report.h"
-#include "app/record_stage.h"
-#include "app/script_tool_stage.h"
-#include "app/surface_stage.h"
 #include "app/tool_contact_stage.h"
 #include "app/version.h"
+#include "cutting/cutting_stage.h"
 #include "engine/input_error.h"
 #include "engine/mesh_check.h"
 #include "engine/mesh_io.h"
+#include "engine/record_stage.h"
 #include "engine/recording_writer.h"
 #include "engine/scene.h"
+#include "engine/script_tool_stage.h"
 #include "engine/sim_state.h"
 #include "fem/fem_stage.h"
+#include "haptics/haptics_stage.h"
+#include "metrics/metrics_stage.h"
+#include "surface/surface_stage.h"
 
 namespace serosa::app {
 namespace {
@@ -115,7 +115,8 @@ Json step_time_json(std::vector<double> ms) {
   if (ms.empty()) return {{"p50", 0.0}, {"p99", 0.0}, {"max", 0.0}};
   std::sort(ms.begin(), ms.end());
   const auto at = [&](double q) {
-    return ms[std::min(ms.size() - 1, static_cast<std::size_t>(q * static_cast<double>(ms.size())))];
+    return ms[std::min(ms.size() - 1,
+                       static_cast<std::size_t>(q * static_cast<double>(ms.size())))];
   };
   return {{"p50", at(0.5)}, {"p99", at(0.99)}, {"max", ms.back()}};
 }

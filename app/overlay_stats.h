@@ -1,6 +1,6 @@
 // The overlay's numbers (render/render_frame.h OverlayData) from what the app measures: solver
 // timing, the haptic loop's telemetry when a loop runs, cuts, replay position and the metrics
-// report (app/metrics_stage.h). Plain data, no GL: tests check the values and the text.
+// report (metrics/metrics_stage.h). Plain data, no GL: tests check the values and the text.
 #pragma once
 
 #include <cstdint>

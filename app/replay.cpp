@@ -11,13 +11,13 @@
 #include "app/compose.h"
 #include "app/frame_pictures.h"
 #include "app/headless.h"
-#include "app/metrics_stage.h"
-#include "app/record_stage.h"
 #include "app/version.h"
 #include "engine/input_error.h"
+#include "engine/record_stage.h"
 #include "engine/recording_reader.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"
+#include "metrics/metrics_stage.h"
 
 namespace serosa::app {
 namespace {

@@ -6,8 +6,8 @@
 
 #include "app/assemble_state.h"
 #include "app/compose.h"
-#include "app/record_stage.h"
 #include "engine/input_error.h"
+#include "engine/record_stage.h"
 
 namespace serosa::app {
 namespace {

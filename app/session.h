@@ -25,7 +25,7 @@ struct SessionOptions {
 /// scene's fixed dt, paced to real time (when a step takes longer than dt it runs in slow motion
 /// and says so), and after every step publishes a RenderFrame (surface, tet edges, tools,
 /// endoscope camera, overlay data) through a TripleBuffer; it never waits for drawing. When the
-/// scene lists "haptics", the 1 kHz haptic loop runs on a third thread (app/haptics_stage.h,
+/// scene lists "haptics", the 1 kHz haptic loop runs on a third thread (haptics/haptics_stage.h,
 /// SCHED_FIFO when granted): tool states to the solver and contact models back through seqlocks;
 /// the mouse device takes the window's pointer input; the overlay shows the loop's live rate
 /// (LoopStatus ticks per wall second). The calling (main) thread owns the window and its GL

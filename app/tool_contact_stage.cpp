@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "app/tool_geometry.h"
 #include "engine/sim_state.h"
+#include "engine/tool_geometry.h"
 #include "surface/extract_surface.h"
 
 namespace serosa::app {

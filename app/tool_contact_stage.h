@@ -11,7 +11,7 @@
 //   jaw plane) are grabbed: held to the jaws through an infinitely stiff spring (Dirichlet nodes
 //   that move with the tool). Opening past kGraspCloseRad + kGraspHysteresisRad lets go and
 //   restores their original Dirichlet flags. The grasp force is the tissue's elastic pull on the
-//   grabbed nodes (app/tissue_stress.h).
+//   grabbed nodes (engine/tissue_stress.h).
 // Each tool's total force on the tissue (N) is handed on (SimState::handoff.tool_force_n) for
 // metrics and the haptic model; the node forces go to FEM (handoff.external_force_n).
 // - Haptic contact planes (on when the haptic loop is built): after the
@@ -30,11 +30,11 @@
 #include <string_view>
 #include <vector>
 
-#include "app/tissue_stress.h"
+#include "engine/contact_plane.h"
 #include "engine/math.h"
 #include "engine/scene.h"
 #include "engine/stage.h"
-#include "engine/contact_plane.h"
+#include "engine/tissue_stress.h"
 #include "surface/surface_bvh.h"
 #include "surface/surface_mesh.h"
 

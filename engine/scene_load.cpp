@@ -563,8 +563,8 @@ class Loader {
           ranged_int(*n, sub(p, "max_iterations"), 1, 1000000, "an integer within [1, 1000000]"));
     }
     if (const auto* n = t.get("refresh_iterations")) {
-      s.refresh_iterations = static_cast<int>(ranged_int(*n, sub(p, "refresh_iterations"), 0,
-                                                         1000000, "an integer within [0, 1000000]"));
+      s.refresh_iterations = static_cast<int>(ranged_int(
+          *n, sub(p, "refresh_iterations"), 0, 1000000, "an integer within [0, 1000000]"));
     }
     if (const auto* n = t.get("threads")) {
       s.threads = static_cast<int>(

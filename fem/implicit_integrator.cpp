@@ -208,8 +208,7 @@ StepStatus ImplicitIntegrator::step_from(TetMesh& mesh, double dt_s, std::span<c
   return st;
 }
 
-ImplicitIntegrator::ElementPass ImplicitIntegrator::element_pass(const TetMesh& mesh,
-                                                                 double dt_s) {
+ImplicitIntegrator::ElementPass ImplicitIntegrator::element_pass(const TetMesh& mesh, double dt_s) {
   const std::int32_t m = mesh.num_tets();
   const bool plastic = m_config.plasticity.on;
   m_scale.resize(static_cast<std::size_t>(m));

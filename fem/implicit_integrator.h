@@ -199,7 +199,7 @@ class ImplicitIntegrator {
   std::vector<Quat> m_node_rot;      // (n) the nodes' rotations this step (factor warping)
   std::vector<Mat3> m_warp;          // (n) each node's turn since the installed factor's step
   std::uint64_t m_steps = 0;
-  std::vector<Tet> m_removed;   // scratch of update(): nodes of the removed tets
+  std::vector<Tet> m_removed;  // scratch of update(): nodes of the removed tets
   PatternUpdateStats m_last_update;
   // Divergence guard: energy at the start of the last step and the external work over it, J.
   double m_energy_before = 0.0;

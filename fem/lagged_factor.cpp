@@ -92,17 +92,17 @@ void LaggedFactor::apply(std::span<const double> r, std::span<double> z,
   m_z.resize(nf);
   // W^T r on the free nodes of the factor, 0 on constrained ones.
   for (std::size_t i = 0; 3 * i < nf; ++i) {
-    const Vec3 ri = free[i] != 0 ? Vec3(warp[i].transpose() * Vec3(r[3 * i], r[3 * i + 1],
-                                                                     r[3 * i + 2]))
-                                 : Vec3::Zero();
+    const Vec3 ri = free[i] != 0
+                        ? Vec3(warp[i].transpose() * Vec3(r[3 * i], r[3 * i + 1], r[3 * i + 2]))
+                        : Vec3::Zero();
     for (std::size_t c = 0; c < 3; ++c) m_r[3 * i + c] = ri[static_cast<Eigen::Index>(c)];
   }
   m_installed->solve(m_r, m_z);
   for (std::size_t i = 0; 3 * i < nf; ++i) {
     const Vec3 zi = warp[i] * Vec3(m_z[3 * i], m_z[3 * i + 1], m_z[3 * i + 2]);
     for (std::size_t c = 0; c < 3; ++c)
-      z[3 * i + c] = free[i] != 0 ? zi[static_cast<Eigen::Index>(c)]
-                                  : inv_diag[3 * i + c] * r[3 * i + c];
+      z[3 * i + c] =
+          free[i] != 0 ? zi[static_cast<Eigen::Index>(c)] : inv_diag[3 * i + c] * r[3 * i + c];
   }
   for (std::size_t i = nf; i < r.size(); ++i) z[i] = inv_diag[i] * r[i];
 }

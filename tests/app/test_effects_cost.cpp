@@ -14,13 +14,13 @@
 
 #include "app/assemble_state.h"
 #include "app/compose.h"
-#include "app/metrics_stage.h"
-#include "app/script_tool_stage.h"
 #include "app_test_util.h"
 #include "engine/runner.h"
 #include "engine/scene.h"
+#include "engine/script_tool_stage.h"
 #include "engine/sim_state.h"
 #include "fem/fem_stage.h"
+#include "metrics/metrics_stage.h"
 
 namespace {
 

@@ -22,10 +22,10 @@
 
 #include "app/assemble_state.h"
 #include "app/compose.h"
-#include "app/cutting_stage.h"
 #include "app/frame_pictures.h"
 #include "app/headless.h"
 #include "cutting/cut_mesh.h"
+#include "cutting/cutting_stage.h"
 #include "cutting/validate.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "app/assemble_state.h"
-#include "app/haptics_stage.h"
+#include "app/compose.h"
 #include "app/headless.h"
 #include "app_test_util.h"
 #include "engine/recording_reader.h"

@@ -16,7 +16,6 @@
 
 #include "app/assemble_state.h"
 #include "app/compose.h"
-#include "app/haptics_stage.h"
 #include "app/headless.h"
 #include "app/mouse_takeover.h"
 #include "app/replay.h"
@@ -27,6 +26,7 @@
 #include "engine/scene.h"
 #include "engine/sim_state.h"
 #include "haptics/haptic_loop.h"
+#include "haptics/haptics_stage.h"
 #include "haptics/trocar_kinematics.h"
 
 namespace serosa::app {

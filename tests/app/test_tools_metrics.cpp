@@ -9,14 +9,14 @@
 
 #include "app/assemble_state.h"
 #include "app/compose.h"
-#include "app/metrics_stage.h"
-#include "app/tissue_stress.h"
 #include "app/tool_contact_stage.h"
-#include "app/tool_geometry.h"
 #include "app_test_util.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"
+#include "engine/tissue_stress.h"
+#include "engine/tool_geometry.h"
 #include "fem/fem_stage.h"
+#include "metrics/metrics_stage.h"
 
 namespace serosa::app {
 namespace {
@@ -160,7 +160,7 @@ TEST(Grasper, GrabsLiftsAndLetsGo) {
   const std::size_t held = run->comp.contact->grasped_counts()[0];
   EXPECT_GE(held, 3u);  // the beam's top nodes at x = 9, 9.5 and 10 cm
   EXPECT_GT(s.mesh.x[static_cast<std::size_t>(tip)].y(), y0 + 0.002);  // the end came up
-  EXPECT_GT(s.handoff.tool_force_n[0].y(), 0.0);  // it pulls the tissue up
+  EXPECT_GT(s.handoff.tool_force_n[0].y(), 0.0);                       // it pulls the tissue up
   run->comp.runner->run(s, 12);                                        // t = 0.21: opened
   EXPECT_EQ(run->comp.contact->grasped_counts()[0], 0u);
   EXPECT_EQ(s.mesh.fixed, fixed0);

@@ -1,12 +1,12 @@
-#include "app/metrics_stage.h"
+#include "metrics/metrics_stage.h"
 
 #include <algorithm>
 #include <limits>
 
-#include "app/tool_geometry.h"
 #include "engine/sim_state.h"
+#include "engine/tool_geometry.h"
 
-namespace serosa::app {
+namespace serosa::metrics {
 
 double distance_to_polyline(const Vec3& p, const std::vector<Vec3>& line) {
   if (line.empty()) return 0.0;
@@ -92,4 +92,4 @@ nlohmann::json MetricsStage::report() const {
   return j;
 }
 
-}  // namespace serosa::app
+}  // namespace serosa::metrics

@@ -15,7 +15,7 @@
 #include "surface/surface_mesh.h"
 #include "surface/update_surface.h"
 
-namespace serosa::app {
+namespace serosa::surface {
 
 struct SurfaceStageStats {
   std::uint64_t rebuilds = 0;        ///< full extractions (the first step, or a missed change)
@@ -42,4 +42,4 @@ class SurfaceStage final : public Stage {
   SurfaceStageStats m_stats;
 };
 
-}  // namespace serosa::app
+}  // namespace serosa::surface

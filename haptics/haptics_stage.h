@@ -52,8 +52,7 @@ class HapticLoop;
 struct LoopStatus;
 }  // namespace serosa::haptics
 
-namespace serosa::app {
-
+namespace serosa::haptics {
 
 struct HapticsStageOptions {
   /// Ask for SCHED_FIFO and run the gap monitor (the trainee session); headless runs share the
@@ -124,4 +123,4 @@ struct MouseHandle {
 /// The trocar of a rig-driven handle: the same as a mouse handle's (mouse_handle().trocar).
 [[nodiscard]] haptics::Trocar rig_trocar(const Tool& tool, std::size_t handle, const Vec3& aim_m);
 
-}  // namespace serosa::app
+}  // namespace serosa::haptics

@@ -11,7 +11,7 @@
 #include "engine/stage.h"
 #include "engine/tool_path.h"
 
-namespace serosa::app {
+namespace serosa {
 
 class ScriptToolStage final : public Stage {
  public:
@@ -38,4 +38,4 @@ class ScriptToolStage final : public Stage {
   std::vector<Binding> m_bindings;
 };
 
-}  // namespace serosa::app
+}  // namespace serosa

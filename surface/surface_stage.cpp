@@ -1,11 +1,11 @@
-#include "app/surface_stage.h"
+#include "surface/surface_stage.h"
 
 #include <stdexcept>
 
 #include "engine/sim_state.h"
 #include "surface/extract_surface.h"
 
-namespace serosa::app {
+namespace serosa::surface {
 
 void SurfaceStage::rebuild(SimState& state) {
   state.handoff.surface = surface::extract_surface(state.mesh);
@@ -30,4 +30,4 @@ void SurfaceStage::step(const StepContext& /*ctx*/, SimState& state) {
   if (!m_built || s.topology_version != state.mesh.topology_version) rebuild(state);
 }
 
-}  // namespace serosa::app
+}  // namespace serosa::surface

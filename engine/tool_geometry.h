@@ -13,7 +13,7 @@
 #include "engine/math.h"
 #include "engine/tool_state.h"
 
-namespace serosa::app {
+namespace serosa {
 
 /// Length of each jaw (scissor blade or grasper jaw), hinge to tip, m.
 inline constexpr double kJawLength = 0.015;
@@ -39,4 +39,4 @@ struct ToolFrame {
 /// Distance from p to segment [a, b], m.
 [[nodiscard]] double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b);
 
-}  // namespace serosa::app
+}  // namespace serosa

@@ -1,14 +1,14 @@
-#include "app/cutting_stage.h"
+#include "cutting/cutting_stage.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "app/tool_geometry.h"
 #include "cutting/tet_bvh.h"
 #include "cutting/validate.h"
 #include "engine/sim_state.h"
+#include "engine/tool_geometry.h"
 
-namespace serosa::app {
+namespace serosa::cutting {
 
 CuttingStage::CuttingStage(const Scene& scene, CuttingStageOptions options) : m_options(options) {
   for (std::size_t i = 0; i < scene.tools.size(); ++i)
@@ -187,4 +187,4 @@ void CuttingStage::cut(const StepContext& ctx, SimState& state, std::size_t tool
   state.handoff.cuts.push_back(std::move(applied));
 }
 
-}  // namespace serosa::app
+}  // namespace serosa::cutting

@@ -1,9 +1,9 @@
-#include "app/tool_geometry.h"
+#include "engine/tool_geometry.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace serosa::app {
+namespace serosa {
 
 ToolFrame tool_frame(const ToolState& tool, double jaw_length_m) {
   Eigen::Quaterniond q(tool.quat_wxyz[0], tool.quat_wxyz[1], tool.quat_wxyz[2], tool.quat_wxyz[3]);
@@ -32,4 +32,4 @@ double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
   return (p - (a + t * ab)).norm();
 }
 
-}  // namespace serosa::app
+}  // namespace serosa

@@ -16,7 +16,7 @@
 #include "engine/stage.h"
 #include "engine/tool_state.h"
 
-namespace serosa::app {
+namespace serosa::recording {
 
 /// Whether step k's hash is recorded: every hash_every-th step (k + 1 a multiple of it).
 [[nodiscard]] inline bool hashed_step(std::uint64_t k, std::int64_t hash_every) {
@@ -70,4 +70,4 @@ class VerifyStage final : public Stage {
   std::uint64_t m_checked = 0;
 };
 
-}  // namespace serosa::app
+}  // namespace serosa::recording

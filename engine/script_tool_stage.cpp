@@ -1,11 +1,11 @@
-#include "app/script_tool_stage.h"
+#include "engine/script_tool_stage.h"
 
 #include <algorithm>
 
 #include "engine/input_error.h"
 #include "engine/sim_state.h"
 
-namespace serosa::app {
+namespace serosa {
 
 ScriptToolStage::ScriptToolStage(const Scene& scene) {
   std::vector<std::filesystem::path> files;
@@ -39,4 +39,4 @@ double ScriptToolStage::end_time_s() const noexcept {
   return t;
 }
 
-}  // namespace serosa::app
+}  // namespace serosa

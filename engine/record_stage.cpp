@@ -1,10 +1,10 @@
-#include "app/record_stage.h"
+#include "engine/record_stage.h"
 
 #include <stdexcept>
 
 #include "engine/sim_state.h"
 
-namespace serosa::app {
+namespace serosa::recording {
 
 void RecordStage::step(const StepContext& ctx, SimState& state) {
   m_writer.record_inputs(ctx.step, state.tools);
@@ -26,4 +26,4 @@ void VerifyStage::step(const StepContext& ctx, SimState& state) {
   if (h != it->second && !m_divergence) m_divergence = Divergence{ctx.step, it->second, h};
 }
 
-}  // namespace serosa::app
+}  // namespace serosa::recording

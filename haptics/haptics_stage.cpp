@@ -1,4 +1,4 @@
-#include "app/haptics_stage.h"
+#include "haptics/haptics_stage.h"
 
 #include <spdlog/spdlog.h>
 
@@ -16,7 +16,7 @@
 #include "haptics/script_device.h"
 #include "haptics/usb_rig.h"
 
-namespace serosa::app {
+namespace serosa::haptics {
 
 MouseHandle mouse_handle(const Tool& tool, std::size_t handle, const Vec3& aim_m) {
   MouseHandle m;
@@ -249,4 +249,4 @@ nlohmann::json HapticsStage::telemetry_json() {
   return j;
 }
 
-}  // namespace serosa::app
+}  // namespace serosa::haptics

@@ -14,7 +14,7 @@
 #include "engine/scene.h"
 #include "engine/tet_mesh.h"
 
-namespace serosa::app {
+namespace serosa {
 
 /// Lamé parameters, Pa.
 struct Lame {
@@ -44,4 +44,4 @@ struct LameTable {
 void add_elastic_forces(const TetMesh& mesh, const LameTable& table,
                         std::span<const std::uint8_t> wanted, std::vector<Vec3>& f);
 
-}  // namespace serosa::app
+}  // namespace serosa

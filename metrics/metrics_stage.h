@@ -10,7 +10,7 @@
 //   force_max_n / force_mean_n [tool]  magnitude of the tool's force on the tissue (contact and
 //                           grasp, app/tool_contact_stage.h): largest, and mean over the steps
 //                           in which it touched the tissue, N
-//   peak_stress_pa          largest von Mises stress over tets and steps (app/tissue_stress.h)
+//   peak_stress_pa          largest von Mises stress over tets and steps (engine/tissue_stress.h)
 // Without a planned cut line the deviation and collateral entries are absent (the volume stays).
 #pragma once
 
@@ -21,13 +21,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/tissue_stress.h"
 #include "engine/math.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"
 #include "engine/stage.h"
+#include "engine/tissue_stress.h"
 
-namespace serosa::app {
+namespace serosa::metrics {
 
 /// Distance from p to the polyline (k >= 1 points), m.
 [[nodiscard]] double distance_to_polyline(const Vec3& p, const std::vector<Vec3>& line);
@@ -74,4 +74,4 @@ class MetricsStage final : public Stage {
   std::int64_t m_cut_tets = 0;
 };
 
-}  // namespace serosa::app
+}  // namespace serosa::metrics

@@ -1,6 +1,6 @@
 // The "cutting" stage: scissors cut the organs along the exact path of their blades
 // (docs/ARCHITECTURE.md "Cutting, in the paper's terms"). Each blade's edge runs from the jaw hinge
-// to the blade tip (app/tool_geometry.h); closing jaws sweep it. The swept polygon goes to
+// to the blade tip (engine/tool_geometry.h); closing jaws sweep it. The swept polygon goes to
 // cutting::cut_mesh (candidates from a TetBvh over current positions), the resulting TopologyDelta
 // is applied to the mesh between FEM steps and handed on in SimState::handoff.cuts, from which the
 // surface and metrics stages of this step and the FEM stage of the next update themselves.
@@ -29,12 +29,12 @@
 #include <string_view>
 #include <vector>
 
-#include "app/tool_geometry.h"
 #include "cutting/blade_sweep.h"
 #include "cutting/convex_polygon.h"
 #include "cutting/cut_mesh.h"
 #include "engine/scene.h"
 #include "engine/stage.h"
+#include "engine/tool_geometry.h"
 #include "engine/tool_state.h"
 #include "engine/topology_delta.h"
 
@@ -42,7 +42,7 @@ namespace serosa::cutting {
 class TetBvh;
 }
 
-namespace serosa::app {
+namespace serosa::cutting {
 
 /// Scissors that move less than this (hinge, m) and turn less than kStrokeAngleTol (rad) while
 /// their jaws close are stationary: the stroke is cut as one sector.
@@ -120,4 +120,4 @@ class CuttingStage final : public Stage {
   CuttingStageStats m_stats;
 };
 
-}  // namespace serosa::app
+}  // namespace serosa::cutting

@@ -1,9 +1,9 @@
-#include "app/tissue_stress.h"
+#include "engine/tissue_stress.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace serosa::app {
+namespace serosa {
 namespace {
 
 struct TetKinematics {
@@ -83,4 +83,4 @@ void add_elastic_forces(const TetMesh& mesh, const LameTable& table,
   }
 }
 
-}  // namespace serosa::app
+}  // namespace serosa
