@@ -55,6 +55,12 @@ fem::FemConfig fem_config(const Scene& scene, const AssembledScene& assembled) {
   // between steps, says so in SimState::handoff.nodes_moved).
   c.solver.remove_energy_gain = true;
   c.gravity_on = scene.settings.has(Effect::kGravity);
+  // Plastic flow with each group's material parameters (organ-wide, or the group's override).
+  c.plasticity.on = scene.settings.has(Effect::kPlasticity);
+  for (const auto& [g, info] : assembled.groups) {
+    const PlasticityParams& p = assembled.material(scene, g).plasticity;
+    c.plasticity_groups[static_cast<std::uint16_t>(g)] = {true, p.yield, p.creep_per_s, p.max};
+  }
   c.gravity_mps2 = scene.settings.gravity_mps2;
   return c;
 }
@@ -65,6 +71,11 @@ LameTable lame_table(const Scene& scene, const AssembledScene& assembled) {
     t.groups[static_cast<std::uint16_t>(g)] = lame(assembled.material(scene, g));
   if (!scene.organs.empty()) t.fallback = lame(scene.organs.front().material);
   return t;
+}
+
+void mark_recording(Composition& c) {
+  c.folded.erase(std::remove(c.folded.begin(), c.folded.end(), Effect::kRecord), c.folded.end());
+  c.built.push_back(Effect::kRecord);
 }
 
 Composition compose(const Scene& scene, const AssembledScene& assembled, ComposeOptions options) {
@@ -99,12 +110,12 @@ Composition compose(const Scene& scene, const AssembledScene& assembled, Compose
   // take tool states
   if (options.tool_input) {
     c.tool_input = options.tool_input.get();
-    c.runner->add(std::move(options.tool_input));
+    c.runner->add(Slot::tools, std::move(options.tool_input));
   } else if (std::any_of(scene.tools.begin(), scene.tools.end(),
                          [](const Tool& t) { return t.device.kind == DeviceKind::kScript; })) {
     auto tools = std::make_unique<ScriptToolStage>(scene);
     c.tools = tools.get();
-    c.runner->add(std::move(tools));
+    c.runner->add(Slot::tools, std::move(tools));
   }
   // the haptic loop's handles override their scripted tools (a replay feeds recorded inputs)
   if (haptic_loop) {
@@ -118,38 +129,41 @@ Composition compose(const Scene& scene, const AssembledScene& assembled, Compose
     }
     auto haptics_stage = std::make_unique<HapticsStage>(scene, ho);
     c.haptics = haptics_stage.get();
-    c.runner->add(std::move(haptics_stage));
+    c.runner->add(Slot::haptics, std::move(haptics_stage));
     c.built.push_back(Effect::kHaptics);
   }
   // contact
   if (contact_stage) {
     c.contact = contact_stage.get();
-    c.runner->add(std::move(contact_stage));
+    c.runner->add(Slot::contact, std::move(contact_stage));
     c.built.push_back(Effect::kContact);
   }
   // FEM (gravity is one of its terms)
   if (fem_stage) {
     c.fem = fem_stage.get();
-    c.runner->add(std::move(fem_stage));
+    c.runner->add(Slot::fem, std::move(fem_stage));
     c.built.push_back(Effect::kFem);
-    if (listed(Effect::kGravity)) c.folded.push_back(Effect::kGravity);
+    // Gravity and plastic flow are terms of the FEM stage: simulated when listed.
+    if (listed(Effect::kGravity)) c.built.push_back(Effect::kGravity);
+    if (listed(Effect::kPlasticity)) c.built.push_back(Effect::kPlasticity);
   }
   // cuts (between FEM steps), then the surface they change
   if (cutting_stage) {
     c.cutting = cutting_stage.get();
-    c.runner->add(std::move(cutting_stage));
+    c.runner->add(Slot::cutting, std::move(cutting_stage));
     c.built.push_back(Effect::kCutting);
   }
   if (surface_stage) {
     c.surface = surface_stage.get();
-    c.runner->add(std::move(surface_stage));
+    c.runner->add(Slot::surface, std::move(surface_stage));
     c.built.push_back(Effect::kSurface);
   }
   if (metrics_stage) {
     c.metrics = metrics_stage.get();
-    c.runner->add(std::move(metrics_stage));
+    c.runner->add(Slot::metrics, std::move(metrics_stage));
   }
   if (listed(Effect::kRender)) c.folded.push_back(Effect::kRender);
+  if (listed(Effect::kRecord)) c.folded.push_back(Effect::kRecord);
 
   // Everything else the scene lists waits for its stage to land.
   for (Effect e : scene.settings.effects) {

@@ -57,8 +57,9 @@ struct Composition {
   std::unique_ptr<Runner> runner;
   std::vector<Effect> built;        ///< listed effects that have a stage in this build
   std::vector<Effect> unavailable;  ///< listed effects this build cannot simulate yet
-  /// Listed effects that need no stage of their own in a headless run: "gravity" is a term of
-  /// the FEM stage, "render" is drawn by the headless command when frames are asked for.
+  /// Listed effects the command handles, with no stage of compose's: "render" is drawn when
+  /// frames or a window are asked for, "record" is recorded when a file is given (the command
+  /// then adds the record stage and moves it to `built`).
   std::vector<Effect> folded;
   ScriptToolStage* tools = nullptr;     ///< null when no tool is scripted
   HapticsStage* haptics = nullptr;      ///< null unless "haptics" is listed (not in replay)
@@ -69,6 +70,9 @@ struct Composition {
   MetricsStage* metrics = nullptr;      ///< built with "fem" (stress needs it)
   Stage* tool_input = nullptr;          ///< ComposeOptions::tool_input once handed to the runner
 };
+
+/// The command added the record stage: "record" moves from `folded` to `built`.
+void mark_recording(Composition& c);
 
 /// The scene's solver kind as fem's.
 [[nodiscard]] fem::SolverKind to_fem(SolverKind k);

@@ -154,11 +154,11 @@ Json run_headless(const HeadlessOptions& options) {
     } catch (const std::runtime_error& e) {
       throw InputError(record_path->string(), 0, e.what(), "a writable path");
     }
-    comp.runner->add(std::make_unique<RecordStage>(*writer, scene.record.hash_every));
-    comp.built.push_back(Effect::kRecord);
-    comp.unavailable.erase(
-        std::remove(comp.unavailable.begin(), comp.unavailable.end(), Effect::kRecord),
-        comp.unavailable.end());
+    comp.runner->add(Slot::record, std::make_unique<RecordStage>(*writer, scene.record.hash_every));
+    mark_recording(comp);
+  } else if (scene.settings.has(Effect::kRecord)) {
+    spdlog::info("{} lists 'record' and gives no file: this run is not recorded (--record FILE)",
+                 scene.file.string());
   }
   for (Effect e : comp.unavailable)
     spdlog::warn("effect '{}' is listed by {} but not implemented in this build: not simulated",

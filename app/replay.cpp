@@ -55,7 +55,7 @@ ReplayResult run_replay(const ReplayOptions& options) {
   if (options.verify) {
     auto v = std::make_unique<VerifyStage>(rec.hashes);
     verify = v.get();
-    comp.runner->add(std::move(v));
+    comp.runner->add(Slot::record, std::move(v));
   }
   SimState& state = assembled.state;
 

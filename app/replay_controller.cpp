@@ -112,11 +112,11 @@ void ReplayController::restart(const Snapshot* from) {
   sim->comp = compose(m_scene, sim->assembled, std::move(co));
   auto record = std::make_unique<BranchRecordStage>(m_scene.record.hash_every);
   sim->record = record.get();
-  sim->comp.runner->add(std::move(record));
+  sim->comp.runner->add(Slot::record, std::move(record));
   auto hash = std::make_unique<HashStage>(m_rec.hashes);
   sim->hash = hash.get();
   if (from != nullptr) hash->m_last = from->hash;
-  sim->comp.runner->add(std::move(hash));
+  sim->comp.runner->add(Slot::record, std::move(hash));
   m_sim = std::move(sim);
   ++m_restarts;
   if (from == nullptr) {

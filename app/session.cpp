@@ -266,19 +266,13 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
     } catch (const std::exception& e) {
       throw InputError(record_path->string(), 0, e.what(), "a writable path");
     }
-    comp.runner->add(std::make_unique<RecordStage>(*writer, scene.record.hash_every));
-    comp.built.push_back(Effect::kRecord);
-    comp.unavailable.erase(
-        std::remove(comp.unavailable.begin(), comp.unavailable.end(), Effect::kRecord),
-        comp.unavailable.end());
-  }
-  if (!writer && scene.settings.has(Effect::kRecord)) {
-    spdlog::warn(
-        "effect 'record' is listed but no file is given: not recording (--record FILE or "
-        "[record] path)");
-    comp.unavailable.erase(
-        std::remove(comp.unavailable.begin(), comp.unavailable.end(), Effect::kRecord),
-        comp.unavailable.end());
+    comp.runner->add(Slot::record, std::make_unique<RecordStage>(*writer, scene.record.hash_every));
+    mark_recording(comp);
+  } else if (scene.settings.has(Effect::kRecord)) {
+    spdlog::info(
+        "{} lists 'record' and gives no file: this session is not recorded (--record "
+        "FILE or [record] path)",
+        scene.file.string());
   }
   for (Effect e : comp.unavailable)
     spdlog::warn("effect '{}' is not implemented in this build: not simulated", effect_name(e));

@@ -15,9 +15,6 @@ if(SEROSA_SANITIZE)
   add_link_options(-fsanitize=address,undefined)
 endif()
 
-if(SEROSA_VALIDATE)
-  add_compile_definitions(SEROSA_VALIDATE=1)
-endif()
 
 # serosa_add_library(NAME folder DEPS ...): one static library per folder. Sources are globbed so
 # that adding a file needs no CMake edit; the include root is the repository root, so every

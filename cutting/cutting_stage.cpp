@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cutting/cut_method.h"
 #include "cutting/tet_bvh.h"
 #include "cutting/validate.h"
 #include "engine/sim_state.h"
@@ -15,6 +16,17 @@ CuttingStage::CuttingStage(const Scene& scene, CuttingStageOptions options) : m_
     if (scene.tools[i].kind == ToolKind::kScissors)
       m_scissors.push_back({i, std::nullopt, std::nullopt});
   m_cut_options.classify_rel = scene.cutting.tolerance;
+  switch (scene.cutting.method) {
+    case serosa::CutMethod::kPattern:
+      m_method = CutMethod::kPattern;
+      break;
+    case serosa::CutMethod::kRemove:
+      m_method = CutMethod::kRemove;
+      break;
+    case serosa::CutMethod::kSnap:
+      m_method = CutMethod::kSnap;
+      break;
+  }
 }
 
 CuttingStage::~CuttingStage() = default;
@@ -143,7 +155,7 @@ void CuttingStage::cut(const StepContext& ctx, SimState& state, std::size_t tool
     m_bvh->refit(mesh);
     m_bvh_step = ctx.step;
   }
-  cutting::CutResult result = cutting::cut_mesh(mesh, polygon, m_cut_options, m_bvh->as_query());
+  cutting::CutResult result = cut_with(m_method, mesh, polygon, m_cut_options, m_bvh->as_query());
   if (result.delta.empty()) return;
 
   CutEvent applied;
@@ -159,7 +171,8 @@ void CuttingStage::cut(const StepContext& ctx, SimState& state, std::size_t tool
     applied.removed_volumes_m3.push_back(mesh.rest_volume(t));
   }
   std::optional<TetMesh> before;
-  if (m_options.validate) before = mesh;
+  // The invariants hold for the paper's method; removal loses volume and snapping moves nodes.
+  if (m_options.validate && m_method == CutMethod::kPattern) before = mesh;
 
   apply(mesh, result.delta);
   m_bvh->update(mesh, result.delta);

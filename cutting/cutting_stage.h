@@ -32,6 +32,7 @@
 #include "cutting/blade_sweep.h"
 #include "cutting/convex_polygon.h"
 #include "cutting/cut_mesh.h"
+#include "cutting/cut_method.h"
 #include "engine/scene.h"
 #include "engine/stage.h"
 #include "engine/tool_geometry.h"
@@ -87,7 +88,8 @@ struct CuttingStageStats {
 
 class CuttingStage final : public Stage {
  public:
-  /// Cuts with every tool of kind scissors in `scene` (its [cutting] tolerance).
+  /// Cuts with every tool of kind scissors in `scene`, by its [cutting] method (pattern, remove,
+  /// snap: cutting/cut_method.h) and tolerance.
   explicit CuttingStage(const Scene& scene, CuttingStageOptions options = {});
   ~CuttingStage() override;
 
@@ -112,6 +114,7 @@ class CuttingStage final : public Stage {
   };
   std::vector<Scissors> m_scissors;
   cutting::CutOptions m_cut_options;
+  CutMethod m_method = CutMethod::kPattern;  // the scene's [cutting] method
   CuttingStageOptions m_options;
   std::unique_ptr<cutting::TetBvh> m_bvh;
   std::uint64_t m_bvh_version = 0;

@@ -197,7 +197,8 @@ struct RecordSettings {
 
 struct CuttingSettings {
   CutMethod method = CutMethod::kPattern;  ///< pattern (paper), remove (delete tets), snap
-  double tolerance = 1e-3;  ///< node-on-plane tolerance relative to the tet's mean edge; [0, 0.5)
+  double tolerance =
+      1e-3;  ///< node-on-plane tolerance relative to the tet's longest edge; [0, 0.5)
 };
 
 struct HeadlessSettings {

@@ -93,7 +93,9 @@ struct FemConfig {
   std::map<std::uint16_t, FemMaterial> materials;  ///< per group (Gmsh physical tag)
   FemMaterial default_material;                    ///< for groups not in `materials`
   SolverSettings solver;
-  PlasticitySettings plasticity;
+  PlasticitySettings plasticity;  ///< `on`, and the parameters of groups not in plasticity_groups
+  /// Per group (Gmsh physical tag): yield, creep and max of that group's tissue (`on` is ignored).
+  std::map<std::uint16_t, PlasticitySettings> plasticity_groups;
   /// Corotational FEM (true: R_e from each tet's deformation gradient, Müller & Gross 2004) or
   /// linear FEM (false: R_e = I, small-strain; rotations show as spurious growth). Linear is for
   /// comparison only (`serosa bench fem`); scenes never set it.
@@ -101,6 +103,11 @@ struct FemConfig {
   bool gravity_on = true;                     ///< the "gravity" effect
   Vec3 gravity_mps2 = Vec3(0.0, -9.81, 0.0);  ///< gravitational acceleration g, m/s^2
 
+  /// The plastic-flow parameters of group g.
+  [[nodiscard]] const PlasticitySettings& plasticity_of(std::uint16_t g) const {
+    const auto it = plasticity_groups.find(g);
+    return it == plasticity_groups.end() ? plasticity : it->second;
+  }
   /// The material of group g.
   [[nodiscard]] const FemMaterial& material(std::uint16_t g) const {
     const auto it = materials.find(g);

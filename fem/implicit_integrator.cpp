@@ -321,14 +321,14 @@ double ImplicitIntegrator::apply_update(TetMesh& mesh, double dt_s, std::span<co
 }
 
 void ImplicitIntegrator::update_plasticity(const TetMesh& mesh, double dt_s) {
-  const PlasticitySettings& p = m_config.plasticity;
-  const double rate = std::min(dt_s * p.creep_per_s, 1.0);
   const auto m = static_cast<std::ptrdiff_t>(mesh.num_tets());
 #pragma omp parallel for schedule(static) if (m >= kParallelMin)
   for (std::ptrdiff_t t = 0; t < m; ++t) {
     const auto ut = static_cast<std::size_t>(t);
     const TetElement& e = m_el.elements[ut];
     if (!e.active()) continue;
+    const PlasticitySettings& p = m_config.plasticity_of(mesh.group[ut]);
+    const double rate = std::min(dt_s * p.creep_per_s, 1.0);
     const Tet& nd = mesh.tets[ut];
     const Mat3 f = nodal_gradient(e, mesh.x[nd[0]], mesh.x[nd[1]], mesh.x[nd[2]], mesh.x[nd[3]]);
     const Mat3 g = m_rot[ut].transpose() * f;  // rotation of this step (frozen over it)

@@ -49,7 +49,7 @@ TEST(Compose, OnlyListedEffectsAreBuilt) {
   EXPECT_EQ(c.contact, nullptr);
   ASSERT_EQ(c.built.size(), 1u);
   EXPECT_EQ(c.built[0], Effect::kFem);
-  EXPECT_TRUE(c.folded.empty());  // no gravity listed: not folded into FEM either
+  EXPECT_TRUE(c.folded.empty());
 }
 
 TEST(Compose, UnlistedStagesTakeNoTimeInAStep) {

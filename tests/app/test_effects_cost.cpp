@@ -111,9 +111,9 @@ TEST(EffectsCost, UnlistedEffectsAllocateNothingAndTakeNoTimeInAStep) {
   // By hand: the same three stages, nothing else.
   AssembledScene hand_state = assemble_state(scene);
   Runner hand(scene.settings.dt_s);
-  hand.add(std::make_unique<ScriptToolStage>(scene));
-  hand.add(std::make_unique<fem::FemStage>(fem_config(scene, hand_state)));
-  hand.add(std::make_unique<MetricsStage>(scene, lame_table(scene, hand_state)));
+  hand.add(Slot::tools, std::make_unique<ScriptToolStage>(scene));
+  hand.add(Slot::fem, std::make_unique<fem::FemStage>(fem_config(scene, hand_state)));
+  hand.add(Slot::metrics, std::make_unique<MetricsStage>(scene, lame_table(scene, hand_state)));
 
   // Step by step (the jaws close over steps 0..19), the composed pipeline allocates exactly
   // what the hand-built one does, and reaches the same state.

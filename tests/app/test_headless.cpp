@@ -4,6 +4,9 @@
 #include <filesystem>
 #include <fstream>
 
+#include <spdlog/sinks/ringbuffer_sink.h>
+#include <spdlog/spdlog.h>
+
 #include "app/headless.h"
 #include "engine/input_error.h"
 #include "engine/mesh_io.h"
@@ -107,6 +110,27 @@ TEST(Headless, ReportHasEveryFieldWithPlausibleValues) {
   EXPECT_LT(cut["deviation_mean_m"].get<double>(), 0.003);
   EXPECT_LT(cut["collateral_m3"].get<double>(), 0.25 * cut["volume_m3"].get<double>());
   EXPECT_EQ(cut["band_m"].get<double>(), 0.004);
+  // The step times and the real-time factor.
+  const auto& st = r["step_time_ms"];
+  EXPECT_GT(st["p50"].get<double>(), 0.0);
+  EXPECT_LE(st["p50"].get<double>(), st["p99"].get<double>());
+  EXPECT_LE(st["p99"].get<double>(), st["max"].get<double>());
+  EXPECT_GT(r["real_time_factor"].get<double>(), 0.0);
+}
+
+TEST(Headless, DefaultSceneRunsWithoutAWarning) {
+  // Every listed effect is simulated or handled: "record" without a file is said at info level.
+  auto sink = std::make_shared<spdlog::sinks::ringbuffer_sink_mt>(64);
+  sink->set_level(spdlog::level::warn);
+  spdlog::default_logger()->sinks().push_back(sink);
+  HeadlessOptions o;
+  o.scene = fs::path(SEROSA_SOURCE_DIR) / "config" / "appendectomy.toml";
+  o.steps = 5;
+  o.progress = false;
+  const auto r = run_headless(o);
+  spdlog::default_logger()->sinks().pop_back();
+  EXPECT_TRUE(sink->last_formatted().empty()) << sink->last_formatted().front();
+  EXPECT_FALSE(r["effects"].contains("unavailable")) << r["effects"].dump();
 }
 
 TEST(Headless, BadSceneIsAnInputErrorNamingTheFile) {

@@ -3,6 +3,8 @@
 // once, and metrics of a scripted run.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <fstream>
 #include <random>
@@ -104,12 +106,13 @@ struct BeamRun {
   Composition comp;
 };
 std::unique_ptr<BeamRun> beam_with_tools(const fs::path& dir, const std::string& effects,
-                                         const std::string& tools, const std::string& csv) {
+                                         const std::string& tools, const std::string& csv,
+                                         const std::string& organ_keys = "") {
   std::ofstream(dir / "path.csv") << "t,tool,px,py,pz,qw,qx,qy,qz,jaw\n" << csv;
   std::string toml =
       "[scene]\ndt = 0.005\neffects = [" + effects + "]\n[[organ]]\nname = \"beam\"\n";
   toml.append("mesh = \"").append(source("assets/beam_coarse.msh").string()).append("\"\n");
-  toml.append("young = 2e4\npoisson = 0.3\ndensity = 1000\n");
+  toml.append("young = 2e4\npoisson = 0.3\ndensity = 1000\n").append(organ_keys);
   toml.append(
       "fixed = { box = [[-0.001, -1, -1], [0.0001, 1, 1]] }\n[solver]\nkind = \"cholmod\"\n");
   toml.append(tools);
@@ -168,6 +171,44 @@ TEST(Grasper, GrabsLiftsAndLetsGo) {
   EXPECT_NEAR(m["path_length_m"]["grasper"].get<double>(), 0.005, 1e-9);
   EXPECT_GT(m["force_max_n"]["grasper"].get<double>(), 0.0);
   EXPECT_GT(m["peak_stress_pa"].get<double>(), 0.0);
+}
+
+// The "plasticity" effect: the grasper lifts the beam's end 5 mm, holds it (t = 0.05-0.5 s) and
+// lets go. Elastic tissue springs back; tissue that yields keeps part of the lift (permanent
+// set), measured as the mean offset of the end over its last 0.5 s of free motion.
+double set_after_lift(const std::string& name, bool plastic) {
+  const fs::path dir = out_dir(name);
+  const std::string csv =
+      "0.00,grasper,0.095,0.002,0," + kDown + ",0.9\n" + "0.02,grasper,0.095,0.002,0," + kDown +
+      ",0.9\n" + "0.05,grasper,0.095,0.002,0," + kDown + ",0.0\n" + "0.15,grasper,0.095,0.007,0," +
+      kDown + ",0.0\n" + "0.50,grasper,0.095,0.007,0," + kDown + ",0.0\n" +
+      "0.55,grasper,0.095,0.007,0," + kDown + ",0.9\n";
+  const std::string tool =
+      "[[tool]]\nname = \"grasper\"\nkind = \"grasper\"\ndevice = \"script:path.csv\"\n";
+  auto run =
+      beam_with_tools(dir,
+                      plastic ? "\"fem\", \"surface\", \"contact\", \"plasticity\""
+                              : "\"fem\", \"surface\", \"contact\"",
+                      tool, csv, "plasticity = { yield = 0.002, creep = 20.0, max = 0.5 }\n");
+  const auto& simulated = run->comp.built;
+  EXPECT_EQ(std::find(simulated.begin(), simulated.end(), Effect::kPlasticity) != simulated.end(),
+            plastic);
+  SimState& s = run->assembled.state;
+  const auto tip = static_cast<std::size_t>(tip_node(s.mesh));
+  run->comp.runner->run(s, 500);  // let go at 0.55 s, free until 2.5 s
+  double offset = 0.0;
+  for (int k = 0; k < 100; ++k) {
+    run->comp.runner->step(s);
+    offset += (s.mesh.x[tip].y() - s.mesh.rest[tip].y()) / 100.0;
+  }
+  return offset;
+}
+
+TEST(Plasticity, TissueThatYieldsKeepsAPermanentSet) {
+  const double elastic = set_after_lift("plasticity_off", false);
+  const double plastic = set_after_lift("plasticity_on", true);
+  EXPECT_GT(plastic, 5e-4);                     // part of the 5 mm lift stays
+  EXPECT_LT(std::abs(elastic), 0.2 * plastic);  // elastic tissue springs back
 }
 
 // The held nodes move with the jaws between steps (Dirichlet): that is the tool's work, not a

@@ -73,9 +73,10 @@ void replace_all(std::string& s, const std::string& from, const std::string& to)
     s.replace(at, from.size(), to);
 }
 
-TEST(Transection, SceneWithoutCuttingNeverCuts) {
-  // The same scissors motion on a scene that does not list "cutting": no cutting state at all.
-  const fs::path dir = out_dir("no_cutting");
+// The default scene's text with `from` replaced by `to`, written to dir / name with its relative
+// paths made absolute.
+fs::path default_scene_with(const fs::path& dir, const std::string& name, const std::string& from,
+                            const std::string& to) {
   std::string text;
   {
     std::ifstream in(source("config/appendectomy.toml"));
@@ -83,21 +84,44 @@ TEST(Transection, SceneWithoutCuttingNeverCuts) {
     all << in.rdbuf();
     text = all.str();
   }
-  const std::string from = "\"cutting\", ";
   const auto at = text.find(from);
-  ASSERT_NE(at, std::string::npos);
-  text.erase(at, from.size());
-  // Written elsewhere: its relative paths made absolute.
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
   std::string assets = "\"";
   assets.append(source("assets").string()).append("/");
   std::string paths = "script:";
   paths.append(source("config/paths").string()).append("/");
   replace_all(text, "\"../assets/", assets);
   replace_all(text, "script:paths/", paths);
-  const fs::path scene = dir / "no_cutting.toml";
+  const fs::path scene = dir / name;
   { std::ofstream(scene) << text; }
+  return scene;
+}
+
+TEST(Transection, TheScenesCuttingMethodCutsRemoveDropsTets) {
+  // [cutting] method = "remove": the same stroke deletes the tets the blade crosses, adds none.
+  const fs::path dir = out_dir("remove_method");
   HeadlessOptions o;
-  o.scene = scene;
+  o.scene = default_scene_with(dir, "remove.toml", "method = \"pattern\"", "method = \"remove\"");
+  o.tool_path = source("config/paths/appendix_transection.csv");
+  o.steps = 30;
+  o.progress = false;
+  const auto report = run_headless(o);
+  const auto& cut = report["cutting"];
+  EXPECT_GT(cut["cuts"].get<int>(), 0);
+  EXPECT_GT(cut["tets_removed"].get<int>(), 0);
+  EXPECT_EQ(cut["tets_added"].get<int>(), 0);
+  EXPECT_EQ(cut["nodes_added"].get<int>(), 0);
+  EXPECT_LT(report["mesh_final"]["tets"].get<int>(), report["mesh_initial"]["tets"].get<int>());
+  EXPECT_LT(report["mesh_final"]["rest_volume_m3"].get<double>(),
+            report["mesh_initial"]["rest_volume_m3"].get<double>());
+}
+
+TEST(Transection, SceneWithoutCuttingNeverCuts) {
+  // The same scissors motion on a scene that does not list "cutting": no cutting state at all.
+  const fs::path dir = out_dir("no_cutting");
+  HeadlessOptions o;
+  o.scene = default_scene_with(dir, "no_cutting.toml", "\"cutting\", ", "");
   o.tool_path = source("config/paths/appendix_transection.csv");
   o.steps = 30;
   o.progress = false;

@@ -27,8 +27,9 @@ class Probe final : public Stage {
 TEST(Runner, CallsStagesInOrderAndAdvancesTime) {
   std::vector<std::string> log;
   Runner r(0.005);
-  r.add(std::make_unique<Probe>("fem", log));
-  r.add(std::make_unique<Probe>("surface", log));
+  // Added out of order: the step runs them in the order of their places.
+  r.add(Slot::surface, std::make_unique<Probe>("surface", log));
+  r.add(Slot::fem, std::make_unique<Probe>("fem", log));
   SimState s;
   r.run(s, 3);
   EXPECT_EQ(log, (std::vector<std::string>{"fem@0", "surface@0", "fem@1", "surface@1", "fem@2",
@@ -36,6 +37,7 @@ TEST(Runner, CallsStagesInOrderAndAdvancesTime) {
   EXPECT_EQ(s.step, 3u);
   EXPECT_DOUBLE_EQ(s.time_s, 0.015);
   ASSERT_EQ(r.timings().size(), 2u);
+  EXPECT_EQ(r.timings()[0].name, "fem");
   EXPECT_EQ(r.timings()[0].calls, 3u);
 }
 

@@ -22,7 +22,7 @@ TEST(FemStage, StepsTheMeshUnderGravityThroughTheRunner) {
   FemStage* fem = stage.get();
   EXPECT_EQ(fem->name(), "fem");
   Runner runner(0.01);
-  runner.add(std::move(stage));
+  runner.add(Slot::fem, std::move(stage));
   runner.run(s, 20);
   EXPECT_EQ(fem->stats().steps, 20u);
   EXPECT_EQ(fem->stats().rebuilds, 1u);
