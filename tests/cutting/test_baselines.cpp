@@ -36,8 +36,10 @@
 #include "cutting/tet_bvh.h"
 #include "cutting/validate.h"
 #include "engine/boundary.h"
+#include "engine/geometry/point_triangle.h"
 #include "engine/mesh_check.h"
 #include "engine/mesh_quality.h"
+#include "engine/tet_faces.h"
 #include "engine/topology_delta.h"
 #include "mesh_fixtures.h"
 
@@ -65,10 +67,9 @@ double total_volume(const TetMesh& m) {
 // half-spaces, each moved outward by grow (m; negative shrinks), is non-empty.
 bool clip_oracle(const TetMesh& m, const Tet& t, const ConvexPolygon& blade, double grow) {
   std::vector<Vec3> poly = blade.points();
-  constexpr std::array<std::array<int, 4>, 4> kOpp{
-      {{1, 2, 3, 0}, {0, 2, 3, 1}, {0, 1, 3, 2}, {0, 1, 2, 3}}};
-  for (const auto& f : kOpp) {
-    const Vec3 &a = m.x[t[f[0]]], &b = m.x[t[f[1]]], &c = m.x[t[f[2]]], &o = m.x[t[f[3]]];
+  for (int k = 0; k < 4; ++k) {
+    const auto& f = kTetFaces[static_cast<std::size_t>(k)];  // the face opposite local node k
+    const Vec3 &a = m.x[t[f[0]]], &b = m.x[t[f[1]]], &c = m.x[t[f[2]]], &o = m.x[t[k]];
     Vec3 n = (b - a).cross(c - a).normalized();
     if (n.dot(o - a) > 0.0) n = -n;  // outward
     const double off = n.dot(a) + grow;
@@ -198,21 +199,6 @@ Snapped snap_and_check(const TetMesh& mesh, const ConvexPolygon& blade) {
   return s;
 }
 
-// Distance from p to triangle (a, b, c), m.
-double triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 n = (b - a).cross(c - a);
-  const Vec3 q = p - n * (n.dot(p - a) / n.squaredNorm());
-  if (n.dot((b - q).cross(c - q)) >= 0.0 && n.dot((c - q).cross(a - q)) >= 0.0 &&
-      n.dot((a - q).cross(b - q)) >= 0.0)
-    return (p - q).norm();
-  auto seg = [&](const Vec3& s, const Vec3& e) {
-    const Vec3 d = e - s;
-    const double t = std::clamp(d.dot(p - s) / d.squaredNorm(), 0.0, 1.0);
-    return (s + t * d - p).norm();
-  };
-  return std::min({seg(a, b), seg(b, c), seg(c, a)});
-}
-
 // The checker's problems that apply to snapping on a one-group box, and its boundary-face
 // invariant point by point: every new boundary face's nodes and centroid lie on the blade
 // (plane and polygon) or each on some old boundary face.
@@ -231,8 +217,8 @@ std::string snap_problems(const TetMesh& before, const Snapped& s, const ConvexP
   for (const BoundaryFace& f : fb.boundary) old.insert(key(f.nodes));
   auto on_old = [&](const Vec3& p) {
     for (const BoundaryFace& o : fb.boundary)
-      if (triangle_distance(p, before.x[o.nodes[0]], before.x[o.nodes[1]], before.x[o.nodes[2]]) <=
-          tol)
+      if (geometry::point_triangle_distance(p, before.x[o.nodes[0]], before.x[o.nodes[1]],
+                                            before.x[o.nodes[2]]) <= tol)
         return true;
     return false;
   };

@@ -7,7 +7,9 @@
 #include <random>
 #include <stdexcept>
 
+#include "engine/tet_faces.h"
 #include "surface/extract_surface.h"
+#include "surface/face_key.h"
 #include "surface/validate_surface.h"
 #include "surface_fixtures.h"
 
@@ -65,6 +67,17 @@ TEST(ExtractSurface, OneTetGivesFourOutwardFaces) {
   expect_valid(s, m);
   expect_outward(s, m);
   EXPECT_EQ(records(s), reference_boundary(m));
+}
+
+// outward_face is the device form of engine's face table (nvcc compiles no Eigen, so it cannot
+// include engine/tet_faces.h): the same faces, in the same winding.
+TEST(ExtractSurface, OutwardFaceIsEnginesFaceTable) {
+  const Tet t{10, 11, 12, 13};
+  for (int l = 0; l < 4; ++l) {
+    Tri f{};
+    outward_face(t, l, f[0], f[1], f[2]);
+    EXPECT_EQ(f, tet_face(t, l)) << l;
+  }
 }
 
 TEST(ExtractSurface, TwoTetsShareOneFace) {

@@ -8,6 +8,7 @@
 
 #include "cutting/convex_polygon.h"
 #include "cutting/cut_mesh.h"
+#include "engine/geometry/tet_extent.h"
 #include "engine/topology_delta.h"
 #include "surface/cut_faces.h"
 #include "surface/extract_surface.h"
@@ -76,11 +77,8 @@ TEST(OneSetOfNodes, DeformedAndSubdividedSurfaceReadsTheMechanicalNodes) {
     const Mat3 rot = rotation(0.1 * u(rng), Vec3(u(rng), u(rng), 1.0));
     for (Vec3& x : m.x) x = rot * x + Vec3(u(rng), u(rng), u(rng)) * 1e-4;
     // Subdivide: a real cut through the whole deformed mesh (new nodes interpolate x).
-    Vec3 lo = m.x[0], hi = m.x[0];
-    for (const Vec3& x : m.x) {
-      lo = lo.cwiseMin(x);
-      hi = hi.cwiseMax(x);
-    }
+    Vec3 lo, hi;
+    geometry::point_box(m.x, lo, hi);
     const Vec3 c = lo + (hi - lo).cwiseProduct(Vec3(0.5 + 0.3 * u(rng), 0.5 + 0.3 * u(rng), 0.5));
     const Vec3 n = Vec3(u(rng), u(rng), u(rng)).normalized();
     const Vec3 a = n.unitOrthogonal(), b = n.cross(a);

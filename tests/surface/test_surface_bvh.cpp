@@ -10,9 +10,10 @@
 
 #include "cutting/convex_polygon.h"
 #include "cutting/cut_mesh.h"
+#include "engine/geometry/point_triangle.h"
+#include "engine/geometry/tet_extent.h"
 #include "engine/topology_delta.h"
 #include "surface/extract_surface.h"
-#include "surface/point_triangle.h"
 #include "surface/ray_triangle.h"
 #include "surface/surface_bvh.h"
 #include "surface/update_surface.h"
@@ -21,6 +22,8 @@
 namespace serosa::surface {
 namespace {
 
+using geometry::closest_point_on_triangle;
+using geometry::TrianglePoint;
 using testing::grid_mesh;
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -115,11 +118,8 @@ void expect_segment(const SurfaceBvh& bvh, const SurfaceMesh& s, const TetMesh& 
 void check_queries(const SurfaceBvh& bvh, const SurfaceMesh& s, const TetMesh& m, std::mt19937& rng,
                    int n) {
   ASSERT_EQ(bvh.num_faces(), s.num_faces());
-  Vec3 lo = m.x[0], hi = m.x[0];
-  for (const Vec3& x : m.x) {
-    lo = lo.cwiseMin(x);
-    hi = hi.cwiseMax(x);
-  }
+  Vec3 lo, hi;
+  geometry::point_box(m.x, lo, hi);
   const Vec3 c = 0.5 * (lo + hi), e = hi - lo;
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const double big = 2.0 * e.maxCoeff();
