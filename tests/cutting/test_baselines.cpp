@@ -137,7 +137,7 @@ TEST(RemoveCut, RemovesExactlyTheTouchedTetsAndLosesTheirVolume) {
   std::mt19937 rng(11);
   for (int i = 0; i < kCuts; ++i) {
     const double jitter = i % 2 == 0 ? 0.0 : 0.25;
-    const TetMesh mesh = fixtures::grid(5, 1.0, jitter, static_cast<std::uint32_t>(i + 1));
+    const TetMesh mesh = test_meshes::kuhn_cube(5, 1.0, jitter, static_cast<std::uint32_t>(i + 1));
     const ConvexPolygon blade = random_blade(rng, 5.0, 0.5 + 2.0 * (i % 5) / 4.0);
     const TetBvh bvh(mesh);
     const CutResult r = remove_cut(mesh, blade, {}, bvh.as_query());
@@ -271,7 +271,7 @@ ConvexPolygon covering_blade(std::mt19937& rng, int axis, double tilt) {
 TEST(SnapCut, NearAxisCoveringCutsSeparateIntoTwoPieces) {
   std::mt19937 rng(5);
   std::int64_t snapped = 0;
-  const TetMesh mesh = fixtures::box(6, 6, 6, 1, 1.0);  // one group, flat sides
+  const TetMesh mesh = test_meshes::kuhn_box(6, 6, 6, 1, 1.0);  // one group, flat sides
   const double v0 = total_volume(mesh);
   for (int i = 0; i < kCuts / 2; ++i) {
     const ConvexPolygon blade = covering_blade(rng, i % 3, 0.05);  // within 5 degrees
@@ -294,7 +294,7 @@ TEST(SnapCut, NearAxisCoveringCutsSeparateIntoTwoPieces) {
 
 TEST(SnapCut, SteepCoveringCutsStayValidAndMostlySeparate) {
   std::mt19937 rng(6);
-  const TetMesh mesh = fixtures::box(6, 6, 6, 1, 1.0);
+  const TetMesh mesh = test_meshes::kuhn_box(6, 6, 6, 1, 1.0);
   const double v0 = total_volume(mesh);
   int separated = 0;
   double lost = 0.0;
@@ -323,7 +323,7 @@ TEST(SnapCut, SteepCoveringCutsStayValidAndMostlySeparate) {
 TEST(SnapCut, PartialAndJitteredCutsKeepTheMeshValid) {
   std::mt19937 rng(9);
   for (int i = 0; i < kCuts; ++i) {
-    const TetMesh mesh = fixtures::grid(5, 1.0, 0.25, static_cast<std::uint32_t>(i + 3));
+    const TetMesh mesh = test_meshes::kuhn_cube(5, 1.0, 0.25, static_cast<std::uint32_t>(i + 3));
     const ConvexPolygon blade = random_blade(rng, 5.0, 0.4 + 1.5 * (i % 4));
     const Snapped s = snap_and_check(mesh, blade);
     ASSERT_EQ(s.result.stats.degenerate_tets, 0) << "cut " << i;
@@ -350,7 +350,7 @@ TEST(SnapCut, PartialAndJitteredCutsKeepTheMeshValid) {
 
 TEST(SnapCut, PlaneThroughGridNodesOnlySplits) {
   // The plane x = 3 holds a whole layer of grid nodes: nothing moves, the layer is cloned.
-  const TetMesh mesh = fixtures::box(6, 3, 3, 1, 1.0);
+  const TetMesh mesh = test_meshes::kuhn_box(6, 3, 3, 1, 1.0);
   const ConvexPolygon blade = square(Vec3::UnitX(), Vec3(3.0, 1.5, 1.5), 10.0);
   const Snapped s = snap_and_check(mesh, blade);
   EXPECT_EQ(s.snap.nodes_snapped, 0);
@@ -360,7 +360,7 @@ TEST(SnapCut, PlaneThroughGridNodesOnlySplits) {
 }
 
 TEST(SnapCut, FixedNodesNeverMove) {
-  TetMesh mesh = fixtures::box(4, 4, 4, 1, 1.0);
+  TetMesh mesh = test_meshes::kuhn_box(4, 4, 4, 1, 1.0);
   for (auto& f : mesh.fixed) f = 1;
   const ConvexPolygon blade = square(Vec3(1.0, 0.2, 0.1), Vec3(2.3, 2.0, 2.0), 10.0);
   SnapStats st;
@@ -378,7 +378,7 @@ TEST(CutMethod, NamesRoundTripAndDispatch) {
     EXPECT_EQ(parse_cut_method(to_string(m)), m);
   EXPECT_FALSE(parse_cut_method("Pattern").has_value());
   EXPECT_FALSE(parse_cut_method("").has_value());
-  const TetMesh mesh = fixtures::box(4, 2, 2, 1, 1.0);
+  const TetMesh mesh = test_meshes::kuhn_box(4, 2, 2, 1, 1.0);
   const ConvexPolygon blade = square(Vec3::UnitX(), Vec3(2.3, 1.0, 1.0), 5.0);
   const CutResult p = cut_with(CutMethod::kPattern, mesh, blade);
   const CutResult r = cut_with(CutMethod::kRemove, mesh, blade);

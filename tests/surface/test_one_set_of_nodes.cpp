@@ -20,7 +20,7 @@
 namespace serosa::surface {
 namespace {
 
-using testing::grid_mesh;
+using test_meshes::kuhn_box;
 
 #if defined(__SANITIZE_ADDRESS__)
 constexpr int kCuts = 3;  // each real cut of the whole organ costs seconds under ASan
@@ -65,7 +65,7 @@ void expect_surface_is_mechanical(const SurfaceMesh& s, const TetMesh& m, const 
 TEST(OneSetOfNodes, DeformedAndSubdividedSurfaceReadsTheMechanicalNodes) {
   std::mt19937 rng(77);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  TetMesh m = grid_mesh(6, 5, 4, 2);
+  TetMesh m = kuhn_box(6, 5, 4, 2);
   SurfaceMesh s = extract_surface(m);
   const OriginalSurface original(m, s);
   FaceTable table = build_face_table(m, s);
