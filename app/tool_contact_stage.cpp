@@ -3,19 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/geometry/point_triangle.h"
 #include "engine/sim_state.h"
 #include "engine/tool_geometry.h"
 #include "surface/extract_surface.h"
 
 namespace serosa::app {
 namespace {
-
-Vec3 closest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return a + t * ab;
-}
 
 Mat3 frame_matrix(const ToolFrame& f) {
   Mat3 r;
@@ -192,7 +186,7 @@ void ToolContactStage::step(const StepContext& ctx, SimState& state) {
       const auto un = static_cast<std::size_t>(node);
       if (mesh.fixed[un] != 0 || !(mesh.mass[un] > 0.0)) continue;
       for (const Capsule& c : caps) {
-        const Vec3 q = closest_on_segment(mesh.x[un], c.a, c.b);
+        const Vec3 q = geometry::closest_point_on_segment(mesh.x[un], c.a, c.b);
         const Vec3 d = mesh.x[un] - q;
         const double dist = d.norm();
         if (dist >= c.r) continue;

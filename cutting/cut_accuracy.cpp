@@ -7,25 +7,11 @@
 #include <vector>
 
 #include "engine/boundary.h"
+#include "engine/geometry/point_triangle.h"
 #include "engine/mesh_quality.h"
 
 namespace serosa::cutting {
 namespace {
-
-// Distance (m) from p to triangle (a, b, c).
-double triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 n = (b - a).cross(c - a);
-  const Vec3 q = p - n * (n.dot(p - a) / n.squaredNorm());
-  if (n.dot((b - q).cross(c - q)) >= 0.0 && n.dot((c - q).cross(a - q)) >= 0.0 &&
-      n.dot((a - q).cross(b - q)) >= 0.0)
-    return (p - q).norm();
-  auto seg = [&](const Vec3& s, const Vec3& e) {
-    const Vec3 d = e - s;
-    const double t = std::clamp(d.dot(p - s) / d.squaredNorm(), 0.0, 1.0);
-    return (s + t * d - p).norm();
-  };
-  return std::min({seg(a, b), seg(b, c), seg(c, a)});
-}
 
 double total_rest_volume(const TetMesh& m) {
   double v = 0.0;
@@ -40,10 +26,8 @@ double polygon_distance(const ConvexPolygon& blade, const Vec3& p) {
   double best = std::numeric_limits<double>::infinity();
   const auto& q = blade.points();
   for (std::size_t i = 0; i < q.size(); ++i) {
-    const Vec3& s = q[i];
-    const Vec3 e = q[(i + 1) % q.size()] - s;
-    const double t = std::clamp(e.dot(p - s) / e.squaredNorm(), 0.0, 1.0);
-    best = std::min(best, (s + t * e - p).norm());
+    const Vec3 c = geometry::closest_point_on_segment(p, q[i], q[(i + 1) % q.size()]);
+    best = std::min(best, (c - p).norm());
   }
   return best;
 }
@@ -82,7 +66,8 @@ CutAccuracy measure_cut(const TetMesh& before, const TetMesh& after, const Conve
     const Vec3 c = (p0 + p1 + p2) / 3.0;
     bool on_old = false;
     for (const Tri& o : near)
-      if (triangle_distance(c, at(before, o[0]), at(before, o[1]), at(before, o[2])) <= 1e-9 * h) {
+      if (geometry::point_triangle_distance(c, at(before, o[0]), at(before, o[1]),
+                                            at(before, o[2])) <= 1e-9 * h) {
         on_old = true;
         break;
       }

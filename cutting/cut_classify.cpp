@@ -5,7 +5,7 @@
 
 #include "cutting/cut_coplanar.h"
 #include "cutting/cut_partial.h"
-#include "cutting/tet_extent.h"
+#include "engine/geometry/tet_extent.h"
 
 namespace serosa::cutting::detail {
 namespace {
@@ -101,7 +101,7 @@ bool find_candidates(CutState& cs) {
   std::vector<std::int32_t> first;
   cs.query(cs.blade.box_min(), cs.blade.box_max(), first);
   if (first.empty()) return false;
-  const double h = longest_edge_m(cs.mesh, first);
+  const double h = geometry::longest_edge_m(cs.mesh, first);
   cs.tol = cs.fixed_tol > 0.0 ? cs.fixed_tol : cs.options.classify_rel * h;
   cs.result.stats.tolerance_m = cs.tol;
   const Vec3 grow = Vec3::Constant(2.0 * cs.tol);

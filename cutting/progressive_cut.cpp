@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "cutting/tet_extent.h"
+#include "engine/geometry/tet_extent.h"
 
 namespace serosa::cutting {
 namespace {
@@ -160,13 +160,13 @@ CutResult ProgressiveCut::cut(const TetMesh& mesh, const ConvexPolygon& blade,
   };
   auto meets = [&](const Tet& t, const Vec3& lo, const Vec3& hi) {
     Vec3 tlo, thi;
-    tet_box(mesh, t, tlo, thi);
+    geometry::tet_box(mesh, t, tlo, thi);
     return (tlo.array() <= hi.array()).all() && (thi.array() >= lo.array()).all();
   };
   std::vector<std::int32_t> cands;
   q(region->box_min(), region->box_max(), cands);
   double h = 0.0;
-  auto grow_h = [&](const Tet& t) { h = std::max(h, longest_edge_m(mesh, t)); };
+  auto grow_h = [&](const Tet& t) { h = std::max(h, geometry::longest_edge_m(mesh, t)); };
   for (std::int32_t t : cands)
     if (!is_piece(t) &&
         meets(mesh.tets[static_cast<std::size_t>(t)], region->box_min(), region->box_max()))

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "cutting/tet_extent.h"
+#include "engine/geometry/tet_extent.h"
 
 namespace serosa::cutting {
 namespace {
@@ -93,7 +93,7 @@ CutResult remove_cut(const TetMesh& mesh, const ConvexPolygon& blade, const CutO
   std::vector<std::int32_t> first;
   q(blade.box_min(), blade.box_max(), first);
   if (first.empty()) return result;
-  const double h = longest_edge_m(mesh, first);
+  const double h = geometry::longest_edge_m(mesh, first);
   const double tol = options.classify_rel * h;
   result.stats.tolerance_m = tol;
   std::vector<std::int32_t> cands;

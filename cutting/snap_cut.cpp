@@ -6,15 +6,15 @@
 #include <unordered_map>
 #include <vector>
 
-#include "cutting/tet_extent.h"
 #include "cutting/weld_map.h"
+#include "engine/geometry/tet_extent.h"
 #include "engine/mesh_quality.h"
+#include "engine/tet_faces.h"
 
 namespace serosa::cutting {
 namespace {
 
 // Faces of a tet as local node triples.
-constexpr std::array<std::array<int, 3>, 4> kFaces{{{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}}};
 
 struct NodeInfo {
   double phi = 0.0;                 ///< signed distance to the plane, m
@@ -56,7 +56,7 @@ class Snapper {
 
  private:
   double max_edge(const std::vector<std::int32_t>& tets) const {
-    return longest_edge_m(m_mesh, tets);
+    return geometry::longest_edge_m(m_mesh, tets);
   }
 
   // Candidates: every tet around every node a move or a split may touch. A moved node ends a
@@ -125,7 +125,7 @@ class Snapper {
     std::unordered_map<std::uint64_t, int> count;  // faces at n, keyed by their other two nodes
     for (std::int32_t ci : info.star) {
       const Tet& t = m_mesh.tets[static_cast<std::size_t>(m_cands[static_cast<std::size_t>(ci)])];
-      for (const auto& f : kFaces) {
+      for (const auto& f : kTetFaces) {
         std::array<std::int32_t, 2> o{};
         int r = 0;
         bool has = false;

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "cutting/tet_extent.h"
+#include "engine/geometry/tet_extent.h"
 
 namespace serosa::cutting {
 namespace {
@@ -72,7 +72,7 @@ TetBvh::TetBvh(const TetMesh& mesh, double spare) : m_spare(spare) {
 
 void TetBvh::set_box(const TetMesh& mesh, std::int32_t ti) {
   Vec3 lo, hi;
-  tet_box(mesh, mesh.tets[static_cast<std::size_t>(ti)], lo, hi);
+  geometry::tet_box(mesh, mesh.tets[static_cast<std::size_t>(ti)], lo, hi);
   m_lo[static_cast<std::size_t>(ti)] = lo;
   m_hi[static_cast<std::size_t>(ti)] = hi;
 }

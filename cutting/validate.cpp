@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "engine/boundary.h"
+#include "engine/geometry/point_triangle.h"
 #include "engine/mesh_check.h"
 
 namespace serosa::cutting {
@@ -16,25 +17,6 @@ namespace {
 Tri sorted(Tri t) {
   std::sort(t.begin(), t.end());
   return t;
-}
-
-// Distance from p to triangle (a, b, c), m.
-double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 n = (b - a).cross(c - a);
-  const double n2 = n.squaredNorm();
-  if (n2 > 0.0) {
-    const Vec3 q = p - n * (n.dot(p - a) / n2);
-    const double u = n.dot((b - q).cross(c - q)), v = n.dot((c - q).cross(a - q)),
-                 w = n.dot((a - q).cross(b - q));
-    if (u >= 0.0 && v >= 0.0 && w >= 0.0) return (p - q).norm();
-  }
-  auto seg = [&](const Vec3& s, const Vec3& e) {
-    const Vec3 d = e - s;
-    const double l2 = d.squaredNorm();
-    const double t = l2 > 0.0 ? std::clamp(d.dot(p - s) / l2, 0.0, 1.0) : 0.0;
-    return (s + t * d - p).norm();
-  };
-  return std::min({seg(a, b), seg(b, c), seg(c, a)});
 }
 
 std::string str(double v) {
@@ -116,7 +98,7 @@ CutCheckReport check_cut(const TetMesh& before, const TetMesh& after, const Conv
       const Vec3& oc = before.x[o.nodes[2]];
       bool all = true;
       for (const Vec3* p : {&a, &b, &c, &centroid})
-        all = all && point_triangle_distance(*p, oa, ob, oc) <= tol;
+        all = all && geometry::point_triangle_distance(*p, oa, ob, oc) <= tol;
       if (all) {
         on_old = true;
         break;

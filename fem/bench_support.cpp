@@ -6,35 +6,19 @@
 #include <stdexcept>
 #include <utility>
 
+#include "engine/kuhn_grid.h"
 #include "fem/implicit_integrator.h"
 
 namespace serosa::fem {
 
 TetMesh structured_bar(int nx, int ny, int nz, double lx, double ly, double lz) {
   if (nx < 1 || ny < 1 || nz < 1) throw std::invalid_argument("structured_bar: needs >= 1 box");
-  TetMesh m;
   const double hx = lx / nx, hy = ly / ny, hz = lz / nz;
-  const auto id = [&](int i, int j, int l) { return i + (nx + 1) * (j + (ny + 1) * l); };
-  for (int l = 0; l <= nz; ++l)
-    for (int j = 0; j <= ny; ++j)
-      for (int i = 0; i <= nx; ++i) m.add_node(Vec3(i * hx, j * hy - 0.5 * ly, l * hz - 0.5 * lz));
-  static constexpr std::array<std::array<int, 3>, 6> perms{
-      {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}};
-  for (int l = 0; l < nz; ++l)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i)
-        for (const auto& p : perms) {
-          std::array<int, 3> c{i, j, l};
-          Tet t{};
-          t[0] = id(c[0], c[1], c[2]);
-          for (std::size_t s = 0; s < 3; ++s) {
-            ++c[static_cast<std::size_t>(p[s])];
-            t[s + 1] = id(c[0], c[1], c[2]);
-          }
-          if (signed_volume(m.rest[t[0]], m.rest[t[1]], m.rest[t[2]], m.rest[t[3]]) < 0.0)
-            std::swap(t[2], t[3]);
-          m.add_tet(t, 1);
-        }
+  TetMesh m = kuhn_grid(KuhnGridSpec{kuhn_axis(nx, hx),
+                                     kuhn_axis(ny, hy, -0.5 * ly),
+                                     kuhn_axis(nz, hz, -0.5 * lz),
+                                     KuhnOrder::kXFastest,
+                                     {}});
   m.fill_node_state();
   for (std::size_t i = 0; i < m.rest.size(); ++i) m.fixed[i] = m.rest[i].x() < 1e-9 * lx ? 1 : 0;
   return m;

@@ -5,56 +5,28 @@
 #include <map>
 #include <utility>
 
+#include "engine/geometry/point_triangle.h"
+#include "engine/tet_faces.h"
+
 namespace serosa::render {
 namespace {
 
 using V3 = std::array<double, 3>;
 
-V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-// Squared distance from p to triangle (a, b, c) (Ericson, Real-Time Collision Detection 5.1.5).
-double dist2_to_triangle(const V3& p, const V3& a, const V3& b, const V3& c) {
-  const V3 ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
-  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-  auto at = [&](double v, double w) {
-    V3 q{a[0] + v * ab[0] + w * ac[0], a[1] + v * ab[1] + w * ac[1], a[2] + v * ab[2] + w * ac[2]};
-    const V3 d = sub(p, q);
-    return dot(d, d);
-  };
-  if (d1 <= 0 && d2 <= 0) return dot(ap, ap);
-  const V3 bp = sub(p, b);
-  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3) return at(1, 0);
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return at(d1 / (d1 - d3), 0);
-  const V3 cp = sub(p, c);
-  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6) return at(0, 1);
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return at(0, d2 / (d2 - d6));
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return at(1 - w, w);
-  }
-  const double den = 1.0 / (va + vb + vc);
-  return at(vb * den, vc * den);
-}
+Vec3 vec(const V3& p) { return {p[0], p[1], p[2]}; }
 
 }  // namespace
 
 TriMesh rest_boundary(const TetMesh& m) {
   std::map<std::array<std::int32_t, 3>, std::pair<int, std::array<std::int32_t, 4>>> faces;
-  constexpr std::array<std::array<std::size_t, 4>, 4> kFaces{
-      {{1, 2, 3, 0}, {0, 3, 2, 1}, {0, 1, 3, 2}, {0, 2, 1, 3}}};
   for (const Tet& t : m.tets)
-    for (const auto& f : kFaces) {
-      std::array<std::int32_t, 3> key{t[f[0]], t[f[1]], t[f[2]]};
+    for (int k = 0; k < 4; ++k) {
+      const Tri f = tet_face(t, k);  // the face opposite local node k
+      std::array<std::int32_t, 3> key = f;
       std::sort(key.begin(), key.end());
       auto& e = faces[key];
       ++e.first;
-      e.second = {t[f[0]], t[f[1]], t[f[2]], t[f[3]]};
+      e.second = {f[0], f[1], f[2], t[static_cast<std::size_t>(k)]};
     }
   TriMesh out;
   for (const Vec3& p : m.rest)
@@ -80,7 +52,7 @@ SurfaceDistance::SurfaceDistance(const TriMesh& m) : m_(m) {
     for (std::size_t k = 0; k < 3; ++k) {
       const V3 p = point(m.tri[3 * f + k]);
       const V3 q = point(m.tri[3 * f + (k + 1) % 3]);
-      edge += std::sqrt(dot(sub(p, q), sub(p, q)));
+      edge += (vec(p) - vec(q)).norm();
       for (std::size_t d = 0; d < 3; ++d) lo_[d] = std::min(lo_[d], p[d]);
     }
   cell_ = 2.0 * edge / static_cast<double>(3 * std::max<std::size_t>(t, 1));
@@ -115,9 +87,10 @@ double SurfaceDistance::operator()(const V3& p) const {
           const auto it = grid_.find(key(c[0] + i, c[1] + j, c[2] + k));
           if (it == grid_.end()) continue;
           for (const std::uint32_t f : it->second)
-            best =
-                std::min(best, dist2_to_triangle(p, point(m_.tri[3 * f]), point(m_.tri[3 * f + 1]),
-                                                 point(m_.tri[3 * f + 2])));
+            best = std::min(best, geometry::closest_point_on_triangle(
+                                      vec(p), vec(point(m_.tri[3 * f])),
+                                      vec(point(m_.tri[3 * f + 1])), vec(point(m_.tri[3 * f + 2])))
+                                      .dist2);
         }
     // Cells beyond shell r are at least r * cell away.
     if (best < 1e300 && std::sqrt(best) <= static_cast<double>(r) * cell_) break;

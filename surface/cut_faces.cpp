@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "surface/point_triangle.h"
+#include "engine/geometry/point_triangle.h"
 
 namespace serosa::surface {
 namespace {
@@ -104,9 +104,9 @@ bool OriginalSurface::contains(const Vec3& a, const Vec3& b, const Vec3& c, std:
     const auto i = static_cast<std::size_t>(cell_tris_[static_cast<std::size_t>(k)]);
     if (group_[i] != g) continue;
     const auto& t = tris_[i];
-    if (closest_point_on_triangle(a, t[0], t[1], t[2]).dist2 <= tol2_[i] &&
-        closest_point_on_triangle(b, t[0], t[1], t[2]).dist2 <= tol2_[i] &&
-        closest_point_on_triangle(c, t[0], t[1], t[2]).dist2 <= tol2_[i])
+    if (geometry::closest_point_on_triangle(a, t[0], t[1], t[2]).dist2 <= tol2_[i] &&
+        geometry::closest_point_on_triangle(b, t[0], t[1], t[2]).dist2 <= tol2_[i] &&
+        geometry::closest_point_on_triangle(c, t[0], t[1], t[2]).dist2 <= tol2_[i])
       return true;
   }
   return false;

@@ -70,7 +70,9 @@ SEROSA_HD inline Key make_face_key(std::int32_t a, std::int32_t b, std::int32_t 
 /// The face of tet `t` (anything indexable by 0..3) opposite its local node `l` (0..3), written
 /// to (a, b, c) counter-clockwise seen from outside: the normal (b - a) x (c - a) points away
 /// from node l when the tet is positively oriented (signed_volume > 0). Local orders:
-/// l = 0: (1,2,3); 1: (0,3,2); 2: (0,1,3); 3: (0,2,1).
+/// l = 0: (1,2,3); 1: (0,3,2); 2: (0,1,3); 3: (0,2,1). This is engine's kTetFaces
+/// (engine/tet_faces.h) written for device code, which cannot include that Eigen header; a test
+/// (ExtractSurface.OutwardFaceIsEnginesFaceTable) keeps the two equal.
 template <class TetT>
 SEROSA_HD inline void outward_face(const TetT& t, int l, std::int32_t& a, std::int32_t& b,
                                    std::int32_t& c) {

@@ -7,7 +7,7 @@
 #include <tuple>
 #include <utility>
 
-#include "surface/point_triangle.h"
+#include "engine/geometry/point_triangle.h"
 #include "surface/ray_triangle.h"
 
 namespace serosa::surface {
@@ -298,7 +298,8 @@ std::optional<ClosestHit> SurfaceBvh::closest_point(std::span<const Vec3> x, con
     if (n.leaf >= 0) {
       for (std::int32_t slot : leaves_[static_cast<std::size_t>(n.leaf)]) {
         const Tri& t = tris_[static_cast<std::size_t>(slot)];
-        const TrianglePoint q = closest_point_on_triangle(p, at(x, t[0]), at(x, t[1]), at(x, t[2]));
+        const geometry::TrianglePoint q =
+            geometry::closest_point_on_triangle(p, at(x, t[0]), at(x, t[1]), at(x, t[2]));
         if (q.dist2 < best_d2 || (q.dist2 == best_d2 && (!best || slot < best->face))) {
           best_d2 = q.dist2;
           best = ClosestHit{slot, q.point, q.bary, std::sqrt(q.dist2)};

@@ -20,6 +20,7 @@
 
 #include "cutting/convex_polygon.h"
 #include "cutting/cut_mesh.h"
+#include "engine/kuhn_grid.h"
 #include "engine/tet_mesh.h"
 #include "engine/topology_delta.h"
 #include "surface/cut_faces.h"
@@ -34,32 +35,7 @@ namespace {
 constexpr double kH = 0.002;  // cell edge, m (2 mm)
 
 /// n x n x n cubes of edge kH, 6 Kuhn tets each (6 n^3 tets), two groups (x halves).
-TetMesh grid(int n) {
-  TetMesh m;
-  const auto id = [n](int i, int j, int k) { return (i * (n + 1) + j) * (n + 1) + k; };
-  m.rest.reserve(static_cast<std::size_t>((n + 1) * (n + 1) * (n + 1)));
-  for (int i = 0; i <= n; ++i)
-    for (int j = 0; j <= n; ++j)
-      for (int k = 0; k <= n; ++k) m.add_node(Vec3(i * kH, j * kH, k * kH));
-  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  m.tets.reserve(static_cast<std::size_t>(6 * n * n * n));
-  m.group.reserve(m.tets.capacity());
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      for (int k = 0; k < n; ++k)
-        for (const auto& p : perms) {
-          std::array<int, 3> c{i, j, k};
-          Tet t{};
-          t[0] = id(c[0], c[1], c[2]);
-          for (int s = 0; s < 3; ++s) {
-            ++c[p[s]];
-            t[static_cast<std::size_t>(s) + 1] = id(c[0], c[1], c[2]);
-          }
-          const int tet = m.add_tet(t, static_cast<std::uint16_t>(i < n / 2 ? 1 : 2));
-          if (m.rest_volume(tet) < 0.0) std::swap(m.tets.back()[2], m.tets.back()[3]);
-        }
-  return m;
-}
+TetMesh grid(int n) { return kuhn_grid(n, kH, true); }
 
 /// One scissor cut of fixed size (12 x 8 mm, whatever the mesh's size) from the top side down,
 /// across the middle of the grid: a complete cut of the tets it crosses.

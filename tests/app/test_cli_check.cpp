@@ -82,7 +82,7 @@ class CliCheck : public ::testing::Test {
 
 // A 2 x 2 x 2 grid of Kuhn cubes over a 0.04 x 0.02 x 0.01 m box, groups 1 and 2.
 TetMesh grid() {
-  return fixtures::grid_mesh({0.0, 0.015, 0.04}, {0.0, 0.012, 0.02}, {0.0, 0.004, 0.01}, 2);
+  return test_meshes::kuhn_lattice({0.0, 0.015, 0.04}, {0.0, 0.012, 0.02}, {0.0, 0.004, 0.01}, 2);
 }
 
 TEST_F(CliCheck, ValidMeshExitsZeroWithRightJsonCounts) {

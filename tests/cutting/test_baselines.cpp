@@ -36,8 +36,10 @@
 #include "cutting/tet_bvh.h"
 #include "cutting/validate.h"
 #include "engine/boundary.h"
+#include "engine/geometry/point_triangle.h"
 #include "engine/mesh_check.h"
 #include "engine/mesh_quality.h"
+#include "engine/tet_faces.h"
 #include "engine/topology_delta.h"
 #include "mesh_fixtures.h"
 
@@ -65,10 +67,9 @@ double total_volume(const TetMesh& m) {
 // half-spaces, each moved outward by grow (m; negative shrinks), is non-empty.
 bool clip_oracle(const TetMesh& m, const Tet& t, const ConvexPolygon& blade, double grow) {
   std::vector<Vec3> poly = blade.points();
-  constexpr std::array<std::array<int, 4>, 4> kOpp{
-      {{1, 2, 3, 0}, {0, 2, 3, 1}, {0, 1, 3, 2}, {0, 1, 2, 3}}};
-  for (const auto& f : kOpp) {
-    const Vec3 &a = m.x[t[f[0]]], &b = m.x[t[f[1]]], &c = m.x[t[f[2]]], &o = m.x[t[f[3]]];
+  for (int k = 0; k < 4; ++k) {
+    const auto& f = kTetFaces[static_cast<std::size_t>(k)];  // the face opposite local node k
+    const Vec3 &a = m.x[t[f[0]]], &b = m.x[t[f[1]]], &c = m.x[t[f[2]]], &o = m.x[t[k]];
     Vec3 n = (b - a).cross(c - a).normalized();
     if (n.dot(o - a) > 0.0) n = -n;  // outward
     const double off = n.dot(a) + grow;
@@ -136,7 +137,7 @@ TEST(RemoveCut, RemovesExactlyTheTouchedTetsAndLosesTheirVolume) {
   std::mt19937 rng(11);
   for (int i = 0; i < kCuts; ++i) {
     const double jitter = i % 2 == 0 ? 0.0 : 0.25;
-    const TetMesh mesh = fixtures::grid(5, 1.0, jitter, static_cast<std::uint32_t>(i + 1));
+    const TetMesh mesh = test_meshes::kuhn_cube(5, 1.0, jitter, static_cast<std::uint32_t>(i + 1));
     const ConvexPolygon blade = random_blade(rng, 5.0, 0.5 + 2.0 * (i % 5) / 4.0);
     const TetBvh bvh(mesh);
     const CutResult r = remove_cut(mesh, blade, {}, bvh.as_query());
@@ -198,21 +199,6 @@ Snapped snap_and_check(const TetMesh& mesh, const ConvexPolygon& blade) {
   return s;
 }
 
-// Distance from p to triangle (a, b, c), m.
-double triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 n = (b - a).cross(c - a);
-  const Vec3 q = p - n * (n.dot(p - a) / n.squaredNorm());
-  if (n.dot((b - q).cross(c - q)) >= 0.0 && n.dot((c - q).cross(a - q)) >= 0.0 &&
-      n.dot((a - q).cross(b - q)) >= 0.0)
-    return (p - q).norm();
-  auto seg = [&](const Vec3& s, const Vec3& e) {
-    const Vec3 d = e - s;
-    const double t = std::clamp(d.dot(p - s) / d.squaredNorm(), 0.0, 1.0);
-    return (s + t * d - p).norm();
-  };
-  return std::min({seg(a, b), seg(b, c), seg(c, a)});
-}
-
 // The checker's problems that apply to snapping on a one-group box, and its boundary-face
 // invariant point by point: every new boundary face's nodes and centroid lie on the blade
 // (plane and polygon) or each on some old boundary face.
@@ -231,8 +217,8 @@ std::string snap_problems(const TetMesh& before, const Snapped& s, const ConvexP
   for (const BoundaryFace& f : fb.boundary) old.insert(key(f.nodes));
   auto on_old = [&](const Vec3& p) {
     for (const BoundaryFace& o : fb.boundary)
-      if (triangle_distance(p, before.x[o.nodes[0]], before.x[o.nodes[1]], before.x[o.nodes[2]]) <=
-          tol)
+      if (geometry::point_triangle_distance(p, before.x[o.nodes[0]], before.x[o.nodes[1]],
+                                            before.x[o.nodes[2]]) <= tol)
         return true;
     return false;
   };
@@ -285,7 +271,7 @@ ConvexPolygon covering_blade(std::mt19937& rng, int axis, double tilt) {
 TEST(SnapCut, NearAxisCoveringCutsSeparateIntoTwoPieces) {
   std::mt19937 rng(5);
   std::int64_t snapped = 0;
-  const TetMesh mesh = fixtures::box(6, 6, 6, 1, 1.0);  // one group, flat sides
+  const TetMesh mesh = test_meshes::kuhn_box(6, 6, 6, 1, 1.0);  // one group, flat sides
   const double v0 = total_volume(mesh);
   for (int i = 0; i < kCuts / 2; ++i) {
     const ConvexPolygon blade = covering_blade(rng, i % 3, 0.05);  // within 5 degrees
@@ -308,7 +294,7 @@ TEST(SnapCut, NearAxisCoveringCutsSeparateIntoTwoPieces) {
 
 TEST(SnapCut, SteepCoveringCutsStayValidAndMostlySeparate) {
   std::mt19937 rng(6);
-  const TetMesh mesh = fixtures::box(6, 6, 6, 1, 1.0);
+  const TetMesh mesh = test_meshes::kuhn_box(6, 6, 6, 1, 1.0);
   const double v0 = total_volume(mesh);
   int separated = 0;
   double lost = 0.0;
@@ -337,7 +323,7 @@ TEST(SnapCut, SteepCoveringCutsStayValidAndMostlySeparate) {
 TEST(SnapCut, PartialAndJitteredCutsKeepTheMeshValid) {
   std::mt19937 rng(9);
   for (int i = 0; i < kCuts; ++i) {
-    const TetMesh mesh = fixtures::grid(5, 1.0, 0.25, static_cast<std::uint32_t>(i + 3));
+    const TetMesh mesh = test_meshes::kuhn_cube(5, 1.0, 0.25, static_cast<std::uint32_t>(i + 3));
     const ConvexPolygon blade = random_blade(rng, 5.0, 0.4 + 1.5 * (i % 4));
     const Snapped s = snap_and_check(mesh, blade);
     ASSERT_EQ(s.result.stats.degenerate_tets, 0) << "cut " << i;
@@ -364,7 +350,7 @@ TEST(SnapCut, PartialAndJitteredCutsKeepTheMeshValid) {
 
 TEST(SnapCut, PlaneThroughGridNodesOnlySplits) {
   // The plane x = 3 holds a whole layer of grid nodes: nothing moves, the layer is cloned.
-  const TetMesh mesh = fixtures::box(6, 3, 3, 1, 1.0);
+  const TetMesh mesh = test_meshes::kuhn_box(6, 3, 3, 1, 1.0);
   const ConvexPolygon blade = square(Vec3::UnitX(), Vec3(3.0, 1.5, 1.5), 10.0);
   const Snapped s = snap_and_check(mesh, blade);
   EXPECT_EQ(s.snap.nodes_snapped, 0);
@@ -374,7 +360,7 @@ TEST(SnapCut, PlaneThroughGridNodesOnlySplits) {
 }
 
 TEST(SnapCut, FixedNodesNeverMove) {
-  TetMesh mesh = fixtures::box(4, 4, 4, 1, 1.0);
+  TetMesh mesh = test_meshes::kuhn_box(4, 4, 4, 1, 1.0);
   for (auto& f : mesh.fixed) f = 1;
   const ConvexPolygon blade = square(Vec3(1.0, 0.2, 0.1), Vec3(2.3, 2.0, 2.0), 10.0);
   SnapStats st;
@@ -392,7 +378,7 @@ TEST(CutMethod, NamesRoundTripAndDispatch) {
     EXPECT_EQ(parse_cut_method(to_string(m)), m);
   EXPECT_FALSE(parse_cut_method("Pattern").has_value());
   EXPECT_FALSE(parse_cut_method("").has_value());
-  const TetMesh mesh = fixtures::box(4, 2, 2, 1, 1.0);
+  const TetMesh mesh = test_meshes::kuhn_box(4, 2, 2, 1, 1.0);
   const ConvexPolygon blade = square(Vec3::UnitX(), Vec3(2.3, 1.0, 1.0), 5.0);
   const CutResult p = cut_with(CutMethod::kPattern, mesh, blade);
   const CutResult r = cut_with(CutMethod::kRemove, mesh, blade);

@@ -59,8 +59,8 @@ TEST(CutMatrix, EveryFamilyOnGridsAndJitteredGrids) {
 #else
   const int per_family = 40;
 #endif
-  const TetMesh exact = fixtures::grid(4);
-  const TetMesh jittered = fixtures::grid(4, 1.0, 0.2, 17);
+  const TetMesh exact = test_meshes::kuhn_cube(4);
+  const TetMesh jittered = test_meshes::kuhn_cube(4, 1.0, 0.2, 17);
   std::mt19937 rng(2024);
   std::uniform_real_distribution<double> u(0.2, 3.8), ang(0.0, 6.283185307179586), sz(0.3, 1.5);
   std::array<Tally, kNumFamilies> tally{};

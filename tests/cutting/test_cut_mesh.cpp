@@ -185,7 +185,7 @@ void check_through_cut(const TetMesh& m, const Vec3& n, const Vec3& c, double ex
 }
 
 TEST(CutMesh, AxisAlignedPlanesThroughGridNodes) {
-  const TetMesh m = fixtures::grid(4);
+  const TetMesh m = test_meshes::kuhn_cube(4);
   for (int axis = 0; axis < 3; ++axis)
     for (double off : {1.0, 2.0, 3.0, 1.5, 2.25}) {
       Vec3 n = Vec3::Zero();
@@ -204,7 +204,7 @@ TEST(CutMesh, AxisAlignedPlanesThroughGridNodes) {
 }
 
 TEST(CutMesh, DiagonalPlanesThroughGridNodes) {
-  const TetMesh m = fixtures::grid(4);
+  const TetMesh m = test_meshes::kuhn_cube(4);
   const std::vector<Vec3> normals{Vec3(1, 1, 0),  Vec3(1, -1, 0), Vec3(1, 1, 1), Vec3(1, -1, 2),
                                   Vec3(0, 1, -1), Vec3(2, 1, 0),  Vec3(1, 2, 3)};
   for (const Vec3& n : normals)
@@ -218,8 +218,8 @@ TEST(CutMesh, RandomPlanesThroughGrids) {
   std::mt19937 rng(5);
   std::normal_distribution<double> g;
   std::uniform_real_distribution<double> u(0.0, 3.0);
-  const TetMesh exact = fixtures::grid(3);
-  const TetMesh jittered = fixtures::grid(3, 1.0, 0.2, 9);
+  const TetMesh exact = test_meshes::kuhn_cube(3);
+  const TetMesh jittered = test_meshes::kuhn_cube(3, 1.0, 0.2, 9);
   for (int i = 0; i < 400; ++i) {
     const TetMesh& m = i % 2 == 0 ? exact : jittered;
     const Vec3 n(g(rng), g(rng), g(rng));
@@ -234,7 +234,7 @@ TEST(CutMesh, PartialCutsStayWelded) {
   std::normal_distribution<double> g;
   std::uniform_real_distribution<double> u(0.5, 3.5);
   std::uniform_real_distribution<double> s(0.2, 3.0);
-  const TetMesh m = fixtures::grid(4);
+  const TetMesh m = test_meshes::kuhn_cube(4);
   int opened = 0, partial = 0;
   for (int i = 0; i < 300; ++i) {
     Vec3 n(g(rng), g(rng), g(rng));
@@ -262,7 +262,7 @@ TEST(CutMesh, PartialCutsStayWelded) {
 }
 
 TEST(CutMesh, HalfCoveringBladeOpensACrackAndStaysConnected) {
-  const TetMesh m = fixtures::grid(4);
+  const TetMesh m = test_meshes::kuhn_cube(4);
   // The blade covers x < 2.5 of the section z = 1.5: the crack opens there and stops.
   const ConvexPolygon blade(
       {Vec3(-1, -1, 1.5), Vec3(2.5, -1, 1.5), Vec3(2.5, 5, 1.5), Vec3(-1, 5, 1.5)});
@@ -280,7 +280,7 @@ TEST(CutMesh, RepeatedCrossingAndNearParallelCuts) {
   std::normal_distribution<double> g;
   std::uniform_real_distribution<double> u(0.5, 2.5);
   for (int run = 0; run < 20; ++run) {
-    TetMesh m = fixtures::grid(3, 1.0, run % 2 == 0 ? 0.0 : 0.15, 40 + run);
+    TetMesh m = test_meshes::kuhn_cube(3, 1.0, run % 2 == 0 ? 0.0 : 0.15, 40 + run);
     Vec3 last_n = Vec3::UnitZ(), last_c = Vec3::Constant(1.5);
     for (int step = 0; step < 6; ++step) {
       Vec3 n(g(rng), g(rng), g(rng));
@@ -305,7 +305,7 @@ TEST(CutMesh, RepeatedCrossingAndNearParallelCuts) {
 }
 
 TEST(CutMesh, DeltaIsDeterministicAndLocal) {
-  const TetMesh m = fixtures::grid(4);
+  const TetMesh m = test_meshes::kuhn_cube(4);
   const ConvexPolygon blade = square(Vec3(0.3, 1, 0.2), Vec3(2, 2.1, 2), 100.0);
   const CutResult a = cut_mesh(m, blade);
   const CutResult b = cut_mesh(m, blade);
@@ -344,7 +344,7 @@ void growth_is_bounded_and_reported(const CutOptions& options) {
   std::mt19937 rng(17);
   std::normal_distribution<double> g;
   std::uniform_real_distribution<double> u(0.5, 3.5);
-  const TetMesh m = fixtures::grid(4, 1.0, 0.15, 12);
+  const TetMesh m = test_meshes::kuhn_cube(4, 1.0, 0.15, 12);
   std::int64_t max_added = 0, total_added = 0;
   double min_quality = 1.0;
   for (int i = 0; i < 100; ++i) {
@@ -455,8 +455,8 @@ Coverage partial_crack(const CutOptions& options, double radius_m = 0.3) {
   std::uniform_real_distribution<double> u(0.3, 3.7);
   std::uniform_real_distribution<double> ang(0.0, 6.283185307179586);
   std::normal_distribution<double> g;
-  const TetMesh exact = fixtures::grid(4);
-  const TetMesh jittered = fixtures::grid(4, 1.0, 0.2, 3);
+  const TetMesh exact = test_meshes::kuhn_cube(4);
+  const TetMesh jittered = test_meshes::kuhn_cube(4, 1.0, 0.2, 3);
   for (int i = 0; i < 200; ++i) {
     const TetMesh& m = i % 2 == 0 ? exact : jittered;
     // A blade inside the cube: a triangle or a quad in a random (or axis) plane.
@@ -556,7 +556,7 @@ TEST(CutMesh, PartialCrackOfLargerBladesStopsOnlyInTheTetsTheOutlineCrosses) {
 }
 
 TEST(CutMesh, HalfCoveringBladeOpensExactlyItsPart) {
-  const TetMesh m = fixtures::grid(4);
+  const TetMesh m = test_meshes::kuhn_cube(4);
   for (double edge_x : {2.5, 2.0, 1.3}) {
     const ConvexPolygon blade(
         {Vec3(-1, -1, 1.5), Vec3(edge_x, -1, 1.5), Vec3(edge_x, 5, 1.5), Vec3(-1, 5, 1.5)});
@@ -582,7 +582,7 @@ TEST(CutMesh, HalfCoveringBladeOpensExactlyItsPart) {
 // on the outline: its area is the blade's part of the section, 2 sqrt(2) zc, on each side.
 TEST(CutMesh, OutlineAcrossCoplanarEdgesStopsTheCrackExactlyThere) {
   for (const bool slanted : {false, true}) {
-    const TetMesh m = fixtures::grid(4);
+    const TetMesh m = test_meshes::kuhn_cube(4);
     for (const double zc : {0.5, 1.3, 2.75}) {
       // The outline from (3, -1, zc - d) to (-1, 3, zc + d): z = zc - d/10 ... zc + d/10 over the
       // section, zc on average.

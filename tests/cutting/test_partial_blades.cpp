@@ -42,7 +42,7 @@ using testing::problems;
 
 TEST(PartialBlades, TipInsideTheMeshGivesAnAcceptedDelta) {
   const double h = 0.01;
-  const TetMesh m = fixtures::box(6, 4, 4, 1, h);
+  const TetMesh m = test_meshes::kuhn_box(6, 4, 4, 1, h);
   const Vec3 c(3.3 * h, 2 * h, 4 * h);
   const ConvexPolygon blade({c + Vec3(0, -3 * h, h), c + Vec3(0, 3 * h, h),
                              c + Vec3(0, 3 * h, -2 * h), c + Vec3(0, -3 * h, -2 * h)});
@@ -78,8 +78,8 @@ Vec3 tip_point(const TetMesh& m, const Tet& t, int kind, std::mt19937& rng) {
 // accepted by apply() and passes the invariant checker, and the mesh stays in one piece.
 void random_tips(const CutOptions& options) {
   const double h = 0.01;
-  const TetMesh exact = fixtures::box(6, 4, 4, 1, h);
-  TetMesh jittered = fixtures::grid(4, h, 0.2, 5);
+  const TetMesh exact = test_meshes::kuhn_box(6, 4, 4, 1, h);
+  TetMesh jittered = test_meshes::kuhn_cube(4, h, 0.2, 5);
   std::mt19937 rng(31);
   std::normal_distribution<double> g;
   std::uniform_real_distribution<double> ang(0.0, 6.283185307179586), len(0.5, 6.0);
@@ -147,7 +147,8 @@ void successive_partial_cuts(const CutOptions& options) {
   const int runs = 12;
 #endif
   for (int run = 0; run < runs; ++run) {
-    TetMesh m = run % 2 == 0 ? fixtures::box(6, 4, 4, 1, h) : fixtures::grid(4, h, 0.15, run);
+    TetMesh m = run % 2 == 0 ? test_meshes::kuhn_box(6, 4, 4, 1, h)
+                             : test_meshes::kuhn_cube(4, h, 0.15, run);
     for (int step = 0; step < 8; ++step) {
       const Tet& t = m.tets[static_cast<std::size_t>(rng() % m.tets.size())];
       const Vec3 tip = tip_point(m, t, step % 4, rng);

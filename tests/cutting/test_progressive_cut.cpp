@@ -250,8 +250,8 @@ std::vector<ConvexPolygon> fan(const Vec3& hinge, const Vec3& n, double length, 
 // one cut of the sector swept so far, so the count stays that of a single cut.
 TEST(ProgressiveCut, EveryStepEqualsOneCutOfTheRegionSweptSoFar) {
   const double h = 0.01;
-  const TetMesh bar = fixtures::box(4, 1, 1, 1, h);
-  const TetMesh beam = fixtures::box(8, 2, 2, 1, h);
+  const TetMesh bar = test_meshes::kuhn_box(4, 1, 1, 1, h);
+  const TetMesh beam = test_meshes::kuhn_box(8, 2, 2, 1, h);
   struct Case {
     const TetMesh* mesh;
     Vec3 hinge, n;
@@ -284,7 +284,7 @@ TEST(ProgressiveCut, EveryStepEqualsOneCutOfTheRegionSweptSoFar) {
 // stroke's pieces are re-made from the originals' nodes, never re-cut.
 TEST(ProgressiveCut, EveryStepEqualsOneCutWhileTheTissueMoves) {
   const double h = 0.01;
-  const TetMesh beam = fixtures::box(8, 2, 2, 1, h);
+  const TetMesh beam = test_meshes::kuhn_box(8, 2, 2, 1, h);
   const Motion move = [h](int k, TetMesh& m) {
     for (std::size_t i = 0; i < m.x.size(); ++i) {
       const Vec3& r = m.rest[i];
@@ -309,8 +309,8 @@ TEST(ProgressiveCut, RandomStrokesEqualOneCutAtEveryStep) {
   std::mt19937 rng(20261124);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   const double h = 0.01;
-  const TetMesh grid = fixtures::box(4, 3, 3, 2, h);
-  TetMesh jittered = fixtures::box(4, 3, 3, 2, h);
+  const TetMesh grid = test_meshes::kuhn_box(4, 3, 3, 2, h);
+  TetMesh jittered = test_meshes::kuhn_box(4, 3, 3, 2, h);
   for (std::size_t i = 0; i < jittered.rest.size(); ++i) {
     for (int c = 0; c < 3; ++c) jittered.rest[i][c] += 0.15 * h * (u(rng) - 0.5);
     jittered.x[i] = jittered.rest[i];
@@ -363,7 +363,7 @@ TEST(ProgressiveCut, RandomStrokesEqualOneCutAtEveryStep) {
 // convex, or a topology change the stroke did not make. A polygon inside the region does nothing.
 TEST(ProgressiveCut, OtherPlanesForeignChangesAndGapsBeginANewStroke) {
   const double h = 0.01;
-  const TetMesh beam = fixtures::box(8, 2, 2, 1, h);
+  const TetMesh beam = test_meshes::kuhn_box(8, 2, 2, 1, h);
   const Vec3 n = Vec3(1.0, 0.15, -0.1).normalized(), hinge(4.5 * h, -h, h);
   const std::vector<ConvexPolygon> steps = fan(hinge, n, 5.0 * h, 1.2, 0.2, 6);
   TetMesh m = beam;

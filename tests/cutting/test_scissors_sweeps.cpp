@@ -123,8 +123,8 @@ void expect_cut_through(const TetMesh& before, const SweepRun& run, const Vec3& 
 // jittered beam. 2, 4 and 20 steps each.
 TEST(ScissorsSweeps, SmallStepsCutABeamThrough) {
   const double h = 0.01;
-  const TetMesh beam = fixtures::box(8, 2, 2, 1, h);
-  TetMesh jittered = fixtures::box(8, 2, 2, 1, h);
+  const TetMesh beam = test_meshes::kuhn_box(8, 2, 2, 1, h);
+  TetMesh jittered = test_meshes::kuhn_box(8, 2, 2, 1, h);
   {
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(-0.2 * h, 0.2 * h);
@@ -169,7 +169,7 @@ TEST(ScissorsSweeps, SmallStepsCutABeamThrough) {
 // follows the blade step by step.
 TEST(ScissorsSweeps, SmallStepsCutABeamThroughAlongGridFaces) {
   const double h = 0.01;
-  const TetMesh beam = fixtures::box(8, 2, 2, 1, h);
+  const TetMesh beam = test_meshes::kuhn_box(8, 2, 2, 1, h);
   const double a0 = 80.0 * 3.141592653589793 / 180.0, a1 = -a0;
   for (int steps : {2, 4, 20}) {
     const SweepRun run =
@@ -192,7 +192,7 @@ TEST(ScissorsSweeps, SmallStepsCutABeamThroughAlongGridFaces) {
 // falls in two with far fewer tets (asserted).
 TEST(ScissorsSweeps, SmallStepsTiltedIn20ThinStepsSeparateStepByStepAndAsAStroke) {
   const double h = 0.01;
-  const TetMesh beam = fixtures::box(8, 2, 2, 1, h);
+  const TetMesh beam = test_meshes::kuhn_box(8, 2, 2, 1, h);
   const double a0 = 80.0 * 3.141592653589793 / 180.0, a1 = -a0;
   const Vec3 hinge(4.5 * h, -h, h), n = Vec3(1.0, 0.15, -0.1).normalized();
   const SweepRun run = scissors(beam, hinge, n, 5.0 * h, a0, a1, 20, Polygon::kStep);
@@ -227,7 +227,7 @@ namespace {
 // "Cutting", mesh growth).
 TEST(ScissorsSweeps, RepeatedSmallCutsInAGridPlaneCreateAtMost21TetsPerTouchedTet) {
   const double h = 0.01;
-  const TetMesh bar = fixtures::box(4, 1, 1, 1, h);
+  const TetMesh bar = test_meshes::kuhn_box(4, 1, 1, 1, h);
   const Vec3 hinge(2.0 * h, -h, 0.5 * h), n = Vec3::UnitX();
   const double a0 = 80.0 * 3.141592653589793 / 180.0, a1 = -a0;
   const int steps = 47;

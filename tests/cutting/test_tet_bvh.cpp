@@ -22,7 +22,7 @@ std::vector<std::int32_t> sorted_query(const TetBoxQuery& q, const Vec3& lo, con
 }
 
 TEST(TetBvh, MatchesBruteForceBeforeAndAfterRefit) {
-  TetMesh m = fixtures::grid(5, 1.0, 0.2, 3);
+  TetMesh m = test_meshes::kuhn_cube(5, 1.0, 0.2, 3);
   TetBvh bvh(m);
   std::mt19937 rng(2);
   std::uniform_real_distribution<double> u(-0.5, 5.5), s(0.0, 1.5);
@@ -42,7 +42,7 @@ TEST(TetBvh, MatchesBruteForceBeforeAndAfterRefit) {
 }
 
 TEST(TetBvh, CutThroughBvhEqualsBruteForce) {
-  const TetMesh m = fixtures::grid(4, 1.0, 0.1, 8);
+  const TetMesh m = test_meshes::kuhn_cube(4, 1.0, 0.1, 8);
   const TetBvh bvh(m);
   std::mt19937 rng(4);
   std::normal_distribution<double> g;
@@ -67,7 +67,7 @@ namespace {
 // After each of many cuts (full, partial, repeated in one place so leaves overflow and split),
 // the locally updated BVH answers exactly as brute force, and stays shallow.
 TEST(TetBvh, LocalUpdateAfterCutsMatchesBruteForce) {
-  TetMesh m = fixtures::grid(4, 1.0, 0.1, 5);
+  TetMesh m = test_meshes::kuhn_cube(4, 1.0, 0.1, 5);
   TetBvh bvh(m);
   std::mt19937 rng(6);
   std::normal_distribution<double> g;
@@ -115,7 +115,7 @@ namespace {
 // after every cut the updated BVH answers exactly as brute force, and its depth stays within
 // max_depth() = 2 ceil(log2(m / 4 + 1)) + 2 because deep paths are rebuilt.
 TEST(TetBvh, TwoHundredCutsStayExactAndShallow) {
-  TetMesh m = fixtures::grid(5, 1.0, 0.1, 7);
+  TetMesh m = test_meshes::kuhn_cube(5, 1.0, 0.1, 7);
   TetBvh bvh(m);
   std::mt19937 rng(10);
   std::normal_distribution<double> g;

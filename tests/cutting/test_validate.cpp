@@ -26,7 +26,7 @@ CutCheckOptions separated(double tol) {
 }
 
 TEST(CheckCut, PassesACorrectFullCutWithExactClippedVolume) {
-  const TetMesh m = fixtures::grid(3, 1.0, 0.1, 4);
+  const TetMesh m = test_meshes::kuhn_cube(3, 1.0, 0.1, 4);
   const ConvexPolygon blade = testing::square(Vec3(0.2, 1.0, 0.3), Vec3(1.4, 1.6, 1.5), 50.0);
   const testing::Applied a = testing::cut_and_check(m, blade, true);
   ASSERT_TRUE(a.report.ok) << testing::problems(a.report);
@@ -37,13 +37,13 @@ TEST(CheckCut, PassesACorrectFullCutWithExactClippedVolume) {
 }
 
 TEST(CheckCut, ClippedVolumeOfAnAxisPlaneIsTheSlab) {
-  const TetMesh m = fixtures::grid(4);
+  const TetMesh m = test_meshes::kuhn_cube(4);
   for (double z : {0.5, 1.0, 2.7})
     EXPECT_NEAR(clipped_positive_volume(m, Vec3::UnitZ(), z), 16.0 * (4.0 - z), 1e-12);
 }
 
 TEST(CheckCut, NamesEveryBrokenInvariant) {
-  const TetMesh m = fixtures::grid(2);
+  const TetMesh m = test_meshes::kuhn_cube(2);
   const ConvexPolygon blade = testing::square(Vec3(0.1, 1.0, 0.2), Vec3(1.0, 1.1, 1.0), 50.0);
   const CutResult cut = cut_mesh(m, blade);
   const double tol = cut.stats.tolerance_m;
@@ -87,7 +87,7 @@ TEST(CheckCut, NamesEveryBrokenInvariant) {
 // Per-group volume is conserved relative to the group's own volume, not the mesh's: a one-tet
 // group among 384 whose volume changes by ~1e-10 of itself (3e-13 of the mesh's) is named.
 TEST(CheckCut, PerGroupVolumeIsRelativeToTheGroup) {
-  TetMesh m = fixtures::grid(4);
+  TetMesh m = test_meshes::kuhn_cube(4);
   m.group[0] = 3;
   const Tet& t = m.tets[0];
   std::int32_t inner = -1;  // tet 0's node inside the cube: moving it keeps the total volume

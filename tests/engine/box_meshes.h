@@ -1,6 +1,6 @@
-// Test fixtures: boxes split into tets (one cube into 5 or 6, a k x k x k grid of cubes into 6
-// each), positively oriented, with known volume, surface area and boundary face count.
-// Shared by tests/engine and tests/app (include "engine/box_meshes.h").
+// Test fixtures: one cube split into 5 or 6 tets, positively oriented, with known volume, surface
+// area and boundary face count. Grids of cubes are the shared test_meshes::kuhn_lattice
+// (support/test_meshes.h). Shared by tests/engine and tests/app (include "engine/box_meshes.h").
 #pragma once
 
 #include <array>
@@ -11,6 +11,7 @@
 
 #include "engine/math.h"
 #include "engine/tet_mesh.h"
+#include "support/test_meshes.h"
 
 namespace serosa::fixtures {
 
@@ -56,50 +57,6 @@ inline TetMesh cube_mesh(const std::vector<std::array<int, 4>>& split,
   }
   for (const auto& t : split) m.add_tet(orient_positive(m.rest, {t[0], t[1], t[2], t[3]}), 1);
   return m;
-}
-
-/// A grid of k x k x k cubes over [0, size] (node coordinates jittered along each axis by the
-/// monotone spacings xs, ys, zs of k + 1 entries each), every cube split into the 6 Kuhn tets.
-/// Group of a tet: 1 + (cube index along x) % groups.
-inline TetMesh grid_mesh(const std::vector<double>& xs, const std::vector<double>& ys,
-                         const std::vector<double>& zs, int groups = 1) {
-  TetMesh m;
-  const int nx = static_cast<int>(xs.size()), ny = static_cast<int>(ys.size()),
-            nz = static_cast<int>(zs.size());
-  const auto id = [&](int i, int j, int k) { return i + nx * (j + ny * k); };
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i)
-        m.add_node(Vec3(xs[static_cast<std::size_t>(i)], ys[static_cast<std::size_t>(j)],
-                        zs[static_cast<std::size_t>(k)]));
-  const auto split = kuhn_tets();
-  for (int k = 0; k + 1 < nz; ++k)
-    for (int j = 0; j + 1 < ny; ++j)
-      for (int i = 0; i + 1 < nx; ++i)
-        for (const auto& t : split) {
-          Tet ids{};
-          for (int c = 0; c < 4; ++c) {
-            const auto b = corner_bits(t[static_cast<std::size_t>(c)]);
-            ids[static_cast<std::size_t>(c)] = id(i + b[0], j + b[1], k + b[2]);
-          }
-          m.add_tet(orient_positive(m.rest, ids), static_cast<std::uint16_t>(1 + i % groups));
-        }
-  return m;
-}
-
-/// k + 1 strictly increasing coordinates from 0 to `size`, with random (seeded) spacing.
-inline std::vector<double> random_spacing(std::mt19937& rng, int k, double size) {
-  std::uniform_real_distribution<double> u(0.3, 1.0);
-  std::vector<double> w(static_cast<std::size_t>(k));
-  double sum = 0.0;
-  for (double& x : w) sum += (x = u(rng));
-  std::vector<double> out{0.0};
-  double acc = 0.0;
-  for (int i = 0; i < k; ++i) {
-    acc += w[static_cast<std::size_t>(i)];
-    out.push_back(i + 1 == k ? size : size * acc / sum);
-  }
-  return out;
 }
 
 }  // namespace serosa::fixtures

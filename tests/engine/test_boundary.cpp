@@ -147,10 +147,10 @@ TEST(FaceCensus, RandomGridsAreClosedConformingBoxes) {
   for (int trial = 0; trial < 40; ++trial) {
     const int k = 1 + trial % 5;
     const double size = 0.01 + 0.1 * trial;
-    const auto xs = fixtures::random_spacing(rng, k, size);
-    const auto ys = fixtures::random_spacing(rng, k, 2.0 * size);
-    const auto zs = fixtures::random_spacing(rng, k, 0.5 * size);
-    const TetMesh m = fixtures::grid_mesh(xs, ys, zs, 3);
+    const auto xs = test_meshes::random_spacing(rng, k, size);
+    const auto ys = test_meshes::random_spacing(rng, k, 2.0 * size);
+    const auto zs = test_meshes::random_spacing(rng, k, 0.5 * size);
+    const TetMesh m = test_meshes::kuhn_lattice(xs, ys, zs, 3);
     const FaceCensus c = face_census(m);
     expect_closed_outward_box(m, c, Vec3::Zero(), Vec3(size, 2.0 * size, 0.5 * size),
                               static_cast<std::size_t>(12 * k * k));
@@ -167,7 +167,7 @@ TEST(FaceCensus, RandomGridsAreClosedConformingBoxes) {
 TEST(FaceCensus, MatchesBruteForceOnRandomTetSoups) {
   // Random subsets of a grid's tets with random duplicates: compare with a std::map count.
   std::mt19937 rng(3);
-  const TetMesh grid = fixtures::grid_mesh({0, 1, 2, 3}, {0, 1, 2}, {0, 1, 2});
+  const TetMesh grid = test_meshes::kuhn_lattice({0, 1, 2, 3}, {0, 1, 2}, {0, 1, 2});
   for (int trial = 0; trial < 300; ++trial) {
     TetMesh m;
     m.rest = grid.rest;

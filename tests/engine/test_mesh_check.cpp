@@ -53,10 +53,10 @@ TEST(CheckMesh, RandomGridsAreValidAndVolumesAddUpPerGroup) {
   std::mt19937 rng(5);
   for (int trial = 0; trial < 30; ++trial) {
     const int k = 1 + trial % 4;
-    const auto xs = fixtures::random_spacing(rng, k, 0.2);
-    const auto ys = fixtures::random_spacing(rng, k, 0.1);
-    const auto zs = fixtures::random_spacing(rng, k, 0.05);
-    const TetMesh m = fixtures::grid_mesh(xs, ys, zs, 2);
+    const auto xs = test_meshes::random_spacing(rng, k, 0.2);
+    const auto ys = test_meshes::random_spacing(rng, k, 0.1);
+    const auto zs = test_meshes::random_spacing(rng, k, 0.05);
+    const TetMesh m = test_meshes::kuhn_lattice(xs, ys, zs, 2);
     const MeshCheckReport r = check_mesh(m);
     EXPECT_TRUE(r.valid) << (r.problems.empty() ? "" : r.problems[0]);
     EXPECT_NEAR(r.volume_m3, 0.2 * 0.1 * 0.05, 1e-15);

@@ -7,6 +7,7 @@
 
 #include "cutting/convex_polygon.h"
 #include "cutting/cut_mesh.h"
+#include "engine/geometry/tet_extent.h"
 #include "engine/tet_mesh.h"
 #include "engine/topology_delta.h"
 
@@ -16,11 +17,8 @@ namespace serosa::fem::fixtures {
 /// random normal. half_width: half the square's side, m.
 inline cutting::ConvexPolygon random_blade(const TetMesh& m, double half_width, std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Vec3 lo = m.x.front(), hi = m.x.front();
-  for (const Vec3& x : m.x) {
-    lo = lo.cwiseMin(x);
-    hi = hi.cwiseMax(x);
-  }
+  Vec3 lo, hi;
+  geometry::point_box(m.x, lo, hi);
   const Vec3 c =
       lo + (hi - lo).cwiseProduct(Vec3(0.5 + 0.3 * u(rng), 0.5 + 0.3 * u(rng), 0.5 + 0.3 * u(rng)));
   Vec3 n(u(rng), u(rng), u(rng));

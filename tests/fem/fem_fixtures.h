@@ -1,5 +1,5 @@
-// Meshes and helpers shared by the fem tests: structured grids of 6-tet cubes (Kuhn subdivision,
-// conforming across cubes), optionally jittered, and small utilities.
+// Helpers shared by the fem tests: clamping and jittering the structured grids
+// (test_meshes::kuhn_bar, support/test_meshes.h), and small utilities.
 #pragma once
 
 #include <array>
@@ -8,37 +8,9 @@
 #include <vector>
 
 #include "engine/tet_mesh.h"
+#include "support/test_meshes.h"
 
 namespace serosa::fem::fixtures {
-
-/// A grid of nx x ny x nz cubes of edge h (m) from the origin, each cut into 6 tets around its
-/// main diagonal. Node (i, j, k) has id i + (nx+1) (j + (ny+1) k). Group 1 everywhere.
-/// Every tet is positively oriented.
-inline TetMesh grid(int nx, int ny, int nz, double hx, double hy, double hz) {
-  TetMesh m;
-  const auto id = [&](int i, int j, int k) { return i + (nx + 1) * (j + (ny + 1) * k); };
-  for (int k = 0; k <= nz; ++k)
-    for (int j = 0; j <= ny; ++j)
-      for (int i = 0; i <= nx; ++i) m.add_node(Vec3(i * hx, j * hy, k * hz));
-  static constexpr std::array<std::array<int, 3>, 6> perms{
-      {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}};
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i)
-        for (const auto& p : perms) {
-          std::array<int, 3> c{i, j, k};
-          Tet t{};
-          t[0] = id(c[0], c[1], c[2]);
-          for (int s = 0; s < 3; ++s) {
-            ++c[static_cast<std::size_t>(p[static_cast<std::size_t>(s)])];
-            t[static_cast<std::size_t>(s) + 1] = id(c[0], c[1], c[2]);
-          }
-          if (signed_volume(m.rest[t[0]], m.rest[t[1]], m.rest[t[2]], m.rest[t[3]]) < 0.0)
-            std::swap(t[2], t[3]);
-          m.add_tet(t, 1);
-        }
-  return m;
-}
 
 /// Moves interior nodes of a grid by up to `amount` x cell size in each direction (uniform).
 /// Fixes every node on the x = 0 face (a clamped end).

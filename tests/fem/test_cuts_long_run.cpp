@@ -72,7 +72,7 @@ TEST(CutsThenLongRun, FiftyCutsThenTenThousandSteps) {
   const int long_steps = 10000;
 #endif
   std::mt19937 rng(4242);
-  TetMesh m = fixtures::grid(6, 2, 2, 0.05, 0.05, 0.05);
+  TetMesh m = test_meshes::kuhn_bar(6, 2, 2, 0.05, 0.05, 0.05);
   m.fill_node_state();
   fixtures::clamp_x0(m);
   FemConfig c;

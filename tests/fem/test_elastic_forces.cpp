@@ -39,7 +39,7 @@ class RigidMotion : public ::testing::TestWithParam<int> {};  // random seed
 
 TEST_P(RigidMotion, CorotationalForcesVanishLinearDoNot) {
   std::mt19937 rng(static_cast<std::uint32_t>(GetParam()));
-  TetMesh mesh = fixtures::grid(3, 2, 2, 0.01, 0.01, 0.01);
+  TetMesh mesh = test_meshes::kuhn_bar(3, 2, 2, 0.01, 0.01, 0.01);
   fixtures::jitter_interior(mesh, 0, 0.03, 0, 0.02, 0, 0.02, 0.002, 1);
   const FemConfig cfg = config_e(1e4, 0.45);
   FemElements el;
@@ -63,7 +63,7 @@ TEST_P(RigidMotion, CorotationalForcesVanishLinearDoNot) {
 INSTANTIATE_TEST_SUITE_P(Seeds, RigidMotion, ::testing::Values(1, 2, 3, 4, 5));
 
 TEST(PatchTest, AffineDisplacementGivesConstantStressAndFreeInteriorNodes) {
-  TetMesh mesh = fixtures::grid(4, 4, 4, 0.25, 0.25, 0.25);
+  TetMesh mesh = test_meshes::kuhn_bar(4, 4, 4, 0.25, 0.25, 0.25);
   fixtures::jitter_interior(mesh, 0, 1, 0, 1, 0, 1, 0.06, 42);
   const FemConfig cfg = config_e(5e3, 0.3);
   FemElements el;
@@ -145,7 +145,7 @@ TEST(TetElement, StiffnessIsTheDerivativeOfLinearForce) {
 }
 
 TEST(FemElements, LumpedMassSumsToDensityTimesVolume) {
-  TetMesh mesh = fixtures::grid(3, 2, 1, 0.1, 0.2, 0.3);
+  TetMesh mesh = test_meshes::kuhn_bar(3, 2, 1, 0.1, 0.2, 0.3);
   FemConfig cfg;
   cfg.default_material.density_kgpm3 = 1200.0;
   FemElements el;

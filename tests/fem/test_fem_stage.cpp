@@ -14,7 +14,7 @@ namespace {
 
 TEST(FemStage, StepsTheMeshUnderGravityThroughTheRunner) {
   SimState s;
-  s.mesh = fixtures::grid(8, 2, 2, 0.01, 0.01, 0.01);
+  s.mesh = test_meshes::kuhn_bar(8, 2, 2, 0.01, 0.01, 0.01);
   for (std::size_t i = 0; i < s.mesh.rest.size(); ++i) s.mesh.fixed[i] = s.mesh.rest[i].x() < 1e-12;
   FemConfig cfg;
   cfg.default_material = FemMaterial{1e5, 0.45, 1000.0, 0.5, 0.01};
@@ -39,7 +39,7 @@ TEST(FemStage, StepsTheMeshUnderGravityThroughTheRunner) {
 
 TEST(FemStage, ExternalForcesAndGravityOff) {
   SimState s;
-  s.mesh = fixtures::grid(4, 1, 1, 0.01, 0.01, 0.01);
+  s.mesh = test_meshes::kuhn_bar(4, 1, 1, 0.01, 0.01, 0.01);
   for (std::size_t i = 0; i < s.mesh.rest.size(); ++i) s.mesh.fixed[i] = s.mesh.rest[i].x() < 1e-12;
   FemConfig cfg;
   cfg.gravity_on = false;

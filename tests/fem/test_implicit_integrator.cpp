@@ -21,7 +21,7 @@ namespace {
 // A cantilever of length L = 10 T along x with a T x T square section, k cells across, clamped
 // at x = 0 (every node there fixed).
 TetMesh beam(int k, double length, double thick) {
-  TetMesh m = fixtures::grid(10 * k, k, k, length / (10 * k), thick / k, thick / k);
+  TetMesh m = test_meshes::kuhn_bar(10 * k, k, k, length / (10 * k), thick / k, thick / k);
   fixtures::clamp_x0(m);
   return m;
 }
@@ -113,7 +113,7 @@ TEST(InvertedElements, SquashedTetRecovers) {
 }
 
 TEST(InvertedElements, NodePushedThroughGridRecovers) {
-  TetMesh m = fixtures::grid(2, 2, 2, 0.05, 0.05, 0.05);
+  TetMesh m = test_meshes::kuhn_bar(2, 2, 2, 0.05, 0.05, 0.05);
   const Vec3 lo(0, 0, 0), hi(0.1, 0.1, 0.1);
   for (std::size_t i = 0; i < m.rest.size(); ++i)
     m.fixed[i] = fixtures::on_box_boundary(m.rest[i], lo, hi) ? 1 : 0;

@@ -17,7 +17,7 @@ namespace serosa::fem {
 namespace {
 
 TetMesh bar() {
-  TetMesh m = fixtures::grid(8, 2, 2, 0.05, 0.05, 0.05);
+  TetMesh m = test_meshes::kuhn_bar(8, 2, 2, 0.05, 0.05, 0.05);
   m.fill_node_state();
   fixtures::clamp_x0(m);
   return m;

@@ -15,7 +15,7 @@ namespace {
 // 3 s and releasing it for 5 s. Bar 0.8 x 0.1 x 0.1 m, x = 0 clamped, E = 1e4 Pa: axial strain
 // ~ force / 100.
 double set_after_release(double force, bool plastic, double* loaded = nullptr) {
-  TetMesh m = fixtures::grid(8, 1, 1, 0.1, 0.1, 0.1);
+  TetMesh m = test_meshes::kuhn_bar(8, 1, 1, 0.1, 0.1, 0.1);
   m.fill_node_state();
   std::vector<std::size_t> end;
   for (std::size_t i = 0; i < m.rest.size(); ++i) {

@@ -22,7 +22,7 @@ namespace serosa::fem {
 namespace {
 
 TEST(ProgressiveStroke, TwentyThinStepsWithTheFemRunningBetweenThem) {
-  TetMesh m = fixtures::grid(6, 2, 2, 0.05, 0.05, 0.05);  // 0.3 x 0.1 x 0.1 m
+  TetMesh m = test_meshes::kuhn_bar(6, 2, 2, 0.05, 0.05, 0.05);  // 0.3 x 0.1 x 0.1 m
   m.fill_node_state();
   fixtures::clamp_x0(m);
   FemConfig c;

@@ -43,7 +43,7 @@ TEST_P(RealCutsThenLongRun, FiftyRandomScissorCutsThenTenThousandSteps) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
   std::mt19937 rng(GetParam());
-  TetMesh m = fixtures::grid(6, 2, 2, 0.05, 0.05, 0.05);  // 0.3 x 0.1 x 0.1 m
+  TetMesh m = test_meshes::kuhn_bar(6, 2, 2, 0.05, 0.05, 0.05);  // 0.3 x 0.1 x 0.1 m
   m.fill_node_state();
   fixtures::clamp_x0(m);
   FemConfig c;

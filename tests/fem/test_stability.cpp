@@ -16,7 +16,7 @@ namespace serosa::fem {
 namespace {
 
 TetMesh soft_bar() {
-  TetMesh m = fixtures::grid(6, 2, 2, 0.05, 0.05, 0.05);
+  TetMesh m = test_meshes::kuhn_bar(6, 2, 2, 0.05, 0.05, 0.05);
   m.fill_node_state();
   fixtures::clamp_x0(m);
   return m;

@@ -20,7 +20,7 @@ namespace {
 
 TEST(SystemOperator, MatrixFreeEqualsAssembledAndBlockedSpmv) {
   std::mt19937 rng(3);
-  TetMesh m = fixtures::grid(5, 3, 2, 0.1, 0.1, 0.1);
+  TetMesh m = test_meshes::kuhn_bar(5, 3, 2, 0.1, 0.1, 0.1);
   fixtures::jitter_interior(m, 0, 0.5, 0, 0.3, 0, 0.2, 0.02, 4);
   m.fill_node_state();
   for (std::size_t i = 0; i < m.rest.size(); ++i) m.fixed[i] = m.rest[i].x() < 1e-9 ? 1 : 0;
@@ -71,7 +71,7 @@ TEST(SystemOperator, MatrixFreeEqualsAssembledAndBlockedSpmv) {
 // the product within that of the row sums of |A| |x|.
 TEST(BlockSystem, EqualsCsrFillInDoubleAndRoundsOnlyTheEntriesInFloat) {
   std::mt19937 rng(5);
-  TetMesh m = fixtures::grid(5, 3, 2, 0.1, 0.1, 0.1);
+  TetMesh m = test_meshes::kuhn_bar(5, 3, 2, 0.1, 0.1, 0.1);
   fixtures::jitter_interior(m, 0, 0.5, 0, 0.3, 0, 0.2, 0.02, 6);
   m.fill_node_state();
   for (std::size_t i = 0; i < m.rest.size(); ++i) m.fixed[i] = m.rest[i].x() < 1e-9 ? 1 : 0;

@@ -161,7 +161,7 @@ void expect_equals_rebuild(TetMesh& mesh, ImplicitIntegrator& inc, const FemConf
 }
 
 TetMesh two_group_bar() {
-  TetMesh mesh = fixtures::grid(6, 3, 3, 0.02, 0.02, 0.02);
+  TetMesh mesh = test_meshes::kuhn_bar(6, 3, 3, 0.02, 0.02, 0.02);
   for (std::size_t t = 0; t < mesh.tets.size(); ++t)
     mesh.group[t] = static_cast<std::uint16_t>(1 + t % 2);
   mesh.fill_node_state();
@@ -196,7 +196,7 @@ TEST_P(TopologyUpdate, IncrementalEqualsFullRebuildAfterRandomDeltas) {
 // result still equals a full rebuild.
 TEST(TopologyUpdateCompaction, StorageIsCompactedAndStaysExact) {
   std::mt19937 rng(31);
-  TetMesh mesh = fixtures::grid(3, 2, 2, 0.02, 0.02, 0.02);
+  TetMesh mesh = test_meshes::kuhn_bar(3, 2, 2, 0.02, 0.02, 0.02);
   mesh.fill_node_state();
   fixtures::clamp_x0(mesh);
   const FemConfig cfg = two_materials(SolverKind::cholmod);
@@ -253,7 +253,7 @@ INSTANTIATE_TEST_SUITE_P(Solvers, TopologyUpdate,
 // and the blocks of the tets around them, not the mesh.
 TEST(TopologyUpdateLocality, SmallCutTouchesOnlyItsNeighbourhood) {
   std::mt19937 rng(5);
-  TetMesh mesh = fixtures::grid(40, 7, 7, 0.01, 0.01, 0.01);
+  TetMesh mesh = test_meshes::kuhn_bar(40, 7, 7, 0.01, 0.01, 0.01);
   mesh.fill_node_state();
   fixtures::clamp_x0(mesh);
   FemConfig cfg = two_materials(SolverKind::pcg);

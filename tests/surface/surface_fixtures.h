@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine/tet_mesh.h"
+#include "support/test_meshes.h"
 #include "surface/face_key.h"
 #include "surface/surface_mesh.h"
 
@@ -21,35 +22,6 @@ namespace serosa::surface::testing {
 inline void orient_positive(TetMesh& m) {
   for (std::int32_t i = 0; i < m.num_tets(); ++i)
     if (m.rest_volume(i) < 0.0) std::swap(m.tets[i][2], m.tets[i][3]);
-}
-
-/// nx x ny x nz unit cubes of edge h, each split into 6 tets around its main diagonal (Kuhn), a
-/// conforming mesh of 6 nx ny nz tets. Group: 1 + (number of x slabs) * i / nx, so `groups`
-/// slabs along x.
-inline TetMesh grid_mesh(int nx, int ny, int nz, int groups = 1, double h = 0.01) {
-  TetMesh m;
-  auto id = [&](int i, int j, int k) { return (i * (ny + 1) + j) * (nz + 1) + k; };
-  for (int i = 0; i <= nx; ++i)
-    for (int j = 0; j <= ny; ++j)
-      for (int k = 0; k <= nz; ++k) m.add_node(Vec3(i * h, j * h, k * h));
-  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  for (int i = 0; i < nx; ++i)
-    for (int j = 0; j < ny; ++j)
-      for (int k = 0; k < nz; ++k) {
-        const auto g = static_cast<std::uint16_t>(1 + groups * i / nx);
-        for (const auto& p : perms) {
-          std::array<int, 3> c{i, j, k};
-          Tet t{};
-          t[0] = id(c[0], c[1], c[2]);
-          for (int s = 0; s < 3; ++s) {
-            ++c[p[s]];
-            t[s + 1] = id(c[0], c[1], c[2]);
-          }
-          m.add_tet(t, g);
-        }
-      }
-  orient_positive(m);
-  return m;
 }
 
 /// `tets` random positively oriented tets over `nodes` random nodes in [-1, 1]^3,

@@ -19,11 +19,11 @@
 namespace serosa::surface {
 namespace {
 
+using test_meshes::kuhn_box;
 using testing::cut_records;
-using testing::grid_mesh;
 using testing::records;
 
-constexpr double kH = 0.01;  // grid cell edge, m (grid_mesh default)
+constexpr double kH = 0.01;  // grid cell edge, m (kuhn_box default)
 
 /// Splits edge (a, b) of a random tet at its midpoint: every tet holding the edge becomes two
 /// (a replaced by the midpoint, then b), so every face holding the edge is split exactly in two,
@@ -81,7 +81,7 @@ bool on_box(const TetMesh& m, const Tri& f, const Vec3& box) {
 }
 
 TEST(CutFaces, WithoutAReferenceEveryFaceIsOriginal) {
-  const TetMesh m = grid_mesh(3, 2, 2, 2);
+  const TetMesh m = kuhn_box(3, 2, 2, 2);
   const SurfaceMesh s = extract_surface(m);
   ASSERT_EQ(s.face_cut.size(), s.faces.size());
   for (std::uint8_t c : s.face_cut) EXPECT_EQ(c, 0);
@@ -89,7 +89,7 @@ TEST(CutFaces, WithoutAReferenceEveryFaceIsOriginal) {
 }
 
 TEST(CutFaces, TheOriginalSurfaceIsOriginal) {
-  const TetMesh m = grid_mesh(4, 3, 2, 3);
+  const TetMesh m = kuhn_box(4, 3, 2, 3);
   const OriginalSurface original(m, extract_surface(m));
   EXPECT_EQ(original.size(), extract_surface(m).faces.size());
   const SurfaceMesh s = extract_surface(m, original);
@@ -98,7 +98,7 @@ TEST(CutFaces, TheOriginalSurfaceIsOriginal) {
 
 TEST(CutFaces, ContainsIsGeometric) {
   // Unit cube: its side z = 0 is two triangles split along (0,0,0)-(1,1,0) (Kuhn split).
-  const TetMesh m = grid_mesh(1, 1, 1, 1, 1.0);
+  const TetMesh m = kuhn_box(1, 1, 1, 1, 1.0);
   const OriginalSurface original(m, extract_surface(m));
   // Inside the triangle y < x, touching its edge y = 0; and its corner triangle itself.
   EXPECT_TRUE(original.contains(Vec3(0.1, 0, 0), Vec3(0.2, 0, 0), Vec3(0.2, 0.05, 0), 1));
@@ -125,7 +125,7 @@ TEST(CutFaces, ContainsIsGeometric) {
 TEST(CutFaces, SubdivisionKeepsOriginalAndCarvingMakesWounds) {
   for (unsigned seed : {3u, 4u}) {
     std::mt19937 rng(seed);
-    TetMesh m = grid_mesh(4, 3, 3, 2);
+    TetMesh m = kuhn_box(4, 3, 3, 2);
     const Vec3 box(4 * kH, 3 * kH, 3 * kH);
     SurfaceMesh s = extract_surface(m);
     const OriginalSurface original(m, s);
@@ -163,7 +163,7 @@ cutting::ConvexPolygon square_blade(const Vec3& c, const Vec3& n, double r) {
 TEST(CutFaces, RealCutsFlagTheBladePlanes) {
   std::mt19937 rng(21);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  TetMesh m = grid_mesh(6, 5, 4, 2);
+  TetMesh m = kuhn_box(6, 5, 4, 2);
   const Vec3 box(6 * kH, 5 * kH, 4 * kH);
   SurfaceMesh s = extract_surface(m);
   const OriginalSurface original(m, s);
@@ -210,7 +210,7 @@ TEST(CutFaces, RealCutsFlagTheBladePlanes) {
 TEST(CutFaces, RandomPartialCutsIncrementalEqualsFull) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  TetMesh m = grid_mesh(5, 5, 4, 3);
+  TetMesh m = kuhn_box(5, 5, 4, 3);
   const Vec3 box(5 * kH, 5 * kH, 4 * kH);
   SurfaceMesh s = extract_surface(m);
   const OriginalSurface original(m, s);

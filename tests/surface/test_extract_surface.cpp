@@ -7,14 +7,16 @@
 #include <random>
 #include <stdexcept>
 
+#include "engine/tet_faces.h"
 #include "surface/extract_surface.h"
+#include "surface/face_key.h"
 #include "surface/validate_surface.h"
 #include "surface_fixtures.h"
 
 namespace serosa::surface {
 namespace {
 
-using testing::grid_mesh;
+using test_meshes::kuhn_box;
 using testing::random_mesh;
 using testing::records;
 using testing::reference_boundary;
@@ -67,6 +69,17 @@ TEST(ExtractSurface, OneTetGivesFourOutwardFaces) {
   EXPECT_EQ(records(s), reference_boundary(m));
 }
 
+// outward_face is the device form of engine's face table (nvcc compiles no Eigen, so it cannot
+// include engine/tet_faces.h): the same faces, in the same winding.
+TEST(ExtractSurface, OutwardFaceIsEnginesFaceTable) {
+  const Tet t{10, 11, 12, 13};
+  for (int l = 0; l < 4; ++l) {
+    Tri f{};
+    outward_face(t, l, f[0], f[1], f[2]);
+    EXPECT_EQ(f, tet_face(t, l)) << l;
+  }
+}
+
 TEST(ExtractSurface, TwoTetsShareOneFace) {
   TetMesh m;
   m.add_node(Vec3(0, 0, 0));
@@ -90,7 +103,7 @@ TEST(ExtractSurface, GridMatchesReference) {
   // The last grid (27,648 tets) is above the serial cutoff: the OpenMP path.
   for (const auto& [nx, ny, nz, groups] : std::vector<std::array<int, 4>>{
            {1, 1, 1, 1}, {3, 2, 1, 1}, {4, 4, 4, 2}, {7, 5, 3, 4}, {24, 16, 12, 5}}) {
-    const TetMesh m = grid_mesh(nx, ny, nz, groups);
+    const TetMesh m = kuhn_box(nx, ny, nz, groups);
     const SurfaceMesh s = extract_surface(m);
     // A box's surface: 2 triangles per unit square of its six sides.
     EXPECT_EQ(s.num_faces(), 4 * (nx * ny + ny * nz + nz * nx));
@@ -118,7 +131,7 @@ TEST(ExtractSurface, ThousandsOfRandomMeshesMatchReference) {
 }
 
 TEST(ExtractSurface, InsideAGroupFacesAreInKeyOrderAndDeterministic) {
-  const TetMesh m = grid_mesh(5, 4, 3, 3);
+  const TetMesh m = kuhn_box(5, 4, 3, 3);
   const SurfaceMesh a = extract_surface(m);
   for (const GroupRange& r : a.groups)
     for (std::int32_t i = r.offset + 1; i < r.offset + r.count; ++i)
@@ -146,7 +159,7 @@ TEST(ExtractSurface, WideKeysGiveTheSameSurface) {
     ASSERT_EQ(narrow.face_tet, wide.face_tet);
     ASSERT_EQ(narrow.face_group, wide.face_group);
   }
-  const TetMesh g = grid_mesh(6, 5, 4, 3);
+  const TetMesh g = kuhn_box(6, 5, 4, 3);
   EXPECT_EQ(extract_surface_cpu(g, {.keys = KeyWidth::kWide, .serial_below_tets = 0}).faces,
             extract_surface_cpu(g).faces);
 }
@@ -176,7 +189,7 @@ TEST(ExtractSurface, RejectsNegativeNodeIds) {
 
 TEST(ExtractSurfaceCuda, MatchesOpenMpWhenADeviceIsPresent) {
   if (!cuda_available()) {
-    EXPECT_THROW((void)extract_surface(grid_mesh(1, 1, 1), Backend::kCuda), std::runtime_error);
+    EXPECT_THROW((void)extract_surface(kuhn_box(1, 1, 1), Backend::kCuda), std::runtime_error);
 #if defined(SEROSA_HAVE_CUDA)
     GTEST_SKIP() << "CUDA backend built, but no CUDA device is present: GPU comparison skipped";
 #else
@@ -193,7 +206,7 @@ TEST(ExtractSurfaceCuda, MatchesOpenMpWhenADeviceIsPresent) {
     ASSERT_EQ(cpu.face_group, gpu.face_group);
   }
   for (KeyWidth keys : {KeyWidth::kAuto, KeyWidth::kWide}) {
-    const TetMesh g = grid_mesh(30, 20, 10, 3);
+    const TetMesh g = kuhn_box(30, 20, 10, 3);
     const SurfaceMesh cpu = extract_surface_cpu(g, {.keys = keys});
     const SurfaceMesh gpu = extract_surface_cuda(g, keys);
     EXPECT_EQ(cpu.faces, gpu.faces);

@@ -8,6 +8,7 @@
 
 #include "cutting/convex_polygon.h"
 #include "cutting/cut_mesh.h"
+#include "engine/geometry/tet_extent.h"
 #include "engine/topology_delta.h"
 #include "surface/cut_faces.h"
 #include "surface/extract_surface.h"
@@ -19,7 +20,7 @@
 namespace serosa::surface {
 namespace {
 
-using testing::grid_mesh;
+using test_meshes::kuhn_box;
 
 #if defined(__SANITIZE_ADDRESS__)
 constexpr int kCuts = 3;  // each real cut of the whole organ costs seconds under ASan
@@ -64,7 +65,7 @@ void expect_surface_is_mechanical(const SurfaceMesh& s, const TetMesh& m, const 
 TEST(OneSetOfNodes, DeformedAndSubdividedSurfaceReadsTheMechanicalNodes) {
   std::mt19937 rng(77);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  TetMesh m = grid_mesh(6, 5, 4, 2);
+  TetMesh m = kuhn_box(6, 5, 4, 2);
   SurfaceMesh s = extract_surface(m);
   const OriginalSurface original(m, s);
   FaceTable table = build_face_table(m, s);
@@ -76,11 +77,8 @@ TEST(OneSetOfNodes, DeformedAndSubdividedSurfaceReadsTheMechanicalNodes) {
     const Mat3 rot = rotation(0.1 * u(rng), Vec3(u(rng), u(rng), 1.0));
     for (Vec3& x : m.x) x = rot * x + Vec3(u(rng), u(rng), u(rng)) * 1e-4;
     // Subdivide: a real cut through the whole deformed mesh (new nodes interpolate x).
-    Vec3 lo = m.x[0], hi = m.x[0];
-    for (const Vec3& x : m.x) {
-      lo = lo.cwiseMin(x);
-      hi = hi.cwiseMax(x);
-    }
+    Vec3 lo, hi;
+    geometry::point_box(m.x, lo, hi);
     const Vec3 c = lo + (hi - lo).cwiseProduct(Vec3(0.5 + 0.3 * u(rng), 0.5 + 0.3 * u(rng), 0.5));
     const Vec3 n = Vec3(u(rng), u(rng), u(rng)).normalized();
     const Vec3 a = n.unitOrthogonal(), b = n.cross(a);

@@ -10,9 +10,10 @@
 
 #include "cutting/convex_polygon.h"
 #include "cutting/cut_mesh.h"
+#include "engine/geometry/point_triangle.h"
+#include "engine/geometry/tet_extent.h"
 #include "engine/topology_delta.h"
 #include "surface/extract_surface.h"
-#include "surface/point_triangle.h"
 #include "surface/ray_triangle.h"
 #include "surface/surface_bvh.h"
 #include "surface/update_surface.h"
@@ -21,7 +22,9 @@
 namespace serosa::surface {
 namespace {
 
-using testing::grid_mesh;
+using geometry::closest_point_on_triangle;
+using geometry::TrianglePoint;
+using test_meshes::kuhn_box;
 
 #if defined(__SANITIZE_ADDRESS__)
 constexpr int kQueries = 600;
@@ -115,11 +118,8 @@ void expect_segment(const SurfaceBvh& bvh, const SurfaceMesh& s, const TetMesh& 
 void check_queries(const SurfaceBvh& bvh, const SurfaceMesh& s, const TetMesh& m, std::mt19937& rng,
                    int n) {
   ASSERT_EQ(bvh.num_faces(), s.num_faces());
-  Vec3 lo = m.x[0], hi = m.x[0];
-  for (const Vec3& x : m.x) {
-    lo = lo.cwiseMin(x);
-    hi = hi.cwiseMax(x);
-  }
+  Vec3 lo, hi;
+  geometry::point_box(m.x, lo, hi);
   const Vec3 c = 0.5 * (lo + hi), e = hi - lo;
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const double big = 2.0 * e.maxCoeff();
@@ -159,7 +159,7 @@ void check_queries(const SurfaceBvh& bvh, const SurfaceMesh& s, const TetMesh& m
 
 /// A curved, bumpy organ: a grid ball with noise, in current positions.
 TetMesh ball(std::mt19937& rng, int n) {
-  TetMesh m = grid_mesh(n, n, n, 2, 2.0 / n);
+  TetMesh m = kuhn_box(n, n, n, 2, 2.0 / n);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (Vec3& p : m.x) {
     p -= Vec3(1, 1, 1);
@@ -171,7 +171,7 @@ TetMesh ball(std::mt19937& rng, int n) {
 
 TEST(SurfaceBvh, QueriesMatchBruteForceOnAFlatSidedBox) {
   std::mt19937 rng(1);
-  const TetMesh m = grid_mesh(6, 5, 4, 2);  // axis-aligned flat sides: many exact ties
+  const TetMesh m = kuhn_box(6, 5, 4, 2);  // axis-aligned flat sides: many exact ties
   const SurfaceMesh s = extract_surface(m);
   SurfaceBvh bvh;
   bvh.build(s, m.x);
@@ -206,7 +206,7 @@ TEST(SurfaceBvh, EmptySurfaceAnswersNothing) {
 }
 
 TEST(SurfaceBvh, MaxDistanceAndBadInput) {
-  const TetMesh m = grid_mesh(2, 2, 2, 1, 1.0);
+  const TetMesh m = kuhn_box(2, 2, 2, 1, 1.0);
   const SurfaceMesh s = extract_surface(m);
   SurfaceBvh bvh;
   bvh.build(s, m.x);

@@ -19,7 +19,7 @@
 namespace serosa::surface {
 namespace {
 
-using testing::grid_mesh;
+using test_meshes::kuhn_box;
 
 /// Invariants of any RenderVertices: shapes, corners name the face's nodes, unit normals.
 void expect_consistent(const SurfaceMesh& s, const RenderVertices& r) {
@@ -50,7 +50,7 @@ std::map<std::int32_t, std::vector<Vec3>> by_node(const RenderVertices& r) {
 
 TEST(SurfaceNormals, CubeCornersGetThreeNormalsEdgesTwoSidesOne) {
   const int n = 3;
-  const TetMesh m = grid_mesh(n, n, n, 1, 1.0);
+  const TetMesh m = kuhn_box(n, n, n, 1, 1.0);
   const SurfaceMesh s = extract_surface(m);
   RenderVertices r;
   compute_render_vertices(s, m.x, {}, r);
@@ -79,7 +79,7 @@ TEST(SurfaceNormals, CubeCornersGetThreeNormalsEdgesTwoSidesOne) {
 }
 
 TEST(SurfaceNormals, WideCreaseAngleSmoothsTheCube) {
-  const TetMesh m = grid_mesh(2, 2, 2, 1, 1.0);
+  const TetMesh m = kuhn_box(2, 2, 2, 1, 1.0);
   const SurfaceMesh s = extract_surface(m);
   RenderVertices r;
   compute_render_vertices(s, m.x, {.crease_angle_rad = std::numbers::pi * 0.6}, r);  // 108 deg
@@ -97,7 +97,7 @@ TEST(SurfaceNormals, SmoothSphereHasOneNormalPerNode) {
   // A grid ball: the cube [-1, 1]^3 mapped onto the unit ball (p |p|_inf / |p|_2), current
   // positions only (rest stays the cube; normals use x).
   const int n = 8;
-  TetMesh m = grid_mesh(n, n, n, 1, 2.0 / n);
+  TetMesh m = kuhn_box(n, n, n, 1, 2.0 / n);
   for (Vec3& p : m.x) {
     p -= Vec3(1, 1, 1);
     if (p.norm() > 0.0) p *= p.cwiseAbs().maxCoeff() / p.norm();
@@ -118,7 +118,7 @@ TEST(SurfaceNormals, SmoothSphereHasOneNormalPerNode) {
 
 TEST(SurfaceNormals, CutEdgesAndGroupBordersSplit) {
   // Flat side z = 0 of a 4 x 4 x 1 grid; mark the faces with centroid x < 2 as cut.
-  const TetMesh m = grid_mesh(4, 4, 1, 1, 1.0);
+  const TetMesh m = kuhn_box(4, 4, 1, 1, 1.0);
   SurfaceMesh s = extract_surface(m);
   for (std::int32_t i = 0; i < s.num_faces(); ++i) {
     Vec3 c = Vec3::Zero();
@@ -143,7 +143,7 @@ TEST(SurfaceNormals, CutEdgesAndGroupBordersSplit) {
   EXPECT_EQ(joined.node.size() + 5, r.node.size());
 
   // Two groups meeting at x = 2: the border nodes split on the sides they share.
-  const TetMesh g = grid_mesh(4, 2, 2, 2, 1.0);
+  const TetMesh g = kuhn_box(4, 2, 2, 2, 1.0);
   const SurfaceMesh sg = extract_surface(g);
   RenderVertices rg, rj;
   compute_render_vertices(sg, g.x, {}, rg);
@@ -155,7 +155,7 @@ TEST(SurfaceNormals, CutEdgesAndGroupBordersSplit) {
 
 TEST(SurfaceNormals, RealCutWoundEdgesSplit) {
   // A blade through the whole organ, slightly tilted: the wound's rim on the top side splits.
-  TetMesh m = grid_mesh(6, 4, 4, 1);
+  TetMesh m = kuhn_box(6, 4, 4, 1);
   const OriginalSurface original(m, extract_surface(m));
   const double h = 0.01;
   const Vec3 c(3.3 * h, 2 * h, 2 * h);

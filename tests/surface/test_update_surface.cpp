@@ -16,8 +16,8 @@
 namespace serosa::surface {
 namespace {
 
+using test_meshes::kuhn_box;
 using testing::cut_records;
-using testing::grid_mesh;
 
 #if defined(__SANITIZE_ADDRESS__)
 constexpr int kSteps = 300;  // per seed; ASan is ~5x slower
@@ -120,7 +120,7 @@ TEST(UpdateSurface, EqualsFullExtractionAfterThousandsOfRandomDeltas) {
   for (unsigned seed : {1u, 2u, 3u}) {
     std::mt19937 rng(seed);
     const int ngroups = 2 + static_cast<int>(seed);
-    TetMesh m = grid_mesh(4, 4, 3, ngroups);
+    TetMesh m = kuhn_box(4, 4, 3, ngroups);
     SurfaceMesh s = extract_surface(m);
     const OriginalSurface original(m, s);
     FaceTable table = build_face_table(m, s);
@@ -141,7 +141,7 @@ TEST(UpdateSurface, EqualsFullExtractionAfterThousandsOfRandomDeltas) {
 }
 
 TEST(UpdateSurface, CarvingEverythingAwayLeavesNothing) {
-  TetMesh m = grid_mesh(2, 2, 2, 2);
+  TetMesh m = kuhn_box(2, 2, 2, 2);
   SurfaceMesh s = extract_surface(m);
   FaceTable table = build_face_table(m, s);
   std::mt19937 rng(5);
@@ -158,7 +158,7 @@ TEST(UpdateSurface, CarvingEverythingAwayLeavesNothing) {
 }
 
 TEST(UpdateSurface, RejectsADeltaThatDoesNotFollowOn) {
-  TetMesh m = grid_mesh(2, 2, 2);
+  TetMesh m = kuhn_box(2, 2, 2);
   SurfaceMesh s = extract_surface(m);
   FaceTable table = build_face_table(m, s);
   TopologyDelta first;
@@ -176,7 +176,7 @@ TEST(UpdateSurface, RejectsADeltaThatDoesNotFollowOn) {
 TEST(UpdateSurface, SurfaceVerticesAreTheMechanicalNodes) {
   std::mt19937 rng(9);
   std::normal_distribution<double> noise(0.0, 1e-3);
-  TetMesh m = grid_mesh(5, 4, 3, 2);
+  TetMesh m = kuhn_box(5, 4, 3, 2);
   SurfaceMesh s = extract_surface(m);
   FaceTable table = build_face_table(m, s);
   for (int step = 0; step < 50; ++step) {

@@ -1,5 +1,6 @@
-// The extent of tets in current positions: a tet's bounding box, and the longest edge of a set of
-// tets (the length every cutter's classification tolerance scales with: tol = classify_rel * h).
+// The extent of tets and point sets in current positions: a tet's bounding box, the box of a set
+// of points, and the longest edge of a set of tets (the length every cutter's classification
+// tolerance scales with: tol = classify_rel * h).
 #pragma once
 
 #include <algorithm>
@@ -8,7 +9,7 @@
 
 #include "engine/tet_mesh.h"
 
-namespace serosa::cutting {
+namespace serosa::geometry {
 
 /// Axis-aligned box of tet `t` in current positions mesh.x, m.
 inline void tet_box(const TetMesh& mesh, const Tet& t, Vec3& lo, Vec3& hi) {
@@ -16,6 +17,15 @@ inline void tet_box(const TetMesh& mesh, const Tet& t, Vec3& lo, Vec3& hi) {
   for (std::size_t k = 1; k < 4; ++k) {
     lo = lo.cwiseMin(mesh.x[static_cast<std::size_t>(t[k])]);
     hi = hi.cwiseMax(mesh.x[static_cast<std::size_t>(t[k])]);
+  }
+}
+
+/// Axis-aligned box of the points `x` (m); lo = hi = 0 when there are none.
+inline void point_box(std::span<const Vec3> x, Vec3& lo, Vec3& hi) {
+  lo = hi = x.empty() ? Vec3::Zero() : x[0];
+  for (const Vec3& p : x) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
   }
 }
 
@@ -38,4 +48,4 @@ inline double longest_edge_m(const TetMesh& mesh, std::span<const std::int32_t> 
   return h;
 }
 
-}  // namespace serosa::cutting
+}  // namespace serosa::geometry
