@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iterator>
 #include <optional>
+#include <system_error>
 
 #include "engine/input_error.h"
 
@@ -212,12 +213,25 @@ Recording parse_recording(const std::vector<std::uint8_t>& bytes, const std::str
 }
 
 Recording read_recording(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  // A directory opens as a stream, and seeking to its end says 2^63 - 1 (ext4): it must be
+  // refused before reading, and the read must not be sized from a seek.
+  if (fs::is_directory(st))
+    throw InputError(path.string(), 0, "is a directory", "a .lapr file written by serosa --record");
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string(), 0, "recording not found or unreadable");
-  std::vector<std::uint8_t> bytes(
-      static_cast<std::size_t>(std::max<std::streamoff>(in.tellg(), 0)));
-  in.seekg(0);
-  in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  // Read in chunks: regular files and pipes alike, never more than there is.
+  std::vector<std::uint8_t> bytes;
+  if (fs::is_regular_file(st)) {
+    const std::uintmax_t size = fs::file_size(path, ec);
+    if (!ec) bytes.reserve(static_cast<std::size_t>(size));
+  }
+  char chunk[1 << 16];
+  while (in.read(chunk, sizeof chunk) || in.gcount() > 0)
+    bytes.insert(bytes.end(), chunk, chunk + in.gcount());
+  if (in.bad()) throw InputError(path.string(), 0, "read error", "a readable .lapr file");
   return parse_recording(bytes, path.string());
 }
 

@@ -763,10 +763,15 @@ Scene parse_scene_text(const std::string& toml, const std::filesystem::path& sce
 }
 
 Scene load_scene(const std::filesystem::path& path) {
+  // A directory opens as a stream that reads nothing, which would parse as an empty scene.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(path.string(), 0, "is a directory", "a scene TOML file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string(), 0, "cannot open scene file", "a readable TOML file");
   std::ostringstream buffer;
   buffer << in.rdbuf();
+  if (in.bad()) throw InputError(path.string(), 0, "read error", "a readable TOML file");
   return parse_scene_text(buffer.str(), path);
 }
 

@@ -366,6 +366,20 @@ TEST_F(SceneTest, MissingSceneFile) {
   }
 }
 
+// A directory opens as a stream that reads nothing: it was parsed as an empty scene and reported
+// as "the scene has no organ", sending the user to look inside a file that is not there.
+TEST_F(SceneTest, SceneFileThatIsADirectory) {
+  fs::create_directories(m_dir / "dir.toml");
+  try {
+    (void)load_scene(m_dir / "dir.toml");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 0);
+    EXPECT_EQ(e.file(), (m_dir / "dir.toml").string());
+    EXPECT_NE(e.message().find("is a directory"), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(SceneTest, TomlSyntaxErrorGivesItsLine) {
   try {
     (void)parse(kOrgan + "young = = 3\n");
