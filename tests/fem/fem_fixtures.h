@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "engine/tet_mesh.h"
+#include "engine/topology_delta.h"
 #include "support/test_meshes.h"
 
 namespace serosa::fem::fixtures {
@@ -16,6 +17,34 @@ namespace serosa::fem::fixtures {
 /// Fixes every node on the x = 0 face (a clamped end).
 inline void clamp_x0(TetMesh& m) {
   for (std::size_t i = 0; i < m.rest.size(); ++i) m.fixed[i] = m.rest[i].x() < 1e-12 ? 1 : 0;
+}
+
+/// A Kuhn bar (test_meshes::kuhn_bar, same arguments) with its node state, clamped at x = 0.
+inline TetMesh clamped_bar(int nx, int ny, int nz, double hx, double hy, double hz) {
+  TetMesh m = test_meshes::kuhn_bar(nx, ny, nz, hx, hy, hz);
+  m.fill_node_state();
+  clamp_x0(m);
+  return m;
+}
+
+/// The delta that splits tet t of m into four around its centroid (a new node whose parents are
+/// the tet's four nodes, weights 1/4).
+inline TopologyDelta split_tet(const TetMesh& m, std::int32_t t) {
+  TopologyDelta d;
+  d.removed_tets = {t};
+  const Tet& n = m.tets[static_cast<std::size_t>(t)];
+  NodeParent p;
+  p.count = 4;
+  p.nodes = n;
+  p.weights = {0.25, 0.25, 0.25, 0.25};
+  d.added_nodes.push_back(p);
+  for (std::size_t i = 0; i < 4; ++i) {
+    Tet s = n;
+    s[i] = m.num_nodes();
+    d.added_tets.push_back(s);
+    d.added_groups.push_back(m.group[static_cast<std::size_t>(t)]);
+  }
+  return d;
 }
 
 inline void jitter_interior(TetMesh& m, double lo_x, double hi_x, double lo_y, double hi_y,

@@ -13,12 +13,7 @@
 namespace serosa::fem {
 namespace {
 
-TetMesh bar() {
-  TetMesh m = test_meshes::kuhn_bar(8, 2, 2, 0.05, 0.05, 0.05);
-  m.fill_node_state();
-  fixtures::clamp_x0(m);
-  return m;
-}
+TetMesh bar() { return fixtures::clamped_bar(8, 2, 2, 0.05, 0.05, 0.05); }
 
 FemConfig config(int delay_ms) {
   FemConfig c;
@@ -28,25 +23,6 @@ FemConfig config(int delay_ms) {
   c.solver.max_iterations = 2000;
   c.solver.factor_delay_ms = delay_ms;
   return c;
-}
-
-// Splits tet t into four around its centroid (a new node with parents = its 4 nodes).
-TopologyDelta split(const TetMesh& m, std::int32_t t) {
-  TopologyDelta d;
-  d.removed_tets = {t};
-  const Tet& n = m.tets[static_cast<std::size_t>(t)];
-  NodeParent p;
-  p.count = 4;
-  p.nodes = n;
-  p.weights = {0.25, 0.25, 0.25, 0.25};
-  d.added_nodes.push_back(p);
-  for (std::size_t i = 0; i < 4; ++i) {
-    Tet s = n;
-    s[i] = m.num_nodes();
-    d.added_tets.push_back(s);
-    d.added_groups.push_back(m.group[static_cast<std::size_t>(t)]);
-  }
-  return d;
 }
 
 TEST(BackgroundFactor, StepAfterTopologyChangeDoesNotWaitAndConverges) {
@@ -63,7 +39,7 @@ TEST(BackgroundFactor, StepAfterTopologyChangeDoesNotWaitAndConverges) {
   EXPECT_FALSE(with_factor.factor_pending);
   EXPECT_TRUE(with_factor.converged);
 
-  TopologyDelta d = split(m, 5);
+  TopologyDelta d = fixtures::split_tet(m, 5);
   apply(m, d);
   integ.update(m, d);
   const StepStatus after_cut = integ.step(m, 0.01);

@@ -16,12 +16,7 @@
 namespace serosa::fem {
 namespace {
 
-TetMesh bar() {
-  TetMesh m = test_meshes::kuhn_bar(8, 2, 2, 0.05, 0.05, 0.05);
-  m.fill_node_state();
-  fixtures::clamp_x0(m);
-  return m;
-}
+TetMesh bar() { return fixtures::clamped_bar(8, 2, 2, 0.05, 0.05, 0.05); }
 
 FemConfig config(SolverKind kind, bool background) {
   FemConfig c;
@@ -32,25 +27,6 @@ FemConfig config(SolverKind kind, bool background) {
   c.solver.background_factor = background;
   c.gravity_on = true;
   return c;
-}
-
-// Splits tet t into four around its centroid (a new node with parents = its 4 nodes).
-TopologyDelta split(const TetMesh& m, std::int32_t t) {
-  TopologyDelta d;
-  d.removed_tets = {t};
-  const Tet& n = m.tets[static_cast<std::size_t>(t)];
-  NodeParent p;
-  p.count = 4;
-  p.nodes = n;
-  p.weights = {0.25, 0.25, 0.25, 0.25};
-  d.added_nodes.push_back(p);
-  for (std::size_t i = 0; i < 4; ++i) {
-    Tet s = n;
-    s[i] = m.num_nodes();
-    d.added_tets.push_back(s);
-    d.added_groups.push_back(m.group[static_cast<std::size_t>(t)]);
-  }
-  return d;
 }
 
 // The free end of the bar, the node farthest from x = 0.
@@ -79,7 +55,7 @@ History run(SolverKind kind, bool background) {
       integ.restart_energy_balance();
     }
     if (k == 60) {
-      TopologyDelta d = split(r.mesh, 7);
+      TopologyDelta d = fixtures::split_tet(r.mesh, 7);
       apply(r.mesh, d);
       integ.update(r.mesh, d);
     }

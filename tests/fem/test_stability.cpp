@@ -15,12 +15,7 @@
 namespace serosa::fem {
 namespace {
 
-TetMesh soft_bar() {
-  TetMesh m = test_meshes::kuhn_bar(6, 2, 2, 0.05, 0.05, 0.05);
-  m.fill_node_state();
-  fixtures::clamp_x0(m);
-  return m;
-}
+TetMesh soft_bar() { return fixtures::clamped_bar(6, 2, 2, 0.05, 0.05, 0.05); }
 
 FemConfig soft(SolverKind kind) {
   FemConfig c;
