@@ -137,6 +137,8 @@ class SolverLoop {
 
   [[nodiscard]] std::exception_ptr error() const { return m_error; }
   [[nodiscard]] std::int64_t steps() const { return m_steps; }
+  /// Wall time of each solver step taken, ms (read after the loop's thread has ended).
+  [[nodiscard]] const std::vector<double>& step_ms() const { return m_step_times; }
 
  private:
   void loop(const std::stop_token& stop) {
@@ -160,6 +162,7 @@ class SolverLoop {
       m_comp.runner->step(m_state);
       const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
       m_step_ms = m_step_ms == 0.0 ? ms : 0.9 * m_step_ms + 0.1 * ms;
+      m_step_times.push_back(ms);
       ++rate_steps;
       const auto now = Clock::now();
       ++m_steps;
@@ -235,6 +238,7 @@ class SolverLoop {
   surface::SurfaceMesh m_surface;
   std::optional<render::Camera> m_fitted;
   double m_step_ms = 0.0;
+  std::vector<double> m_step_times;  // (steps) wall time of each step, ms
   double m_rate_hz = 0.0;
   std::int64_t m_cuts = 0;
   bool m_slow = false;
@@ -363,6 +367,9 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
     report["wall_time_s"] = wall;
     report["steps_taken"] = loop.steps();
     report["simulated_time_s"] = assembled.state.time_s;
+    // Paced to the clock, so at most 1: below it the trainee saw slow motion.
+    report["real_time_factor"] = wall > 0.0 ? assembled.state.time_s / wall : 0.0;
+    report["step_time_ms"] = step_time_json(loop.step_ms());
     report["interrupted"] = g_interrupted.load();
     if (comp.haptics != nullptr) report["haptics"] = comp.haptics->telemetry_json();
     if (writer) {

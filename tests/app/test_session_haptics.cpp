@@ -306,6 +306,14 @@ TEST(SessionHaptics, SessionUnderXvfbRecordsAndReportsTheLoop) {
   EXPECT_GT(rep["haptics"]["ticks"].get<std::uint64_t>(), 100u) << rep["haptics"].dump(1);
   const std::int64_t steps = rep["steps_taken"].get<std::int64_t>();
   EXPECT_GT(steps, 10);
+  // The solver's pace as the trainee saw it, and its step times.
+  const double factor = rep["real_time_factor"].get<double>();
+  EXPECT_GT(factor, 0.0);
+  EXPECT_LE(factor, 1.0 + 1e-9);  // paced to the clock
+  EXPECT_NEAR(factor, rep["simulated_time_s"].get<double>() / rep["wall_time_s"].get<double>(),
+              1e-9);
+  EXPECT_GT(rep["step_time_ms"]["p50"].get<double>(), 0.0);
+  EXPECT_LE(rep["step_time_ms"]["p99"].get<double>(), rep["step_time_ms"]["max"].get<double>());
   EXPECT_EQ(rep["recording"]["steps"].get<std::int64_t>(), steps);
   const recording::Recording rec = recording::read_recording(dir / "s.lapr");
   EXPECT_TRUE(rec.complete);
