@@ -27,16 +27,17 @@ inline TetMesh clamped_bar(int nx, int ny, int nz, double hx, double hy, double 
   return m;
 }
 
-/// The delta that splits tet t of m into four around its centroid (a new node whose parents are
-/// the tet's four nodes, weights 1/4).
-inline TopologyDelta split_tet(const TetMesh& m, std::int32_t t) {
+/// The delta that splits tet t of m into four at a new node with barycentric weights w of its
+/// corners (the centroid by default; a tiny weight makes slivers).
+inline TopologyDelta split_tet(const TetMesh& m, std::int32_t t,
+                               const std::array<double, 4>& w = {0.25, 0.25, 0.25, 0.25}) {
   TopologyDelta d;
   d.removed_tets = {t};
   const Tet& n = m.tets[static_cast<std::size_t>(t)];
   NodeParent p;
   p.count = 4;
   p.nodes = n;
-  p.weights = {0.25, 0.25, 0.25, 0.25};
+  p.weights = w;
   d.added_nodes.push_back(p);
   for (std::size_t i = 0; i < 4; ++i) {
     Tet s = n;

@@ -57,25 +57,6 @@ double energy(const TetMesh& m) {
   return e;
 }
 
-// Splits tet t by a node at barycentric weights w of its corners (w[3] tiny: a sliver).
-TopologyDelta split(const TetMesh& m, std::int32_t t, const std::array<double, 4>& w) {
-  TopologyDelta d;
-  d.removed_tets = {t};
-  const Tet& n = m.tets[static_cast<std::size_t>(t)];
-  NodeParent p;
-  p.count = 4;
-  p.nodes = n;
-  p.weights = w;
-  d.added_nodes.push_back(p);
-  for (std::size_t i = 0; i < 4; ++i) {
-    Tet s = n;
-    s[i] = m.num_nodes();
-    d.added_tets.push_back(s);
-    d.added_groups.push_back(m.group[static_cast<std::size_t>(t)]);
-  }
-  return d;
-}
-
 TEST(Stability, SliversFromNearDegenerateSplits) {
   for (SolverKind kind : {SolverKind::pcg, SolverKind::cholmod, SolverKind::pcg_cholmod}) {
     TetMesh m = soft_bar();
@@ -83,7 +64,7 @@ TEST(Stability, SliversFromNearDegenerateSplits) {
     ASSERT_TRUE(integ.step(m, 0.01).applied);
     for (std::int32_t t : {3, 40, 90, 130}) {
       const double tiny = 1e-6;
-      TopologyDelta d = split(m, t, {0.3, 0.3, 0.4 - tiny, tiny});
+      TopologyDelta d = fixtures::split_tet(m, t, {0.3, 0.3, 0.4 - tiny, tiny});
       apply(m, d);
       integ.update(m, d);
     }
