@@ -4,6 +4,7 @@
 #include <set>
 
 #include "engine/input_error.h"
+#include "surface/extract_surface.h"
 
 namespace serosa::app {
 
@@ -83,6 +84,10 @@ AssembledScene assemble_state(const Scene& scene) {
     out.reads.push_back(std::move(report));
   }
   out.state.tools.resize(scene.tools.size());
+  // The boundary comes with the state: contact, which runs before the surface stage, reads it
+  // from the first step on.
+  if (scene.settings.has(Effect::kSurface) || scene.settings.has(Effect::kContact))
+    out.state.handoff.surface = surface::extract_surface(mesh);
   return out;
 }
 

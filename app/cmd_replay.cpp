@@ -1,11 +1,14 @@
-// serosa replay REC.lapr [--headless] [--verify] [--speed S] [--frames DIR] [--report OUT.json]
+// serosa replay REC.lapr [--headless] [--verify] [--from T] [--speed S] [--frames DIR]
+//               [--report OUT.json]
 //
 // Without --headless: the instructor's replay in a window (app/session.h run_replay_window:
 // pause, seek, speed). With --headless: re-simulates as fast as it can (app/replay.h).
 //
-// Exit codes: 0 replayed (and, with --verify, every recorded hash matched up to where the
-// recording ends); 1 bad input (not a recording, damaged header, scene unreadable);
-// 3 --verify found a divergence (the step is named); 4 --verify on a corrupt recording (a
+// --from T (headless): restore the last whole-state snapshot at or before T and replay from there
+// (the report's start_step); without one that early, from step 0.
+// Exit codes: 0 replayed (and, with --verify, every recorded hash and snapshot matched up to
+// where the recording ends); 1 bad input (not a recording, damaged header, scene unreadable);
+// 3 --verify found a divergence (the step, and for a snapshot the part, is named); 4 --verify on a corrupt recording (a
 // checksum or record error before its end: replayed and verified up to there, then named).
 // A recording merely cut short (crash, kill -9) replays up to its last chunk and exits 0.
 #include <cstdio>
@@ -30,6 +33,10 @@ void add_replay_command(CLI::App& app, Action& action) {
   cmd->add_flag("--headless", *headless, "Replay without a window, as fast as possible");
   cmd->add_flag("--verify", opts->verify,
                 "Check every recorded state hash; exit 3 at the first divergence");
+  auto from = std::make_shared<double>(-1.0);
+  cmd->add_option("--from", *from,
+                  "Headless: start at this time (s), from the last snapshot at or before it")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--speed", *speed, "Playback speed in a window (1 = real time)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--frames", *frames, "Write PNG pictures of the replay into this folder");
@@ -50,9 +57,14 @@ void add_replay_command(CLI::App& app, Action& action) {
   cmd->add_option("--branch", *branch_file,
                   "In a window: the branch recording (default: NAME.branch-STEP.lapr beside it)");
   cmd->callback([&action, opts, headless, frames, report, speed, seconds, snapshot, branch_at,
-                 branch_file] {
-    action = [opts, headless, frames, report, speed, seconds, snapshot, branch_at, branch_file] {
+                 branch_file, from] {
+    action = [opts, headless, frames, report, speed, seconds, snapshot, branch_at, branch_file,
+              from] {
+      if (*from >= 0.0) opts->from_s = *from;
       if (!*headless) {
+        if (opts->from_s)
+          throw InputError("--from", 0, "starts a headless replay",
+                           "--headless (in a window, seek with the keys)");
         const char* x = std::getenv("DISPLAY");
         const char* wl = std::getenv("WAYLAND_DISPLAY");
         if ((x == nullptr || *x == '\0') && (wl == nullptr || *wl == '\0'))
@@ -78,6 +90,13 @@ void add_replay_command(CLI::App& app, Action& action) {
       if (r.diverged_at) {
         std::fprintf(stderr, "error: replay diverged from the recording at step %llu\n",
                      static_cast<unsigned long long>(*r.diverged_at));
+        return 3;
+      }
+      if (r.snapshot_diverged_at) {
+        std::fprintf(stderr,
+                     "error: replay diverged from the recording's snapshot after step %llu (%s)\n",
+                     static_cast<unsigned long long>(*r.snapshot_diverged_at),
+                     r.snapshot_part.c_str());
         return 3;
       }
       if (opts->verify && r.corrupt) {

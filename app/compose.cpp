@@ -1,9 +1,12 @@
 #include "app/compose.h"
 
-#include <algorithm>
+#include <spdlog/spdlog.h>
 
-#include "app/tool_contact_stage.h"
+#include <algorithm>
+#include <cmath>
+
 #include "cutting/cutting_stage.h"
+#include "engine/input_error.h"
 #include "engine/script_tool_stage.h"
 #include "engine/sim_state.h"
 #include "engine/tissue_stress.h"
@@ -78,6 +81,31 @@ void mark_recording(Composition& c) {
   c.built.push_back(Effect::kRecord);
 }
 
+std::unique_ptr<recording::RecordingWriter> record_run(
+    Composition& c, const Scene& scene, const std::optional<std::filesystem::path>& path,
+    const recording::Header& header, const char* run) {
+  const std::optional<std::filesystem::path> file = path ? path : scene.record.path;
+  if (!file) {
+    if (scene.settings.has(Effect::kRecord))
+      spdlog::info("{} lists 'record' and gives no file: this {} is not recorded (--record FILE "
+                   "or [record] path)",
+                   scene.file.string(), run);
+    return nullptr;
+  }
+  std::unique_ptr<recording::RecordingWriter> writer;
+  try {
+    writer = std::make_unique<recording::RecordingWriter>(*file, header);
+  } catch (const std::exception& e) {
+    throw InputError(file->string(), 0, e.what(), "a writable path");
+  }
+  c.runner->add(Slot::record, std::make_unique<RecordStage>(writer.get(), scene.record.hash_every));
+  const auto every = static_cast<std::uint64_t>(
+      std::llround(scene.record.snapshot_every_s / scene.settings.dt_s));
+  c.runner->record_snapshots(*writer, every);
+  mark_recording(c);
+  return writer;
+}
+
 Composition compose(const Scene& scene, const AssembledScene& assembled, ComposeOptions options) {
   Composition c;
   c.runner = std::make_unique<Runner>(scene.settings.dt_s);
@@ -88,8 +116,10 @@ Composition compose(const Scene& scene, const AssembledScene& assembled, Compose
   std::unique_ptr<fem::FemStage> fem_stage;
   if (listed(Effect::kFem))
     fem_stage = std::make_unique<fem::FemStage>(fem_config(scene, assembled));
+  // Contact reads the surface the surface stage keeps: it brings one along when not listed.
   std::unique_ptr<SurfaceStage> surface_stage;
-  if (listed(Effect::kSurface)) surface_stage = std::make_unique<SurfaceStage>();
+  if (listed(Effect::kSurface) || listed(Effect::kContact))
+    surface_stage = std::make_unique<SurfaceStage>();
   std::unique_ptr<CuttingStage> cutting_stage;
   if (listed(Effect::kCutting)) {
     CuttingStageOptions co;
@@ -156,7 +186,7 @@ Composition compose(const Scene& scene, const AssembledScene& assembled, Compose
   if (surface_stage) {
     c.surface = surface_stage.get();
     c.runner->add(Slot::surface, std::move(surface_stage));
-    c.built.push_back(Effect::kSurface);
+    if (listed(Effect::kSurface)) c.built.push_back(Effect::kSurface);
   }
   if (metrics_stage) {
     c.metrics = metrics_stage.get();

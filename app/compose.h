@@ -3,12 +3,16 @@
 // An effect the scene does not list is never constructed: no memory, no time.
 #pragma once
 
+#include <filesystem>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "app/assemble_state.h"
+#include "contact/tool_contact_stage.h"
 #include "cutting/cutting_stage.h"
 #include "engine/record_stage.h"
+#include "engine/recording_writer.h"
 #include "engine/runner.h"
 #include "engine/scene.h"
 #include "engine/script_tool_stage.h"
@@ -38,7 +42,7 @@ using recording::RecordStage;
 using recording::ReplayInputStage;
 using recording::VerifyStage;
 using surface::SurfaceStage;
-class ToolContactStage;
+using contact::ToolContactStage;
 
 /// How to compose, beyond what the scene says.
 struct ComposeOptions {
@@ -73,6 +77,15 @@ struct Composition {
 
 /// The command added the record stage: "record" moves from `folded` to `built`.
 void mark_recording(Composition& c);
+
+/// Records the run to `path` (the command line's, else the scene's [record] path): the record
+/// stage last in the step, and a whole-state snapshot every [record] snapshot_every_s. Without
+/// either path a scene listing "record" is told (info) it is not recorded, and null is returned.
+/// `run` names the run in that message ("run", "session"). Throws InputError naming the path
+/// when it cannot be written.
+[[nodiscard]] std::unique_ptr<recording::RecordingWriter> record_run(
+    Composition& c, const Scene& scene, const std::optional<std::filesystem::path>& path,
+    const recording::Header& header, const char* run);
 
 /// The scene's solver kind as fem's.
 [[nodiscard]] fem::SolverKind to_fem(SolverKind k);

@@ -16,7 +16,7 @@
 #include "app/compose.h"
 #include "app/frame_pictures.h"
 #include "app/preset_report.h"
-#include "app/tool_contact_stage.h"
+#include "contact/tool_contact_stage.h"
 #include "app/version.h"
 #include "cutting/cutting_stage.h"
 #include "engine/input_error.h"
@@ -66,6 +66,14 @@ std::string read_text(const std::filesystem::path& p) {
 }
 
 }  // namespace
+
+Json close_recording(recording::RecordingWriter& writer, const Scene& scene, std::uint64_t steps) {
+  writer.close(steps);
+  const auto ws = writer.stats();
+  return {{"file", writer.path().string()}, {"steps", ws.steps},
+          {"chunks", ws.chunks},            {"bytes", ws.bytes},
+          {"hash_every", scene.record.hash_every}, {"snapshots", ws.snapshots}};
+}
 
 recording::Header recording_header(const Scene& scene, std::int64_t steps) {
   recording::Header h;
@@ -144,22 +152,8 @@ Json run_headless(const HeadlessOptions& options) {
   Composition comp = compose(scene, assembled, std::move(compose_options));
   SimState& state = assembled.state;
   // Record: the last stage, after everything the step changed.
-  std::unique_ptr<recording::RecordingWriter> writer;
-  const std::optional<std::filesystem::path> record_path =
-      options.record ? options.record : scene.record.path;
-  if (record_path) {
-    try {
-      writer = std::make_unique<recording::RecordingWriter>(*record_path,
-                                                            recording_header(scene, steps));
-    } catch (const std::runtime_error& e) {
-      throw InputError(record_path->string(), 0, e.what(), "a writable path");
-    }
-    comp.runner->add(Slot::record, std::make_unique<RecordStage>(*writer, scene.record.hash_every));
-    mark_recording(comp);
-  } else if (scene.settings.has(Effect::kRecord)) {
-    spdlog::info("{} lists 'record' and gives no file: this run is not recorded (--record FILE)",
-                 scene.file.string());
-  }
+  const std::unique_ptr<recording::RecordingWriter> writer =
+      record_run(comp, scene, options.record, recording_header(scene, steps), "run");
   for (Effect e : comp.unavailable)
     spdlog::warn("effect '{}' is listed by {} but not implemented in this build: not simulated",
                  effect_name(e), scene.file.string());
@@ -222,15 +216,7 @@ Json run_headless(const HeadlessOptions& options) {
   report["steps_taken"] = taken;
   if (taken < steps) report["interrupted"] = true;
   if (comp.haptics) report["haptics"] = comp.haptics->telemetry_json();  // stops the loop
-  if (writer) {
-    writer->close(static_cast<std::uint64_t>(taken));
-    const auto ws = writer->stats();
-    report["recording"] = {{"file", writer->path().string()},
-                           {"steps", ws.steps},
-                           {"chunks", ws.chunks},
-                           {"bytes", ws.bytes},
-                           {"hash_every", scene.record.hash_every}};
-  }
+  if (writer) report["recording"] = close_recording(*writer, scene, static_cast<std::uint64_t>(taken));
   const double sim_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - sim0).count();
 

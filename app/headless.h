@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/recording_format.h"
+#include "engine/recording_writer.h"
 #include "engine/scene.h"
 
 namespace serosa::app {
@@ -36,6 +37,11 @@ struct HeadlessOptions {
 
 /// The header of a recording of `scene` (engine/recording_format.h lists the keys).
 [[nodiscard]] recording::Header recording_header(const Scene& scene, std::int64_t steps);
+
+/// Closes the run's recording after `steps` steps and returns the report's "recording" object:
+/// file, steps, chunks, bytes, hash_every, snapshots.
+[[nodiscard]] nlohmann::json close_recording(recording::RecordingWriter& writer, const Scene& scene,
+                                             std::uint64_t steps);
 
 /// A state hash as the report writes it: 16 lower-case hex digits.
 [[nodiscard]] std::string hash_hex(std::uint64_t hash);

@@ -4,6 +4,8 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
+#include <span>
 #include <cstdio>
 #include <fstream>
 
@@ -16,6 +18,7 @@
 #include "engine/record_stage.h"
 #include "engine/recording_reader.h"
 #include "engine/scene.h"
+#include "engine/runner.h"
 #include "engine/sim_state.h"
 #include "metrics/metrics_stage.h"
 
@@ -23,6 +26,35 @@ namespace serosa::app {
 namespace {
 
 using Json = nlohmann::json;
+
+// The recording's last snapshot at or before simulated time t (none: nullptr).
+const std::pair<const std::uint64_t, std::vector<std::uint8_t>>* snapshot_before(
+    const recording::Recording& rec, double t_s, double dt_s) {
+  const double k = std::isfinite(t_s) ? std::floor(std::max(t_s, 0.0) / dt_s + 1e-9) : 0.0;
+  auto it = rec.snapshots.upper_bound(static_cast<std::uint64_t>(k));
+  if (it == rec.snapshots.begin()) return nullptr;
+  --it;
+  return &*it;
+}
+
+// The first part of two snapshots that differs ("state" or a stage name), or empty when equal.
+std::string first_difference(std::span<const std::uint8_t> replayed,
+                             std::span<const std::uint8_t> recorded, const std::string& what) {
+  if (std::equal(replayed.begin(), replayed.end(), recorded.begin(), recorded.end())) return {};
+  const auto a = snapshot_sections(replayed, "replayed snapshot");
+  const auto b = snapshot_sections(recorded, what);
+  for (std::size_t i = 0; i < std::max(a.size(), b.size()); ++i) {
+    if (i >= a.size()) return b[i].name;
+    if (i >= b.size() || a[i].name != b[i].name) return a[i].name;
+    const auto ra = replayed.subspan(a[i].offset, a[i].size);
+    const auto rb = recorded.subspan(b[i].offset, b[i].size);
+    if (std::equal(ra.begin(), ra.end(), rb.begin(), rb.end())) continue;
+    const auto m = std::mismatch(ra.begin(), ra.end(), rb.begin(), rb.end());
+    return a[i].name + " (byte " + std::to_string(m.first - ra.begin()) + " of " +
+           std::to_string(ra.size()) + ", recorded " + std::to_string(rb.size()) + ")";
+  }
+  return "layout";
+}
 
 }  // namespace
 
@@ -58,6 +90,17 @@ ReplayResult run_replay(const ReplayOptions& options) {
     comp.runner->add(Slot::record, std::move(v));
   }
   SimState& state = assembled.state;
+  if (options.from_s) {
+    const auto* snap = snapshot_before(rec, *options.from_s, scene.settings.dt_s);
+    if (snap == nullptr) {
+      spdlog::info("{}: no snapshot at or before {} s; replaying from step 0", file,
+                   *options.from_s);
+    } else {
+      comp.runner->restore(snap->second, state,
+                           file + ": snapshot after step " + std::to_string(snap->first));
+      result.start_step = snap->first;
+    }
+  }
 
   // Pictures spread over the replay, first and last included.
   std::unique_ptr<FramePictures> pictures;
@@ -82,11 +125,23 @@ ReplayResult run_replay(const ReplayOptions& options) {
   };
 
   const auto t0 = std::chrono::steady_clock::now();
-  maybe_picture(0);
-  for (std::uint64_t i = 0; i < n; ++i) {
+  maybe_picture(state.step);
+  for (std::uint64_t i = state.step; i < n; ++i) {
     comp.runner->step(state);
     ++result.steps;
     if (verify && verify->divergence()) break;  // the first divergence ends the replay
+    if (verify) {
+      if (const auto it = rec.snapshots.find(state.step); it != rec.snapshots.end()) {
+        ++result.snapshots_checked;
+        result.snapshot_part = first_difference(
+            comp.runner->snapshot(state), it->second,
+            file + ": snapshot after step " + std::to_string(it->first));
+        if (!result.snapshot_part.empty()) {
+          result.snapshot_diverged_at = state.step;
+          break;
+        }
+      }
+    }
     maybe_picture(i + 1);
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -103,6 +158,7 @@ ReplayResult run_replay(const ReplayOptions& options) {
     report["recording"]["corrupt"] = rec.corrupt;
   }
   report["scene"] = scene_path;
+  report["start_step"] = result.start_step;
   report["steps"] = result.steps;
   report["simulated_time_s"] = state.time_s;
   report["stepping_time_s"] = wall;
@@ -113,14 +169,20 @@ ReplayResult run_replay(const ReplayOptions& options) {
   if (verify) {
     result.hashes_checked = verify->checked();
     report["verify"] = {{"hashes_recorded", rec.hashes.size()},
-                        {"hashes_checked", verify->checked()}};
+                        {"hashes_checked", verify->checked()},
+                        {"snapshots_recorded", rec.snapshots.size()},
+                        {"snapshots_checked", result.snapshots_checked}};
+    if (result.snapshot_diverged_at) {
+      report["verify"]["snapshot_diverged_at_step"] = *result.snapshot_diverged_at;
+      report["verify"]["snapshot_differs_in"] = result.snapshot_part;
+    }
     if (const auto& d = verify->divergence()) {
       result.diverged_at = d->step;
       report["verify"]["diverged_at_step"] = d->step;
       report["verify"]["recorded_hash"] = hash_hex(d->recorded);
       report["verify"]["replayed_hash"] = hash_hex(d->replayed);
     }
-    report["verify"]["ok"] = !result.diverged_at.has_value();
+    report["verify"]["ok"] = !result.diverged_at && !result.snapshot_diverged_at;
   }
   if (options.report) {
     if (options.report->has_parent_path())

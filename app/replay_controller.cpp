@@ -10,68 +10,13 @@
 #include "engine/record_stage.h"
 
 namespace serosa::app {
-namespace {
-
-// Last stage: the state hash where the recorder took it, compared with the recording's.
-class HashStage final : public Stage {
- public:
-  explicit HashStage(const std::map<std::uint64_t, std::uint64_t>& recorded)
-      : m_recorded(recorded) {}
-  [[nodiscard]] std::string_view name() const noexcept override { return "replay-hash"; }
-  void step(const StepContext& ctx, SimState& state) override {
-    m_last = state_hash(state);
-    const auto it = m_recorded.find(ctx.step);
-    if (it == m_recorded.end()) return;
-    ++m_checked;
-    if (it->second != *m_last && !m_diverged) m_diverged = ctx.step;
-  }
-  const std::map<std::uint64_t, std::uint64_t>& m_recorded;
-  std::optional<std::uint64_t> m_last;
-  std::uint64_t m_checked = 0;
-  std::optional<std::uint64_t> m_diverged;
-};
-
-// The "tools" stage: the recorded inputs, or after a branch the live ones.
-class InputStage final : public Stage {
- public:
-  explicit InputStage(const std::vector<std::vector<ToolState>>& recorded) : m_recorded(recorded) {}
-  [[nodiscard]] std::string_view name() const noexcept override { return "tools"; }
-  void step(const StepContext& ctx, SimState& state) override {
-    if (m_live) {
-      state.tools = *m_live;
-      return;
-    }
-    const std::vector<ToolState>& in = m_recorded.at(ctx.step);
-    if (in.size() != state.tools.size())
-      throw std::out_of_range("recorded tool count differs from the scene's");
-    state.tools = in;
-  }
-  const std::vector<std::vector<ToolState>>& m_recorded;
-  std::optional<std::vector<ToolState>> m_live;
-};
-
-// Records a branch (as RecordStage does) once it has a writer; nothing before.
-class BranchRecordStage final : public Stage {
- public:
-  explicit BranchRecordStage(std::int64_t hash_every) : m_hash_every(hash_every) {}
-  [[nodiscard]] std::string_view name() const noexcept override { return "branch-record"; }
-  void step(const StepContext& ctx, SimState& state) override {
-    if (m_writer == nullptr) return;
-    m_writer->record_inputs(ctx.step, state.tools);
-    if (hashed_step(ctx.step, m_hash_every)) m_writer->record_hash(ctx.step, state_hash(state));
-  }
-  recording::RecordingWriter* m_writer = nullptr;
-  std::int64_t m_hash_every;
-};
-
-}  // namespace
 
 struct ReplayController::Pipeline {
   AssembledScene assembled;
   Composition comp;
-  InputStage* input = nullptr;
-  BranchRecordStage* record = nullptr;
-  HashStage* hash = nullptr;
+  ReplayInputStage* input = nullptr;
+  RecordStage* record = nullptr;  // records only once a branch attaches its writer
+  VerifyStage* hash = nullptr;
 };
 
 ReplayController::ReplayController(const std::filesystem::path& recording,
@@ -95,6 +40,14 @@ ReplayController::ReplayController(const std::filesystem::path& recording,
       1, static_cast<std::uint64_t>(std::llround(options.snapshot_every_s / dt_s())));
   set_speed(options.speed);
   m_initial = std::make_unique<AssembledScene>(assemble_state(m_scene));
+  // The recording's own snapshots, with the hash of the step before each where one was recorded.
+  for (const auto& [steps, bytes] : m_rec.snapshots) {
+    if (steps == 0 || steps > num_steps()) continue;
+    const auto h = m_rec.hashes.find(steps - 1);
+    m_snapshots.try_emplace(steps, Snapshot{bytes, h == m_rec.hashes.end()
+                                                       ? std::nullopt
+                                                       : std::optional<std::uint64_t>(h->second)});
+  }
   restart(nullptr);
 }
 
@@ -104,27 +57,25 @@ void ReplayController::restart(const Snapshot* from) {
   m_sim.reset();
   auto sim = std::make_unique<Pipeline>();
   sim->assembled = *m_initial;
-  if (from != nullptr) sim->assembled.state = from->state;
   ComposeOptions co;
-  auto input = std::make_unique<InputStage>(m_rec.inputs);
+  auto input = std::make_unique<ReplayInputStage>(m_rec.inputs);
   sim->input = input.get();
   co.tool_input = std::move(input);
   sim->comp = compose(m_scene, sim->assembled, std::move(co));
-  auto record = std::make_unique<BranchRecordStage>(m_scene.record.hash_every);
+  auto record = std::make_unique<RecordStage>(nullptr, m_scene.record.hash_every);
   sim->record = record.get();
   sim->comp.runner->add(Slot::record, std::move(record));
-  auto hash = std::make_unique<HashStage>(m_rec.hashes);
+  auto hash = std::make_unique<VerifyStage>(m_rec.hashes, /*every_step=*/true);
   sim->hash = hash.get();
-  if (from != nullptr) hash->m_last = from->hash;
   sim->comp.runner->add(Slot::record, std::move(hash));
+  // A whole-state snapshot restores every stage's part too: the run goes on as recorded.
+  if (from != nullptr) {
+    sim->comp.runner->restore(from->bytes, sim->assembled.state, m_path.string() + ": snapshot");
+    sim->hash->set_last_hash(from->hash);
+  }
   m_sim = std::move(sim);
   ++m_restarts;
-  if (from == nullptr) {
-    m_exact = true;
-    m_snapshots.try_emplace(0, Snapshot{m_sim->assembled.state, std::nullopt});
-  } else {
-    m_exact = from->state.step == 0;
-  }
+  m_exact = true;
 }
 
 void ReplayController::set_speed(double speed) {
@@ -135,8 +86,9 @@ bool ReplayController::step_forward() {
   if (at_end()) return false;
   SimState& s = m_sim->assembled.state;
   m_sim->comp.runner->step(s);
-  if (s.step % m_snapshot_every == 0 && m_exact)
-    m_snapshots.try_emplace(s.step, Snapshot{s, m_sim->hash->m_last});
+  if (s.step % m_snapshot_every == 0 && m_exact && s.handoff.cuts.empty() &&
+      !m_snapshots.contains(s.step))
+    m_snapshots.emplace(s.step, Snapshot{m_sim->comp.runner->snapshot(s), last_step_hash()});
   return true;
 }
 
@@ -157,18 +109,13 @@ void ReplayController::seek_step(std::uint64_t steps) {
   steps = std::min(steps, num_steps());
   m_due = 0.0;
   if (steps < steps_taken()) {
-    if (m_options.exact_seek) {
+    // The nearest snapshot at or before the target, else the start.
+    const auto it = m_snapshots.upper_bound(steps);
+    if (m_options.from_start || it == m_snapshots.begin()) {
       restart(nullptr);
     } else {
-      // The nearest snapshot at or before the target (step 0 always exists).
-      auto it = m_snapshots.upper_bound(steps);
-      --it;
-      if (it->first == 0) {
-        restart(nullptr);
-      } else {
-        const Snapshot from = it->second;
-        restart(&from);
-      }
+      const Snapshot from = std::prev(it)->second;
+      restart(&from);
     }
   }
   while (steps_taken() < steps && step_forward()) {
@@ -178,14 +125,6 @@ void ReplayController::seek_step(std::uint64_t steps) {
 void ReplayController::seek(double t_s) {
   const double k = std::isfinite(t_s) ? std::round(std::max(t_s, 0.0) / dt_s()) : 0.0;
   seek_step(static_cast<std::uint64_t>(std::min(k, static_cast<double>(num_steps()))));
-}
-
-void ReplayController::make_exact() {
-  if (m_exact || m_branch_step) return;
-  const std::uint64_t k = steps_taken();
-  restart(nullptr);
-  while (steps_taken() < k && step_forward()) {
-  }
 }
 
 bool ReplayController::at_end() const {
@@ -212,18 +151,18 @@ void ReplayController::branch(const std::filesystem::path& branch_file) {
   m_branch_writer->record_event(k, "branch");
   m_branch_step = k;
   m_exact = false;  // from here on the run is the branch, not the recording
-  m_sim->input->m_live = m_sim->assembled.state.tools;
-  m_sim->record->m_writer = m_branch_writer.get();
+  m_sim->input->go_live(m_sim->assembled.state.tools);
+  m_sim->record->attach(m_branch_writer.get());
 }
 
 void ReplayController::set_tool_input(std::size_t i, const ToolState& input) {
   if (!m_branch_step || m_branch_closed) throw std::logic_error("not in a branch");
-  m_sim->input->m_live->at(i) = input;
+  m_sim->input->set_live(i, input);
 }
 
 void ReplayController::end_branch() {
   if (!m_branch_writer || m_branch_closed) return;
-  m_sim->record->m_writer = nullptr;
+  m_sim->record->attach(nullptr);
   m_branch_writer->close(steps_taken());
   m_branch_closed = true;
 }
@@ -231,11 +170,12 @@ void ReplayController::end_branch() {
 std::uint64_t ReplayController::steps_taken() const { return m_sim->assembled.state.step; }
 double ReplayController::time_s() const { return m_sim->assembled.state.time_s; }
 std::optional<std::uint64_t> ReplayController::last_step_hash() const {
-  return m_sim->hash->m_last;
+  return m_sim->hash->last_hash();
 }
-std::uint64_t ReplayController::hashes_checked() const { return m_sim->hash->m_checked; }
+std::uint64_t ReplayController::hashes_checked() const { return m_sim->hash->checked(); }
 std::optional<std::uint64_t> ReplayController::diverged_at() const {
-  return m_sim->hash->m_diverged;
+  const auto& d = m_sim->hash->divergence();
+  return d ? std::optional<std::uint64_t>(d->step) : std::nullopt;
 }
 const SimState& ReplayController::state() const { return m_sim->assembled.state; }
 const Composition& ReplayController::composition() const { return m_sim->comp; }

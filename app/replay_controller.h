@@ -2,17 +2,12 @@
 // window; tests drive it directly): plays a .lapr recording forward at a speed, pauses, and seeks
 // to any time. Forward seeks step on; backward seeks restart from a snapshot.
 //
-// Snapshots. While playing forward the controller keeps a copy of the SimState every
-// `snapshot_every_s` (and the start). The stages keep caches a SimState does not hold (FEM's
-// per-tet rotations that warm-start the next step, the scissors' last blade pose, the grasper's
-// hold, metrics sums), so a simulation restarted from a mid-run SimState continues close to, but
-// not bit for bit like, the recording. Hence two seek modes:
-//  - exact (default): a backward seek re-simulates from the start (the step-0 snapshot, where a
-//    fresh pipeline IS the recorded one): every state hash equals the recording's. O(t).
-//  - snapshot: restores the nearest snapshot at or before the target into a fresh pipeline and
-//    re-simulates from there: O(snapshot interval), the state at the snapshot itself is bit-exact,
-//    later states differ from the recording by the solvers' tolerances (the controller then says
-//    exact() == false until the next exact seek).
+// Snapshots. The recording's whole-state snapshots (engine/state_codec.h), and those the
+// controller takes every `snapshot_every_s` while it plays forward, hold SimState and every
+// stage's own part (warm starts, factor schedule, strokes, grasps, metric sums): a backward seek
+// restores the nearest one at or before the target into a fresh pipeline and re-simulates from
+// there, O(snapshot interval), and every later state hash equals the recording's. from_start
+// re-simulates from step 0 instead (O(t); the snapshot-free cross-check).
 #pragma once
 
 #include <cstdint>
@@ -35,7 +30,7 @@ struct Composition;
 
 struct ReplayControllerOptions {
   double snapshot_every_s = 1.0;  ///< simulated time between snapshots, s (> 0)
-  bool exact_seek = true;         ///< backward seeks re-simulate from the start (see above)
+  bool from_start = false;        ///< backward seeks re-simulate from step 0 (see above)
   double speed = 1.0;             ///< initial playback speed, x real time
 };
 
@@ -69,10 +64,6 @@ class ReplayController {
   void seek_step(std::uint64_t steps);
   /// To simulated time t, s: the state after round(t / dt) steps (clamped).
   void seek(double t_s);
-  /// After snapshot-mode seeks: re-simulates from the start to the current step so that the
-  /// state is the recorded one again (exact() afterwards; a branch needs it). O(t). No-op when
-  /// already exact or branched.
-  void make_exact();
 
   // ---- branching (take over from the replayed state) ----
   /// Branches here: from now on the tools follow set_tool_input() (the rig or the mouse) instead
@@ -100,8 +91,7 @@ class ReplayController {
   [[nodiscard]] double duration_s() const { return static_cast<double>(num_steps()) * dt_s(); }
   /// At the recording's end (never while a branch records; always once it is closed).
   [[nodiscard]] bool at_end() const;
-  /// True while the state follows the recording bit for bit (no snapshot-mode seek since the last
-  /// restart from the start, no branch).
+  /// True while the state follows the recording bit for bit (until a branch).
   [[nodiscard]] bool exact() const { return m_exact; }
   /// The hash of the state as the recording hashes it (after the stages of the last step, before
   /// the step counter advanced); nullopt before the first step.
@@ -122,8 +112,8 @@ class ReplayController {
  private:
   struct Pipeline;
   struct Snapshot {
-    SimState state;
-    std::optional<std::uint64_t> hash;  // last_step_hash() there
+    std::vector<std::uint8_t> bytes;    // Runner::snapshot
+    std::optional<std::uint64_t> hash;  // last_step_hash() there, when known
   };
   void restart(const Snapshot* from);
 

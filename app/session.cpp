@@ -261,24 +261,8 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
   ComposeOptions co;
   co.realtime_haptics = true;  // the trainee's machine: SCHED_FIFO when granted
   Composition comp = compose(scene, assembled, std::move(co));
-  std::unique_ptr<recording::RecordingWriter> writer;
-  const std::optional<std::filesystem::path> record_path =
-      so.record ? so.record : scene.record.path;
-  if (record_path) {
-    try {
-      writer =
-          std::make_unique<recording::RecordingWriter>(*record_path, recording_header(scene, 0));
-    } catch (const std::exception& e) {
-      throw InputError(record_path->string(), 0, e.what(), "a writable path");
-    }
-    comp.runner->add(Slot::record, std::make_unique<RecordStage>(*writer, scene.record.hash_every));
-    mark_recording(comp);
-  } else if (scene.settings.has(Effect::kRecord)) {
-    spdlog::info(
-        "{} lists 'record' and gives no file: this session is not recorded (--record "
-        "FILE or [record] path)",
-        scene.file.string());
-  }
+  const std::unique_ptr<recording::RecordingWriter> writer =
+      record_run(comp, scene, so.record, recording_header(scene, 0), "session");
   for (Effect e : comp.unavailable)
     spdlog::warn("effect '{}' is not implemented in this build: not simulated", effect_name(e));
   const bool mouse = comp.haptics != nullptr && comp.haptics->device_kind() == DeviceKind::kMouse;
@@ -373,15 +357,7 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
     report["step_time_ms"] = step_time_json(loop.step_ms());
     report["interrupted"] = g_interrupted.load();
     if (comp.haptics != nullptr) report["haptics"] = comp.haptics->telemetry_json();
-    if (writer) {
-      writer->close(assembled.state.step);
-      const auto ws = writer->stats();
-      report["recording"] = {{"file", writer->path().string()},
-                             {"steps", ws.steps},
-                             {"chunks", ws.chunks},
-                             {"bytes", ws.bytes},
-                             {"hash_every", scene.record.hash_every}};
-    }
+    if (writer) report["recording"] = close_recording(*writer, scene, assembled.state.step);
     if (comp.metrics != nullptr) report["metrics"] = comp.metrics->report();
     report["state_hash"] = hash_hex(state_hash(assembled.state));
     if (so.report) {
@@ -399,15 +375,13 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
   const double seconds = ro.seconds;
   const std::filesystem::path& snapshot = ro.snapshot;
   ReplayControllerOptions co;
-  co.exact_seek = false;  // interactive seeks: from the nearest snapshot (see the header)
-  co.snapshot_every_s = 1.0;
+  co.snapshot_every_s = 1.0;  // seeks back restore the nearest snapshot: exact and quick
   co.speed = ro.speed;
   ReplayController replay(recording, co);
   std::optional<MouseTakeover> takeover;
   PointerControl pointer;
   const auto branch_here = [&] {
     replay.set_paused(true);
-    replay.make_exact();
     std::filesystem::path file = ro.branch_file.value_or(std::filesystem::path{});
     if (file.empty()) {
       file = recording;

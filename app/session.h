@@ -50,8 +50,8 @@ int run_session(const std::filesystem::path& scene, const SessionOptions& option
 /// with the mouse. At the end of the recording playback pauses on the last frame. Closes after
 /// `seconds` of wall time when > 0 (checks), writing the last picture to `snapshot` when given.
 ///
-/// Branch (B, or automatically at `branch_at_s` when given): pauses, brings the state back to the
-/// exact recorded one (ReplayController::make_exact) and branches there into `branch_file`
+/// Branch (B, or automatically at `branch_at_s` when given): pauses and branches from the replayed
+/// state (bit for bit the recorded one, seeks included) into `branch_file`
 /// (default: next to the recording, NAME.branch-STEP.lapr); from then on the mouse drives the
 /// instruments (app/mouse_takeover.h; the session's keys: drag, W/S, Q/E, J, Tab) and Space
 /// resumes. The branch recording is closed when the window closes.

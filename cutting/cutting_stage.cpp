@@ -7,6 +7,7 @@
 #include "cutting/tet_bvh.h"
 #include "cutting/validate.h"
 #include "engine/sim_state.h"
+#include "engine/state_codec.h"
 #include "engine/tool_geometry.h"
 
 namespace serosa::cutting {
@@ -198,6 +199,37 @@ void CuttingStage::cut(const StepContext& ctx, SimState& state, std::size_t tool
   }
   applied.delta = std::move(result.delta);
   state.handoff.cuts.push_back(std::move(applied));
+}
+
+namespace {
+
+void write_pose(StateWriter& out, const std::optional<ToolState>& t) {
+  out.u8(t ? 1 : 0);
+  if (t) out.tool_state(*t);
+}
+
+std::optional<ToolState> read_pose(StateReader& in) {
+  if (in.u8() == 0) return std::nullopt;
+  return in.tool_state();
+}
+
+}  // namespace
+
+void CuttingStage::save(StateWriter& out) const {
+  out.u32(static_cast<std::uint32_t>(m_scissors.size()));
+  for (const Scissors& s : m_scissors) {
+    write_pose(out, s.before);
+    write_pose(out, s.stroke);
+  }
+}
+
+void CuttingStage::restore(StateReader& in, SimState& /*state*/) {
+  if (in.u32() != m_scissors.size()) in.fail("another number of scissors than the scene's");
+  for (Scissors& s : m_scissors) {
+    s.before = read_pose(in);
+    s.stroke = read_pose(in);
+  }
+  m_bvh.reset();  // candidates are sorted: a fresh tree finds the same ones
 }
 
 }  // namespace serosa::cutting

@@ -95,6 +95,9 @@ class CuttingStage final : public Stage {
 
   [[nodiscard]] std::string_view name() const noexcept override { return "cutting"; }
   void step(const StepContext& ctx, SimState& state) override;
+  /// Each scissors' last pose and the stroke in progress (the tet BVH is rebuilt).
+  void save(StateWriter& out) const override;
+  void restore(StateReader& in, SimState& state) override;
 
   [[nodiscard]] const CuttingStageStats& stats() const noexcept { return m_stats; }
   [[nodiscard]] std::size_t num_scissors() const noexcept { return m_scissors.size(); }

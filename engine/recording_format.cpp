@@ -108,6 +108,14 @@ void put_event(std::vector<std::uint8_t>& out, std::uint64_t step, const std::st
   put_string(out, text);
 }
 
+void put_snapshot(std::vector<std::uint8_t>& out, std::uint64_t steps,
+                  std::span<const std::uint8_t> snapshot) {
+  put_u8(out, static_cast<std::uint8_t>(RecordType::kSnapshot));
+  put_u64(out, steps);
+  put_u64(out, snapshot.size());
+  out.insert(out.end(), snapshot.begin(), snapshot.end());
+}
+
 void put_end(std::vector<std::uint8_t>& out, std::uint64_t steps) {
   put_u8(out, static_cast<std::uint8_t>(RecordType::kEnd));
   put_u64(out, steps);

@@ -10,6 +10,8 @@
 //                           kHash:   u64:step u64:state_hash (after the step's stages)
 //                           kEvent:  u64:step u32:len text
 //                           kEnd:    u64:steps (the run ended cleanly after this many steps)
+//                           kSnapshot: u64:steps u64:len bytes (the whole state after that many
+//                                    steps, engine/state_codec.h; version 2 on)
 //   ToolState := u64:tick f64:time_s f64[3]:tip_m f64[4]:quat_wxyz f64:jaw_rad u32:buttons
 // Every integer and float is little-endian (IEEE 754 binary64 for f64). CRC-32 is the
 // ISO-HDLC/zlib one (reflected polynomial 0xEDB88320, init and final xor 0xFFFFFFFF).
@@ -28,7 +30,9 @@ namespace serosa::recording {
 
 inline constexpr char kFileMagic[4] = {'L', 'A', 'P', 'R'};
 inline constexpr char kChunkMagic[4] = {'C', 'H', 'N', 'K'};
-inline constexpr std::uint32_t kVersion = 1;
+inline constexpr std::uint32_t kVersion = 2;
+/// The oldest version read (1: no snapshots; it replays from step 0).
+inline constexpr std::uint32_t kOldestVersion = 1;
 /// A chunk's payload is never larger than this (a reader treats a larger length as corrupt).
 inline constexpr std::uint32_t kMaxChunkPayload = 64u << 20;
 /// A header is never larger than this.
@@ -36,7 +40,13 @@ inline constexpr std::uint32_t kMaxHeader = 64u << 20;
 /// Bytes of one encoded ToolState.
 inline constexpr std::size_t kToolStateBytes = 8 + 8 + 3 * 8 + 4 * 8 + 8 + 4;
 
-enum class RecordType : std::uint8_t { kInputs = 1, kHash = 2, kEvent = 3, kEnd = 4 };
+enum class RecordType : std::uint8_t {
+  kInputs = 1,
+  kHash = 2,
+  kEvent = 3,
+  kEnd = 4,
+  kSnapshot = 5
+};
 
 /// The header: ordered key/value strings. Keys written by serosa: "serosa" (version),
 /// "scene_path" (absolute path of the scene file), "scene_text" (its whole TOML text), "dt_s",
@@ -70,5 +80,11 @@ void put_inputs(std::vector<std::uint8_t>& out, std::uint64_t step,
 void put_hash(std::vector<std::uint8_t>& out, std::uint64_t step, std::uint64_t hash);
 void put_event(std::vector<std::uint8_t>& out, std::uint64_t step, const std::string& text);
 void put_end(std::vector<std::uint8_t>& out, std::uint64_t steps);
+void put_snapshot(std::vector<std::uint8_t>& out, std::uint64_t steps,
+                  std::span<const std::uint8_t> snapshot);
+/// Bytes of a snapshot record around `snapshot_bytes` of snapshot.
+[[nodiscard]] constexpr std::size_t snapshot_record_bytes(std::size_t snapshot_bytes) {
+  return 1 + 8 + 8 + snapshot_bytes;
+}
 
 }  // namespace serosa::recording

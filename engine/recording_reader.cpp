@@ -52,6 +52,7 @@ class Cursor {
     m_pos += n;
     return true;
   }
+  void skip(std::size_t n) { m_pos += n; }
   bool tool(ToolState& t) {
     bool ok = u64(t.tick) && f64(t.time_s);
     for (double& c : t.tip_m) ok = ok && f64(c);
@@ -111,6 +112,14 @@ std::optional<std::string> decode_payload(const std::uint8_t* p, std::size_t n, 
       case RecordType::kEnd:
         ended = true;
         break;
+      case RecordType::kSnapshot: {
+        std::uint64_t len = 0;
+        if (!c.u64(len) || c.left() < len) return "snapshot record cut short";
+        const std::uint8_t* b = p + c.pos();
+        rec.snapshots[step].assign(b, b + len);
+        c.skip(static_cast<std::size_t>(len));
+        break;
+      }
       default:
         return "unknown record type " + std::to_string(type);
     }
@@ -131,9 +140,9 @@ Recording parse_recording(const std::vector<std::uint8_t>& bytes, const std::str
   std::uint32_t crc = 0;
   (void)c.u32(hlen);  // skip magic
   if (!c.u32(rec.version)) throw InputError(name, 0, "file cut short in the header");
-  if (rec.version != kVersion)
+  if (rec.version < kOldestVersion || rec.version > kVersion)
     throw InputError(name, 0, "recording format version " + std::to_string(rec.version),
-                     "version " + std::to_string(kVersion));
+                     "version " + std::to_string(kOldestVersion) + " to " + std::to_string(kVersion));
   if (!c.u32(hlen) || hlen > kMaxHeader || c.left() < std::size_t{hlen} + 4)
     throw InputError(name, 0, "file cut short in the header (at byte 12)");
   const std::size_t body = c.pos();
@@ -201,6 +210,7 @@ Recording parse_recording(const std::vector<std::uint8_t>& bytes, const std::str
     for (auto& in : part.inputs) rec.inputs.push_back(std::move(in));
     rec.hashes.insert(part.hashes.begin(), part.hashes.end());
     for (auto& e : part.events) rec.events.push_back(std::move(e));
+    for (auto& [steps, snap] : part.snapshots) rec.snapshots[steps] = std::move(snap);
     ended = part_ended;
     ++rec.chunks;
     pos += 12 + std::size_t{len};

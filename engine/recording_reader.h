@@ -20,6 +20,8 @@ struct Recording {
   std::vector<std::vector<ToolState>> inputs;
   std::map<std::uint64_t, std::uint64_t> hashes;  ///< step -> state hash after that step
   std::vector<std::pair<std::uint64_t, std::string>> events;  ///< (step, text)
+  /// steps taken -> the whole state after them (engine/state_codec.h); none before version 2.
+  std::map<std::uint64_t, std::vector<std::uint8_t>> snapshots;
   std::int64_t chunks = 0;                                    ///< good chunks read
 
   /// The run ended cleanly (end record read, no damage).

@@ -49,6 +49,23 @@ void RecordingWriter::record_hash(std::uint64_t step, std::uint64_t hash) {
   seal_if_full();
 }
 
+void RecordingWriter::record_snapshot(std::uint64_t steps, std::span<const std::uint8_t> snapshot) {
+  if (snapshot_record_bytes(snapshot.size()) > kMaxChunkPayload) {
+    record_event(steps, "snapshot left out: " + std::to_string(snapshot.size()) +
+                            " bytes exceed a chunk");
+    return;
+  }
+  std::lock_guard lock(m_mutex);
+  // A chunk never outgrows kMaxChunkPayload: what is pending goes first.
+  if (m_pending.size() + snapshot_record_bytes(snapshot.size()) > kMaxChunkPayload) {
+    m_ready.push_back(std::move(m_pending));
+    m_pending.clear();
+  }
+  put_snapshot(m_pending, steps, snapshot);
+  ++m_stats.snapshots;
+  seal_if_full();
+}
+
 void RecordingWriter::record_event(std::uint64_t step, const std::string& text) {
   std::lock_guard lock(m_mutex);
   put_event(m_pending, step, text);

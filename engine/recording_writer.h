@@ -34,6 +34,7 @@ struct WriterStats {
   std::uint64_t chunks = 0;  ///< chunks written
   std::uint64_t bytes = 0;   ///< bytes written, header included
   std::uint64_t steps = 0;   ///< input records taken
+  std::uint64_t snapshots = 0;  ///< snapshot records taken
 };
 
 class RecordingWriter {
@@ -51,6 +52,9 @@ class RecordingWriter {
   void record_inputs(std::uint64_t step, std::span<const ToolState> tools);
   /// The state hash after step `step`.
   void record_hash(std::uint64_t step, std::uint64_t hash);
+  /// The whole state after `steps` steps (Runner::snapshot). A snapshot too large for one chunk
+  /// is left out, with an event saying so (the replay then starts from an earlier one).
+  void record_snapshot(std::uint64_t steps, std::span<const std::uint8_t> snapshot);
   /// A named event at step `step` (e.g. "pause", "branch").
   void record_event(std::uint64_t step, const std::string& text);
 

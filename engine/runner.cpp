@@ -1,9 +1,13 @@
 #include "engine/runner.h"
 
 #include <algorithm>
+#include <cstring>
+#include <map>
 #include <stdexcept>
 
+#include "engine/recording_writer.h"
 #include "engine/sim_state.h"
+#include "engine/state_codec.h"
 
 namespace serosa {
 
@@ -45,6 +49,95 @@ void Runner::step(SimState& state) {
   ++state.step;
   // Time from the step count, not by accumulation, so long runs do not drift.
   state.time_s = static_cast<double>(state.step) * m_dt_s;
+  record_snapshot_if_due(state);
+}
+
+namespace {
+constexpr char kSnapshotMagic[4] = {'S', 'N', 'A', 'P'};
+constexpr std::uint32_t kSnapshotVersion = 1;
+}  // namespace
+
+// A snapshot waits for a step with no cut in flight (the FEM stage takes a step's cuts at the
+// next one; the snapshot holds the state between steps).
+void Runner::record_snapshot_if_due(const SimState& state) {
+  if (m_snapshot_writer == nullptr || state.step < m_next_snapshot || !state.handoff.cuts.empty())
+    return;
+  m_snapshot_writer->record_snapshot(state.step, snapshot(state));
+  m_next_snapshot = (state.step / m_snapshot_every + 1) * m_snapshot_every;
+}
+
+void Runner::record_snapshots(recording::RecordingWriter& writer, std::uint64_t every_steps) {
+  m_snapshot_writer = every_steps > 0 ? &writer : nullptr;
+  m_snapshot_every = every_steps;
+  m_next_snapshot = every_steps;
+}
+
+std::vector<std::uint8_t> Runner::snapshot(const SimState& state) const {
+  StateWriter out;
+  out.raw(kSnapshotMagic, sizeof kSnapshotMagic);
+  out.u32(kSnapshotVersion);
+  write_sim_state(out, state);
+  std::vector<std::pair<std::string, StateWriter>> blocks;
+  for (const Entry& e : m_entries) {
+    StateWriter block;
+    e.stage->save(block);
+    if (block.size() > 0) blocks.emplace_back(std::string(e.stage->name()), std::move(block));
+  }
+  out.u32(static_cast<std::uint32_t>(blocks.size()));
+  for (auto& [name, block] : blocks) {
+    out.string(name);
+    out.u64(block.size());
+    out.raw(block.bytes().data(), block.size());
+  }
+  return std::move(out.bytes());
+}
+
+std::vector<SnapshotSection> snapshot_sections(std::span<const std::uint8_t> snapshot,
+                                               const std::string& what) {
+  StateReader in(snapshot, what);
+  char magic[4] = {};
+  in.raw(magic, sizeof magic);
+  if (std::memcmp(magic, kSnapshotMagic, sizeof magic) != 0) in.fail("not a snapshot (magic)");
+  if (const std::uint32_t v = in.u32(); v != kSnapshotVersion)
+    in.fail("snapshot version " + std::to_string(v) + ", this build reads " +
+            std::to_string(kSnapshotVersion));
+  std::vector<SnapshotSection> sections;
+  const std::size_t begin = in.offset();
+  (void)read_sim_state(in);
+  sections.push_back({"state", begin, in.offset() - begin});
+  const std::uint32_t n = in.u32();
+  for (std::uint32_t i = 0; i < n; ++i) {
+    std::string name = in.string();
+    const std::uint64_t len = in.u64();
+    if (len > in.left()) in.fail("stage '" + name + "': block runs past the end");
+    sections.push_back({std::move(name), in.offset(), static_cast<std::size_t>(len)});
+    (void)in.view(static_cast<std::size_t>(len));
+  }
+  if (in.left() != 0) in.fail("bytes after the last block");
+  return sections;
+}
+
+void Runner::restore(std::span<const std::uint8_t> snapshot, SimState& state,
+                     const std::string& what) {
+  const std::vector<SnapshotSection> sections = snapshot_sections(snapshot, what);
+  StateReader sim(snapshot.subspan(sections.front().offset, sections.front().size), what);
+  SimState restored = read_sim_state(sim);
+  std::map<std::string, std::span<const std::uint8_t>> blocks;
+  for (std::size_t i = 1; i < sections.size(); ++i)
+    blocks[sections[i].name] = snapshot.subspan(sections[i].offset, sections[i].size);
+  state = std::move(restored);
+  // Every stage reads its block; a stage that keeps state and finds none fails on its first read
+  // (a snapshot of another composition). Blocks of stages not built here (the session's haptic
+  // loop, in a replay) are left alone.
+  for (Entry& e : m_entries) {
+    const std::string name(e.stage->name());
+    const auto it = blocks.find(name);
+    const std::span<const std::uint8_t> bytes =
+        it == blocks.end() ? std::span<const std::uint8_t>{} : it->second;
+    StateReader in(bytes, what + ": stage '" + name + "'");
+    e.stage->restore(in, state);
+    if (in.left() != 0) in.fail("the stage left bytes of its block unread");
+  }
 }
 
 void Runner::run(SimState& state, std::uint64_t n) {

@@ -1,6 +1,6 @@
 // Runner: takes one solver step at a time over the stages app composed, each in its place of the
 // step, and times each. Runner::step (runner.cpp) is the whole step in order, read top to bottom:
-//   tools -> haptics -> contact -> FEM -> cuts -> surface -> metrics -> record
+//   tools -> haptics -> contact -> FEM -> cuts -> surface -> metrics -> record (-> snapshot)
 // (docs/ARCHITECTURE.md "The step"). A place with no stage is an effect the scene does not list:
 // it costs nothing. This is the synchronous core; the haptics and render threads attach to it
 // through the hand-off primitives (seqlock.h, triple_buffer.h) and SimState::handoff.
@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,9 @@
 namespace serosa {
 
 struct SimState;
+namespace recording {
+class RecordingWriter;
+}
 
 /// The places of a solver step, in the order Runner::step runs them.
 enum class Slot : std::uint8_t {
@@ -29,6 +33,17 @@ enum class Slot : std::uint8_t {
   metrics,  ///< what the trainee is scored on
   record,   ///< what the step consumed, and state hashes, to a recording (or checked: verify)
 };
+
+/// One part of a snapshot: "state" (SimState) or a stage's block, by byte range.
+struct SnapshotSection {
+  std::string name;
+  std::size_t offset = 0;
+  std::size_t size = 0;
+};
+
+/// The parts of a snapshot (Runner::snapshot), checked; throws InputError naming `what`.
+[[nodiscard]] std::vector<SnapshotSection> snapshot_sections(std::span<const std::uint8_t> snapshot,
+                                                             const std::string& what);
 
 struct StageTiming {
   std::string name;
@@ -47,6 +62,17 @@ class Runner {
   /// Takes n steps.
   void run(SimState& state, std::uint64_t n);
 
+  /// The whole state after the last step: SimState and each stage's block, as bytes
+  /// (engine/state_codec.h). Between steps only (no cut in flight).
+  [[nodiscard]] std::vector<std::uint8_t> snapshot(const SimState& state) const;
+  /// Restores a snapshot into `state` and into this runner's stages, which must be freshly built
+  /// for the scene it was taken from: each stage that keeps a block gets its own back (by name).
+  /// Throws InputError naming `what` when the bytes are damaged or do not fit these stages.
+  void restore(std::span<const std::uint8_t> snapshot, SimState& state, const std::string& what);
+  /// Writes a snapshot to `writer` every `every_steps` steps (0: never), at the end of the step:
+  /// at the first step on or after each multiple of every_steps.
+  void record_snapshots(recording::RecordingWriter& writer, std::uint64_t every_steps);
+
   [[nodiscard]] double dt_s() const noexcept { return m_dt_s; }
   /// Each stage's timing, in the order the step runs them.
   [[nodiscard]] std::vector<StageTiming> timings() const;
@@ -58,11 +84,15 @@ class Runner {
     std::unique_ptr<Stage> stage;
     StageTiming timing;
   };
+  void record_snapshot_if_due(const SimState& state);
   /// Runs the stages in `slot`, timing each.
   void run_slot(Slot slot, const StepContext& ctx, SimState& state);
 
   double m_dt_s;
   std::vector<Entry> m_entries;  // ordered by slot, then by addition
+  recording::RecordingWriter* m_snapshot_writer = nullptr;
+  std::uint64_t m_snapshot_every = 0;
+  std::uint64_t m_next_snapshot = 0;  // step count at or after which the next one is written
 };
 
 }  // namespace serosa

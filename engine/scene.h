@@ -193,6 +193,9 @@ struct Tool {
 struct RecordSettings {
   std::optional<std::filesystem::path> path;  ///< .lapr output, resolved; else the CLI decides
   std::int64_t hash_every = 100;              ///< state hash every N solver steps; >= 1
+  /// Whole-state snapshot every this much simulated time, s (0: none); >= 0. A replay restores
+  /// one to start late (--from) or to seek back.
+  double snapshot_every_s = 1.0;
 };
 
 struct CuttingSettings {

@@ -599,7 +599,7 @@ class Loader {
 
   void read_record(const toml::table& t, RecordSettings& r) const {
     const std::string p = "record";
-    check_keys(t, p, {"path", "hash_every"});
+    check_keys(t, p, {"path", "hash_every", "snapshot_every_s"});
     if (const auto* n = t.get("path")) {
       const std::string& rel = string(*n, sub(p, "path"), "a .lapr path relative to the scene");
       if (rel.empty()) fail(*n, sub(p, "path"), "empty path", "a .lapr path relative to the scene");
@@ -610,6 +610,9 @@ class Loader {
           ranged_int(*n, sub(p, "hash_every"), 1, std::numeric_limits<std::int64_t>::max(),
                      "a number of solver steps >= 1");
     }
+    if (const auto* n = t.get("snapshot_every_s"))
+      r.snapshot_every_s = ranged(*n, sub(p, "snapshot_every_s"), 0.0, false, 1e9, false,
+                                  "seconds >= 0 (0: no snapshots)");
   }
 
   void read_cutting(const toml::table& t, CuttingSettings& c) const {

@@ -33,6 +33,7 @@ std::uint64_t state_hash(const SimState& s) {
   f.vec(s.mesh.group);
   f.vec(s.mesh.x);
   f.vec(s.mesh.v);
+  f.vec(s.mesh.fixed);  // grasp holds set and restore Dirichlet flags
   // Field by field: a ToolState has padding, whose bytes copies need not keep.
   for (const ToolState& t : s.tools) {
     f.bytes(&t.tick, sizeof t.tick);

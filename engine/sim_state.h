@@ -56,8 +56,9 @@ struct SimState {
   StepHandoff handoff;           ///< what the stages of a step hand to each other
 };
 
-/// 64-bit FNV-1a hash of the state: time, step, topology, positions and velocities, tool inputs,
-/// the forces handed from contact to FEM and metrics.
+/// 64-bit FNV-1a hash of the state: time, step, topology, positions, velocities and Dirichlet
+/// flags, tool inputs, the forces handed from contact to FEM and metrics. The stages' own parts of
+/// the whole state are compared whole in a replay's snapshots (engine/state_codec.h).
 /// Equal states (bit for bit) give equal hashes; used by recordings and regression reports.
 [[nodiscard]] std::uint64_t state_hash(const SimState& s);
 

@@ -9,6 +9,8 @@
 namespace serosa {
 
 struct SimState;
+class StateWriter;
+class StateReader;
 
 /// What every stage knows about the step it is part of.
 struct StepContext {
@@ -19,6 +21,13 @@ struct StepContext {
 
 /// A stage holds its own read-only model (given at construction) and its private caches; each
 /// step it reads and writes the shared SimState. Stages never call each other.
+///
+/// What a stage keeps from one step to the next that SimState does not hold and that cannot be
+/// derived from it (FEM's warm starts and factor schedule, a stroke in progress, grasp holds,
+/// metric sums) is its block of the whole state: save() writes it and restore() reads it back
+/// into a stage freshly built for the same scene, so that a restored run continues bit for bit
+/// (engine/state_codec.h, Runner::snapshot). Caches derived from SimState are not saved: a
+/// restored stage rebuilds them.
 class Stage {
  public:
   virtual ~Stage() = default;
@@ -31,6 +40,12 @@ class Stage {
   /// Advances this stage's part of the state by one step. Must not throw on bad physics: it
   /// counts warnings in its status instead. Throws only on programming errors.
   virtual void step(const StepContext& ctx, SimState& state) = 0;
+  /// Writes this stage's block of the whole state (nothing: a stage that keeps none).
+  virtual void save(StateWriter& /*out*/) const {}
+  /// Reads the block save() wrote, after `state` (restored; a stage may rebuild what it derives
+  /// into it, as FEM its masses) and before the next step. Throws
+  /// InputError (through the reader) when the block does not fit this stage.
+  virtual void restore(StateReader& /*in*/, SimState& /*state*/) {}
 };
 
 }  // namespace serosa

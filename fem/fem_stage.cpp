@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "engine/sim_state.h"
+#include "engine/state_codec.h"
 
 namespace serosa::fem {
 
@@ -18,6 +19,17 @@ void FemStage::take_cuts(SimState& state) {
     m_seen_version = cut.delta.version_after;
     ++m_stats.updates;
   }
+}
+
+void FemStage::save(StateWriter& out) const {
+  out.u8(m_built ? 1 : 0);
+  m_integrator.save(out);
+}
+
+void FemStage::restore(StateReader& in, SimState& state) {
+  m_built = in.u8() != 0;
+  m_integrator.restore(in, state.mesh);
+  m_seen_version = state.mesh.topology_version;
 }
 
 void FemStage::step(const StepContext& ctx, SimState& state) {

@@ -44,6 +44,9 @@ class FemStage final : public Stage {
   /// so the divergence guard skips its energy check (ImplicitIntegrator::restart_energy_balance)
   /// instead of flagging it and starting the solve cold.
   void step(const StepContext& ctx, SimState& state) override;
+  /// The integrator's block (ImplicitIntegrator::save).
+  void save(StateWriter& out) const override;
+  void restore(StateReader& in, SimState& state) override;
 
   [[nodiscard]] const StepStatus& last_status() const noexcept { return m_last; }
   [[nodiscard]] const FemStageStats& stats() const noexcept { return m_stats; }

@@ -145,6 +145,48 @@ void ImplicitIntegrator::update(TetMesh& mesh, const TopologyDelta& delta) {
   m_energy_pending = false;  // the cut changed the energy: no balance across it
 }
 
+void ImplicitIntegrator::save(StateWriter& out) const {
+  out.u8(m_built ? 1 : 0);
+  if (!m_built) return;
+  out.u64(m_steps);
+  out.u64(m_structure);
+  out.array(m_q);
+  out.array(m_q_prev);
+  out.array(m_dv);
+  out.array(m_plastic);
+  out.array(m_el.node_mass);
+  out.array(m_el.node_damping);
+  out.f64(m_energy_before);
+  out.f64(m_energy_work);
+  out.u8(m_energy_pending ? 1 : 0);
+  m_lagged.save(out);
+}
+
+void ImplicitIntegrator::restore(StateReader& in, TetMesh& mesh) {
+  if (in.u8() == 0) return;  // saved before its first step: nothing built yet
+  rebuild(mesh);
+  m_steps = in.u64();
+  m_structure = in.u64();
+  const auto m = static_cast<std::size_t>(mesh.num_tets());
+  const auto n = static_cast<std::size_t>(mesh.num_nodes());
+  in.array(m_q);
+  in.array(m_q_prev);
+  in.array(m_dv);
+  in.array(m_plastic);
+  in.array(m_el.node_mass);
+  in.array(m_el.node_damping);
+  if (m_q.size() != m || m_q_prev.size() != m || m_dv.size() != 3 * n ||
+      (!m_plastic.empty() && m_plastic.size() != m) || m_el.node_mass.size() != n ||
+      m_el.node_damping.size() != n)
+    in.fail("the FEM state does not fit the mesh (" + std::to_string(m) + " tets, " +
+            std::to_string(n) + " nodes)");
+  mesh.mass = m_el.node_mass;
+  m_energy_before = in.f64();
+  m_energy_work = in.f64();
+  m_energy_pending = in.u8() != 0;
+  m_lagged.restore(in, m_config.solver.background_factor);
+}
+
 StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const Vec3> f_ext) {
   const StepStatus st = step_from(mesh, dt_s, f_ext, m_config.solver.remove_energy_gain);
   ++m_steps;

@@ -107,6 +107,14 @@ class ImplicitIntegrator {
   /// only; steps never call it.
   void wait_for_background() { m_factor.wait(); }
 
+  /// What a step carries to the next that the mesh does not hold: the rotations that warm-start
+  /// it, CG's warm start, plastic strain, the lumped masses as the cuts left them (sums updated
+  /// by subtraction, which a rebuild would round differently), the energy guard's balance and the
+  /// lagged factor's schedule. With the mesh, restore() continues the run bit for bit.
+  void save(StateWriter& out) const;
+  /// Rebuilds for `mesh` (the restored one) and reads what save() wrote over it; mesh.mass is set
+  /// to the saved masses. Throws InputError (through `in`) when the block does not fit the mesh.
+  void restore(StateReader& in, TetMesh& mesh);
   [[nodiscard]] const FemConfig& config() const { return m_config; }
   /// (m) per-tet plastic strain (plasticity on; empty before the first step or when off).
   [[nodiscard]] std::span<const Mat3> plastic_strain() const { return m_plastic; }

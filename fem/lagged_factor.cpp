@@ -26,6 +26,7 @@ void LaggedFactor::install() {
     m_spare_structure = m_installed_structure;
     m_installed = std::move(m_job->solver);
     m_installed_rows = m_job->a.rows;
+    m_installed_a = std::move(m_job->a);
     m_installed_rot = std::move(m_job->node_rot);
     m_installed_structure = m_job->structure;
     ++m_refreshes;
@@ -73,8 +74,94 @@ void LaggedFactor::clear() {
   if (m_job && m_job->thread.joinable()) m_job->thread.join();
   m_job.reset();
   m_installed.reset();
+  m_installed_a = CsrMatrix{};
   m_spare.reset();
   m_installed_rows = 0;
+}
+
+namespace {
+
+// Packed: each row's used entries only, so that the bytes depend on the matrix, not on the slack
+// its pattern's storage happens to leave (a rebuilt pattern is compact, an updated one is not).
+void write_csr(StateWriter& out, const CsrMatrix& a) {
+  out.u32(static_cast<std::uint32_t>(a.rows));
+  std::vector<std::int32_t> col;
+  std::vector<double> val;
+  for (std::int32_t r = 0; r < a.rows; ++r) {
+    const auto begin = static_cast<std::size_t>(a.row_start[static_cast<std::size_t>(r)]);
+    const auto nz = static_cast<std::size_t>(a.row_nz[static_cast<std::size_t>(r)]);
+    col.insert(col.end(), a.col.begin() + static_cast<std::ptrdiff_t>(begin),
+               a.col.begin() + static_cast<std::ptrdiff_t>(begin + nz));
+    val.insert(val.end(), a.val.begin() + static_cast<std::ptrdiff_t>(begin),
+               a.val.begin() + static_cast<std::ptrdiff_t>(begin + nz));
+  }
+  out.array(a.row_nz);
+  out.array(col);
+  out.array(val);
+}
+
+CsrMatrix read_csr(StateReader& in) {
+  CsrMatrix a;
+  a.rows = static_cast<std::int32_t>(in.u32());
+  in.array(a.row_nz);
+  in.array(a.col);
+  in.array(a.val);
+  const auto rows = static_cast<std::size_t>(a.rows);
+  if (a.rows < 0 || a.row_nz.size() != rows || a.col.size() != a.val.size())
+    in.fail("a factor's matrix is inconsistent");
+  a.row_start.assign(rows + 1, 0);
+  std::int64_t at = 0;
+  for (std::size_t r = 0; r < rows; ++r) {
+    a.row_start[r] = static_cast<std::int32_t>(at);
+    if (a.row_nz[r] < 0) in.fail("a factor's matrix has a row of negative length");
+    at += a.row_nz[r];
+    if (at > static_cast<std::int64_t>(a.col.size()))
+      in.fail("a factor's matrix rows run past its entries");
+  }
+  a.row_start[rows] = static_cast<std::int32_t>(at);
+  for (std::int32_t c : a.col)
+    if (c < 0 || c >= a.rows) in.fail("a factor's matrix has a column out of range");
+  return a;
+}
+
+}  // namespace
+
+void LaggedFactor::save(StateWriter& out) const {
+  out.u64(m_refreshes);
+  out.u8(ready() ? 1 : 0);
+  if (ready()) {
+    write_csr(out, m_installed_a);
+    out.array(m_installed_rot);
+    out.u64(m_installed_structure);
+  }
+  out.u8(m_job ? 1 : 0);
+  if (m_job) {
+    write_csr(out, m_job->a);  // read-only in the job's thread too
+    out.array(m_job->node_rot);
+    out.u64(m_job->structure);
+    out.u64(m_job->ready_step);
+  }
+}
+
+void LaggedFactor::restore(StateReader& in, bool background) {
+  clear();
+  const std::uint64_t refreshes = in.u64();
+  if (in.u8() != 0) {
+    CsrMatrix a = read_csr(in);
+    std::vector<Quat> rot;
+    in.array(rot);
+    const std::uint64_t structure = in.u64();
+    if (!factor_now(a, structure, rot)) in.fail("the installed factor's matrix is not SPD");
+  }
+  if (in.u8() != 0) {
+    CsrMatrix a = read_csr(in);
+    std::vector<Quat> rot;
+    in.array(rot);
+    const std::uint64_t structure = in.u64();
+    const std::uint64_t ready_step = in.u64();
+    request(a, structure, ready_step, background, rot);
+  }
+  m_refreshes = refreshes;
 }
 
 void LaggedFactor::warp(std::span<const Quat> node_rot, std::span<Mat3> warp) const {

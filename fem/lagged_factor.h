@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "engine/math.h"
+#include "engine/state_codec.h"
 #include "fem/cholmod_solver.h"
 #include "fem/csr_matrix.h"
 
@@ -64,6 +65,14 @@ class LaggedFactor {
   void apply(std::span<const double> r, std::span<double> z, std::span<const double> inv_diag,
              std::span<const std::uint8_t> free, std::span<const Mat3> warp);
 
+  /// Its part of the whole state: the matrices of the installed factor and of the pending
+  /// refresh with their rotations, structures and install step (the factors themselves are
+  /// recomputed from them on restore: CHOLMOD gives the same bits for the same matrix).
+  void save(StateWriter& out) const;
+  /// Reads what save() wrote; the pending refresh is factored in the background or now
+  /// (`background`), to be installed at its step as before.
+  void restore(StateReader& in, bool background);
+
   [[nodiscard]] bool ready() const { return m_installed != nullptr; }
   [[nodiscard]] bool pending() const { return m_job != nullptr; }
   /// Rows of the installed factor (0 when none).
@@ -90,6 +99,7 @@ class LaggedFactor {
 
   std::unique_ptr<Job> m_job;
   std::unique_ptr<CholmodSolver> m_installed;
+  CsrMatrix m_installed_a;  // the matrix the installed factor was computed from (snapshots)
   std::int32_t m_installed_rows = 0;
   std::vector<Quat> m_installed_rot;  // (rows / 3) R0 of the installed factor
   std::uint64_t m_installed_structure = 0;

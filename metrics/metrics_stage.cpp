@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "engine/sim_state.h"
+#include "engine/state_codec.h"
 #include "engine/tool_geometry.h"
 
 namespace serosa::metrics {
@@ -90,6 +91,38 @@ nlohmann::json MetricsStage::report() const {
     j["cut"]["band_m"] = m_band;
   }
   return j;
+}
+
+void MetricsStage::save(StateWriter& out) const {
+  out.u8(m_forces ? 1 : 0);
+  out.f64(m_time);
+  out.array(m_path);
+  out.array(m_last_tip);
+  out.u8(m_have_last ? 1 : 0);
+  out.array(m_force_max);
+  out.array(m_force_sum);
+  out.array(m_force_steps);
+  for (double v : {m_peak_stress, m_cut_volume, m_collateral, m_dev_weighted, m_dev_max})
+    out.f64(v);
+  out.u64(static_cast<std::uint64_t>(m_cut_tets));
+}
+
+void MetricsStage::restore(StateReader& in, SimState& /*state*/) {
+  const std::size_t tools = m_path.size();
+  m_forces = in.u8() != 0;
+  m_time = in.f64();
+  in.array(m_path);
+  in.array(m_last_tip);
+  m_have_last = in.u8() != 0;
+  in.array(m_force_max);
+  in.array(m_force_sum);
+  in.array(m_force_steps);
+  if (m_path.size() != tools || m_last_tip.size() != tools || m_force_max.size() != tools ||
+      m_force_sum.size() != tools || m_force_steps.size() != tools)
+    in.fail("another number of tools than the scene's");
+  for (double* v : {&m_peak_stress, &m_cut_volume, &m_collateral, &m_dev_weighted, &m_dev_max})
+    *v = in.f64();
+  m_cut_tets = static_cast<std::int64_t>(in.u64());
 }
 
 }  // namespace serosa::metrics

@@ -41,6 +41,9 @@ class MetricsStage final : public Stage {
 
   [[nodiscard]] std::string_view name() const noexcept override { return "metrics"; }
   void step(const StepContext& ctx, SimState& state) override;
+  /// The sums so far (path lengths, forces, cut volumes, deviations, peak stress).
+  void save(StateWriter& out) const override;
+  void restore(StateReader& in, SimState& state) override;
 
   [[nodiscard]] nlohmann::json report() const;
 

@@ -17,6 +17,13 @@ void SurfaceStage::rebuild(SimState& state) {
 void SurfaceStage::step(const StepContext& /*ctx*/, SimState& state) {
   surface::SurfaceMesh& s = state.handoff.surface;
   const auto& cuts = state.handoff.cuts;
+  // A state that arrives with its surface (assembled, or restored from a snapshot) keeps it: the
+  // table is derived from the surface and the mesh alone.
+  if (!m_built && !s.faces.empty() && s.topology_version == state.mesh.topology_version &&
+      cuts.empty()) {
+    m_table = surface::build_face_table(state.mesh, s);
+    m_built = true;
+  }
   if (m_built && cuts.size() == 1 && s.topology_version == cuts.front().delta.version_before &&
       state.mesh.topology_version == cuts.front().delta.version_after) {
     try {

@@ -25,12 +25,14 @@
 #include "engine/topology_delta.h"
 #include "surface/cut_faces.h"
 #include "surface/extract_surface.h"
-#include "surface/surface_bvh.h"
+#include "engine/geometry/surface_bvh.h"
 #include "surface/surface_normals.h"
 #include "surface/update_surface.h"
 
 namespace serosa::surface {
 namespace {
+using geometry::RayHit;
+using geometry::SurfaceBvh;
 
 constexpr double kH = 0.002;  // cell edge, m (2 mm)
 

@@ -20,7 +20,7 @@
 #include "app/mouse_takeover.h"
 #include "app/replay.h"
 #include "app/replay_controller.h"
-#include "app/tool_contact_stage.h"
+#include "contact/tool_contact_stage.h"
 #include "app_test_util.h"
 #include "engine/recording_reader.h"
 #include "engine/scene.h"
@@ -33,6 +33,7 @@ namespace serosa::app {
 namespace {
 
 using namespace serosa::app::testing;
+using contact::kHapticStiffness;
 
 // Each test writes into a folder of its own (CTest runs tests in parallel processes).
 fs::path own_dir(const std::string& name) {
@@ -222,13 +223,10 @@ TEST(SessionHaptics, MouseTakeoverBranchReplaysVerifiedWithTheOriginalPrefix) {
   const fs::path dir = own_dir("mouse_branch");
   const fs::path rec = record_beam(dir);
   ReplayControllerOptions co;
-  co.exact_seek = false;  // as in the window: snapshot seeks, then make_exact() before branching
-  co.snapshot_every_s = 0.05;
+  co.snapshot_every_s = 0.05;  // as in the window: seeks restore snapshots
   ReplayController c(rec, co);
   c.seek_step(40);
-  c.seek_step(25);  // backwards, from a snapshot: no longer the recorded state
-  EXPECT_FALSE(c.exact());
-  c.make_exact();
+  c.seek_step(25);  // backwards, from a snapshot: still the recorded state
   ASSERT_TRUE(c.exact());
   EXPECT_EQ(c.steps_taken(), 25u);
   c.set_paused(true);

@@ -11,7 +11,7 @@
 
 #include "app/assemble_state.h"
 #include "app/compose.h"
-#include "app/tool_contact_stage.h"
+#include "contact/tool_contact_stage.h"
 #include "app_test_util.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"

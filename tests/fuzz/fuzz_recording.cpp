@@ -52,7 +52,7 @@ void fix_checksums(std::vector<std::uint8_t>& b) {
 void read(const std::vector<std::uint8_t>& bytes) {
   try {
     const rec::Recording r = rec::parse_recording(bytes, "fuzz.lapr");
-    require(r.version == rec::kVersion, "version checked");
+    require(r.version >= rec::kOldestVersion && r.version <= rec::kVersion, "version checked");
     require(r.stopped_at <= bytes.size(), "stopped within the file");
     require(r.complete == r.stopped.empty(), "complete exactly when nothing stopped the read");
     require(r.complete || r.stopped.find("at byte ") != std::string::npos,

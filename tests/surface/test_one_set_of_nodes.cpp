@@ -12,13 +12,14 @@
 #include "engine/topology_delta.h"
 #include "surface/cut_faces.h"
 #include "surface/extract_surface.h"
-#include "surface/surface_bvh.h"
+#include "engine/geometry/surface_bvh.h"
 #include "surface/surface_normals.h"
 #include "surface/update_surface.h"
 #include "surface_fixtures.h"
 
 namespace serosa::surface {
 namespace {
+using geometry::SurfaceBvh;
 
 using test_meshes::kuhn_box;
 

@@ -14,8 +14,8 @@
 #include "engine/geometry/tet_extent.h"
 #include "engine/topology_delta.h"
 #include "surface/extract_surface.h"
-#include "surface/ray_triangle.h"
-#include "surface/surface_bvh.h"
+#include "engine/geometry/ray_triangle.h"
+#include "engine/geometry/surface_bvh.h"
 #include "surface/update_surface.h"
 #include "surface_fixtures.h"
 
@@ -25,6 +25,11 @@ namespace {
 using geometry::closest_point_on_triangle;
 using geometry::TrianglePoint;
 using test_meshes::kuhn_box;
+using geometry::ClosestHit;
+using geometry::ray_triangle;
+using geometry::RayHit;
+using geometry::RayTriangleHit;
+using geometry::SurfaceBvh;
 
 #if defined(__SANITIZE_ADDRESS__)
 constexpr int kQueries = 600;

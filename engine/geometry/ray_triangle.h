@@ -4,7 +4,7 @@
 
 #include "engine/math.h"
 
-namespace serosa::surface {
+namespace serosa::geometry {
 
 /// Where a ray o + t d meets a triangle (a, b, c).
 struct RayTriangleHit {
@@ -20,4 +20,4 @@ struct RayTriangleHit {
 [[nodiscard]] bool ray_triangle(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b,
                                 const Vec3& c, double t_min, double t_max, RayTriangleHit& hit);
 
-}  // namespace serosa::surface
+}  // namespace serosa::geometry

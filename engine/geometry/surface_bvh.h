@@ -28,9 +28,9 @@
 #include <vector>
 
 #include "engine/math.h"
-#include "surface/surface_mesh.h"
+#include "engine/surface_mesh.h"
 
-namespace serosa::surface {
+namespace serosa::geometry {
 
 /// Closest surface point to a query point.
 struct ClosestHit {
@@ -113,4 +113,4 @@ class SurfaceBvh {
   std::vector<std::int32_t> slot_pos_;             ///< (f) its position in that leaf
 };
 
-}  // namespace serosa::surface
+}  // namespace serosa::geometry

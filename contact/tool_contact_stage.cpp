@@ -1,14 +1,14 @@
-#include "app/tool_contact_stage.h"
+#include "contact/tool_contact_stage.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "engine/geometry/point_triangle.h"
 #include "engine/sim_state.h"
+#include "engine/state_codec.h"
 #include "engine/tool_geometry.h"
-#include "surface/extract_surface.h"
 
-namespace serosa::app {
+namespace serosa::contact {
 namespace {
 
 Mat3 frame_matrix(const ToolFrame& f) {
@@ -32,16 +32,12 @@ ToolContactStage::ToolContactStage(const Scene& scene, LameTable lame, bool hapt
   m_planes.resize(scene.tools.size());
 }
 
-const surface::SurfaceMesh& ToolContactStage::boundary_surface(const SimState& state) const {
-  return m_own ? m_own_surface : state.handoff.surface;
-}
-
 void ToolContactStage::update_planes(SimState& state) {
   const TetMesh& mesh = state.mesh;
-  const surface::SurfaceMesh& s = boundary_surface(state);
-  if (m_bvh_version != mesh.topology_version) {
+  const SurfaceMesh& s = state.handoff.surface;
+  if (m_bvh_version != s.topology_version) {
     m_bvh.build(s, mesh.x);
-    m_bvh_version = mesh.topology_version;
+    m_bvh_version = s.topology_version;
   } else {
     m_bvh.refit(mesh.x);
   }
@@ -49,7 +45,7 @@ void ToolContactStage::update_planes(SimState& state) {
     m_planes[i].reset();
     if (m_kinds[i] == ToolKind::kEndoscope) continue;
     const Vec3 tip = tool_frame(state.tools[i]).tip;
-    const std::optional<surface::ClosestHit> hit = m_bvh.closest_point(mesh.x, tip, kHapticRange);
+    const std::optional<geometry::ClosestHit> hit = m_bvh.closest_point(mesh.x, tip, kHapticRange);
     if (!hit) continue;
     const Tri& f = s.faces[static_cast<std::size_t>(hit->face)];
     const Vec3& a = mesh.x[static_cast<std::size_t>(f[0])];
@@ -74,20 +70,19 @@ std::vector<std::size_t> ToolContactStage::grasped_counts() const {
 }
 
 void ToolContactStage::refresh_boundary(const SimState& state) {
-  if (m_boundary_version == state.mesh.topology_version) return;
-  // The surface stage's surface when it is current (it runs after this stage: current unless the
-  // topology changed since its last step), else one of our own.
-  const surface::SurfaceMesh& kept = state.handoff.surface;
-  m_own = !(kept.topology_version == state.mesh.topology_version && !kept.faces.empty());
-  if (m_own) m_own_surface = surface::extract_surface(state.mesh);
-  const surface::SurfaceMesh& s = boundary_surface(state);
+  // The surface stage's surface: it runs after this stage, so it is the one of the last step
+  // (the assembled state carries the first one), current since no cut comes between.
+  const SurfaceMesh& s = state.handoff.surface;
+  if (m_boundary_version == s.topology_version && m_boundary_nodes == state.mesh.num_nodes()) return;
   std::vector<std::uint8_t> on(static_cast<std::size_t>(state.mesh.num_nodes()), 0);
   for (const Tri& f : s.faces)
-    for (std::int32_t n : f) on[static_cast<std::size_t>(n)] = 1;
+    for (std::int32_t n : f)
+      if (n >= 0 && static_cast<std::size_t>(n) < on.size()) on[static_cast<std::size_t>(n)] = 1;
   m_boundary.clear();
   for (std::size_t i = 0; i < on.size(); ++i)
     if (on[i]) m_boundary.push_back(static_cast<std::int32_t>(i));
-  m_boundary_version = state.mesh.topology_version;
+  m_boundary_version = s.topology_version;
+  m_boundary_nodes = state.mesh.num_nodes();
 }
 
 void ToolContactStage::grab(SimState& state, std::size_t tool, Grasp& g) {
@@ -210,4 +205,32 @@ void ToolContactStage::step(const StepContext& ctx, SimState& state) {
     state.handoff.external_force_n.clear();
 }
 
-}  // namespace serosa::app
+void ToolContactStage::save(StateWriter& out) const {
+  out.u32(static_cast<std::uint32_t>(m_grasps.size()));
+  for (const Grasp& g : m_grasps) {
+    out.array(g.nodes);
+    out.array(g.local);
+    out.array(g.was_fixed);
+    out.u8(g.holding ? 1 : 0);
+    out.f64(g.widest_rad);
+  }
+}
+
+void ToolContactStage::restore(StateReader& in, SimState& state) {
+  if (in.u32() != m_grasps.size()) in.fail("another number of tools than the scene's");
+  for (Grasp& g : m_grasps) {
+    in.array(g.nodes);
+    in.array(g.local);
+    in.array(g.was_fixed);
+    g.holding = in.u8() != 0;
+    g.widest_rad = in.f64();
+    if (g.local.size() != g.nodes.size() || g.was_fixed.size() != g.nodes.size())
+      in.fail("a grasp's arrays disagree in size");
+    for (std::int32_t n : g.nodes)
+      if (n < 0 || n >= state.mesh.num_nodes()) in.fail("a grasp holds a node out of range");
+  }
+  m_boundary_version = ~0ull;
+  m_bvh_version = ~0ull;
+}
+
+}  // namespace serosa::contact

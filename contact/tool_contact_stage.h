@@ -16,13 +16,13 @@
 // metrics and the haptic model; the node forces go to FEM (handoff.external_force_n).
 // - Haptic contact planes (on when the haptic loop is built): after the
 //   forces, per tool the organ surface point nearest its tip within kHapticRange (collision BVH,
-//   surface/surface_bvh.h, rebuilt on topology changes and refitted every step) with its face's
+//   engine/geometry/surface_bvh.h, rebuilt on topology changes and refitted every step) with its face's
 //   outward normal and kHapticStiffness: the local contact plane the 1 kHz loop renders
 //   (haptics/contact_model.h), handed on in SimState::handoff.contact_planes. A tip pressed into
 //   the tissue is below that plane and feels a force along the outward normal, opposing the
 //   penetration.
-// The boundary is the surface stage's (SimState::handoff.surface) when it is current, else one this
-// stage extracts itself.
+// The boundary is the surface stage's (SimState::handoff.surface): app builds a surface stage
+// wherever it builds this one, and the assembled state carries the first surface.
 #pragma once
 
 #include <cstdint>
@@ -35,10 +35,10 @@
 #include "engine/scene.h"
 #include "engine/stage.h"
 #include "engine/tissue_stress.h"
-#include "surface/surface_bvh.h"
+#include "engine/geometry/surface_bvh.h"
 #include "surface/surface_mesh.h"
 
-namespace serosa::app {
+namespace serosa::contact {
 
 inline constexpr double kJawRadius = 0.001;          ///< m
 inline constexpr double kContactStiffness = 200.0;   ///< N/m per node
@@ -57,6 +57,10 @@ class ToolContactStage final : public Stage {
 
   [[nodiscard]] std::string_view name() const noexcept override { return "contact"; }
   void step(const StepContext& ctx, SimState& state) override;
+  /// The grasps: which nodes each grasper holds, where in its frame, their own Dirichlet flags,
+  /// and the widest opening since it let go (the BVH and the boundary are rebuilt).
+  void save(StateWriter& out) const override;
+  void restore(StateReader& in, SimState& state) override;
 
   /// (tools) number of nodes each tool holds (graspers).
   [[nodiscard]] std::vector<std::size_t> grasped_counts() const;
@@ -75,24 +79,22 @@ class ToolContactStage final : public Stage {
   void grab(SimState& state, std::size_t tool, Grasp& g);
   void release(SimState& state, Grasp& g);
   void update_planes(SimState& state);
-  const surface::SurfaceMesh& boundary_surface(const SimState& state) const;
 
   std::vector<ToolKind> m_kinds;
   std::vector<std::optional<Vec3>> m_trocars;
   LameTable m_lame;
   std::vector<Grasp> m_grasps;           // (tools)
   std::vector<std::int32_t> m_boundary;  // surface node ids
-  std::uint64_t m_boundary_version = ~0ull;
+  std::uint64_t m_boundary_version = ~0ull;  // surface the boundary was taken from
+  std::int32_t m_boundary_nodes = -1;
   std::vector<Vec3> m_force;         // (n) external forces of this step
   std::vector<std::uint8_t> m_flag;  // (n) scratch
   std::vector<Vec3> m_tool_force;    // (tools)
   std::int64_t m_contacts = 0;
   bool m_haptic = false;
-  surface::SurfaceMesh m_own_surface;  // the boundary when no surface stage keeps it
-  bool m_own = true;                   // the boundary in use is m_own_surface
-  surface::SurfaceBvh m_bvh;
+  geometry::SurfaceBvh m_bvh;
   std::uint64_t m_bvh_version = ~0ull;
   std::vector<std::optional<ContactPlane>> m_planes;  // (tools), none: endoscope, out of range
 };
 
-}  // namespace serosa::app
+}  // namespace serosa::contact

@@ -1,4 +1,4 @@
-#include "surface/surface_bvh.h"
+#include "engine/geometry/surface_bvh.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,9 +8,9 @@
 #include <utility>
 
 #include "engine/geometry/point_triangle.h"
-#include "surface/ray_triangle.h"
+#include "engine/geometry/ray_triangle.h"
 
-namespace serosa::surface {
+namespace serosa::geometry {
 namespace {
 
 constexpr std::size_t kBuildLeaf = 4;  // faces per leaf after build()
@@ -371,4 +371,4 @@ void SurfaceBvh::segment_all(std::span<const Vec3> x, const Vec3& a, const Vec3&
   });
 }
 
-}  // namespace serosa::surface
+}  // namespace serosa::geometry

@@ -1,8 +1,8 @@
-#include "surface/ray_triangle.h"
+#include "engine/geometry/ray_triangle.h"
 
 #include <cmath>
 
-namespace serosa::surface {
+namespace serosa::geometry {
 
 bool ray_triangle(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, const Vec3& c,
                   double t_min, double t_max, RayTriangleHit& hit) {
@@ -25,4 +25,4 @@ bool ray_triangle(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, co
   return true;
 }
 
-}  // namespace serosa::surface
+}  // namespace serosa::geometry

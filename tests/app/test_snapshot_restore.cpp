@@ -1,0 +1,169 @@
+// Whole-state snapshots (engine/state_codec.h, Runner::snapshot): a run restored from a snapshot
+// taken at a random step continues bit for bit like the uninterrupted one, during a grasp and
+// after the cut included; and `serosa replay --headless --verify --from T` starts from the
+// recording's snapshot at or before T.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <random>
+#include <set>
+
+#include "app/assemble_state.h"
+#include "app/compose.h"
+#include "app/headless.h"
+#include "app/replay.h"
+#include "app_test_util.h"
+#include "engine/input_error.h"
+#include "engine/sim_state.h"
+
+namespace serosa::app {
+namespace {
+
+using namespace serosa::app::testing;
+
+constexpr std::uint64_t kSteps = 1000;  // the default scene's 5 s procedure
+
+struct Pipeline {
+  AssembledScene assembled;
+  Composition comp;
+};
+
+std::unique_ptr<Pipeline> build(const Scene& scene) {
+  auto p = std::make_unique<Pipeline>();
+  p->assembled = assemble_state(scene);
+  p->comp = compose(scene, p->assembled);
+  return p;
+}
+
+struct Taken {
+  std::vector<std::uint8_t> bytes;
+  bool holding = false;  // the grasper held tissue
+  bool after_cut = false;
+};
+
+TEST(Snapshot, RestoreAtRandomStepsEqualsTheUninterruptedRunBitForBit) {
+  const Scene scene = load_scene(source("config/appendectomy.toml"));
+  // Random steps from the grasp (1.8 s) to near the end, plus the first step after the cut.
+  std::mt19937 rng(20261202);
+  std::uniform_int_distribution<std::uint64_t> pick(340, kSteps - 40);
+  std::set<std::uint64_t> wanted;
+  while (wanted.size() < 5) wanted.insert(pick(rng));
+
+  std::size_t grasper = 0;
+  while (grasper < scene.tools.size() && scene.tools[grasper].kind != ToolKind::kGrasper) ++grasper;
+  ASSERT_LT(grasper, scene.tools.size());
+
+  auto run = build(scene);
+  SimState& s = run->assembled.state;
+  std::map<std::uint64_t, std::uint64_t> hashes;  // steps taken -> state hash
+  std::map<std::uint64_t, Taken> taken;
+  bool cut_seen = false;
+  while (s.step < kSteps) {
+    run->comp.runner->step(s);
+    hashes[s.step] = state_hash(s);
+    const bool cut_now = !s.handoff.cuts.empty();
+    const bool first_after_cut = !cut_now && !cut_seen && run->comp.cutting->stats().cuts > 0;
+    if (first_after_cut) cut_seen = true;
+    // A snapshot waits for a step with no cut in flight.
+    const bool due = !wanted.empty() && s.step >= *wanted.begin();
+    if (!cut_now && (first_after_cut || due)) {
+      wanted.erase(wanted.begin(), wanted.upper_bound(s.step));
+      taken[s.step] = {run->comp.runner->snapshot(s),
+                       run->comp.contact->grasped_counts()[grasper] > 0,
+                       run->comp.cutting->stats().cuts > 0};
+    }
+  }
+  const std::vector<std::uint8_t> final_bytes = run->comp.runner->snapshot(s);
+  ASSERT_GE(taken.size(), 5u);
+  ASSERT_TRUE(cut_seen);
+  const auto holding = std::count_if(taken.begin(), taken.end(),
+                                     [](const auto& t) { return t.second.holding; });
+  const auto after_cut = std::count_if(taken.begin(), taken.end(),
+                                       [](const auto& t) { return t.second.after_cut; });
+  EXPECT_GE(holding, 1);
+  EXPECT_GE(after_cut, 1);
+
+  // Each restored into a fresh pipeline: 40 steps on, every hash equal; the last one to the end,
+  // where the whole state (every stage's block: metric sums too) equals the uninterrupted run's.
+  for (auto it = taken.begin(); it != taken.end(); ++it) {
+    SCOPED_TRACE("restored after step " + std::to_string(it->first));
+    auto r = build(scene);
+    SimState& rs = r->assembled.state;
+    r->comp.runner->restore(it->second.bytes, rs, "snapshot");
+    ASSERT_EQ(rs.step, it->first);
+    EXPECT_EQ(state_hash(rs), hashes.at(it->first));
+    EXPECT_EQ(r->comp.runner->snapshot(rs), it->second.bytes);  // restore, then save: the same
+    const bool last = std::next(it) == taken.end();
+    const std::uint64_t until = last ? kSteps : std::min(kSteps, it->first + 40);
+    while (rs.step < until) {
+      r->comp.runner->step(rs);
+      ASSERT_EQ(state_hash(rs), hashes.at(rs.step)) << "step " << rs.step;
+    }
+    if (last) {
+      EXPECT_EQ(r->comp.runner->snapshot(rs), final_bytes);
+    }
+  }
+}
+
+TEST(Snapshot, DamagedSnapshotIsAnInputErrorNeverACrash) {
+  const Scene scene = load_scene(source("config/beam.toml"));
+  auto run = build(scene);
+  run->comp.runner->run(run->assembled.state, 3);
+  const std::vector<std::uint8_t> bytes = run->comp.runner->snapshot(run->assembled.state);
+  std::mt19937 rng(7);
+  for (int k = 0; k < 300; ++k) {
+    std::vector<std::uint8_t> bad = bytes;
+    if (k % 2 == 0) {
+      bad.resize(std::uniform_int_distribution<std::size_t>(0, bytes.size() - 1)(rng));
+    } else {
+      bad[std::uniform_int_distribution<std::size_t>(0, bytes.size() - 1)(rng)] ^= 0x5a;
+    }
+    auto fresh = build(scene);
+    try {
+      fresh->comp.runner->restore(bad, fresh->assembled.state, "bad.snapshot");
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("bad.snapshot"), std::string::npos) << e.what();
+    }
+  }
+  // Another scene's stages do not take this one's blocks.
+  const Scene other = load_scene(source("config/appendectomy.toml"));
+  auto o = build(other);
+  EXPECT_THROW(o->comp.runner->restore(bytes, o->assembled.state, "beam"), InputError);
+}
+
+TEST(Snapshot, ReplayFromATimeStartsAtTheSnapshotBeforeItAndVerifies) {
+  const fs::path dir = out_dir("snapshot_replay_from");
+  HeadlessOptions h;
+  h.scene = source("config/appendectomy.toml");
+  h.record = dir / "run.lapr";
+  h.progress = false;
+  const auto report = run_headless(h);
+  ASSERT_GE(report["recording"]["snapshots"].get<int>(), 4);  // every second of 5 s
+
+  ReplayOptions o;
+  o.recording = *h.record;
+  o.verify = true;
+  o.progress = false;
+  o.from_s = 3.5;
+  const ReplayResult r = run_replay(o);
+  EXPECT_EQ(r.start_step, 600u);  // the snapshot after 3.0 s
+  EXPECT_EQ(r.report["start_step"].get<std::uint64_t>(), 600u);
+  EXPECT_EQ(r.steps, kSteps - 600);
+  EXPECT_GT(r.hashes_checked, 0u);
+  EXPECT_GE(r.snapshots_checked, 1u);
+  EXPECT_FALSE(r.diverged_at.has_value());
+  EXPECT_FALSE(r.snapshot_diverged_at.has_value()) << r.snapshot_part;
+  EXPECT_TRUE(r.report["verify"]["ok"].get<bool>());
+  EXPECT_EQ(r.report["state_hash"], report["state_hash"]);
+
+  // Before the first snapshot: from step 0.
+  o.from_s = 0.5;
+  const ReplayResult r0 = run_replay(o);
+  EXPECT_EQ(r0.start_step, 0u);
+  EXPECT_EQ(r0.steps, kSteps);
+  EXPECT_TRUE(r0.report["verify"]["ok"].get<bool>());
+}
+
+}  // namespace
+}  // namespace serosa::app
