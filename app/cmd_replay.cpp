@@ -8,9 +8,10 @@
 // (the report's start_step); without one that early, from step 0.
 // Exit codes: 0 replayed (and, with --verify, every recorded hash and snapshot matched up to
 // where the recording ends); 1 bad input (not a recording, damaged header, scene unreadable);
-// 3 --verify found a divergence (the step, and for a snapshot the part, is named); 4 --verify on a corrupt recording (a
-// checksum or record error before its end: replayed and verified up to there, then named).
-// A recording merely cut short (crash, kill -9) replays up to its last chunk and exits 0.
+// 3 --verify found a divergence (the step, and for a snapshot the part, is named); 4 --verify on a
+// corrupt recording (a checksum or record error before its end: replayed and verified up to there,
+// then named). A recording merely cut short (crash, kill -9) replays up to its last chunk and exits
+// 0.
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -93,10 +94,9 @@ void add_replay_command(CLI::App& app, Action& action) {
         return 3;
       }
       if (r.snapshot_diverged_at) {
-        std::fprintf(stderr,
-                     "error: replay diverged from the recording's snapshot after step %llu (%s)\n",
-                     static_cast<unsigned long long>(*r.snapshot_diverged_at),
-                     r.snapshot_part.c_str());
+        std::fprintf(
+            stderr, "error: replay diverged from the recording's snapshot after step %llu (%s)\n",
+            static_cast<unsigned long long>(*r.snapshot_diverged_at), r.snapshot_part.c_str());
         return 3;
       }
       if (opts->verify && r.corrupt) {

@@ -87,9 +87,10 @@ std::unique_ptr<recording::RecordingWriter> record_run(
   const std::optional<std::filesystem::path> file = path ? path : scene.record.path;
   if (!file) {
     if (scene.settings.has(Effect::kRecord))
-      spdlog::info("{} lists 'record' and gives no file: this {} is not recorded (--record FILE "
-                   "or [record] path)",
-                   scene.file.string(), run);
+      spdlog::info(
+          "{} lists 'record' and gives no file: this {} is not recorded (--record FILE "
+          "or [record] path)",
+          scene.file.string(), run);
     return nullptr;
   }
   std::unique_ptr<recording::RecordingWriter> writer;
@@ -99,8 +100,8 @@ std::unique_ptr<recording::RecordingWriter> record_run(
     throw InputError(file->string(), 0, e.what(), "a writable path");
   }
   c.runner->add(Slot::record, std::make_unique<RecordStage>(writer.get(), scene.record.hash_every));
-  const auto every = static_cast<std::uint64_t>(
-      std::llround(scene.record.snapshot_every_s / scene.settings.dt_s));
+  const auto every =
+      static_cast<std::uint64_t>(std::llround(scene.record.snapshot_every_s / scene.settings.dt_s));
   c.runner->record_snapshots(*writer, every);
   mark_recording(c);
   return writer;
@@ -119,7 +120,7 @@ Composition compose(const Scene& scene, const AssembledScene& assembled, Compose
   // Contact reads the surface the surface stage keeps: it brings one along when not listed.
   std::unique_ptr<SurfaceStage> surface_stage;
   if (listed(Effect::kSurface) || listed(Effect::kContact))
-    surface_stage = std::make_unique<SurfaceStage>();
+    surface_stage = std::make_unique<SurfaceStage>(assembled.state.mesh);
   std::unique_ptr<CuttingStage> cutting_stage;
   if (listed(Effect::kCutting)) {
     CuttingStageOptions co;

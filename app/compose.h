@@ -26,6 +26,7 @@
 namespace serosa::app {
 
 // The stages, each in the folder of its domain; the composition root names them all.
+using contact::ToolContactStage;
 using cutting::CuttingStage;
 using cutting::CuttingStageOptions;
 using cutting::CuttingStageStats;
@@ -42,7 +43,6 @@ using recording::RecordStage;
 using recording::ReplayInputStage;
 using recording::VerifyStage;
 using surface::SurfaceStage;
-using contact::ToolContactStage;
 
 /// How to compose, beyond what the scene says.
 struct ComposeOptions {

@@ -8,7 +8,6 @@
 #include "render/overlay.h"
 #include "render/png_writer.h"
 #include "render/snapshot.h"
-#include "surface/extract_surface.h"
 
 namespace serosa::app {
 
@@ -18,7 +17,7 @@ FramePictures::FramePictures(std::filesystem::path dir, const Scene& scene, cons
       m_scene(scene),
       m_names(std::move(group_names)),
       m_views(std::move(views)),
-      m_original(initial, surface::extract_surface(initial)) {
+      m_drawn(initial) {
   if (m_views.empty()) m_views.push_back(View::kVisual);
   std::filesystem::create_directories(m_dir);
   m_options.width = std::min(scene.render.width, 960);
@@ -31,8 +30,7 @@ FramePictures::FramePictures(std::filesystem::path dir, const Scene& scene, cons
 FramePictures::~FramePictures() = default;
 
 const render::RenderFrame& FramePictures::frame(const SimState& state) {
-  const surface::SurfaceMesh surf = surface::extract_surface(state.mesh, m_original);
-  fill_render_frame(state.mesh, surf, m_names, /*with_edges=*/true, m_frame);
+  fill_render_frame(state.mesh, m_drawn.of(state), m_names, /*with_edges=*/true, m_frame);
   fill_render_tools(m_scene, state, m_frame);
   if (auto scope = m_endoscope ? endoscope_view(m_scene, state) : std::nullopt) {
     m_frame.camera = *scope;

@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
+#include "app/drawn_surface.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"
 #include "render/image.h"
 #include "render/render_frame.h"
 #include "render/snapshot_options.h"
-#include "surface/cut_faces.h"
 
 namespace serosa::render {
 class OffscreenContext;
@@ -57,7 +57,7 @@ class FramePictures {
   const Scene& m_scene;
   std::map<int, std::string> m_names;
   std::vector<View> m_views;
-  surface::OriginalSurface m_original;
+  DrawnSurface m_drawn;  // the surface stage's surface, or its own
   render::SnapshotOptions m_options;
   std::unique_ptr<render::OffscreenContext> m_context;
   render::RenderFrame m_frame;

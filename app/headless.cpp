@@ -16,8 +16,8 @@
 #include "app/compose.h"
 #include "app/frame_pictures.h"
 #include "app/preset_report.h"
-#include "contact/tool_contact_stage.h"
 #include "app/version.h"
+#include "contact/tool_contact_stage.h"
 #include "cutting/cutting_stage.h"
 #include "engine/input_error.h"
 #include "engine/mesh_check.h"
@@ -70,9 +70,12 @@ std::string read_text(const std::filesystem::path& p) {
 Json close_recording(recording::RecordingWriter& writer, const Scene& scene, std::uint64_t steps) {
   writer.close(steps);
   const auto ws = writer.stats();
-  return {{"file", writer.path().string()}, {"steps", ws.steps},
-          {"chunks", ws.chunks},            {"bytes", ws.bytes},
-          {"hash_every", scene.record.hash_every}, {"snapshots", ws.snapshots}};
+  return {{"file", writer.path().string()},
+          {"steps", ws.steps},
+          {"chunks", ws.chunks},
+          {"bytes", ws.bytes},
+          {"hash_every", scene.record.hash_every},
+          {"snapshots", ws.snapshots}};
 }
 
 recording::Header recording_header(const Scene& scene, std::int64_t steps) {
@@ -216,7 +219,8 @@ Json run_headless(const HeadlessOptions& options) {
   report["steps_taken"] = taken;
   if (taken < steps) report["interrupted"] = true;
   if (comp.haptics) report["haptics"] = comp.haptics->telemetry_json();  // stops the loop
-  if (writer) report["recording"] = close_recording(*writer, scene, static_cast<std::uint64_t>(taken));
+  if (writer)
+    report["recording"] = close_recording(*writer, scene, static_cast<std::uint64_t>(taken));
   const double sim_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - sim0).count();
 

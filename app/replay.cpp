@@ -5,9 +5,9 @@
 
 #include <chrono>
 #include <cmath>
-#include <span>
 #include <cstdio>
 #include <fstream>
+#include <span>
 
 #include "app/assemble_state.h"
 #include "app/compose.h"
@@ -17,8 +17,8 @@
 #include "engine/input_error.h"
 #include "engine/record_stage.h"
 #include "engine/recording_reader.h"
-#include "engine/scene.h"
 #include "engine/runner.h"
+#include "engine/scene.h"
 #include "engine/sim_state.h"
 #include "metrics/metrics_stage.h"
 
@@ -133,9 +133,9 @@ ReplayResult run_replay(const ReplayOptions& options) {
     if (verify) {
       if (const auto it = rec.snapshots.find(state.step); it != rec.snapshots.end()) {
         ++result.snapshots_checked;
-        result.snapshot_part = first_difference(
-            comp.runner->snapshot(state), it->second,
-            file + ": snapshot after step " + std::to_string(it->first));
+        result.snapshot_part =
+            first_difference(comp.runner->snapshot(state), it->second,
+                             file + ": snapshot after step " + std::to_string(it->first));
         if (!result.snapshot_part.empty()) {
           result.snapshot_diverged_at = state.step;
           break;

@@ -44,8 +44,8 @@ ReplayController::ReplayController(const std::filesystem::path& recording,
   for (const auto& [steps, bytes] : m_rec.snapshots) {
     if (steps == 0 || steps > num_steps()) continue;
     const auto h = m_rec.hashes.find(steps - 1);
-    m_snapshots.try_emplace(steps, Snapshot{bytes, h == m_rec.hashes.end()
-                                                       ? std::nullopt
+    m_snapshots.try_emplace(
+        steps, Snapshot{bytes, h == m_rec.hashes.end() ? std::nullopt
                                                        : std::optional<std::uint64_t>(h->second)});
   }
   restart(nullptr);

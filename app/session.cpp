@@ -16,6 +16,7 @@
 
 #include "app/assemble_state.h"
 #include "app/compose.h"
+#include "app/drawn_surface.h"
 #include "app/headless.h"
 #include "app/mouse_takeover.h"
 #include "app/overlay_stats.h"
@@ -36,7 +37,6 @@
 #include "render/png_writer.h"
 #include "render/window.h"
 #include "surface/cut_faces.h"
-#include "surface/extract_surface.h"
 
 namespace serosa::app {
 namespace {
@@ -142,9 +142,8 @@ class SolverLoop {
 
  private:
   void loop(const std::stop_token& stop) {
-    // The uncut boundary: the reference that tells wound faces from original ones.
-    m_original = surface::OriginalSurface(m_state.mesh, surface::extract_surface(m_state.mesh));
-    m_surface = surface::extract_surface(m_state.mesh, m_original);
+    m_drawn.emplace(m_state.mesh);  // the uncut mesh: the wound reference
+    m_version = m_state.mesh.topology_version;
     publish();
     const auto dt = std::chrono::duration_cast<Clock::duration>(
         std::chrono::duration<double>(m_scene.settings.dt_s));
@@ -184,12 +183,12 @@ class SolverLoop {
   }
 
   void publish() {
-    if (m_surface.topology_version != m_state.mesh.topology_version) {
-      m_surface = surface::extract_surface(m_state.mesh, m_original);
+    if (m_version != m_state.mesh.topology_version) {
+      m_version = m_state.mesh.topology_version;
       ++m_cuts;
     }
     render::RenderFrame& f = m_frames.back();
-    fill_render_frame(m_state.mesh, m_surface, m_names, true, f);
+    fill_render_frame(m_state.mesh, m_drawn->of(m_state), m_names, true, f);
     fill_render_tools(m_scene, m_state, f);
     std::optional<render::Camera> cam =
         endoscope_view(m_scene, m_state, m_control.scope_angle_deg.load());
@@ -235,8 +234,8 @@ class SolverLoop {
   float m_aspect;
   TripleBuffer<render::RenderFrame>& m_frames;
   Control& m_control;
-  surface::OriginalSurface m_original;
-  surface::SurfaceMesh m_surface;
+  std::optional<DrawnSurface> m_drawn;  // built on the solver thread, which draws from it
+  std::uint64_t m_version = 0;          // topology the last frame showed (counts cuts)
   std::optional<render::Camera> m_fitted;
   double m_step_ms = 0.0;
   std::vector<double> m_step_times;  // (steps) wall time of each step, ms
@@ -397,8 +396,7 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
   };
   const Scene& scene = replay.scene();
   const std::map<int, std::string> names = replay.group_names();
-  const surface::OriginalSurface original(replay.state().mesh,
-                                          surface::extract_surface(replay.state().mesh));
+  DrawnSurface drawn(replay.state().mesh);
 
   const InterruptGuard interrupts;
   render::Window window(scene.render.width, scene.render.height, "Serosa replay");
@@ -409,8 +407,6 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
   options.shape_factor = static_cast<float>(scene.render.shape_factor);
   bool show_overlay = true;
   render::RenderFrame frame;
-  surface::SurfaceMesh surf;
-  bool have_surface = false;
   std::optional<render::Camera> fitted;
   // Every cut bumps the topology version, which snapshots keep: cuts survive seeks.
   const std::uint64_t version0 = replay.state().mesh.topology_version;
@@ -456,11 +452,7 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
     }
 
     const SimState& state = replay.state();
-    if (!have_surface || surf.topology_version != state.mesh.topology_version) {
-      surf = surface::extract_surface(state.mesh, original);
-      have_surface = true;
-    }
-    fill_render_frame(state.mesh, surf, names, true, frame);
+    fill_render_frame(state.mesh, drawn.of(state), names, true, frame);
     fill_render_tools(scene, state, frame);
     const int w = window.width();
     const int h = window.height();

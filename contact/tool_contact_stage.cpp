@@ -73,7 +73,8 @@ void ToolContactStage::refresh_boundary(const SimState& state) {
   // The surface stage's surface: it runs after this stage, so it is the one of the last step
   // (the assembled state carries the first one), current since no cut comes between.
   const SurfaceMesh& s = state.handoff.surface;
-  if (m_boundary_version == s.topology_version && m_boundary_nodes == state.mesh.num_nodes()) return;
+  if (m_boundary_version == s.topology_version && m_boundary_nodes == state.mesh.num_nodes())
+    return;
   std::vector<std::uint8_t> on(static_cast<std::size_t>(state.mesh.num_nodes()), 0);
   for (const Tri& f : s.faces)
     for (std::int32_t n : f)

@@ -16,8 +16,8 @@
 // metrics and the haptic model; the node forces go to FEM (handoff.external_force_n).
 // - Haptic contact planes (on when the haptic loop is built): after the
 //   forces, per tool the organ surface point nearest its tip within kHapticRange (collision BVH,
-//   engine/geometry/surface_bvh.h, rebuilt on topology changes and refitted every step) with its face's
-//   outward normal and kHapticStiffness: the local contact plane the 1 kHz loop renders
+//   engine/geometry/surface_bvh.h, rebuilt on topology changes and refitted every step) with its
+//   face's outward normal and kHapticStiffness: the local contact plane the 1 kHz loop renders
 //   (haptics/contact_model.h), handed on in SimState::handoff.contact_planes. A tip pressed into
 //   the tissue is below that plane and feels a force along the outward normal, opposing the
 //   penetration.
@@ -31,12 +31,12 @@
 #include <vector>
 
 #include "engine/contact_plane.h"
+#include "engine/geometry/surface_bvh.h"
 #include "engine/math.h"
 #include "engine/scene.h"
 #include "engine/stage.h"
+#include "engine/surface_mesh.h"
 #include "engine/tissue_stress.h"
-#include "engine/geometry/surface_bvh.h"
-#include "surface/surface_mesh.h"
 
 namespace serosa::contact {
 
@@ -83,8 +83,8 @@ class ToolContactStage final : public Stage {
   std::vector<ToolKind> m_kinds;
   std::vector<std::optional<Vec3>> m_trocars;
   LameTable m_lame;
-  std::vector<Grasp> m_grasps;           // (tools)
-  std::vector<std::int32_t> m_boundary;  // surface node ids
+  std::vector<Grasp> m_grasps;               // (tools)
+  std::vector<std::int32_t> m_boundary;      // surface node ids
   std::uint64_t m_boundary_version = ~0ull;  // surface the boundary was taken from
   std::int32_t m_boundary_nodes = -1;
   std::vector<Vec3> m_force;         // (n) external forces of this step

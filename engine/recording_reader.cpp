@@ -141,8 +141,9 @@ Recording parse_recording(const std::vector<std::uint8_t>& bytes, const std::str
   (void)c.u32(hlen);  // skip magic
   if (!c.u32(rec.version)) throw InputError(name, 0, "file cut short in the header");
   if (rec.version < kOldestVersion || rec.version > kVersion)
-    throw InputError(name, 0, "recording format version " + std::to_string(rec.version),
-                     "version " + std::to_string(kOldestVersion) + " to " + std::to_string(kVersion));
+    throw InputError(
+        name, 0, "recording format version " + std::to_string(rec.version),
+        "version " + std::to_string(kOldestVersion) + " to " + std::to_string(kVersion));
   if (!c.u32(hlen) || hlen > kMaxHeader || c.left() < std::size_t{hlen} + 4)
     throw InputError(name, 0, "file cut short in the header (at byte 12)");
   const std::size_t body = c.pos();

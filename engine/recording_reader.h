@@ -22,7 +22,7 @@ struct Recording {
   std::vector<std::pair<std::uint64_t, std::string>> events;  ///< (step, text)
   /// steps taken -> the whole state after them (engine/state_codec.h); none before version 2.
   std::map<std::uint64_t, std::vector<std::uint8_t>> snapshots;
-  std::int64_t chunks = 0;                                    ///< good chunks read
+  std::int64_t chunks = 0;  ///< good chunks read
 
   /// The run ended cleanly (end record read, no damage).
   bool complete = false;

@@ -51,8 +51,8 @@ void RecordingWriter::record_hash(std::uint64_t step, std::uint64_t hash) {
 
 void RecordingWriter::record_snapshot(std::uint64_t steps, std::span<const std::uint8_t> snapshot) {
   if (snapshot_record_bytes(snapshot.size()) > kMaxChunkPayload) {
-    record_event(steps, "snapshot left out: " + std::to_string(snapshot.size()) +
-                            " bytes exceed a chunk");
+    record_event(steps,
+                 "snapshot left out: " + std::to_string(snapshot.size()) + " bytes exceed a chunk");
     return;
   }
   std::lock_guard lock(m_mutex);

@@ -31,9 +31,9 @@ struct WriterOptions {
 };
 
 struct WriterStats {
-  std::uint64_t chunks = 0;  ///< chunks written
-  std::uint64_t bytes = 0;   ///< bytes written, header included
-  std::uint64_t steps = 0;   ///< input records taken
+  std::uint64_t chunks = 0;     ///< chunks written
+  std::uint64_t bytes = 0;      ///< bytes written, header included
+  std::uint64_t steps = 0;      ///< input records taken
   std::uint64_t snapshots = 0;  ///< snapshot records taken
 };
 

@@ -144,7 +144,8 @@ void read_surface(StateReader& in, SurfaceMesh& s, std::size_t nodes) {
     in.fail("the surface's arrays disagree in size");
   for (const Tri& t : s.faces)
     for (std::int32_t i : t)
-      if (i < 0 || static_cast<std::size_t>(i) >= nodes) in.fail("a face names a node out of range");
+      if (i < 0 || static_cast<std::size_t>(i) >= nodes)
+        in.fail("a face names a node out of range");
 }
 
 }  // namespace
@@ -175,7 +176,8 @@ SimState read_sim_state(StateReader& in) {
   s.handoff.nodes_moved = in.u8() != 0;
   in.array(s.handoff.tool_force_n);
   read_surface(in, s.handoff.surface, s.mesh.rest.size());
-  if (!s.handoff.external_force_n.empty() && s.handoff.external_force_n.size() != s.mesh.rest.size())
+  if (!s.handoff.external_force_n.empty() &&
+      s.handoff.external_force_n.size() != s.mesh.rest.size())
     in.fail("external forces for " + std::to_string(s.handoff.external_force_n.size()) +
             " nodes, the mesh has " + std::to_string(s.mesh.rest.size()));
   return s;

@@ -63,7 +63,8 @@ class StateReader {
   template <class T>
   void array(std::vector<T>& v) {
     const std::uint64_t n = u64();
-    if (n > left() / sizeof(T)) fail("array of " + std::to_string(n) + " elements runs past the end");
+    if (n > left() / sizeof(T))
+      fail("array of " + std::to_string(n) + " elements runs past the end");
     v.resize(static_cast<std::size_t>(n));
     if (n > 0) raw(v.data(), static_cast<std::size_t>(n) * sizeof(T));
   }

@@ -7,8 +7,11 @@
 
 namespace serosa::surface {
 
+SurfaceStage::SurfaceStage(const TetMesh& initial)
+    : m_original(initial, surface::extract_surface(initial)) {}
+
 void SurfaceStage::rebuild(SimState& state) {
-  state.handoff.surface = surface::extract_surface(state.mesh);
+  state.handoff.surface = surface::extract_surface(state.mesh, m_original);
   m_table = surface::build_face_table(state.mesh, state.handoff.surface);
   m_built = true;
   ++m_stats.rebuilds;
@@ -27,7 +30,7 @@ void SurfaceStage::step(const StepContext& /*ctx*/, SimState& state) {
   if (m_built && cuts.size() == 1 && s.topology_version == cuts.front().delta.version_before &&
       state.mesh.topology_version == cuts.front().delta.version_after) {
     try {
-      surface::update_surface(s, m_table, state.mesh, cuts.front().delta);
+      surface::update_surface(s, m_table, state.mesh, cuts.front().delta, &m_original);
       ++m_stats.updates;
     } catch (const std::invalid_argument&) {
       ++m_stats.failed_updates;

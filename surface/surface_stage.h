@@ -1,5 +1,7 @@
 // The "surface" stage: keeps the organs' boundary surface (surface/extract_surface.h) in step with
-// the mesh, in SimState::handoff.surface, where contact, rendering and pictures read it. The cut of
+// the mesh, in SimState::handoff.surface, where contact, rendering and pictures read it. Its wound
+// flags (face_cut) are taken against the uncut boundary of the scene's initial mesh
+// (surface/cut_faces.h), so the renderer can draw wounds from it as it is. The cut of
 // the step (SimState::handoff.cuts) updates it incrementally (surface/update_surface.h); it is
 // extracted anew only on the first step and when it cannot follow the cuts (a step with several
 // cuts, whose deltas each describe the mesh between two of them: update_surface needs the mesh
@@ -12,6 +14,7 @@
 #include "engine/stage.h"
 #include "engine/tet_mesh.h"
 #include "engine/topology_delta.h"
+#include "surface/cut_faces.h"
 #include "surface/surface_mesh.h"
 #include "surface/update_surface.h"
 
@@ -25,7 +28,8 @@ struct SurfaceStageStats {
 
 class SurfaceStage final : public Stage {
  public:
-  SurfaceStage() = default;
+  /// `initial`: the scene's mesh before any cut (its boundary is the wound reference).
+  explicit SurfaceStage(const TetMesh& initial);
 
   [[nodiscard]] std::string_view name() const noexcept override { return "surface"; }
   /// Follows the step's cut (incremental) or extracts anew; nothing when the topology is as
@@ -37,6 +41,7 @@ class SurfaceStage final : public Stage {
  private:
   void rebuild(SimState& state);
 
+  surface::OriginalSurface m_original;  // the uncut boundary, in rest coordinates
   surface::FaceTable m_table;  // faces of handoff.surface by their tet face (update_surface)
   bool m_built = false;
   SurfaceStageStats m_stats;

@@ -20,12 +20,12 @@
 
 #include "cutting/convex_polygon.h"
 #include "cutting/cut_mesh.h"
+#include "engine/geometry/surface_bvh.h"
 #include "engine/kuhn_grid.h"
 #include "engine/tet_mesh.h"
 #include "engine/topology_delta.h"
 #include "surface/cut_faces.h"
 #include "surface/extract_surface.h"
-#include "engine/geometry/surface_bvh.h"
 #include "surface/surface_normals.h"
 #include "surface/update_surface.h"
 

@@ -77,10 +77,10 @@ TEST(Snapshot, RestoreAtRandomStepsEqualsTheUninterruptedRunBitForBit) {
   const std::vector<std::uint8_t> final_bytes = run->comp.runner->snapshot(s);
   ASSERT_GE(taken.size(), 5u);
   ASSERT_TRUE(cut_seen);
-  const auto holding = std::count_if(taken.begin(), taken.end(),
-                                     [](const auto& t) { return t.second.holding; });
-  const auto after_cut = std::count_if(taken.begin(), taken.end(),
-                                       [](const auto& t) { return t.second.after_cut; });
+  const auto holding =
+      std::count_if(taken.begin(), taken.end(), [](const auto& t) { return t.second.holding; });
+  const auto after_cut =
+      std::count_if(taken.begin(), taken.end(), [](const auto& t) { return t.second.after_cut; });
   EXPECT_GE(holding, 1);
   EXPECT_GE(after_cut, 1);
 

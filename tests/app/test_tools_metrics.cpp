@@ -11,8 +11,8 @@
 
 #include "app/assemble_state.h"
 #include "app/compose.h"
-#include "contact/tool_contact_stage.h"
 #include "app_test_util.h"
+#include "contact/tool_contact_stage.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"
 #include "engine/tissue_stress.h"

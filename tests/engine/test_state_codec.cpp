@@ -75,7 +75,8 @@ TEST(StateCodec, ReadBackEqualsWhatWasWrittenForManyStates) {
 TEST(StateCodec, EveryTruncationAndManyFlipsAreInputErrors) {
   const std::vector<std::uint8_t> bytes = encode(random_state(4));
   for (std::size_t n = 0; n < bytes.size(); ++n) {
-    const std::vector<std::uint8_t> cut(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(n));
+    const std::vector<std::uint8_t> cut(bytes.begin(),
+                                        bytes.begin() + static_cast<std::ptrdiff_t>(n));
     StateReader r(cut, "cut.snapshot");
     EXPECT_THROW((void)read_sim_state(r), InputError) << n << " bytes";
   }

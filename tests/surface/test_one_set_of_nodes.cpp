@@ -8,11 +8,11 @@
 
 #include "cutting/convex_polygon.h"
 #include "cutting/cut_mesh.h"
+#include "engine/geometry/surface_bvh.h"
 #include "engine/geometry/tet_extent.h"
 #include "engine/topology_delta.h"
 #include "surface/cut_faces.h"
 #include "surface/extract_surface.h"
-#include "engine/geometry/surface_bvh.h"
 #include "surface/surface_normals.h"
 #include "surface/update_surface.h"
 #include "surface_fixtures.h"

@@ -1,5 +1,6 @@
-// SurfaceBvh (surface/surface_bvh.h) against brute force over every face: closest point, ray and
-// segment queries, thousands of random and degenerate ones, after build, refit and local updates.
+// SurfaceBvh (engine/geometry/surface_bvh.h) against brute force over every face: closest point,
+// ray and segment queries, thousands of random and degenerate ones, after build, refit and local
+// updates.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,11 +12,11 @@
 #include "cutting/convex_polygon.h"
 #include "cutting/cut_mesh.h"
 #include "engine/geometry/point_triangle.h"
+#include "engine/geometry/ray_triangle.h"
+#include "engine/geometry/surface_bvh.h"
 #include "engine/geometry/tet_extent.h"
 #include "engine/topology_delta.h"
 #include "surface/extract_surface.h"
-#include "engine/geometry/ray_triangle.h"
-#include "engine/geometry/surface_bvh.h"
 #include "surface/update_surface.h"
 #include "surface_fixtures.h"
 
@@ -23,13 +24,13 @@ namespace serosa::surface {
 namespace {
 
 using geometry::closest_point_on_triangle;
-using geometry::TrianglePoint;
-using test_meshes::kuhn_box;
 using geometry::ClosestHit;
 using geometry::ray_triangle;
 using geometry::RayHit;
 using geometry::RayTriangleHit;
 using geometry::SurfaceBvh;
+using geometry::TrianglePoint;
+using test_meshes::kuhn_box;
 
 #if defined(__SANITIZE_ADDRESS__)
 constexpr int kQueries = 600;
