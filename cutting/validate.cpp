@@ -26,15 +26,14 @@ std::string str(double v) {
   return s.str();
 }
 
-}  // namespace
-
-CutCheckReport check_cut(const TetMesh& before, const TetMesh& after, const ConvexPolygon& blade,
-                         const CutCheckOptions& options) {
-  CutCheckReport rep;
+// Structure (engine's checker: finite rest coordinates, positive volumes, faces shared by at most
+// two tets, consistent orientation), finite current positions and velocities, no new unused nodes.
+// Returns the checks of before and after.
+std::pair<MeshCheckReport, MeshCheckReport> check_structure(const TetMesh& before,
+                                                            const TetMesh& after,
+                                                            const CutCheckOptions& options,
+                                                            CutCheckReport& rep) {
   auto problem = [&](std::string s) { rep.problems.push_back(std::move(s)); };
-
-  // Structure (engine's checker: finite rest coordinates, positive volumes, faces shared by at
-  // most two tets, consistent orientation), and finite current positions and velocities.
   const MeshCheckReport mc = check_mesh(after);
   for (std::int32_t i = 0; i < after.num_nodes(); ++i) {
     const bool xf = i < static_cast<std::int32_t>(after.x.size()) && after.x[i].allFinite();
@@ -52,7 +51,13 @@ CutCheckReport check_cut(const TetMesh& before, const TetMesh& after, const Conv
             " new unreferenced nodes");
   }
 
-  // Volume, total and per group.
+  return {mb, mc};
+}
+
+// Volume, total and per group.
+void check_volume(const MeshCheckReport& mb, const MeshCheckReport& mc,
+                  const CutCheckOptions& options, CutCheckReport& rep) {
+  auto problem = [&](std::string s) { rep.problems.push_back(std::move(s)); };
   rep.volume_before_m3 = mb.volume_m3;
   rep.volume_after_m3 = mc.volume_m3;
   const double scale = std::abs(mb.volume_m3);
@@ -66,8 +71,12 @@ CutCheckReport check_cut(const TetMesh& before, const TetMesh& after, const Conv
   }
   for (const auto& [g, v] : mc.group_volume_m3)
     if (!mb.group_volume_m3.contains(g)) problem("new group " + std::to_string(g));
+}
 
-  // Boundary faces: kept, on the old surface, or on the blade.
+// Boundary faces: kept, on the old surface, or on the blade.
+void check_boundary(const TetMesh& before, const TetMesh& after, const ConvexPolygon& blade,
+                    const CutCheckOptions& options, CutCheckReport& rep) {
+  auto problem = [&](std::string s) { rep.problems.push_back(std::move(s)); };
   const FaceCensus fb = face_census(before);
   const FaceCensus fa = face_census(after);
   std::set<Tri> old_faces;
@@ -114,56 +123,78 @@ CutCheckReport check_cut(const TetMesh& before, const TetMesh& after, const Conv
             " m, inside margin " + str(blade.inside_margin(centroid)) + " m)");
     if (rep.problems.size() > 20) break;
   }
+}
 
-  // Separation: no tet crosses the polygon.
-  if (options.expect_separated) {
-    for (std::int32_t ti = 0; ti < after.num_tets(); ++ti) {
-      const Tet& t = after.tets[ti];
-      bool crosses = false;
-      for (int i = 0; i < 4 && !crosses; ++i)
-        for (int j = i + 1; j < 4 && !crosses; ++j) {
-          const double pi = blade.signed_distance(after.x[t[i]]);
-          const double pj = blade.signed_distance(after.x[t[j]]);
-          if ((pi > tol && pj < -tol) || (pi < -tol && pj > tol)) {
-            const Vec3 p = after.x[t[i]] + pi / (pi - pj) * (after.x[t[j]] - after.x[t[i]]);
-            crosses = blade.contains_projection(p, -tol);
-          }
+// No tet crosses the polygon.
+void check_no_crossing(const TetMesh& after, const ConvexPolygon& blade, double tol,
+                       CutCheckReport& rep) {
+  auto problem = [&](std::string s) { rep.problems.push_back(std::move(s)); };
+  for (std::int32_t ti = 0; ti < after.num_tets(); ++ti) {
+    const Tet& t = after.tets[ti];
+    bool crosses = false;
+    for (int i = 0; i < 4 && !crosses; ++i)
+      for (int j = i + 1; j < 4 && !crosses; ++j) {
+        const double pi = blade.signed_distance(after.x[t[i]]);
+        const double pj = blade.signed_distance(after.x[t[j]]);
+        if ((pi > tol && pj < -tol) || (pi < -tol && pj > tol)) {
+          const Vec3 p = after.x[t[i]] + pi / (pi - pj) * (after.x[t[j]] - after.x[t[i]]);
+          crosses = blade.contains_projection(p, -tol);
         }
-      if (crosses) {
-        problem("tet " + std::to_string(ti) + " crosses the blade polygon");
-        break;
       }
+    if (crosses) {
+      problem("tet " + std::to_string(ti) + " crosses the blade polygon");
+      break;
     }
-    // Every piece on one side; the positive pieces hold exactly the clipped volume.
-    const std::vector<std::int32_t> comp = tet_components(after);
-    const std::int32_t nc = comp.empty() ? 0 : *std::max_element(comp.begin(), comp.end()) + 1;
-    rep.components = nc;
-    std::vector<char> has_pos(static_cast<std::size_t>(nc), 0), has_neg(has_pos);
-    std::vector<double> vol(static_cast<std::size_t>(nc), 0.0);
-    for (std::int32_t ti = 0; ti < after.num_tets(); ++ti) {
-      const auto c = static_cast<std::size_t>(comp[static_cast<std::size_t>(ti)]);
-      vol[c] += after.rest_volume(ti);
-      for (std::int32_t id : after.tets[ti]) {
-        const double phi = blade.signed_distance(after.x[id]);
-        has_pos[c] = has_pos[c] || phi > tol;
-        has_neg[c] = has_neg[c] || phi < -tol;
-      }
+  }
+}
+
+// Every piece on one side; the positive pieces hold exactly the clipped volume.
+void check_pieces(const TetMesh& before, const TetMesh& after, const ConvexPolygon& blade,
+                  const CutCheckOptions& options, double scale, CutCheckReport& rep) {
+  auto problem = [&](std::string s) { rep.problems.push_back(std::move(s)); };
+  const double tol = options.geometry_tol_m;
+  const std::vector<std::int32_t> comp = tet_components(after);
+  const std::int32_t nc = comp.empty() ? 0 : *std::max_element(comp.begin(), comp.end()) + 1;
+  rep.components = nc;
+  std::vector<char> has_pos(static_cast<std::size_t>(nc), 0), has_neg(has_pos);
+  std::vector<double> vol(static_cast<std::size_t>(nc), 0.0);
+  for (std::int32_t ti = 0; ti < after.num_tets(); ++ti) {
+    const auto c = static_cast<std::size_t>(comp[static_cast<std::size_t>(ti)]);
+    vol[c] += after.rest_volume(ti);
+    for (std::int32_t id : after.tets[ti]) {
+      const double phi = blade.signed_distance(after.x[id]);
+      has_pos[c] = has_pos[c] || phi > tol;
+      has_neg[c] = has_neg[c] || phi < -tol;
     }
-    double pos_vol = 0.0;
-    for (std::size_t c = 0; c < vol.size(); ++c) {
-      if (has_pos[c] && has_neg[c]) {
-        problem("piece " + std::to_string(c) + " (of " + std::to_string(nc) +
-                ") has nodes on both sides of the blade's plane");
-        break;
-      }
-      if (has_pos[c]) pos_vol += vol[c];
+  }
+  double pos_vol = 0.0;
+  for (std::size_t c = 0; c < vol.size(); ++c) {
+    if (has_pos[c] && has_neg[c]) {
+      problem("piece " + std::to_string(c) + " (of " + std::to_string(nc) +
+              ") has nodes on both sides of the blade's plane");
+      break;
     }
-    rep.positive_volume_m3 = pos_vol;
-    rep.clipped_volume_m3 =
-        clipped_positive_volume(before, blade.normal(), blade.offset(), options.plane_tol_m);
-    if (std::abs(pos_vol - rep.clipped_volume_m3) > options.volume_rel * scale)
-      problem("the positive pieces hold " + str(pos_vol) + " m^3, the exact clipped volume is " +
-              str(rep.clipped_volume_m3) + " m^3");
+    if (has_pos[c]) pos_vol += vol[c];
+  }
+  rep.positive_volume_m3 = pos_vol;
+  rep.clipped_volume_m3 =
+      clipped_positive_volume(before, blade.normal(), blade.offset(), options.plane_tol_m);
+  if (std::abs(pos_vol - rep.clipped_volume_m3) > options.volume_rel * scale)
+    problem("the positive pieces hold " + str(pos_vol) + " m^3, the exact clipped volume is " +
+            str(rep.clipped_volume_m3) + " m^3");
+}
+
+}  // namespace
+
+CutCheckReport check_cut(const TetMesh& before, const TetMesh& after, const ConvexPolygon& blade,
+                         const CutCheckOptions& options) {
+  CutCheckReport rep;
+  const auto [mb, mc] = check_structure(before, after, options, rep);
+  check_volume(mb, mc, options, rep);
+  check_boundary(before, after, blade, options, rep);
+  if (options.expect_separated) {
+    check_no_crossing(after, blade, options.geometry_tol_m, rep);
+    check_pieces(before, after, blade, options, std::abs(mb.volume_m3), rep);
   }
   rep.ok = rep.problems.empty();
   return rep;

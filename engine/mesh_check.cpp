@@ -50,16 +50,8 @@ bool check_sizes(const TetMesh& mesh, MeshCheckReport& r) {
   return ok;
 }
 
-}  // namespace
-
-MeshCheckReport check_mesh(const TetMesh& mesh, const MeshCheckOptions& options) {
-  MeshCheckReport r;
-  r.nodes = static_cast<std::int64_t>(mesh.rest.size());
-  r.tets = static_cast<std::int64_t>(mesh.tets.size());
-  const bool sizes_ok = check_sizes(mesh, r);
-  if (r.tets == 0) r.problems.push_back("no tetrahedra");
-
-  // ---- nodes: finite coordinates, bounding box ----
+// Finite coordinates and the bounding box; returns (n) 1 where a node's coordinates are finite.
+std::vector<std::uint8_t> check_nodes(const TetMesh& mesh, MeshCheckReport& r) {
   const auto n = mesh.rest.size();
   std::vector<std::uint8_t> finite(n, 1);
   std::int64_t first_nonfinite = -1;
@@ -80,10 +72,17 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const MeshCheckOptions& options)
                                     "node:", first_nonfinite));
   }
 
-  // ---- tets: ids, volume, quality ----
-  std::vector<std::uint8_t> referenced(n, 0);
-  std::vector<double> qualities;
+  return finite;
+}
+
+// Node ids, volumes and quality of every tet; inverted, flat and unreferenced counts. finite: (n)
+// from check_nodes; qualities: out, one per tet with valid ids and finite corners.
+void check_tets(const TetMesh& mesh, const MeshCheckOptions& options,
+                const std::vector<std::uint8_t>& finite, MeshCheckReport& r,
+                std::vector<double>& qualities) {
+  const auto n = mesh.rest.size();
   qualities.reserve(mesh.tets.size());
+  std::vector<std::uint8_t> referenced(n, 0);
   std::int64_t first_bad = -1, first_inverted = -1, first_flat = -1;
   double first_inverted_volume = 0.0;
   for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
@@ -142,17 +141,19 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const MeshCheckOptions& options)
     r.warnings.push_back(
         count_line(r.unreferenced_nodes, "nodes used by no tet", "node:", it - referenced.begin()));
   }
+}
 
-  // ---- quality summary ----
-  if (!qualities.empty()) {
-    std::sort(qualities.begin(), qualities.end());
-    r.min_quality = qualities.front();
-    const std::size_t k = qualities.size();
-    r.median_quality =
-        k % 2 == 1 ? qualities[k / 2] : 0.5 * (qualities[k / 2 - 1] + qualities[k / 2]);
-  }
+void summarize_quality(std::vector<double>& qualities, MeshCheckReport& r) {
+  if (qualities.empty()) return;
+  std::sort(qualities.begin(), qualities.end());
+  r.min_quality = qualities.front();
+  const std::size_t k = qualities.size();
+  r.median_quality =
+      k % 2 == 1 ? qualities[k / 2] : 0.5 * (qualities[k / 2 - 1] + qualities[k / 2]);
+}
 
-  // ---- faces: boundary, interior, overshared, misoriented; duplicated tets ----
+// Boundary, interior, overshared and misoriented faces.
+void check_faces(const TetMesh& mesh, MeshCheckReport& r) {
   const std::vector<TetFace> faces = sorted_tet_faces(mesh.tets);
   std::int64_t first_overshared = -1, first_misoriented = -1;
   for (std::size_t i = 0; i < faces.size();) {
@@ -181,6 +182,10 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const MeshCheckOptions& options)
                                     "faces shared by two tets on the same side (overlapping tets)",
                                     "in tet", first_misoriented));
   }
+}
+
+// Tets with the same four nodes as another.
+void check_duplicates(const TetMesh& mesh, MeshCheckReport& r) {
   std::vector<std::pair<Tet, std::int32_t>> sorted_tets;
   sorted_tets.reserve(mesh.tets.size());
   for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
@@ -202,7 +207,22 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const MeshCheckOptions& options)
     r.problems.push_back(count_line(r.duplicate_tets, "duplicated tets (same nodes as another)",
                                     "tet:", first_duplicate));
   }
+}
 
+}  // namespace
+
+MeshCheckReport check_mesh(const TetMesh& mesh, const MeshCheckOptions& options) {
+  MeshCheckReport r;
+  r.nodes = static_cast<std::int64_t>(mesh.rest.size());
+  r.tets = static_cast<std::int64_t>(mesh.tets.size());
+  const bool sizes_ok = check_sizes(mesh, r);
+  if (r.tets == 0) r.problems.push_back("no tetrahedra");
+  const std::vector<std::uint8_t> finite = check_nodes(mesh, r);
+  std::vector<double> qualities;
+  check_tets(mesh, options, finite, r, qualities);
+  summarize_quality(qualities, r);
+  check_faces(mesh, r);
+  check_duplicates(mesh, r);
   r.valid = sizes_ok && r.problems.empty();
   return r;
 }

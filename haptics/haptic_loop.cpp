@@ -132,15 +132,32 @@ void HapticLoop::run() {
   send_zero();
 }
 
+// One tick, in its stages: timing, device sample, model, safety gates and force, force steps
+// after events, out.
 void HapticLoop::tick(std::int64_t now_ns) noexcept {
-  LoopTelemetry& tel = *m_tel;
   const std::int64_t work_start_ns = monotonic_ns();
   const double now = static_cast<double>(now_ns) * 1e-9;
-  const auto period_ns = static_cast<std::int64_t>(std::llround(m_c.period_s * 1e9));
   double dt = m_c.period_s;
-  bool gap = false;
+  const bool gap = record_timing(now_ns, dt);
+  poll_device(now);
+  take_model(now);
+  DeviceCommand cmd;
+  std::array<Vec3, kHandles> force{Vec3::Zero(), Vec3::Zero()};
+  const ZeroReason zero = render_force(now, dt, gap, cmd, force);
+  record_event_steps(now, force);
+  m_prev_force = force;
+  send(now, cmd, zero, force);
+  m_last_work_ns = monotonic_ns() - work_start_ns;
+  m_tel->max_tick_work_ns =
+      std::max(m_tel->max_tick_work_ns, static_cast<std::uint64_t>(m_last_work_ns));
+}
 
-  // 1. Timing: period, late ticks (platform stall or own overrun), gaps past the watchdog.
+// Period, late ticks (platform stall or own overrun), gaps past the watchdog; dt: this tick's
+// period, s. Returns whether the tick comes after a gap.
+bool HapticLoop::record_timing(std::int64_t now_ns, double& dt) noexcept {
+  LoopTelemetry& tel = *m_tel;
+  const auto period_ns = static_cast<std::int64_t>(std::llround(m_c.period_s * 1e9));
+  bool gap = false;
   if (m_ticks > 0) {
     const std::int64_t p = now_ns - m_last_tick_ns;
     tel.record_period(p);
@@ -174,60 +191,67 @@ void HapticLoop::tick(std::int64_t now_ns) noexcept {
   m_last_tick_ns = now_ns;
   ++m_ticks;
   tel.ticks = m_ticks;
+  return gap;
+}
 
-  // 2. Newest device sample.
+// The newest device sample.
+void HapticLoop::poll_device(double now) noexcept {
   DeviceSample s;
   if (m_device.poll(now, s)) {
     m_sample = s;
     m_have_sample = true;
     m_sample_time_s = now;
-    ++tel.device_samples;
+    ++m_tel->device_samples;
   }
+}
 
-  // 3. Newest model (only copied when the solver published a new one).
+// The newest model (only copied when the solver published a new one), and a force event when its
+// cut or contact counters moved.
+void HapticLoop::take_model(double now) noexcept {
+  LoopTelemetry& tel = *m_tel;
   const std::uint64_t version = m_model.version();
-  if (version != m_model_version) {
-    ContactModel m;
-    if (m_model.try_load(m)) {
-      m_model_version = version;
-      if (m.step != 0 && m.step != m_model_step) {
-        m_model_step = m.step;
-        m_model_time_s = now;
-        m_renderer.set_model(m, now);
-        ++tel.models;
-        if (m_events_seen &&
-            (m.cut_events != m_cut_events || m.contact_events != m_contact_events)) {
-          ForceEvent& e = tel.events[tel.n_events % LoopTelemetry::kEvents];
-          e.time_s = now;
-          e.kind = (m.cut_events != m_cut_events ? 1u : 0u) |
-                   (m.contact_events != m_contact_events ? 2u : 0u);
-          e.max_step_N = 0.0;
-          ++tel.n_events;
-          m_event_until_s = now + kEventWindowS;
-        }
-        m_events_seen = true;
-        m_cut_events = m.cut_events;
-        m_contact_events = m.contact_events;
-      }
-    }
+  if (version == m_model_version) return;
+  ContactModel m;
+  if (!m_model.try_load(m)) return;
+  m_model_version = version;
+  if (m.step == 0 || m.step == m_model_step) return;
+  m_model_step = m.step;
+  m_model_time_s = now;
+  m_renderer.set_model(m, now);
+  ++tel.models;
+  if (m_events_seen && (m.cut_events != m_cut_events || m.contact_events != m_contact_events)) {
+    ForceEvent& e = tel.events[tel.n_events % LoopTelemetry::kEvents];
+    e.time_s = now;
+    e.kind =
+        (m.cut_events != m_cut_events ? 1u : 0u) | (m.contact_events != m_contact_events ? 2u : 0u);
+    e.max_step_N = 0.0;
+    ++tel.n_events;
+    m_event_until_s = now + kEventWindowS;
   }
+  m_events_seen = true;
+  m_cut_events = m.cut_events;
+  m_contact_events = m.contact_events;
+}
 
-  // 4. Safety gates, then the force.
-  ZeroReason zero = ZeroReason::kNone;
-  if (gap) {
-    zero = ZeroReason::kGap;
-  } else if (!m_device.connected()) {
-    zero = ZeroReason::kUnplugged;
-  } else if (!m_have_sample || now - m_sample_time_s > m_c.device_timeout_s) {
-    zero = ZeroReason::kDeviceStale;
-  } else if (!m_renderer.has_model() || now - m_model_time_s > m_c.model_timeout_s) {
-    zero = ZeroReason::kNoModel;
-  }
+// Why the force must be zero this tick (kNone: it may be rendered).
+ZeroReason HapticLoop::safety_gate(double now, bool gap) const noexcept {
+  if (gap) return ZeroReason::kGap;
+  if (!m_device.connected()) return ZeroReason::kUnplugged;
+  if (!m_have_sample || now - m_sample_time_s > m_c.device_timeout_s)
+    return ZeroReason::kDeviceStale;
+  if (!m_renderer.has_model() || now - m_model_time_s > m_c.model_timeout_s)
+    return ZeroReason::kNoModel;
+  return ZeroReason::kNone;
+}
 
-  DeviceCommand cmd;
+// The safety gates, then each handle's force and joint efforts into `cmd` (zeroed when a gate or
+// a non-finite value says so). Returns the zero reason.
+ZeroReason HapticLoop::render_force(double now, double dt, bool gap, DeviceCommand& cmd,
+                                    std::array<Vec3, kHandles>& force) noexcept {
+  LoopTelemetry& tel = *m_tel;
+  ZeroReason zero = safety_gate(now, gap);
   cmd.tick = m_ticks;
   cmd.state_sequence = m_sample.sequence;
-  std::array<Vec3, kHandles> force{Vec3::Zero(), Vec3::Zero()};
   if (zero == ZeroReason::kNone) {
     const double max_step = m_c.force.slew_N_per_s * std::clamp(dt, 0.0, 2e-3);
     for (std::size_t h = 0; h < kHandles && zero == ZeroReason::kNone; ++h) {
@@ -266,17 +290,21 @@ void HapticLoop::tick(std::int64_t now_ns) noexcept {
   } else {
     cmd.enable = true;
   }
+  return zero;
+}
 
-  // 5. Force steps after contact and cut events.
-  if (now <= m_event_until_s && tel.n_events > 0) {
-    ForceEvent& e = tel.events[(tel.n_events - 1) % LoopTelemetry::kEvents];
-    for (std::size_t h = 0; h < kHandles; ++h) {
-      e.max_step_N = std::max(e.max_step_N, (force[h] - m_prev_force[h]).norm());
-    }
-  }
-  m_prev_force = force;
+// Force steps after contact and cut events.
+void HapticLoop::record_event_steps(double now, const std::array<Vec3, kHandles>& force) noexcept {
+  LoopTelemetry& tel = *m_tel;
+  if (now > m_event_until_s || tel.n_events == 0) return;
+  ForceEvent& e = tel.events[(tel.n_events - 1) % LoopTelemetry::kEvents];
+  for (std::size_t h = 0; h < kHandles; ++h)
+    e.max_step_N = std::max(e.max_step_N, (force[h] - m_prev_force[h]).norm());
+}
 
-  // 6. Out: device command, tool states for the solver, live status.
+// Out: the device command, the tool states for the solver, the live status.
+void HapticLoop::send(double now, const DeviceCommand& cmd, ZeroReason zero,
+                      const std::array<Vec3, kHandles>& force) noexcept {
   m_device.command(cmd);
   if (m_have_sample) {
     for (std::size_t h = 0; h < kHandles; ++h) {
@@ -298,8 +326,6 @@ void HapticLoop::tick(std::int64_t now_ns) noexcept {
   st.device_sequence = m_sample.sequence;
   m_status.store(st);
   ++m_command_seq;
-  m_last_work_ns = monotonic_ns() - work_start_ns;
-  tel.max_tick_work_ns = std::max(tel.max_tick_work_ns, static_cast<std::uint64_t>(m_last_work_ns));
 }
 
 }  // namespace serosa::haptics

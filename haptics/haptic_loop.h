@@ -98,6 +98,16 @@ class HapticLoop {
   void run();
   void send_zero() noexcept;
   void classify_pending(std::int64_t now_ns, bool all) noexcept;
+  // The stages of tick(), in order (haptic_loop.cpp).
+  bool record_timing(std::int64_t now_ns, double& dt) noexcept;
+  void poll_device(double now) noexcept;
+  void take_model(double now) noexcept;
+  [[nodiscard]] ZeroReason safety_gate(double now, bool gap) const noexcept;
+  ZeroReason render_force(double now, double dt, bool gap, DeviceCommand& cmd,
+                          std::array<Vec3, kHandles>& force) noexcept;
+  void record_event_steps(double now, const std::array<Vec3, kHandles>& force) noexcept;
+  void send(double now, const DeviceCommand& cmd, ZeroReason zero,
+            const std::array<Vec3, kHandles>& force) noexcept;
 
   Device& m_device;
   const ContactModelChannel& m_model;
