@@ -104,6 +104,9 @@ std::optional<ConvexPolygon> convex_union(const ConvexPolygon& a, const ConvexPo
   return ConvexPolygon::make(std::move(corners));
 }
 
+// One step of the stroke: the region swept so far grows by the blade; a new stroke is one plain
+// cut, a continued one re-cuts the mesh before the stroke around the region and composes the
+// result with the pieces it replaces.
 CutResult ProgressiveCut::cut(const TetMesh& mesh, const ConvexPolygon& blade,
                               const TetBoxQuery& query) {
   m_pending.reset();
@@ -127,122 +130,139 @@ CutResult ProgressiveCut::cut(const TetMesh& mesh, const ConvexPolygon& blade,
   } else {
     region = blade;
   }
-
   const TetBoxQuery brute = query ? TetBoxQuery{} : brute_force_query(mesh);
   const TetBoxQuery& q = query ? query : brute;
-  if (!m_region) {
-    // A new stroke: the mesh is the mesh before it. One plain cut; all it removes are originals,
-    // all it adds the stroke's pieces.
-    CutResult r = cut_mesh(mesh, *region, m_options, q);
-    Pending next;
-    for (std::int32_t t : r.delta.removed_tets)
-      next.originals.push_back(
-          {mesh.tets[static_cast<std::size_t>(t)], mesh.group[static_cast<std::size_t>(t)]});
-    next.region = region;
-    next.pieces = r.delta.added_tets.size();
-    next.nodes = static_cast<std::int32_t>(r.delta.added_nodes.size());
-    next.version = mesh.topology_version;
-    next.removed = r.delta.removed_tets.size();
-    next.added = r.delta.added_tets.size();
-    next.tolerance_m = r.stats.tolerance_m;
-    m_pending = std::move(next);
-    return r;
-  }
+  if (!m_region) return start_stroke(mesh, *region, q);
+  const auto [tol, h] = stroke_tolerance(mesh, *region, q);
+  const LocalRegion local = pre_stroke_region(mesh, *region, q, tol, h);
+  CutOptions local_options = m_options;
+  local_options.tolerance_m = tol;
+  CutResult lr = cut_mesh(local.mesh, *region, local_options);
+  return compose(mesh, *region, local, std::move(lr));
+}
 
-  // The mesh before the stroke, around the region: the current tets the region's box grown by
-  // twice the tolerance meets (every tet the cut looks at), less the stroke's pieces, plus the
-  // stroke's originals; of those, only tets with a node within twice the tolerance of the plane
-  // (the others are one-sided, and no decision of the cut depends on them). The tolerance is
-  // the one cut_mesh would take on the mesh before the stroke (the longest edge of the tets the
-  // region's box meets), passed to the local cut.
-  auto is_piece = [&](std::int32_t t) {
-    return std::binary_search(m_pieces.begin(), m_pieces.end(), t);
-  };
-  auto meets = [&](const Tet& t, const Vec3& lo, const Vec3& hi) {
+// A new stroke: the mesh is the mesh before it. One plain cut; all it removes are originals, all
+// it adds the stroke's pieces.
+CutResult ProgressiveCut::start_stroke(const TetMesh& mesh, const ConvexPolygon& region,
+                                       const TetBoxQuery& q) {
+  CutResult r = cut_mesh(mesh, region, m_options, q);
+  Pending next;
+  for (std::int32_t t : r.delta.removed_tets)
+    next.originals.push_back(
+        {mesh.tets[static_cast<std::size_t>(t)], mesh.group[static_cast<std::size_t>(t)]});
+  next.region = region;
+  next.pieces = r.delta.added_tets.size();
+  next.nodes = static_cast<std::int32_t>(r.delta.added_nodes.size());
+  next.version = mesh.topology_version;
+  next.removed = r.delta.removed_tets.size();
+  next.added = r.delta.added_tets.size();
+  next.tolerance_m = r.stats.tolerance_m;
+  m_pending = std::move(next);
+  return r;
+}
+
+bool ProgressiveCut::is_piece(std::int32_t t) const {
+  return std::binary_search(m_pieces.begin(), m_pieces.end(), t);
+}
+
+// The tolerance cut_mesh would take on the mesh before the stroke, and the longest edge of the tets
+// the region's box meets (current tets less the stroke's pieces, plus its originals) it is
+// relative to, m.
+std::pair<double, double> ProgressiveCut::stroke_tolerance(const TetMesh& mesh,
+                                                           const ConvexPolygon& region,
+                                                           const TetBoxQuery& q) const {
+  auto meets = [&](const Tet& t) {
     Vec3 tlo, thi;
     geometry::tet_box(mesh, t, tlo, thi);
-    return (tlo.array() <= hi.array()).all() && (thi.array() >= lo.array()).all();
+    return (tlo.array() <= region.box_max().array()).all() &&
+           (thi.array() >= region.box_min().array()).all();
   };
   std::vector<std::int32_t> cands;
-  q(region->box_min(), region->box_max(), cands);
+  q(region.box_min(), region.box_max(), cands);
   double h = 0.0;
-  auto grow_h = [&](const Tet& t) { h = std::max(h, geometry::longest_edge_m(mesh, t)); };
   for (std::int32_t t : cands)
-    if (!is_piece(t) &&
-        meets(mesh.tets[static_cast<std::size_t>(t)], region->box_min(), region->box_max()))
-      grow_h(mesh.tets[static_cast<std::size_t>(t)]);
+    if (!is_piece(t) && meets(mesh.tets[static_cast<std::size_t>(t)]))
+      h = std::max(h, geometry::longest_edge_m(mesh, mesh.tets[static_cast<std::size_t>(t)]));
   for (const Original& o : m_originals)
-    if (meets(o.tet, region->box_min(), region->box_max())) grow_h(o.tet);
-  CutOptions local_options = m_options;
-  const double tol =
-      m_options.tolerance_m > 0.0 ? m_options.tolerance_m : m_options.classify_rel * h;
-  local_options.tolerance_m = tol;
+    if (meets(o.tet)) h = std::max(h, geometry::longest_edge_m(mesh, o.tet));
+  return {m_options.tolerance_m > 0.0 ? m_options.tolerance_m : m_options.classify_rel * h, h};
+}
+
+// The mesh before the stroke, around the region: the current tets the region's box grown by twice
+// the tolerance meets (every tet the cut looks at), less the stroke's pieces, plus the stroke's
+// originals; of those, only tets with a node within twice the tolerance of the plane (the others
+// are one-sided, and no decision of the cut depends on them). Local node ids follow the order of
+// the mesh's ids, so that every rule keyed by the smallest node id (quad diagonals, face fans)
+// decides as it would in the whole mesh.
+ProgressiveCut::LocalRegion ProgressiveCut::pre_stroke_region(const TetMesh& mesh,
+                                                              const ConvexPolygon& region,
+                                                              const TetBoxQuery& q, double tol,
+                                                              double h) const {
   const Vec3 grow = Vec3::Constant(2.0 * tol + 1e-12 * (1.0 + h));
-  cands.clear();
-  q(region->box_min() - grow, region->box_max() + grow, cands);
+  std::vector<std::int32_t> cands;
+  q(region.box_min() - grow, region.box_max() + grow, cands);
   std::sort(cands.begin(), cands.end());
   cands.erase(std::unique(cands.begin(), cands.end()), cands.end());
   auto near_plane = [&](const Tet& t) {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (std::int32_t v : t) {
-      const double phi = region->signed_distance(mesh.x[static_cast<std::size_t>(v)]);
+      const double phi = region.signed_distance(mesh.x[static_cast<std::size_t>(v)]);
       lo = std::min(lo, phi);
       hi = std::max(hi, phi);
     }
     return lo <= 2.0 * tol && hi >= -2.0 * tol;
   };
-
-  // Local node ids follow the order of the mesh's ids, so that every rule keyed by the smallest
-  // node id (quad diagonals, face fans) decides as it would in the whole mesh.
-  std::vector<std::int32_t> origin;  // local tet -> tet of `mesh`, or -1 - (original index)
+  LocalRegion out;
   std::vector<Tet> tets;
   std::vector<std::uint16_t> groups;
   for (std::size_t k = 0; k < m_originals.size(); ++k) {  // all of them: each is cut or put back
     tets.push_back(m_originals[k].tet);
     groups.push_back(m_originals[k].group);
-    origin.push_back(-1 - static_cast<std::int32_t>(k));
+    out.origin.push_back(-1 - static_cast<std::int32_t>(k));
   }
   for (std::int32_t t : cands)
     if (!is_piece(t) && near_plane(mesh.tets[static_cast<std::size_t>(t)])) {
       tets.push_back(mesh.tets[static_cast<std::size_t>(t)]);
       groups.push_back(mesh.group[static_cast<std::size_t>(t)]);
-      origin.push_back(t);
+      out.origin.push_back(t);
     }
-  std::vector<std::int32_t> global_of;  // local node -> node of `mesh`, ascending
+  std::vector<std::int32_t>& global_of = out.global_of;
   for (const Tet& t : tets) global_of.insert(global_of.end(), t.begin(), t.end());
   std::sort(global_of.begin(), global_of.end());
   global_of.erase(std::unique(global_of.begin(), global_of.end()), global_of.end());
-  TetMesh local;
   for (std::int32_t g : global_of) {
-    local.rest.push_back(mesh.rest[static_cast<std::size_t>(g)]);
-    local.x.push_back(mesh.x[static_cast<std::size_t>(g)]);
+    out.mesh.rest.push_back(mesh.rest[static_cast<std::size_t>(g)]);
+    out.mesh.x.push_back(mesh.x[static_cast<std::size_t>(g)]);
   }
   for (std::size_t k = 0; k < tets.size(); ++k) {
     Tet lt{};
     for (int i = 0; i < 4; ++i)
       lt[i] = static_cast<std::int32_t>(
           std::lower_bound(global_of.begin(), global_of.end(), tets[k][i]) - global_of.begin());
-    local.tets.push_back(lt);
-    local.group.push_back(groups[k]);
+    out.mesh.tets.push_back(lt);
+    out.mesh.group.push_back(groups[k]);
   }
-  local.fill_node_state();
-  CutResult lr = cut_mesh(local, *region, local_options);
-  const TopologyDelta& ld = lr.delta;
+  out.mesh.fill_node_state();
+  return out;
+}
 
-  // Compose: remove the stroke's pieces and the current tets the cut removes; add the cut's
-  // pieces (local ids mapped back, new nodes appended after the mesh's), then the originals the
-  // cut leaves whole.
+// Compose: remove the stroke's pieces and the current tets the cut removes; add the cut's pieces
+// (local ids mapped back, new nodes appended after the mesh's), then the originals the cut leaves
+// whole.
+CutResult ProgressiveCut::compose(const TetMesh& mesh, const ConvexPolygon& region,
+                                  const LocalRegion& local, CutResult lr) {
+  const TopologyDelta& ld = lr.delta;
   const std::int32_t n_cur = mesh.num_nodes();
-  const auto n_local = static_cast<std::int32_t>(global_of.size());
+  const auto n_local = static_cast<std::int32_t>(local.global_of.size());
   auto global_node = [&](std::int32_t l) {
-    return l < n_local ? global_of[static_cast<std::size_t>(l)] : n_cur + (l - n_local);
+    return l < n_local ? local.global_of[static_cast<std::size_t>(l)] : n_cur + (l - n_local);
   };
   TopologyDelta out;
   out.removed_tets = m_pieces;
   std::vector<char> cut_original(m_originals.size(), 0);
   Pending next;
   for (std::int32_t lt : ld.removed_tets) {
-    const std::int32_t o = origin[static_cast<std::size_t>(lt)];
+    const std::int32_t o = local.origin[static_cast<std::size_t>(lt)];
     if (o >= 0) {
       out.removed_tets.push_back(o);
       next.originals.push_back(

@@ -37,6 +37,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "cutting/convex_polygon.h"
@@ -109,6 +110,23 @@ class ProgressiveCut {
     std::size_t added = 0;
     double tolerance_m = 0.0;
   };
+
+  /// The mesh before the stroke around the region, in local numbering.
+  struct LocalRegion {
+    TetMesh mesh;
+    std::vector<std::int32_t> origin;     ///< local tet -> tet of the mesh, or -1 - original index
+    std::vector<std::int32_t> global_of;  ///< local node -> node of the mesh, ascending
+  };
+  CutResult start_stroke(const TetMesh& mesh, const ConvexPolygon& region, const TetBoxQuery& q);
+  [[nodiscard]] bool is_piece(std::int32_t t) const;
+  /// (tolerance, longest edge it is relative to), m.
+  [[nodiscard]] std::pair<double, double> stroke_tolerance(const TetMesh& mesh,
+                                                           const ConvexPolygon& region,
+                                                           const TetBoxQuery& q) const;
+  [[nodiscard]] LocalRegion pre_stroke_region(const TetMesh& mesh, const ConvexPolygon& region,
+                                              const TetBoxQuery& q, double tol, double h) const;
+  CutResult compose(const TetMesh& mesh, const ConvexPolygon& region, const LocalRegion& local,
+                    CutResult lr);
 
   CutOptions m_options;
   std::optional<ConvexPolygon> m_region;  ///< swept so far
