@@ -200,19 +200,8 @@ void FrameRenderer::draw_tools(const RenderFrame& frame, const float* view_proj,
   glBindVertexArray(0);
 }
 
-void FrameRenderer::draw(const RenderFrame& frame, const SnapshotOptions& options, int width,
-                         int height) {
-  if (const auto errors = validate(frame); !errors.empty()) {
-    std::string msg = "FrameRenderer::draw: invalid frame:";
-    for (const std::string& e : errors) msg += " " + e + ";";
-    throw std::invalid_argument(msg);
-  }
-  if (!uploaded_ || frame.topology_version != topology_version_ ||
-      frame.num_triangles() != tri_count_ || frame.edges.size() != edge_source_) {
-    upload_topology(frame);
-  }
-
-  // Vertex data, every frame: positions, and normals (computed when the frame has none).
+// Vertex data, every frame: positions, and normals (computed when the frame has none).
+void FrameRenderer::upload_vertices(const RenderFrame& frame) {
   const std::vector<float> computed =
       frame.nrm.empty() ? compute_vertex_normals(frame.pos, frame.tri) : std::vector<float>{};
   const std::vector<float>& nrm = frame.nrm.empty() ? computed : frame.nrm;
@@ -236,8 +225,11 @@ void FrameRenderer::draw(const RenderFrame& frame, const SnapshotOptions& option
     glTexBuffer(GL_TEXTURE_BUFFER, fmt.first, fmt.second);
   }
   glBindTexture(GL_TEXTURE_BUFFER, 0);
+}
 
-  // Camera: view-projection, eye (the light), and the light's reference distance.
+// The camera: view-projection, eye (the light), and the light's reference distance.
+FrameRenderer::View FrameRenderer::view_of(const RenderFrame& frame, const SnapshotOptions& options,
+                                           int width, int height) const {
   const float aspect = static_cast<float>(width) / static_cast<float>(std::max(height, 1));
   const Camera cam = options.fit_camera ? auto_camera(frame, aspect) : frame.camera;
   Bounds bounds = drawn_bounds(frame);
@@ -261,6 +253,92 @@ void FrameRenderer::draw(const RenderFrame& frame, const SnapshotOptions& option
   const Eigen::Vector3f target(cam.target[0], cam.target[1], cam.target[2]);
   const float ref_dist = std::max((target - eye).norm(), 1e-6f);
 
+  return {view_proj, eye, ref_dist};
+}
+
+void FrameRenderer::draw_visual(const View& v, const SnapshotOptions& options) {
+  const Eigen::Matrix4f& view_proj = v.view_proj;
+  const Eigen::Vector3f& eye = v.eye;
+  const float ref_dist = v.ref_dist;
+  if (tri_count_ == 0) return;
+  const GLuint p = visual_->id();
+  glUseProgram(p);
+  const int level = std::clamp(options.tessellation, 1, max_tess_level_);
+  glUniform1f(visual_->uniform("u_level"), static_cast<float>(level));
+  glUniform1f(visual_->uniform("u_alpha"), std::clamp(options.shape_factor, 0.0f, 1.0f));
+  glUniformMatrix4fv(visual_->uniform("u_view_proj"), 1, GL_FALSE, view_proj.data());
+  glUniform3f(visual_->uniform("u_eye"), eye.x(), eye.y(), eye.z());
+  glUniform1f(visual_->uniform("u_ref_dist"), ref_dist);
+  // Texture units 0..3: positions, normals, indices, materials.
+  const std::array<std::pair<GLuint, const char*>, 4> units{{{pos_tex_, "u_pos"},
+                                                             {nrm_tex_, "u_nrm"},
+                                                             {tri_tex_, "u_tri"},
+                                                             {material_tex_, "u_tri_material"}}};
+  for (std::size_t u = 0; u < units.size(); ++u) {
+    glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(u));
+    glBindTexture(GL_TEXTURE_BUFFER, units[u].first);
+    glUniform1i(visual_->uniform(units[u].second), static_cast<GLint>(u));
+  }
+  glBindVertexArray(pull_vao_);
+  glPatchParameteri(GL_PATCH_VERTICES, 3);
+  glDrawArrays(GL_PATCHES, 0, static_cast<GLsizei>(3 * tri_count_));
+  for (std::size_t u = 0; u < units.size(); ++u) {
+    glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(u));
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
+  }
+  glActiveTexture(GL_TEXTURE0);
+}
+
+void FrameRenderer::draw_collision(const View& v) {
+  const Eigen::Matrix4f& view_proj = v.view_proj;
+  const Eigen::Vector3f& eye = v.eye;
+  if (tri_count_ == 0) return;
+  glUseProgram(flat_->id());
+  glUniformMatrix4fv(flat_->uniform("u_view_proj"), 1, GL_FALSE, view_proj.data());
+  glUniform3f(flat_->uniform("u_eye"), eye.x(), eye.y(), eye.z());
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, tri_buf_);
+  // Faceted fill, pushed back so that the wireframe on top wins the depth test.
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(1.0f, 1.0f);
+  glUniform1i(flat_->uniform("u_shaded"), 1);
+  glUniform4f(flat_->uniform("u_color"), 0.55f, 0.70f, 0.75f, 1.0f);
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(3 * tri_count_), GL_UNSIGNED_INT, nullptr);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  // The triangles' edges.
+  glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+  glUniform1i(flat_->uniform("u_shaded"), 0);
+  glUniform4f(flat_->uniform("u_color"), 0.05f, 0.25f, 0.10f, 1.0f);
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(3 * tri_count_), GL_UNSIGNED_INT, nullptr);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+}
+
+void FrameRenderer::draw_mechanical(const View& v) {
+  const Eigen::Matrix4f& view_proj = v.view_proj;
+  if (line_count_ == 0) return;
+  // See-through: every tet edge is drawn, inner ones included.
+  glDisable(GL_DEPTH_TEST);
+  glUseProgram(flat_->id());
+  glUniformMatrix4fv(flat_->uniform("u_view_proj"), 1, GL_FALSE, view_proj.data());
+  glUniform1i(flat_->uniform("u_shaded"), 0);
+  glUniform4f(flat_->uniform("u_color"), 0.55f, 0.95f, 1.0f, 1.0f);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, line_buf_);
+  glDrawElements(GL_LINES, static_cast<GLsizei>(2 * line_count_), GL_UNSIGNED_INT, nullptr);
+  glEnable(GL_DEPTH_TEST);
+}
+
+void FrameRenderer::draw(const RenderFrame& frame, const SnapshotOptions& options, int width,
+                         int height) {
+  if (const auto errors = validate(frame); !errors.empty()) {
+    std::string msg = "FrameRenderer::draw: invalid frame:";
+    for (const std::string& e : errors) msg += " " + e + ";";
+    throw std::invalid_argument(msg);
+  }
+  if (!uploaded_ || frame.topology_version != topology_version_ ||
+      frame.num_triangles() != tri_count_ || frame.edges.size() != edge_source_) {
+    upload_topology(frame);
+  }
+  upload_vertices(frame);
+  const View v = view_of(frame, options, width, height);
   const auto& bg = options.background;
   glClearColor(bg[0], bg[1], bg[2], 0.0f);  // alpha 0: coverage is read back in alpha
   glClearDepth(1.0);
@@ -270,75 +348,18 @@ void FrameRenderer::draw(const RenderFrame& frame, const SnapshotOptions& option
   glDisable(GL_CULL_FACE);
   glEnable(GL_MULTISAMPLE);
   // Instruments first, depth-tested; the views' lines and surfaces then meet them in depth.
-  draw_tools(frame, view_proj.data(), eye.data(), ref_dist);
+  draw_tools(frame, v.view_proj.data(), v.eye.data(), v.ref_dist);
   glBindVertexArray(vao_);
-
   switch (options.view) {
-    case SnapshotOptions::View::kVisual: {
-      if (tri_count_ == 0) break;
-      const GLuint p = visual_->id();
-      glUseProgram(p);
-      const int level = std::clamp(options.tessellation, 1, max_tess_level_);
-      glUniform1f(visual_->uniform("u_level"), static_cast<float>(level));
-      glUniform1f(visual_->uniform("u_alpha"), std::clamp(options.shape_factor, 0.0f, 1.0f));
-      glUniformMatrix4fv(visual_->uniform("u_view_proj"), 1, GL_FALSE, view_proj.data());
-      glUniform3f(visual_->uniform("u_eye"), eye.x(), eye.y(), eye.z());
-      glUniform1f(visual_->uniform("u_ref_dist"), ref_dist);
-      // Texture units 0..3: positions, normals, indices, materials.
-      const std::array<std::pair<GLuint, const char*>, 4> units{
-          {{pos_tex_, "u_pos"},
-           {nrm_tex_, "u_nrm"},
-           {tri_tex_, "u_tri"},
-           {material_tex_, "u_tri_material"}}};
-      for (std::size_t u = 0; u < units.size(); ++u) {
-        glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(u));
-        glBindTexture(GL_TEXTURE_BUFFER, units[u].first);
-        glUniform1i(visual_->uniform(units[u].second), static_cast<GLint>(u));
-      }
-      glBindVertexArray(pull_vao_);
-      glPatchParameteri(GL_PATCH_VERTICES, 3);
-      glDrawArrays(GL_PATCHES, 0, static_cast<GLsizei>(3 * tri_count_));
-      for (std::size_t u = 0; u < units.size(); ++u) {
-        glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(u));
-        glBindTexture(GL_TEXTURE_BUFFER, 0);
-      }
-      glActiveTexture(GL_TEXTURE0);
+    case SnapshotOptions::View::kVisual:
+      draw_visual(v, options);
       break;
-    }
-    case SnapshotOptions::View::kCollision: {
-      if (tri_count_ == 0) break;
-      glUseProgram(flat_->id());
-      glUniformMatrix4fv(flat_->uniform("u_view_proj"), 1, GL_FALSE, view_proj.data());
-      glUniform3f(flat_->uniform("u_eye"), eye.x(), eye.y(), eye.z());
-      glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, tri_buf_);
-      // Faceted fill, pushed back so that the wireframe on top wins the depth test.
-      glEnable(GL_POLYGON_OFFSET_FILL);
-      glPolygonOffset(1.0f, 1.0f);
-      glUniform1i(flat_->uniform("u_shaded"), 1);
-      glUniform4f(flat_->uniform("u_color"), 0.55f, 0.70f, 0.75f, 1.0f);
-      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(3 * tri_count_), GL_UNSIGNED_INT, nullptr);
-      glDisable(GL_POLYGON_OFFSET_FILL);
-      // The triangles' edges.
-      glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
-      glUniform1i(flat_->uniform("u_shaded"), 0);
-      glUniform4f(flat_->uniform("u_color"), 0.05f, 0.25f, 0.10f, 1.0f);
-      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(3 * tri_count_), GL_UNSIGNED_INT, nullptr);
-      glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    case SnapshotOptions::View::kCollision:
+      draw_collision(v);
       break;
-    }
-    case SnapshotOptions::View::kMechanical: {
-      if (line_count_ == 0) break;
-      // See-through: every tet edge is drawn, inner ones included.
-      glDisable(GL_DEPTH_TEST);
-      glUseProgram(flat_->id());
-      glUniformMatrix4fv(flat_->uniform("u_view_proj"), 1, GL_FALSE, view_proj.data());
-      glUniform1i(flat_->uniform("u_shaded"), 0);
-      glUniform4f(flat_->uniform("u_color"), 0.55f, 0.95f, 1.0f, 1.0f);
-      glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, line_buf_);
-      glDrawElements(GL_LINES, static_cast<GLsizei>(2 * line_count_), GL_UNSIGNED_INT, nullptr);
-      glEnable(GL_DEPTH_TEST);
+    case SnapshotOptions::View::kMechanical:
+      draw_mechanical(v);
       break;
-    }
   }
   glBindVertexArray(0);
   glUseProgram(0);

@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <memory>
 
+#include <Eigen/Core>
+
 #include "render/render_frame.h"
 #include "render/snapshot_options.h"
 #include "render/tool_mesh.h"
@@ -39,7 +41,19 @@ class FrameRenderer {
   [[nodiscard]] std::uint64_t topology_uploads() const { return topology_uploads_; }
 
  private:
+  /// The camera of a draw: view-projection, eye (the light), the light's reference distance.
+  struct View {
+    Eigen::Matrix4f view_proj;
+    Eigen::Vector3f eye;
+    float ref_dist = 1.0f;
+  };
   void upload_topology(const RenderFrame& frame);
+  void upload_vertices(const RenderFrame& frame);
+  [[nodiscard]] View view_of(const RenderFrame& frame, const SnapshotOptions& options, int width,
+                             int height) const;
+  void draw_visual(const View& v, const SnapshotOptions& options);
+  void draw_collision(const View& v);
+  void draw_mechanical(const View& v);
   void draw_tools(const RenderFrame& frame, const float* view_proj, const float* eye,
                   float ref_dist);
 
