@@ -261,6 +261,7 @@ Json run_headless(const HeadlessOptions& options) {
     report["fem"] = {{"steps", st.steps},
                      {"not_converged", st.not_converged},
                      {"factor_refreshes", st.factor_refreshes},
+                     {"factor_patches", st.factor_patches},
                      {"rejected", st.rejected},
                      {"energy_gains", st.energy_gains},
                      {"energy_removed_j", st.energy_removed_j},

@@ -74,6 +74,16 @@ struct SolverSettings {
   /// pcg_lagged: a refresh asked for at step k preconditions from step k + this on (the
   /// background thread has that many steps to factor; the step waits if it has not finished).
   int factor_lag_steps = 12;
+  /// pcg_lagged, after a cut: patch the installed factor with a factor of the rows the cut touched
+  /// until a refresh of the new structure is installed (true), or factor the whole new matrix on
+  /// the step after the cut (false). The same tolerance either way: this trades the cut step's
+  /// time against CG iterations over the next factor_lag_steps steps (fem/lagged_factor.h).
+  bool patch_after_cut = true;
+  /// pcg_lagged: the lag (steps) of an urgent refresh: one asked for after a cut (the patch
+  /// bridges it) or by a solve that needed more than 3 x refresh_iterations (a grasp, a sudden
+  /// turn). Such solves cost several times a normal one, so the sooner the cheaper, as long as the
+  /// background thread finishes in time (the step waits for it otherwise).
+  int urgent_lag_steps = 4;
 };
 
 /// Plastic flow (Müller & Gross 2004, section 5), the "plasticity" effect. Per tet, the plastic

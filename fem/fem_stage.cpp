@@ -49,6 +49,7 @@ void FemStage::step(const StepContext& ctx, SimState& state) {
   if (!m_last.applied) ++m_stats.rejected;
   if (m_last.energy_gain) ++m_stats.energy_gains;
   if (m_last.factor_refresh) ++m_stats.factor_refreshes;
+  if (m_last.factor_patch) ++m_stats.factor_patches;
   m_stats.energy_removed_j += m_last.energy_removed_j;
 }
 

@@ -69,6 +69,7 @@ void ImplicitIntegrator::rebuild(TetMesh& mesh) {
   m_dv.assign(3 * static_cast<std::size_t>(mesh.num_nodes()), 0.0);
   m_rot.assign(static_cast<std::size_t>(mesh.num_tets()), Mat3::Identity());
   m_lagged.clear();
+  m_changed.clear();
   rebuild_solver_structure(mesh);
   reserve_for_cuts(mesh);
   m_built = true;
@@ -126,6 +127,13 @@ void ImplicitIntegrator::update(TetMesh& mesh, const TopologyDelta& delta) {
       m_plastic[static_cast<std::size_t>(to)] = m_plastic[static_cast<std::size_t>(from)];
     m_plastic.resize(static_cast<std::size_t>(mesh.num_tets()), Mat3::Zero());
   }
+  // The nodes whose rows of A the cut changed (the lagged factor's patch, fem/lagged_factor.h).
+  m_changed.resize(static_cast<std::size_t>(mesh.num_nodes()), 1);
+  for (const Tet& t : m_removed)
+    for (std::int32_t i : t) m_changed[static_cast<std::size_t>(i)] = 1;
+  for (std::int32_t slot : delta.slot_of_added)
+    for (std::int32_t i : mesh.tets[static_cast<std::size_t>(slot)])
+      m_changed[static_cast<std::size_t>(i)] = 1;
   // Matrix pattern: only the rows of touched nodes and the blocks of tets around them.
   m_last_update = update_pattern(mesh, delta, m_removed, m_pattern, m_a);
   // Per-node and per-tet work arrays grow or shrink at their ends (new nodes: no warm start).
@@ -159,6 +167,7 @@ void ImplicitIntegrator::save(StateWriter& out) const {
   out.f64(m_energy_before);
   out.f64(m_energy_work);
   out.u8(m_energy_pending ? 1 : 0);
+  out.array(m_changed);
   m_lagged.save(out);
 }
 
@@ -184,6 +193,8 @@ void ImplicitIntegrator::restore(StateReader& in, TetMesh& mesh) {
   m_energy_before = in.f64();
   m_energy_work = in.f64();
   m_energy_pending = in.u8() != 0;
+  in.array(m_changed);
+  if (m_changed.size() > n) in.fail("the FEM's touched-node flags do not fit the mesh");
   m_lagged.restore(in, m_config.solver.background_factor);
 }
 

@@ -67,8 +67,11 @@ struct StepStatus {
   double energy_removed_j = 0.0;
   /// energy_j - (energy at the start of the previous step + the external work over it), J.
   double energy_change_j = 0.0;
-  /// pcg_lagged: a refreshed factor of the system matrix was asked for after this step's solve.
+  /// pcg_lagged: a refreshed factor of the system matrix was asked for after this step's solve
+  /// (or, on the first step, computed before it).
   bool factor_refresh = false;
+  /// pcg_lagged: a cut since the installed factor; the rows it touched got a factor of their own.
+  bool factor_patch = false;
 };
 
 /// Relative tolerance of StepStatus::energy_gain: gain > tol * (E_before + E_after + |W_ext|)
@@ -170,6 +173,8 @@ class ImplicitIntegrator {
   void schedule_refresh(int iterations, StepStatus& st);
   /// m_node_rot from this step's element rotations (fem/lagged_factor.h, warping).
   void update_node_rotations(const TetMesh& mesh);
+  /// pcg_lagged's part of cg_preconditioner: the install schedule, the patch after a cut.
+  void lagged_preconditioner(const TetMesh& mesh, StepStatus& st, Preconditioner& precond);
   /// Jacobi's inverse diagonal of this step's A, into m_pcg.inv_diag.
   void fill_inverse_diagonal();
   /// v' = v + dv, x' = x + dt v' on free nodes; returns the work of gravity and f_ext, J.
@@ -203,9 +208,10 @@ class ImplicitIntegrator {
   // pcg_lagged: the factor of a recent step's A (fem/lagged_factor.h), computed from the blocks
   // copied into m_a; m_steps counts steps (the factor's install schedule).
   LaggedFactor m_lagged;
-  std::vector<std::uint8_t> m_free;  // (n) 1 where the node takes part in the solve
-  std::vector<Quat> m_node_rot;      // (n) the nodes' rotations this step (factor warping)
-  std::vector<Mat3> m_warp;          // (n) each node's turn since the installed factor's step
+  std::vector<std::uint8_t> m_free;     // (n) 1 where the node takes part in the solve
+  std::vector<Quat> m_node_rot;         // (n) the nodes' rotations this step (factor warping)
+  std::vector<Mat3> m_warp;             // (n) each node's turn since the installed factor's step
+  std::vector<std::uint8_t> m_changed;  // (n) 1: a cut since the installed factor touched the node
   std::uint64_t m_steps = 0;
   std::vector<Tet> m_removed;  // scratch of update(): nodes of the removed tets
   PatternUpdateStats m_last_update;

@@ -125,29 +125,42 @@ Preconditioner ImplicitIntegrator::cg_preconditioner(const TetMesh& mesh, double
   }
   fill_inverse_diagonal();
   precond.inv_diag = m_pcg.inv_diag;
-  if (s.kind == SolverKind::pcg_lagged) {
-    m_lagged.begin_step(m_steps);
-    // No factor for this structure (the first step, after a rebuild or a cut): factor this
-    // step's matrix now. An older factor with Jacobi on the new rows was tried: the slivers a
-    // cut leaves near the blade took CG 200 iterations, several times a factorization's cost.
-    update_node_rotations(mesh);
-    if (!m_lagged.ready() || m_lagged.structure() != m_structure) {
-      blocks_to_csr<double>(m_pattern, m_blocks_d, m_a);
+  if (s.kind == SolverKind::pcg_lagged) lagged_preconditioner(mesh, st, precond);
+  return precond;
+}
+
+void ImplicitIntegrator::lagged_preconditioner(const TetMesh& mesh, StepStatus& st,
+                                               Preconditioner& precond) {
+  m_lagged.begin_step(m_steps);
+  update_node_rotations(mesh);
+  const auto n = static_cast<std::size_t>(mesh.num_nodes());
+  m_free.resize(n);
+  for (std::size_t i = 0; i < n; ++i) m_free[i] = node_constrained(mesh, m_el, i) ? 0 : 1;
+  m_changed.resize(n, 1);  // new nodes are touched
+  const bool stale = m_lagged.ready() && m_lagged.structure() != m_structure;
+  if (m_lagged.ready() && !stale) std::fill(m_changed.begin(), m_changed.end(), 0);
+  if (!m_lagged.ready() || (stale && !m_config.solver.patch_after_cut)) {
+    // The first step, after a full rebuild (or after a cut without patching): factor this
+    // step's matrix now.
+    blocks_to_csr<double>(m_pattern, m_blocks_d, m_a);
+    m_lagged.factor_now(m_a, m_structure, m_node_rot);
+    st.factor_refresh = true;
+  } else if (stale && m_lagged.patch_structure() != m_structure) {
+    // A cut since the installed factor: its touched rows get a factor of their own; a refresh
+    // of this structure is asked for after the solve (schedule_refresh).
+    blocks_to_csr<double>(m_pattern, m_blocks_d, m_a);
+    st.factor_patch = m_lagged.patch(m_a, m_structure, m_changed, m_free);
+    if (!st.factor_patch) {
       m_lagged.factor_now(m_a, m_structure, m_node_rot);
       st.factor_refresh = true;
     }
-    if (m_lagged.ready()) {
-      const auto n = static_cast<std::size_t>(mesh.num_nodes());
-      m_free.resize(n);
-      for (std::size_t i = 0; i < n; ++i) m_free[i] = node_constrained(mesh, m_el, i) ? 0 : 1;
-      m_warp.resize(n);
-      m_lagged.warp(m_node_rot, m_warp);
-      precond.apply = [this](std::span<const double> r, std::span<double> z) {
-        m_lagged.apply(r, z, m_pcg.inv_diag, m_free, m_warp);
-      };
-    }
   }
-  return precond;
+  if (!m_lagged.ready()) return;
+  m_warp.resize(n);
+  m_lagged.warp(m_node_rot, m_warp);
+  precond.apply = [this](std::span<const double> r, std::span<double> z) {
+    m_lagged.apply(r, z, m_pcg.inv_diag, m_free, m_warp);
+  };
 }
 
 // A node's rotation: the normalized sum of its tets' rotations (quaternions turned into one
@@ -170,10 +183,15 @@ void ImplicitIntegrator::update_node_rotations(const TetMesh& mesh) {
 
 void ImplicitIntegrator::schedule_refresh(int iterations, StepStatus& st) {
   const SolverSettings& s = m_config.solver;
-  if (m_lagged.pending()) return;
-  if (iterations <= s.refresh_iterations) return;
+  if (m_lagged.pending()) return;  // one job at a time
+  // After a cut (the installed factor is of an older structure) a refresh is due whatever the
+  // iterations: the patch only bridges the lag.
+  const bool stale = m_lagged.structure() != m_structure;
+  if (!stale && iterations <= s.refresh_iterations) return;
   blocks_to_csr<double>(m_pattern, m_blocks_d, m_a);
-  m_lagged.request(m_a, m_structure, m_steps + static_cast<std::uint64_t>(s.factor_lag_steps),
+  const bool urgent = stale || iterations > 3 * s.refresh_iterations;
+  const int lag = urgent ? std::min(s.urgent_lag_steps, s.factor_lag_steps) : s.factor_lag_steps;
+  m_lagged.request(m_a, m_structure, m_steps + static_cast<std::uint64_t>(std::max(lag, 1)),
                    s.background_factor, m_node_rot);
   st.factor_refresh = true;
 }

@@ -16,9 +16,16 @@
 // applied turned by W_i = R_i R0_i^T: P^{-1} = W F^{-1} W^T. A region that moved rigidly since the
 // refresh is then preconditioned as if the factor were fresh, so the factor can lag further.
 //
-// After a cut (a new matrix structure) the integrator factors the new matrix at once
-// (factor_now): an older factor no longer fits the slivers a cut leaves near the blade. Rows beyond
-// the installed factor, if any, are preconditioned by Jacobi.
+// After a cut (a new matrix structure) the installed factor no longer fits the rows the cut changed
+// (the slivers near the blade, the new nodes): Jacobi there took CG to its 200-iteration cap. The
+// integrator then patches it (patch()): the rows of the nodes the cut touched get a factor of their
+// own, of the new matrix restricted to them (a few hundred rows, factored in well under a
+// millisecond), and the installed factor, with those rows masked out of its solve, stands in for
+// the rest: a block LU of the new matrix with the old factor in the Schur complement's place
+// (LaggedFactor::apply). A factor of the new structure
+// is refreshed in the background meanwhile and installed `lag` steps later, which drops the patch.
+// So a cut costs the step a local factorization and some CG iterations, not a global
+// factorization. The first step and a full rebuild still factor at once (factor_now).
 #pragma once
 
 #include <cstdint>
@@ -52,6 +59,19 @@ class LaggedFactor {
   /// background: factor in a thread (true) or now (false; the install step is the same).
   void request(const CsrMatrix& a, std::uint64_t structure, std::uint64_t ready_step,
                bool background, std::span<const Quat> node_rot);
+  /// After a cut: factors `a` (the matrix of structure `structure`) restricted to the rows of the
+  /// nodes with in_patch[i] && free[i] (the nodes the cuts since the installed factor touched, new
+  /// nodes included); apply() then solves those rows with it, until a factor of that structure or
+  /// a later one is installed. False if that submatrix is not SPD (no patch then).
+  /// in_patch, free: (n).
+  bool patch(const CsrMatrix& a, std::uint64_t structure, std::span<const std::uint8_t> in_patch,
+             std::span<const std::uint8_t> free);
+  /// Structure of the patch in use (0: none).
+  [[nodiscard]] std::uint64_t patch_structure() const { return m_patch ? m_patch_structure : 0; }
+  /// Nodes the patch solves (0: none).
+  [[nodiscard]] std::size_t patch_nodes() const { return m_patch ? m_patch_nodes.size() : 0; }
+  /// Structure of the pending refresh (0: none).
+  [[nodiscard]] std::uint64_t pending_structure() const { return m_job ? m_job->structure : 0; }
   /// Drops every factor and waits for any running job (the mesh was rebuilt from scratch).
   void clear();
 
@@ -61,7 +81,8 @@ class LaggedFactor {
   /// z = P^{-1} r = W F^{-1} W^T r on the factor's rows, inv_diag .* r beyond; rows of
   /// constrained nodes (free[i] = 0; their rows of A are diagonal) get inv_diag .* r too and are
   /// kept out of the factor's solve, so a node held or fixed since the refresh costs CG a few
-  /// iterations, not hundreds. r, z, inv_diag: (3n), 3n >= rows(); free, warp: (n).
+  /// iterations, not hundreds; rows of the patch's nodes get the patch's solve and are kept out of
+  /// the factor's too. r, z, inv_diag: (3n), 3n >= rows(); free, warp: (n).
   void apply(std::span<const double> r, std::span<double> z, std::span<const double> inv_diag,
              std::span<const std::uint8_t> free, std::span<const Mat3> warp);
 
@@ -109,6 +130,26 @@ class LaggedFactor {
   std::uint64_t m_spare_structure = 0;
   std::uint64_t m_refreshes = 0;
   std::vector<double> m_r, m_z;  // (rows()) the turned, filtered residual and its solve
+  // The patch after a cut: a factor of A restricted to the rows of m_patch_nodes.
+  std::unique_ptr<CholmodSolver> m_patch;
+  CsrMatrix m_patch_a;   // that submatrix A_TT (snapshots)
+  CsrMatrix m_patch_tu;  // the patch rows' other entries A_TU, global columns
+  std::uint64_t m_patch_structure = 0;
+  std::vector<std::int32_t> m_patch_nodes;    // ascending node ids
+  std::vector<std::int32_t> m_patch_index;    // node -> index in m_patch_nodes, or -1
+  std::vector<double> m_pr, m_pz, m_w, m_ty;  // (3 patch nodes) patch-sized work vectors
+  std::vector<double> m_ru;                   // (3n) r_U - A_UT w
+  bool install_patch(CsrMatrix tt, CsrMatrix tu, std::vector<std::int32_t> nodes,
+                     std::uint64_t structure);
+  void patch_solve(std::span<const double> r, std::span<const std::uint8_t> free,
+                   std::vector<double>& w);
+  void multiply_ut(std::span<const double> w, double s, std::span<double> out) const;
+  void factor_solve(std::span<const double> r, std::span<double> z,
+                    std::span<const double> inv_diag, std::span<const std::uint8_t> free,
+                    std::span<const Mat3> warp);
+  [[nodiscard]] bool in_patch(std::size_t node) const {
+    return m_patch && node < m_patch_index.size() && m_patch_index[node] >= 0;
+  }
 };
 
 }  // namespace serosa::fem
