@@ -124,6 +124,7 @@ ReplayResult run_replay(const ReplayOptions& options) {
     for (const auto& png : pictures->take(state, stem)) report["frames"].push_back(png.string());
   };
 
+  comp.runner->prepare(state);
   const auto t0 = std::chrono::steady_clock::now();
   maybe_picture(state.step);
   for (std::uint64_t i = state.step; i < n; ++i) {

@@ -73,6 +73,7 @@ void ReplayController::restart(const Snapshot* from) {
     sim->comp.runner->restore(from->bytes, sim->assembled.state, m_path.string() + ": snapshot");
     sim->hash->set_last_hash(from->hash);
   }
+  sim->comp.runner->prepare(sim->assembled.state);
   m_sim = std::move(sim);
   ++m_restarts;
   m_exact = true;

@@ -144,6 +144,7 @@ class SolverLoop {
   void loop(const std::stop_token& stop) {
     m_drawn.emplace(m_state.mesh);  // the uncut mesh: the wound reference
     m_version = m_state.mesh.topology_version;
+    m_comp.runner->prepare(m_state);  // before the clock starts
     publish();
     const auto dt = std::chrono::duration_cast<Clock::duration>(
         std::chrono::duration<double>(m_scene.settings.dt_s));

@@ -140,6 +140,11 @@ void Runner::restore(std::span<const std::uint8_t> snapshot, SimState& state,
   }
 }
 
+void Runner::prepare(SimState& state) {
+  const StepContext ctx{state.step, state.time_s, m_dt_s};
+  for (Entry& e : m_entries) e.stage->prepare(ctx, state);
+}
+
 void Runner::run(SimState& state, std::uint64_t n) {
   for (std::uint64_t i = 0; i < n; ++i) step(state);
 }

@@ -59,6 +59,9 @@ class Runner {
   void add(Slot slot, std::unique_ptr<Stage> stage);
   /// Takes one solver step: every place in order, then advances time and step count.
   void step(SimState& state);
+  /// Lets every stage build what the next step would (Stage::prepare): load time, not step time.
+  /// Optional; the same bits either way.
+  void prepare(SimState& state);
   /// Takes n steps.
   void run(SimState& state, std::uint64_t n);
 

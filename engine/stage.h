@@ -40,6 +40,9 @@ class Stage {
   /// Advances this stage's part of the state by one step. Must not throw on bad physics: it
   /// counts warnings in its status instead. Throws only on programming errors.
   virtual void step(const StepContext& ctx, SimState& state) = 0;
+  /// Builds, before the first step and outside its time, what that step would build itself (FEM's
+  /// matrix structure and first factor). Optional: a run gives the same bits without it.
+  virtual void prepare(const StepContext& /*ctx*/, SimState& /*state*/) {}
   /// Writes this stage's block of the whole state (nothing: a stage that keeps none).
   virtual void save(StateWriter& /*out*/) const {}
   /// Reads the block save() wrote, after `state` (restored; a stage may rebuild what it derives

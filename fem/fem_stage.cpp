@@ -21,6 +21,16 @@ void FemStage::take_cuts(SimState& state) {
   }
 }
 
+void FemStage::prepare(const StepContext& ctx, SimState& state) {
+  if (m_built && m_seen_version == state.mesh.topology_version) return;
+  if (m_integrator.config().solver.threads > 0)
+    omp_set_num_threads(m_integrator.config().solver.threads);
+  m_integrator.prepare(state.mesh, ctx.dt_s);
+  m_seen_version = state.mesh.topology_version;
+  m_built = true;
+  ++m_stats.rebuilds;
+}
+
 void FemStage::save(StateWriter& out) const {
   out.u8(m_built ? 1 : 0);
   m_integrator.save(out);

@@ -46,6 +46,8 @@ class FemStage final : public Stage {
   /// so the divergence guard skips its energy check (ImplicitIntegrator::restart_energy_balance)
   /// instead of flagging it and starting the solve cold.
   void step(const StepContext& ctx, SimState& state) override;
+  /// The structure and the first factor (ImplicitIntegrator::prepare), before the first step.
+  void prepare(const StepContext& ctx, SimState& state) override;
   /// The integrator's block (ImplicitIntegrator::save).
   void save(StateWriter& out) const override;
   void restore(StateReader& in, SimState& state) override;

@@ -76,6 +76,22 @@ void ImplicitIntegrator::rebuild(TetMesh& mesh) {
   m_energy_pending = false;
 }
 
+void ImplicitIntegrator::prepare(TetMesh& mesh, double dt_s) {
+  rebuild(mesh);
+  if (m_config.solver.kind != SolverKind::pcg_lagged) return;
+  // The next step's own matrix: its element pass and assembly, without keeping what they change
+  // of the warm starts (the step redoes them from the same start).
+  const std::vector<Quat> q = m_q, q_prev = m_q_prev;
+  if (m_config.plasticity.on) m_plastic.resize(mesh.tets.size(), Mat3::Zero());
+  (void)element_pass(mesh, dt_s);
+  (void)assemble_system(mesh, dt_s);
+  update_node_rotations(mesh);
+  blocks_to_csr<double>(m_pattern, m_blocks_d, m_a);
+  m_lagged.factor_now(m_a, m_structure, m_node_rot);
+  m_q = q;
+  m_q_prev = q_prev;
+}
+
 void ImplicitIntegrator::update(TetMesh& mesh, const TopologyDelta& delta) {
   if (!m_built || m_el.topology_version != delta.version_before ||
       m_pattern.topology_version != delta.version_before ||

@@ -90,6 +90,11 @@ class ImplicitIntegrator {
   /// Full precompute for the mesh: elements, lumped masses (also written to mesh.mass), matrix
   /// pattern, CHOLMOD analysis, rotations from scratch.
   void rebuild(TetMesh& mesh);
+  /// rebuild(), and for pcg_lagged the factor of the matrix the next step (of length dt_s) will
+  /// assemble, so that step does not factor it: what the first step of a run would do, done at
+  /// load time. The warm starts are left as they were: the next step gives the same bits with or
+  /// without it.
+  void prepare(TetMesh& mesh, double dt_s);
   /// Incremental update after apply(mesh, delta): recomputes only the added elements and the
   /// masses of touched nodes, relabels per-tet rotations, and patches the matrix pattern locally
   /// (fem/system_matrix.h update_pattern). Cost follows the tets touched, not the mesh size,

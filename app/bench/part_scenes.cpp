@@ -49,6 +49,7 @@ Trajectory run(const Scene& base, const Setting& s, double seconds) {
   AssembledScene assembled = assemble_state(scene);
   Composition comp = compose(scene, assembled);
   SimState& state = assembled.state;
+  comp.runner->prepare(state);  // load time, as in the session
   const std::uint64_t version0 = state.mesh.topology_version;
   const auto steps = static_cast<std::int64_t>(std::llround(seconds / scene.settings.dt_s));
   Trajectory t;
