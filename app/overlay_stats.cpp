@@ -64,6 +64,7 @@ render::OverlayData overlay_data(const FrameStats& s) {
   o.sim_time_s = s.sim_time_s;
   o.fem_ms_per_step = s.fem_ms_per_step;
   o.solver_rate_hz = s.solver_rate_hz;
+  o.real_time_factor = s.real_time_factor;
   o.haptic_rate_hz = s.haptics != nullptr ? haptic_rate_hz(*s.haptics) : s.haptic_live_rate_hz;
   o.cuts = s.cuts;
   o.paused = s.paused;

@@ -18,9 +18,10 @@ namespace serosa::app {
 
 /// What one published frame says about the run.
 struct FrameStats {
-  double sim_time_s = 0.0;       ///< simulated time, s
-  double fem_ms_per_step = 0.0;  ///< mean wall time of recent solver steps, ms
-  double solver_rate_hz = 0.0;   ///< solver steps per wall second, Hz
+  double sim_time_s = 0.0;        ///< simulated time, s
+  double fem_ms_per_step = 0.0;   ///< mean wall time of recent solver steps, ms
+  double solver_rate_hz = 0.0;    ///< solver steps per wall second, Hz
+  double real_time_factor = 0.0;  ///< simulated over wall seconds, the last second; 0: unknown
   /// The haptic loop's telemetry, null when no haptic loop runs (the overlay then shows a dash).
   const haptics::LoopTelemetry* haptics = nullptr;
   /// The haptic loop's live rate while it runs (its telemetry is the loop thread's then): ticks

@@ -17,6 +17,7 @@
 #include "app/assemble_state.h"
 #include "app/compose.h"
 #include "app/drawn_surface.h"
+#include "app/frame_pacer.h"
 #include "app/headless.h"
 #include "app/mouse_takeover.h"
 #include "app/overlay_stats.h"
@@ -40,6 +41,9 @@
 
 namespace serosa::app {
 namespace {
+
+// The trainee window draws at most this many frames a second (app/frame_pacer.h).
+constexpr double kMaxFramesPerS = 60.0;
 
 using Clock = std::chrono::steady_clock;
 
@@ -203,6 +207,7 @@ class SolverLoop {
     stats.sim_time_s = m_state.time_s;
     stats.fem_ms_per_step = m_step_ms;
     stats.solver_rate_hz = m_rate_hz;
+    stats.real_time_factor = m_rate_hz * m_scene.settings.dt_s;
     // The haptic loop's telemetry is the loop thread's while it runs: the overlay's rate comes
     // from its live status (ticks per wall second over the last half second or more).
     stats.haptics = nullptr;
@@ -276,6 +281,9 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
   options.tessellation = scene.render.tessellation;
   options.shape_factor = static_cast<float>(scene.render.shape_factor);
   bool show_overlay = true;
+  int asked_tessellation = scene.render.tessellation;  // the scene's or the keys'
+  FramePacer pacer(asked_tessellation, kMaxFramesPerS);
+  FrameRate frame_rate;
 
   TripleBuffer<render::RenderFrame> frames;
   Control control;
@@ -291,6 +299,7 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
     auto last = start;
     std::int64_t frames_drawn = 0;
     while (!window.should_close() && !g_interrupted.load() && !control.finished.load()) {
+      std::this_thread::sleep_until(pacer.next_frame());  // the solver's core stays its own
       window.poll_events();
       if (window.pressed(render::Key::kEscape)) window.close();
       if (window.pressed(render::Key::kSpace)) control.paused.store(!control.paused.load());
@@ -298,9 +307,11 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
         options.view =
             static_cast<render::SnapshotOptions::View>((static_cast<int>(options.view) + 1) % 3);
       if (window.pressed(render::Key::kUp))
-        options.tessellation = std::min(options.tessellation + 1, 16);
+        asked_tessellation = std::min(asked_tessellation + 1, 16);
       if (window.pressed(render::Key::kDown))
-        options.tessellation = std::max(options.tessellation - 1, 1);
+        asked_tessellation = std::max(asked_tessellation - 1, 1);
+      pacer.set_tessellation(asked_tessellation);
+      options.tessellation = pacer.tessellation();
       if (window.pressed(render::Key::kO))
         control.scope_angle_deg.store(control.scope_angle_deg.load() > 0.0f ? 0.0f : 30.0f);
       if (window.pressed(render::Key::kH)) show_overlay = !show_overlay;
@@ -321,15 +332,19 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
       last = now;
       render::OverlayData shown = frame.overlay;
       shown.visible = show_overlay;
+      shown.frame_rate_hz = frame_rate.hz();
+      shown.drawn_tessellation = options.tessellation;
       const render::OverlayResult r = overlay.draw(shown, options, w, h, input);
       if (r.view) options.view = *r.view;
-      if (r.tessellation) options.tessellation = *r.tessellation;
+      if (r.tessellation) asked_tessellation = *r.tessellation;
       const bool last_frame =
           seconds > 0.0 && std::chrono::duration<double>(now - start).count() > seconds;
       if (!snapshot.empty() && (last_frame || window.should_close() || g_interrupted.load()))
         render::write_png(window.read_image(), snapshot);
       window.swap_buffers();
       ++frames_drawn;
+      pacer.frame_done(Clock::now(), frame.overlay.slow_motion && !frame.overlay.paused);
+      frame_rate.tick(Clock::now());
 
       char title[160];
       std::snprintf(title, sizeof title, "Serosa  t=%.2f s  FEM %.2f ms/step  %s  tess %d%s%s",
@@ -355,6 +370,12 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
     // Paced to the clock, so at most 1: below it the trainee saw slow motion.
     report["real_time_factor"] = wall > 0.0 ? assembled.state.time_s / wall : 0.0;
     report["step_time_ms"] = step_time_json(loop.step_ms());
+    report["frames_per_s"] = wall > 0.0 ? static_cast<double>(frames_drawn) / wall : 0.0;
+    report["render"] = {{"tessellation_asked", asked_tessellation},
+                        {"tessellation_drawn", pacer.tessellation()},
+                        {"max_fps", pacer.max_fps()},
+                        {"deepest_rung", pacer.deepest_rung()},
+                        {"steps_down", pacer.steps_down()}};
     report["interrupted"] = g_interrupted.load();
     if (comp.haptics != nullptr) report["haptics"] = comp.haptics->telemetry_json();
     if (writer) report["recording"] = close_recording(*writer, scene, assembled.state.step);

@@ -70,7 +70,10 @@ void format_time(double s, char* out, std::size_t size) {
 OverlayText overlay_text(const OverlayData& data) {
   OverlayText t;
   char line[160];
-  std::snprintf(line, sizeof line, "t = %.2f s%s%s", data.sim_time_s,
+  char pace[48] = "";
+  if (data.real_time_factor > 0.0)
+    std::snprintf(pace, sizeof pace, "  x%.2f real time", data.real_time_factor);
+  std::snprintf(line, sizeof line, "t = %.2f s%s%s%s", data.sim_time_s, pace,
                 data.paused ? "  [paused]" : "", data.slow_motion ? "  [slow motion]" : "");
   t.stats.emplace_back(line);
   std::snprintf(line, sizeof line, "FEM %.2f ms/step  (%.0f steps/s)", data.fem_ms_per_step,
@@ -82,7 +85,12 @@ OverlayText overlay_text(const OverlayData& data) {
   } else {
     t.stats.emplace_back("haptics \u2014");
   }
-  std::snprintf(line, sizeof line, "cuts %lld", static_cast<long long>(data.cuts));
+  if (data.frame_rate_hz > 0.0) {
+    std::snprintf(line, sizeof line, "cuts %lld   %.0f frames/s, tess %d",
+                  static_cast<long long>(data.cuts), data.frame_rate_hz, data.drawn_tessellation);
+  } else {
+    std::snprintf(line, sizeof line, "cuts %lld", static_cast<long long>(data.cuts));
+  }
   t.stats.emplace_back(line);
   for (const OverlayMetric& m : data.metrics) {
     std::string l = m.name;

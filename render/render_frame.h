@@ -51,10 +51,17 @@ struct OverlayData {
   double sim_time_s = 0.0;       ///< simulated time, s
   double fem_ms_per_step = 0.0;  ///< wall time of the last solver steps (mean), ms
   double solver_rate_hz = 0.0;   ///< solver steps per wall second, Hz
-  double haptic_rate_hz = 0.0;   ///< haptic loop rate, Hz; <= 0: no haptic loop
-  std::int64_t cuts = 0;         ///< topology changes (cuts) applied so far
-  bool paused = false;           ///< the simulation is paused
-  bool slow_motion = false;      ///< the solver cannot keep up with real time
+  /// The solver's pace: simulated seconds per wall second over the last second (1: real time);
+  /// <= 0: not measured yet.
+  double real_time_factor = 0.0;
+  double haptic_rate_hz = 0.0;  ///< haptic loop rate, Hz; <= 0: no haptic loop
+  /// The window's measured frame rate, frames/s, and the tessellation it draws with now (the
+  /// renderer steps them down when the solver falls behind, app/frame_pacer.h); <= 0: unknown.
+  double frame_rate_hz = 0.0;
+  int drawn_tessellation = 0;
+  std::int64_t cuts = 0;     ///< topology changes (cuts) applied so far
+  bool paused = false;       ///< the simulation is paused
+  bool slow_motion = false;  ///< the solver cannot keep up with real time
   /// Replay timeline (instructors): shown when `replay` is true.
   bool replay = false;
   double replay_position_s = 0.0;      ///< position in the recording, s
