@@ -549,7 +549,7 @@ class Loader {
     const std::string p = "solver";
     check_keys(t, p,
                {"kind", "tolerance", "max_iterations", "refresh_iterations", "factor_lag_steps",
-                "threads"});
+                "threads", "after_cut"});
     if (const auto* n = t.get("kind")) {
       s.kind = enum_value<SolverKind>(*n, sub(p, "kind"), solver_kind_from_name,
                                       "pcg, cholmod, pcg-cholmod, pcg-lagged");
@@ -569,6 +569,12 @@ class Loader {
     if (const auto* n = t.get("threads")) {
       s.threads = static_cast<int>(
           ranged_int(*n, sub(p, "threads"), 1, 256, "a number of threads within [1, 256]"));
+    }
+    if (const auto* n = t.get("after_cut")) {
+      const std::string v = string(*n, sub(p, "after_cut"), "\"patch\" or \"factor\"");
+      if (v != "patch" && v != "factor")
+        fail(*n, sub(p, "after_cut"), "unknown value '" + v + "'", "\"patch\" or \"factor\"");
+      s.patch_after_cut = v == "patch";
     }
     if (const auto* n = t.get("factor_lag_steps")) {
       s.factor_lag_steps = static_cast<int>(ranged_int(*n, sub(p, "factor_lag_steps"), 1, 10000,

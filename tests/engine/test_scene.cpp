@@ -141,6 +141,8 @@ TEST_F(SceneTest, MinimalSceneGetsDefaults) {
   EXPECT_TRUE(s.tools.empty());
   EXPECT_FALSE(s.record.path.has_value());
   EXPECT_EQ(s.record.hash_every, 100);
+  EXPECT_DOUBLE_EQ(s.record.snapshot_every_s, 1.0);
+  EXPECT_TRUE(s.solver.patch_after_cut);
   EXPECT_EQ(s.cutting.method, CutMethod::kPattern);
   EXPECT_DOUBLE_EQ(s.cutting.tolerance, 1e-3);
   EXPECT_EQ(s.headless.steps, 1000);
@@ -180,6 +182,7 @@ groups = { 4 = "colon" }
 kind = "pcg-cholmod"
 tolerance = 1e-5
 max_iterations = 50
+after_cut = "factor"
 
 [render]
 tessellation = 5
@@ -208,6 +211,7 @@ device = "mouse"
 [record]
 path = "out/run.lapr"
 hash_every = 10
+snapshot_every_s = 0.5
 
 [cutting]
 method = "snap"
@@ -269,6 +273,8 @@ steps = 250
   EXPECT_FALSE(s.tool_index("hook").has_value());
   EXPECT_EQ(s.record.path, m_dir / "out" / "run.lapr");
   EXPECT_EQ(s.record.hash_every, 10);
+  EXPECT_DOUBLE_EQ(s.record.snapshot_every_s, 0.5);
+  EXPECT_FALSE(s.solver.patch_after_cut);
   EXPECT_EQ(s.cutting.method, CutMethod::kSnap);
   EXPECT_DOUBLE_EQ(s.cutting.tolerance, 0.05);
   EXPECT_EQ(s.headless.steps, 250);
@@ -526,6 +532,8 @@ TEST_F(SceneTest, BadSolver) {
   expect_error(kOrgan + "[solver]\ntolerance = 0\n", 5, "solver.tolerance", "> 0");
   expect_error(kOrgan + "[solver]\nmax_iterations = 0\n", 5, "solver.max_iterations",
                "[1, 1000000]");
+  expect_error(kOrgan + "[solver]\nafter_cut = \"later\"\n", 5, "solver.after_cut",
+               "\"patch\" or \"factor\"");
 }
 
 TEST_F(SceneTest, BadRender) {
@@ -537,6 +545,8 @@ TEST_F(SceneTest, BadRender) {
 
 TEST_F(SceneTest, BadRecordCuttingHeadlessQuality) {
   expect_error(kOrgan + "[record]\nhash_every = 0\n", 5, "record.hash_every", ">= 1");
+  expect_error(kOrgan + "[record]\nsnapshot_every_s = -1\n", 5, "record.snapshot_every_s",
+               ">= 0");
   expect_error(kOrgan + "[record]\npath = \"\"\n", 5, "record.path", "empty path");
   expect_error(kOrgan + "[cutting]\nmethod = \"laser\"\n", 5, "cutting.method",
                "pattern, remove, snap");
