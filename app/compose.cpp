@@ -54,6 +54,7 @@ fem::FemConfig fem_config(const Scene& scene, const AssembledScene& assembled) {
   c.solver.refresh_iterations = scene.solver.refresh_iterations;
   c.solver.factor_lag_steps = scene.solver.factor_lag_steps;
   c.solver.patch_after_cut = scene.solver.patch_after_cut;
+  c.solver.urgent_lag_steps = scene.solver.urgent_lag_steps;
   c.solver.threads = scene.solver.threads;
   // A capped CG's energy gains are taken back out (the grasper, the one stage that moves nodes
   // between steps, says so in SimState::handoff.nodes_moved).

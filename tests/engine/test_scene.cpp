@@ -183,6 +183,7 @@ kind = "pcg-cholmod"
 tolerance = 1e-5
 max_iterations = 50
 after_cut = "factor"
+urgent_lag_steps = 7
 
 [render]
 tessellation = 5
@@ -275,6 +276,7 @@ steps = 250
   EXPECT_EQ(s.record.hash_every, 10);
   EXPECT_DOUBLE_EQ(s.record.snapshot_every_s, 0.5);
   EXPECT_FALSE(s.solver.patch_after_cut);
+  EXPECT_EQ(s.solver.urgent_lag_steps, 7);
   EXPECT_EQ(s.cutting.method, CutMethod::kSnap);
   EXPECT_DOUBLE_EQ(s.cutting.tolerance, 0.05);
   EXPECT_EQ(s.headless.steps, 250);
@@ -545,8 +547,7 @@ TEST_F(SceneTest, BadRender) {
 
 TEST_F(SceneTest, BadRecordCuttingHeadlessQuality) {
   expect_error(kOrgan + "[record]\nhash_every = 0\n", 5, "record.hash_every", ">= 1");
-  expect_error(kOrgan + "[record]\nsnapshot_every_s = -1\n", 5, "record.snapshot_every_s",
-               ">= 0");
+  expect_error(kOrgan + "[record]\nsnapshot_every_s = -1\n", 5, "record.snapshot_every_s", ">= 0");
   expect_error(kOrgan + "[record]\npath = \"\"\n", 5, "record.path", "empty path");
   expect_error(kOrgan + "[cutting]\nmethod = \"laser\"\n", 5, "cutting.method",
                "pattern, remove, snap");
