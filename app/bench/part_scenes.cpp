@@ -4,8 +4,9 @@
 // the accuracy against the exact solve of the same scene (CHOLMOD, the scene's dt): the largest
 // max_i |x_i - x_exact_i| over the steps before the first cut, relative to the largest
 // displacement max_i |x_exact_i - x_exact_i(0)| reached so far (steps before it reaches 0.1 mm,
-// 10 um on the fine mesh, are not judged: there is nothing to be relative to). A setting with a coarser dt is compared
-// at the reference's steps of the same time. The scenes' presets are chosen from these curves.
+// 10 um on the fine mesh, are not judged: there is nothing to be relative to). A setting with a
+// coarser dt is compared at the reference's steps of the same time. The scenes' presets are chosen
+// from these curves.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
