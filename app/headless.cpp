@@ -256,10 +256,12 @@ Json run_headless(const HeadlessOptions& options) {
   }
   if (comp.surface) {
     const auto& ss = comp.surface->stats();
-    report["surface"] = {{"faces", state.handoff.surface.num_faces()},
-                         {"rebuilds", ss.rebuilds},
-                         {"updates", ss.updates},
-                         {"failed_updates", ss.failed_updates}};
+    report["surface"] = {
+        {"faces", state.handoff.surface.num_faces()},
+        {"rebuilds", ss.rebuilds},
+        {"updates", ss.updates},
+        {"failed_updates", ss.failed_updates},
+        {"backend", comp.surface->backend() == surface::Backend::kCuda ? "cuda" : "cpu"}};
   }
   if (comp.fem) {
     const auto& st = comp.fem->stats();

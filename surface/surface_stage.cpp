@@ -8,10 +8,11 @@
 namespace serosa::surface {
 
 SurfaceStage::SurfaceStage(const TetMesh& initial)
-    : m_original(initial, surface::extract_surface(initial)) {}
+    : m_backend(surface::cuda_available() ? surface::Backend::kCuda : surface::Backend::kCpu),
+      m_original(initial, surface::extract_surface(initial, m_backend)) {}
 
 void SurfaceStage::rebuild(SimState& state) {
-  state.handoff.surface = surface::extract_surface(state.mesh, m_original);
+  state.handoff.surface = surface::extract_surface(state.mesh, m_original, m_backend);
   m_table = surface::build_face_table(state.mesh, state.handoff.surface);
   m_built = true;
   ++m_stats.rebuilds;

@@ -15,6 +15,7 @@
 #include "engine/tet_mesh.h"
 #include "engine/topology_delta.h"
 #include "surface/cut_faces.h"
+#include "surface/extract_surface.h"
 #include "surface/surface_mesh.h"
 #include "surface/update_surface.h"
 
@@ -28,7 +29,9 @@ struct SurfaceStageStats {
 
 class SurfaceStage final : public Stage {
  public:
-  /// `initial`: the scene's mesh before any cut (its boundary is the wound reference).
+  /// `initial`: the scene's mesh before any cut (its boundary is the wound reference). Full
+  /// extractions run on the GPU when CUDA is built and a device is present (the same faces in the
+  /// same order as on the CPU), else on the CPU.
   explicit SurfaceStage(const TetMesh& initial);
 
   [[nodiscard]] std::string_view name() const noexcept override { return "surface"; }
@@ -37,10 +40,13 @@ class SurfaceStage final : public Stage {
   void step(const StepContext& ctx, SimState& state) override;
 
   [[nodiscard]] const SurfaceStageStats& stats() const noexcept { return m_stats; }
+  /// Where full extractions run.
+  [[nodiscard]] surface::Backend backend() const noexcept { return m_backend; }
 
  private:
   void rebuild(SimState& state);
 
+  surface::Backend m_backend;
   surface::OriginalSurface m_original;  // the uncut boundary, in rest coordinates
   surface::FaceTable m_table;  // faces of handoff.surface by their tet face (update_surface)
   bool m_built = false;
