@@ -6,7 +6,8 @@
 namespace serosa::app {
 namespace {
 
-// The frame-rate caps below the top, frames/s, once the tessellation is down to 1.
+// Below tessellation 1: the resolution scales, then the frame-rate caps (frames/s).
+constexpr std::array<float, 2> kScales{0.75f, 0.5f};
 constexpr std::array<double, 3> kSlowFps{30.0, 15.0, 8.0};
 
 double seconds(FramePacer::Clock::duration d) { return std::chrono::duration<double>(d).count(); }
@@ -17,13 +18,21 @@ FramePacer::FramePacer(int tessellation, double max_fps)
     : m_tessellation(std::max(tessellation, 1)), m_max_fps(std::max(max_fps, 1.0)) {}
 
 // Rungs: 0 .. tessellation - 1 lower the tessellation one level each (at max_fps); then the
-// slow frame rates at tessellation 1.
-int FramePacer::rungs() const { return m_tessellation + static_cast<int>(kSlowFps.size()); }
+// resolution scales and the slow frame rates at tessellation 1.
+int FramePacer::rungs() const {
+  return m_tessellation + static_cast<int>(kScales.size() + kSlowFps.size());
+}
+
+float FramePacer::resolution_scale() const {
+  const int below = m_rung - (m_tessellation - 1);  // rungs below tessellation 1
+  if (below <= 0) return 1.0f;
+  return kScales[static_cast<std::size_t>(std::min(below, static_cast<int>(kScales.size())) - 1)];
+}
 
 int FramePacer::tessellation() const { return std::max(m_tessellation - m_rung, 1); }
 
 double FramePacer::max_fps() const {
-  const int slow = m_rung - (m_tessellation - 1);
+  const int slow = m_rung - (m_tessellation - 1) - static_cast<int>(kScales.size());
   if (slow <= 0) return m_max_fps;
   return std::min(m_max_fps, kSlowFps[static_cast<std::size_t>(slow - 1)]);
 }

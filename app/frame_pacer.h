@@ -2,10 +2,11 @@
 // thread needs one of them whole; a software renderer (Mesa's llvmpipe under Xvfb) would take
 // both. So the window draws at most `max_fps`, and when the solver falls behind real time
 // (its slow-motion flag, published with each frame) it steps down a ladder of cheaper settings:
-// lower tessellation first (the picture's smoothness), then fewer frames per second (its
-// fluency), down to tessellation 1 at 8 frames/s. Once the solver has kept up for a while it
-// steps back up, one rung at a time. The solver never waits for the renderer either way: it
-// publishes through a triple buffer (engine/triple_buffer.h).
+// lower tessellation first (the picture's smoothness), then a lower resolution (its sharpness:
+// 3/4, then 1/2 of the window's, render/scaled_target.h), then fewer frames per second (its
+// fluency), down to tessellation 1 at half resolution and 8 frames/s. Once the solver has kept up
+// for a while it steps back up, one rung at a time. The solver never waits for the renderer either
+// way: it publishes through a triple buffer (engine/triple_buffer.h).
 #pragma once
 
 #include <chrono>
@@ -39,6 +40,8 @@ class FramePacer {
   [[nodiscard]] int tessellation() const;
   /// The frame rate cap now, frames/s.
   [[nodiscard]] double max_fps() const;
+  /// The fraction of the window's resolution to draw at now, (0, 1].
+  [[nodiscard]] float resolution_scale() const;
   /// The rung: 0 at the top (as asked), higher is cheaper.
   [[nodiscard]] int rung() const { return m_rung; }
   /// The cheapest rung reached so far, and the number of steps down.

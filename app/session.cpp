@@ -36,6 +36,7 @@
 #include "render/frame_renderer.h"
 #include "render/overlay.h"
 #include "render/png_writer.h"
+#include "render/scaled_target.h"
 #include "render/window.h"
 #include "surface/cut_faces.h"
 
@@ -276,6 +277,7 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
   const InterruptGuard interrupts;
   render::Window window(scene.render.width, scene.render.height, "Serosa");
   render::FrameRenderer renderer;
+  render::ScaledTarget scaled;  // the pacer's lower resolutions
   render::Overlay overlay;
   render::SnapshotOptions options;
   options.tessellation = scene.render.tessellation;
@@ -322,7 +324,10 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
       const int w = window.width();
       const int h = window.height();
       window.bind_framebuffer();
-      renderer.draw(frame, options, w, h);
+      int draw_w = w, draw_h = h;
+      scaled.begin(w, h, pacer.resolution_scale(), draw_w, draw_h);
+      renderer.draw(frame, options, draw_w, draw_h);
+      scaled.present(w, h);
 
       const auto now = Clock::now();
       render::OverlayInput input;
@@ -334,6 +339,7 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
       shown.visible = show_overlay;
       shown.frame_rate_hz = frame_rate.hz();
       shown.drawn_tessellation = options.tessellation;
+      shown.drawn_scale = pacer.resolution_scale();
       const render::OverlayResult r = overlay.draw(shown, options, w, h, input);
       if (r.view) options.view = *r.view;
       if (r.tessellation) asked_tessellation = *r.tessellation;
@@ -374,6 +380,7 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
     report["render"] = {{"tessellation_asked", asked_tessellation},
                         {"tessellation_drawn", pacer.tessellation()},
                         {"max_fps", pacer.max_fps()},
+                        {"resolution_scale", pacer.resolution_scale()},
                         {"deepest_rung", pacer.deepest_rung()},
                         {"steps_down", pacer.steps_down()}};
     report["interrupted"] = g_interrupted.load();

@@ -86,8 +86,9 @@ OverlayText overlay_text(const OverlayData& data) {
     t.stats.emplace_back("haptics \u2014");
   }
   if (data.frame_rate_hz > 0.0) {
-    std::snprintf(line, sizeof line, "cuts %lld   %.0f frames/s, tess %d",
-                  static_cast<long long>(data.cuts), data.frame_rate_hz, data.drawn_tessellation);
+    std::snprintf(line, sizeof line, "cuts %lld   %.0f frames/s, tess %d, %.0f%% res",
+                  static_cast<long long>(data.cuts), data.frame_rate_hz, data.drawn_tessellation,
+                  100.0 * static_cast<double>(data.drawn_scale));
   } else {
     std::snprintf(line, sizeof line, "cuts %lld", static_cast<long long>(data.cuts));
   }

@@ -59,6 +59,7 @@ struct OverlayData {
   /// renderer steps them down when the solver falls behind, app/frame_pacer.h); <= 0: unknown.
   double frame_rate_hz = 0.0;
   int drawn_tessellation = 0;
+  float drawn_scale = 1.0f;  ///< the fraction of the window's resolution drawn at
   std::int64_t cuts = 0;     ///< topology changes (cuts) applied so far
   bool paused = false;       ///< the simulation is paused
   bool slow_motion = false;  ///< the solver cannot keep up with real time

@@ -1,9 +1,10 @@
 // FramePacer (app/frame_pacer.h): a solver falling behind makes the window cheaper, rung by rung
-// (tessellation first, then frame rate), and a solver keeping up brings it back; the frame rate
-// never exceeds the cap.
+// (tessellation first, then resolution, then frame rate), and a solver keeping up brings it back;
+// the frame rate never exceeds the cap.
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <vector>
 
 #include "app/frame_pacer.h"
 
@@ -39,29 +40,45 @@ TEST(FramePacer, BehindStepsDownTessellationThenFrameRateAndRecovers) {
   EXPECT_EQ(p.tessellation(), 3);
   EXPECT_NEAR(frames / 2.0, 60.0, 3.0);  // capped at 60 frames/s with time to spare
 
-  // The solver falls behind: one rung per half second, tessellation first.
-  t = play(p, t, 0.6, true, 0.001);
-  EXPECT_EQ(p.rung(), 1);
-  EXPECT_EQ(p.tessellation(), 2);
-  EXPECT_DOUBLE_EQ(p.max_fps(), 60.0);
-  t = play(p, t, 1.0, true, 0.001);
-  EXPECT_EQ(p.tessellation(), 1);
-  t = play(p, t, 3.0, true, 0.001);
-  EXPECT_EQ(p.tessellation(), 1);
-  EXPECT_LT(p.max_fps(), 60.0);
+  // The solver falls behind: one rung per half second at most, tessellation first, then
+  // resolution, then frame rate, to the bottom rung.
+  struct Look {
+    int tessellation;
+    float scale;
+    double fps;
+  };
+  std::vector<Look> seen{{p.tessellation(), p.resolution_scale(), p.max_fps()}};
+  const Clock::time_point fall = t;
+  for (int k = 0; k < 40; ++k) {
+    t = play(p, t, 0.25, true, 0.001);
+    const Look l{p.tessellation(), p.resolution_scale(), p.max_fps()};
+    if (l.tessellation != seen.back().tessellation || l.scale != seen.back().scale ||
+        l.fps != seen.back().fps)
+      seen.push_back(l);
+  }
+  const std::vector<Look> ladder{{3, 1.0f, 60.0},  {2, 1.0f, 60.0}, {1, 1.0f, 60.0},
+                                 {1, 0.75f, 60.0}, {1, 0.5f, 60.0}, {1, 0.5f, 30.0},
+                                 {1, 0.5f, 15.0},  {1, 0.5f, 8.0}};
+  ASSERT_EQ(seen.size(), ladder.size());
+  for (std::size_t k = 0; k < ladder.size(); ++k) {
+    EXPECT_EQ(seen[k].tessellation, ladder[k].tessellation) << "rung " << k;
+    EXPECT_FLOAT_EQ(seen[k].scale, ladder[k].scale) << "rung " << k;
+    EXPECT_DOUBLE_EQ(seen[k].fps, ladder[k].fps) << "rung " << k;
+  }
+  EXPECT_GE(t - fall, sec(0.5 * static_cast<double>(ladder.size() - 1)));  // no faster
   frames = 0;
   t = play(p, t, 2.0, true, 0.001, &frames);
-  EXPECT_DOUBLE_EQ(p.max_fps(), 8.0);  // the bottom rung
-  EXPECT_LE(frames / 2.0, 16.0);
+  EXPECT_LE(frames / 2.0, 9.0);  // 8 frames/s
   EXPECT_EQ(p.deepest_rung(), p.rung());
   EXPECT_EQ(p.steps_down(), p.rung());
 
   // Keeping up again: back up, one rung every three seconds, to the top.
   t = play(p, t, 3.5, false, 0.001);
   EXPECT_EQ(p.rung(), p.deepest_rung() - 1);
-  t = play(p, t, 30.0, false, 0.001);
+  t = play(p, t, 40.0, false, 0.001);
   EXPECT_EQ(p.rung(), 0);
   EXPECT_EQ(p.tessellation(), 3);
+  EXPECT_FLOAT_EQ(p.resolution_scale(), 1.0f);
 }
 
 TEST(FramePacer, OccasionalLateStepsDoNotStepDown) {

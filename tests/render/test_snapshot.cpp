@@ -17,6 +17,7 @@
 #include "render/gl_context.h"
 #include "render/png_writer.h"
 #include "render/render_fixtures.h"
+#include "render/scaled_target.h"
 #include "render/snapshot.h"
 
 namespace serosa::render {
@@ -297,6 +298,51 @@ TEST_F(Snapshot, RendererReuploadsPositionsEveryFrame) {
   f.tri.push_back(0);
   f.tri.push_back(1);
   EXPECT_THROW(r.draw(f, o, o.width, o.height), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace serosa::render
+
+namespace serosa::render {
+namespace {
+
+// Drawing at half the resolution and stretching it over the framebuffer (render/scaled_target.h)
+// gives the same picture, a little softer: the same coverage, colours close to the full-size one.
+TEST(ScaledTarget, HalfResolutionGivesTheSamePictureSofter) {
+  std::unique_ptr<OffscreenContext> ctx;
+  try {
+    ctx = std::make_unique<OffscreenContext>(320, 240);
+  } catch (const std::runtime_error& e) {
+    GTEST_SKIP() << e.what();
+  }
+  FrameRenderer renderer;
+  ScaledTarget target;
+  const RenderFrame frame = fixtures::frame_of(fixtures::icosphere(3));
+  SnapshotOptions options;
+  auto draw = [&](float scale) {
+    ctx->bind_framebuffer();
+    int w = 0, h = 0;
+    target.begin(320, 240, scale, w, h);
+    renderer.draw(frame, options, w, h);
+    target.present(320, 240);
+    return std::make_pair(ctx->read_image(), std::make_pair(w, h));
+  };
+  const auto [full, full_size] = draw(1.0f);
+  const auto [half, half_size] = draw(0.5f);
+  EXPECT_EQ(full_size, std::make_pair(320, 240));
+  EXPECT_EQ(half_size, std::make_pair(160, 120));
+  std::int64_t covered_full = 0, covered_half = 0;
+  double diff = 0.0;
+  for (std::size_t p = 0; p + 3 < full.rgba.size(); p += 4) {
+    covered_full += full.rgba[p + 3] > 128 ? 1 : 0;
+    covered_half += half.rgba[p + 3] > 128 ? 1 : 0;
+    for (std::size_t c = 0; c < 3; ++c)
+      diff += std::abs(static_cast<int>(full.rgba[p + c]) - static_cast<int>(half.rgba[p + c]));
+  }
+  ASSERT_GT(covered_full, 5000);
+  EXPECT_NEAR(static_cast<double>(covered_half), static_cast<double>(covered_full),
+              0.05 * static_cast<double>(covered_full));
+  EXPECT_LT(diff / (3.0 * 320 * 240), 12.0);  // mean absolute difference per channel, of 255
 }
 
 }  // namespace
