@@ -79,11 +79,13 @@ struct SolverSettings {
   /// the step after the cut (false). The same tolerance either way: this trades the cut step's
   /// time against CG iterations over the next factor_lag_steps steps (fem/lagged_factor.h).
   bool patch_after_cut = true;
-  /// pcg_lagged: the lag (steps) of an urgent refresh: one asked for after a cut (the patch
-  /// bridges it) or by a solve that needed more than 3 x refresh_iterations (a grasp, a sudden
-  /// turn). Such solves cost several times a normal one, so the sooner the cheaper, as long as the
-  /// background thread finishes in time (the step waits for it otherwise).
-  int urgent_lag_steps = 4;
+  /// pcg_lagged: the lag (steps) of an urgent refresh, one asked for by a solve that needed more
+  /// than 3 x refresh_iterations (a grasp, a sudden turn). Such solves cost several times a
+  /// normal one, so the sooner the cheaper, as long as the background thread finishes in time
+  /// (the step waits for it otherwise). A refresh after a cut is not urgent: the patch bridges it.
+  int urgent_lag_steps = 6;
+  /// pcg_lagged, after a cut: rings of neighbours added around the touched nodes in the patch.
+  int patch_rings = 1;
 };
 
 /// Plastic flow (Müller & Gross 2004, section 5), the "plasticity" effect. Per tet, the plastic

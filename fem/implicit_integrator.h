@@ -217,6 +217,7 @@ class ImplicitIntegrator {
   std::vector<Quat> m_node_rot;         // (n) the nodes' rotations this step (factor warping)
   std::vector<Mat3> m_warp;             // (n) each node's turn since the installed factor's step
   std::vector<std::uint8_t> m_changed;  // (n) 1: a cut since the installed factor touched the node
+  std::vector<std::uint8_t> m_patch_nodes;  // (n) scratch: m_changed and its rings
   std::uint64_t m_steps = 0;
   std::vector<Tet> m_removed;  // scratch of update(): nodes of the removed tets
   PatternUpdateStats m_last_update;

@@ -149,7 +149,17 @@ void ImplicitIntegrator::lagged_preconditioner(const TetMesh& mesh, StepStatus& 
     // A cut since the installed factor: its touched rows get a factor of their own; a refresh
     // of this structure is asked for after the solve (schedule_refresh).
     blocks_to_csr<double>(m_pattern, m_blocks_d, m_a);
-    st.factor_patch = m_lagged.patch(m_a, m_structure, m_changed, m_free);
+    // One ring of neighbours around the touched nodes: the patch's edge, where the old factor
+    // meets it, then lies in rows the cut did not change.
+    m_patch_nodes = m_changed;
+    for (std::int32_t ring = 0; ring < m_config.solver.patch_rings; ++ring) {
+      const std::vector<std::uint8_t> inner = m_patch_nodes;
+      for (std::size_t i = 0; i < n; ++i)
+        if (inner[i] != 0)
+          for (const std::int32_t j : m_pattern.nbr.of(i))
+            m_patch_nodes[static_cast<std::size_t>(j)] = 1;
+    }
+    st.factor_patch = m_lagged.patch(m_a, m_structure, m_patch_nodes, m_free);
     if (!st.factor_patch) {
       m_lagged.factor_now(m_a, m_structure, m_node_rot);
       st.factor_refresh = true;
@@ -189,7 +199,9 @@ void ImplicitIntegrator::schedule_refresh(int iterations, StepStatus& st) {
   const bool stale = m_lagged.structure() != m_structure;
   if (!stale && iterations <= s.refresh_iterations) return;
   blocks_to_csr<double>(m_pattern, m_blocks_d, m_a);
-  const bool urgent = stale || iterations > 3 * s.refresh_iterations;
+  // Urgent: a solve that needed several times the usual iterations (a grasp, a sudden turn).
+  // After a cut the patch keeps the iterations low, and the refresh gets the usual lag.
+  const bool urgent = !stale && iterations > 3 * s.refresh_iterations;
   const int lag = urgent ? std::min(s.urgent_lag_steps, s.factor_lag_steps) : s.factor_lag_steps;
   m_lagged.request(m_a, m_structure, m_steps + static_cast<std::uint64_t>(std::max(lag, 1)),
                    s.background_factor, m_node_rot);
