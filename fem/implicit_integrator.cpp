@@ -212,6 +212,8 @@ void ImplicitIntegrator::restore(StateReader& in, TetMesh& mesh) {
   in.array(m_changed);
   if (m_changed.size() > n) in.fail("the FEM's touched-node flags do not fit the mesh");
   m_lagged.restore(in, m_config.solver.background_factor);
+  if (m_lagged.rows_needed() > 3 * static_cast<std::int64_t>(n))
+    in.fail("the lagged factor's matrices do not fit the mesh (" + std::to_string(n) + " nodes)");
 }
 
 StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const Vec3> f_ext) {

@@ -36,6 +36,16 @@ void LaggedFactor::install() {
   m_job.reset();
 }
 
+std::int64_t LaggedFactor::rows_needed() const {
+  std::int64_t rows = ready() ? m_installed_rows : 0;
+  if (m_job) rows = std::max<std::int64_t>(rows, m_job->a.rows);
+  if (m_patch && !m_patch_nodes.empty())
+    rows = std::max<std::int64_t>(rows, 3 * (static_cast<std::int64_t>(m_patch_nodes.back()) + 1));
+  if (m_patch)
+    for (const std::int32_t c : m_patch_tu.col) rows = std::max<std::int64_t>(rows, c + 1);
+  return rows;
+}
+
 bool LaggedFactor::patch(const CsrMatrix& a, std::uint64_t structure,
                          std::span<const std::uint8_t> in_patch,
                          std::span<const std::uint8_t> free) {
