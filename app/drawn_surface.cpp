@@ -13,7 +13,6 @@ const SurfaceMesh& DrawnSurface::of(const SimState& state) {
   if (!m_have_own || m_own.topology_version != state.mesh.topology_version) {
     m_own = surface::extract_surface(state.mesh, m_original);
     m_have_own = true;
-    ++m_extractions;
   }
   return m_own;
 }

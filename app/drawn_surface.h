@@ -19,14 +19,11 @@ class DrawnSurface {
 
   /// The surface of `state`, valid until the next call.
   [[nodiscard]] const SurfaceMesh& of(const SimState& state);
-  /// Extractions this object made itself (0 when the surface stage kept the surface).
-  [[nodiscard]] std::uint64_t extractions() const noexcept { return m_extractions; }
 
  private:
   surface::OriginalSurface m_original;
   SurfaceMesh m_own;
   bool m_have_own = false;
-  std::uint64_t m_extractions = 0;
 };
 
 }  // namespace serosa::app

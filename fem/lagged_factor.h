@@ -70,13 +70,9 @@ class LaggedFactor {
              std::span<const std::uint8_t> free);
   /// Structure of the patch in use (0: none).
   [[nodiscard]] std::uint64_t patch_structure() const { return m_patch ? m_patch_structure : 0; }
-  /// Nodes the patch solves (0: none).
-  [[nodiscard]] std::size_t patch_nodes() const { return m_patch ? m_patch_nodes.size() : 0; }
   /// The most rows any factor it holds (installed, pending, patch) applies to: a restored
   /// schedule must fit the mesh (3 x its nodes).
   [[nodiscard]] std::int64_t rows_needed() const;
-  /// Structure of the pending refresh (0: none).
-  [[nodiscard]] std::uint64_t pending_structure() const { return m_job ? m_job->structure : 0; }
   /// Drops every factor and waits for any running job (the mesh was rebuilt from scratch).
   void clear();
 
