@@ -30,7 +30,8 @@ struct FemStageStats {
   double energy_removed_j = 0.0;
   /// pcg_lagged: factorizations of the system matrix asked for (StepStatus::factor_refresh)
   std::uint64_t factor_refreshes = 0;
-  /// pcg_lagged: cuts whose touched rows got a factor of their own (StepStatus::factor_patch)
+  /// pcg_lagged: steps whose changed rows (a cut, a grasp, a release) got a factor of their own
+  /// (StepStatus::factor_patch)
   std::uint64_t factor_patches = 0;
 };
 

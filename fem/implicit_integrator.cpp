@@ -87,7 +87,10 @@ void ImplicitIntegrator::prepare(TetMesh& mesh, double dt_s) {
   (void)assemble_system(mesh, dt_s);
   update_node_rotations(mesh);
   blocks_to_csr<double>(m_pattern, m_blocks_d, m_a);
-  m_lagged.factor_now(m_a, m_structure, m_node_rot);
+  m_free.resize(static_cast<std::size_t>(mesh.num_nodes()));
+  for (std::size_t i = 0; i < m_free.size(); ++i)
+    m_free[i] = node_constrained(mesh, m_el, i) ? 0 : 1;
+  m_lagged.factor_now(m_a, m_structure, m_node_rot, m_free);
   m_q = q;
   m_q_prev = q_prev;
 }

@@ -70,7 +70,8 @@ struct StepStatus {
   /// pcg_lagged: a refreshed factor of the system matrix was asked for after this step's solve
   /// (or, on the first step, computed before it).
   bool factor_refresh = false;
-  /// pcg_lagged: a cut since the installed factor; the rows it touched got a factor of their own.
+  /// pcg_lagged: the rows a cut, a grasp or a release changed since the installed factor got a
+  /// factor of their own this step.
   bool factor_patch = false;
 };
 
@@ -178,8 +179,12 @@ class ImplicitIntegrator {
   void schedule_refresh(int iterations, StepStatus& st);
   /// m_node_rot from this step's element rotations (fem/lagged_factor.h, warping).
   void update_node_rotations(const TetMesh& mesh);
-  /// pcg_lagged's part of cg_preconditioner: the install schedule, the patch after a cut.
+  /// pcg_lagged's part of cg_preconditioner: the install schedule, the patch after a cut, a grasp
+  /// or a release.
   void lagged_preconditioner(const TetMesh& mesh, StepStatus& st, Preconditioner& precond);
+  /// Patches the lagged factor with the rows of m_kind_changed and their rings (factors the whole
+  /// matrix instead if that submatrix is not SPD).
+  void patch_lagged_factor(const TetMesh& mesh, StepStatus& st);
   /// Jacobi's inverse diagonal of this step's A, into m_pcg.inv_diag.
   void fill_inverse_diagonal();
   /// v' = v + dv, x' = x + dt v' on free nodes; returns the work of gravity and f_ext, J.
@@ -217,7 +222,8 @@ class ImplicitIntegrator {
   std::vector<Quat> m_node_rot;         // (n) the nodes' rotations this step (factor warping)
   std::vector<Mat3> m_warp;             // (n) each node's turn since the installed factor's step
   std::vector<std::uint8_t> m_changed;  // (n) 1: a cut since the installed factor touched the node
-  std::vector<std::uint8_t> m_patch_nodes;  // (n) scratch: m_changed and its rings
+  std::vector<std::uint8_t> m_kind_changed;  // (n) scratch: held or let go since the factor
+  std::vector<std::uint8_t> m_patch_nodes;   // (n) scratch: the changed nodes and their rings
   std::uint64_t m_steps = 0;
   std::vector<Tet> m_removed;  // scratch of update(): nodes of the removed tets
   PatternUpdateStats m_last_update;

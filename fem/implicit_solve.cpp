@@ -143,26 +143,19 @@ void ImplicitIntegrator::lagged_preconditioner(const TetMesh& mesh, StepStatus& 
     // The first step, after a full rebuild (or after a cut without patching): factor this
     // step's matrix now.
     blocks_to_csr<double>(m_pattern, m_blocks_d, m_a);
-    m_lagged.factor_now(m_a, m_structure, m_node_rot);
+    m_lagged.factor_now(m_a, m_structure, m_node_rot, m_free);
     st.factor_refresh = true;
-  } else if (stale && m_lagged.patch_structure() != m_structure) {
-    // A cut since the installed factor: its touched rows get a factor of their own; a refresh
-    // of this structure is asked for after the solve (schedule_refresh).
-    blocks_to_csr<double>(m_pattern, m_blocks_d, m_a);
-    // One ring of neighbours around the touched nodes: the patch's edge, where the old factor
-    // meets it, then lies in rows the cut did not change.
-    m_patch_nodes = m_changed;
-    for (std::int32_t ring = 0; ring < m_config.solver.patch_rings; ++ring) {
-      const std::vector<std::uint8_t> inner = m_patch_nodes;
+  } else {
+    // A cut since the installed factor, or nodes held or let go since: their rows get a factor
+    // of their own; a refresh is asked for after the solve (schedule_refresh).
+    m_kind_changed.resize(n);
+    const bool kinds = m_lagged.kinds_changed(m_free, m_kind_changed);
+    if (!stale && !kinds) {
+      m_lagged.drop_patch();  // the installed factor fits again
+    } else if (!m_lagged.patch_fits(m_structure, m_free)) {
       for (std::size_t i = 0; i < n; ++i)
-        if (inner[i] != 0)
-          for (const std::int32_t j : m_pattern.nbr.of(i))
-            m_patch_nodes[static_cast<std::size_t>(j)] = 1;
-    }
-    st.factor_patch = m_lagged.patch(m_a, m_structure, m_patch_nodes, m_free);
-    if (!st.factor_patch) {
-      m_lagged.factor_now(m_a, m_structure, m_node_rot);
-      st.factor_refresh = true;
+        if (stale && m_changed[i] != 0) m_kind_changed[i] = 1;
+      patch_lagged_factor(mesh, st);
     }
   }
   if (!m_lagged.ready()) return;
@@ -171,6 +164,26 @@ void ImplicitIntegrator::lagged_preconditioner(const TetMesh& mesh, StepStatus& 
   precond.apply = [this](std::span<const double> r, std::span<double> z) {
     m_lagged.apply(r, z, m_pcg.inv_diag, m_free, m_warp);
   };
+}
+
+// The patch: the changed nodes (m_kind_changed) and rings of neighbours around them, so that the
+// patch's edge, where the old factor meets it, lies in rows that did not change.
+void ImplicitIntegrator::patch_lagged_factor(const TetMesh& mesh, StepStatus& st) {
+  const auto n = static_cast<std::size_t>(mesh.num_nodes());
+  blocks_to_csr<double>(m_pattern, m_blocks_d, m_a);
+  m_patch_nodes = m_kind_changed;
+  for (std::int32_t ring = 0; ring < m_config.solver.patch_rings; ++ring) {
+    const std::vector<std::uint8_t> inner = m_patch_nodes;
+    for (std::size_t i = 0; i < n; ++i)
+      if (inner[i] != 0)
+        for (const std::int32_t j : m_pattern.nbr.of(i))
+          m_patch_nodes[static_cast<std::size_t>(j)] = 1;
+  }
+  st.factor_patch = m_lagged.patch(m_a, m_structure, m_patch_nodes, m_free);
+  if (!st.factor_patch) {
+    m_lagged.factor_now(m_a, m_structure, m_node_rot, m_free);
+    st.factor_refresh = true;
+  }
 }
 
 // A node's rotation: the normalized sum of its tets' rotations (quaternions turned into one
@@ -194,17 +207,20 @@ void ImplicitIntegrator::update_node_rotations(const TetMesh& mesh) {
 void ImplicitIntegrator::schedule_refresh(int iterations, StepStatus& st) {
   const SolverSettings& s = m_config.solver;
   if (m_lagged.pending()) return;  // one job at a time
-  // After a cut (the installed factor is of an older structure) a refresh is due whatever the
-  // iterations: the patch only bridges the lag.
-  const bool stale = m_lagged.structure() != m_structure;
-  if (!stale && iterations <= s.refresh_iterations) return;
+  // After a cut (the installed factor is of an older structure), a grasp or a release (a patch
+  // in use) a refresh is due whatever the iterations: the patch only bridges the lag.
+  const bool cut = m_lagged.structure() != m_structure;
+  const bool patched = m_lagged.has_patch();
+  if (!cut && !patched && iterations <= s.refresh_iterations) return;
   blocks_to_csr<double>(m_pattern, m_blocks_d, m_a);
-  // Urgent: a solve that needed several times the usual iterations (a grasp, a sudden turn).
-  // After a cut the patch keeps the iterations low, and the refresh gets the usual lag.
-  const bool urgent = !stale && iterations > 3 * s.refresh_iterations;
+  // Urgent: a solve that needed several times the usual iterations (a sudden turn), or a grasp or
+  // a release (patched, still a few times the usual while the jaws pull). After a cut the refresh
+  // needs a new symbolic analysis too and gets the usual lag: at the urgent one, the step that
+  // installed it waited for the background thread.
+  const bool urgent = !cut && (patched || iterations > 3 * s.refresh_iterations);
   const int lag = urgent ? std::min(s.urgent_lag_steps, s.factor_lag_steps) : s.factor_lag_steps;
   m_lagged.request(m_a, m_structure, m_steps + static_cast<std::uint64_t>(std::max(lag, 1)),
-                   s.background_factor, m_node_rot);
+                   s.background_factor, m_node_rot, m_free);
   st.factor_refresh = true;
 }
 

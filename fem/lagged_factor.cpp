@@ -29,9 +29,10 @@ void LaggedFactor::install() {
     m_installed_rows = m_job->a.rows;
     m_installed_a = std::move(m_job->a);
     m_installed_rot = std::move(m_job->node_rot);
+    m_installed_free = std::move(m_job->free);
     m_installed_structure = m_job->structure;
     ++m_refreshes;
-    if (m_patch && m_installed_structure >= m_patch_structure) m_patch.reset();
+    // The patch stays until the integrator finds the installed factor fits (patch_fits).
   }
   m_job.reset();
 }
@@ -41,8 +42,10 @@ std::int64_t LaggedFactor::rows_needed() const {
   if (m_job) rows = std::max<std::int64_t>(rows, m_job->a.rows);
   if (m_patch && !m_patch_nodes.empty())
     rows = std::max<std::int64_t>(rows, 3 * (static_cast<std::int64_t>(m_patch_nodes.back()) + 1));
-  if (m_patch)
+  if (m_patch) {
     for (const std::int32_t c : m_patch_tu.col) rows = std::max<std::int64_t>(rows, c + 1);
+    rows = std::max<std::int64_t>(rows, 3 * static_cast<std::int64_t>(m_patch_free.size()));
+  }
   return rows;
 }
 
@@ -80,11 +83,27 @@ bool LaggedFactor::patch(const CsrMatrix& a, std::uint64_t structure,
         m->row_start.push_back(static_cast<std::int32_t>(m->col.size()));
       }
     }
-  return install_patch(std::move(tt), std::move(tu), std::move(nodes), structure);
+  return install_patch(std::move(tt), std::move(tu), std::move(nodes), structure,
+                       std::vector<std::uint8_t>(free.begin(), free.end()));
+}
+
+bool LaggedFactor::patch_fits(std::uint64_t structure, std::span<const std::uint8_t> free) const {
+  return m_patch && m_patch_structure == structure &&
+         std::equal(free.begin(), free.end(), m_patch_free.begin(), m_patch_free.end());
+}
+
+bool LaggedFactor::kinds_changed(std::span<const std::uint8_t> free,
+                                 std::span<std::uint8_t> changed) const {
+  bool any = false;
+  for (std::size_t i = 0; i < changed.size(); ++i) {
+    changed[i] = i < m_installed_free.size() && i < free.size() && free[i] != m_installed_free[i];
+    any = any || changed[i] != 0;
+  }
+  return any;
 }
 
 bool LaggedFactor::install_patch(CsrMatrix tt, CsrMatrix tu, std::vector<std::int32_t> nodes,
-                                 std::uint64_t structure) {
+                                 std::uint64_t structure, std::vector<std::uint8_t> free) {
   m_patch.reset();
   if (nodes.empty()) return false;
   auto solver = std::make_unique<CholmodSolver>(CholmodSolver::Layout::simplicial);
@@ -94,6 +113,7 @@ bool LaggedFactor::install_patch(CsrMatrix tt, CsrMatrix tu, std::vector<std::in
   m_patch_tu = std::move(tu);
   m_patch_nodes = std::move(nodes);
   m_patch_structure = structure;
+  m_patch_free = std::move(free);
   m_patch_index.assign(static_cast<std::size_t>(m_patch_nodes.back()) + 1, -1);
   for (std::size_t k = 0; k < m_patch_nodes.size(); ++k)
     m_patch_index[static_cast<std::size_t>(m_patch_nodes[k])] = static_cast<std::int32_t>(k);
@@ -105,11 +125,12 @@ void LaggedFactor::begin_step(std::uint64_t step) {
 }
 
 bool LaggedFactor::factor_now(const CsrMatrix& a, std::uint64_t structure,
-                              std::span<const Quat> node_rot) {
+                              std::span<const Quat> node_rot, std::span<const std::uint8_t> free) {
   clear();
   auto job = std::make_unique<Job>();
   job->a = a;
   job->node_rot.assign(node_rot.begin(), node_rot.end());
+  job->free.assign(free.begin(), free.end());
   job->structure = structure;
   job->solver = std::make_unique<CholmodSolver>(CholmodSolver::Layout::simplicial);
   run(*job);
@@ -120,11 +141,13 @@ bool LaggedFactor::factor_now(const CsrMatrix& a, std::uint64_t structure,
 }
 
 void LaggedFactor::request(const CsrMatrix& a, std::uint64_t structure, std::uint64_t ready_step,
-                           bool background, std::span<const Quat> node_rot) {
+                           bool background, std::span<const Quat> node_rot,
+                           std::span<const std::uint8_t> free) {
   if (m_job) install();  // one job at a time; callers ask only when none is pending
   auto job = std::make_unique<Job>();
   job->a = a;
   job->node_rot.assign(node_rot.begin(), node_rot.end());
+  job->free.assign(free.begin(), free.end());
   job->structure = structure;
   job->ready_step = ready_step;
   job->solver = take_spare(structure, job->analyzed);
@@ -141,6 +164,7 @@ void LaggedFactor::clear() {
   m_job.reset();
   m_installed.reset();
   m_installed_a = CsrMatrix{};
+  m_installed_free.clear();
   m_spare.reset();
   m_installed_rows = 0;
   m_patch.reset();
@@ -200,12 +224,14 @@ void LaggedFactor::save(StateWriter& out) const {
   if (ready()) {
     write_csr(out, m_installed_a);
     out.array(m_installed_rot);
+    out.array(m_installed_free);
     out.u64(m_installed_structure);
   }
   out.u8(m_job ? 1 : 0);
   if (m_job) {
     write_csr(out, m_job->a);  // read-only in the job's thread too
     out.array(m_job->node_rot);
+    out.array(m_job->free);
     out.u64(m_job->structure);
     out.u64(m_job->ready_step);
   }
@@ -214,6 +240,7 @@ void LaggedFactor::save(StateWriter& out) const {
     write_csr(out, m_patch_a);
     write_csr(out, m_patch_tu);
     out.array(m_patch_nodes);
+    out.array(m_patch_free);
     out.u64(m_patch_structure);
   }
 }
@@ -224,28 +251,38 @@ void LaggedFactor::restore(StateReader& in, bool background) {
   if (in.u8() != 0) {
     CsrMatrix a = read_csr(in);
     std::vector<Quat> rot;
+    std::vector<std::uint8_t> free;
     in.array(rot);
+    in.array(free);
     const std::uint64_t structure = in.u64();
-    if (!factor_now(a, structure, rot)) in.fail("the installed factor's matrix is not SPD");
+    if (3 * free.size() != static_cast<std::size_t>(a.rows))
+      in.fail("the installed factor's free mask does not fit its matrix");
+    if (!factor_now(a, structure, rot, free)) in.fail("the installed factor's matrix is not SPD");
   }
   if (in.u8() != 0) {
     CsrMatrix a = read_csr(in);
     std::vector<Quat> rot;
+    std::vector<std::uint8_t> free;
     in.array(rot);
+    in.array(free);
     const std::uint64_t structure = in.u64();
     const std::uint64_t ready_step = in.u64();
-    request(a, structure, ready_step, background, rot);
+    if (3 * free.size() != static_cast<std::size_t>(a.rows))
+      in.fail("the pending refresh's free mask does not fit its matrix");
+    request(a, structure, ready_step, background, rot, free);
   }
   if (in.u8() != 0) {
     CsrMatrix a = read_csr(in);
     CsrMatrix tu = read_csr(in, /*square=*/false);
     std::vector<std::int32_t> nodes;
+    std::vector<std::uint8_t> free;
     in.array(nodes);
+    in.array(free);
     const std::uint64_t structure = in.u64();
     if (3 * nodes.size() != static_cast<std::size_t>(a.rows) || tu.rows != a.rows ||
         !std::is_sorted(nodes.begin(), nodes.end()) || (!nodes.empty() && nodes.front() < 0))
       in.fail("the patch's nodes do not fit its matrix");
-    if (!install_patch(std::move(a), std::move(tu), std::move(nodes), structure))
+    if (!install_patch(std::move(a), std::move(tu), std::move(nodes), structure, std::move(free)))
       in.fail("the patch's matrix is not SPD");
   }
   m_refreshes = refreshes;

@@ -18,16 +18,25 @@
 //
 // After a cut (a new matrix structure) the installed factor no longer fits the rows the cut changed
 // (the slivers near the blade, the new nodes): Jacobi there took CG to its 200-iteration cap. The
-// integrator then patches it (patch()): the rows of the nodes the cut touched, and one ring of
-// neighbours around them, get a factor of their own, of the new matrix restricted to them (a few
-// hundred rows, factored in well under a millisecond), and the installed factor, with those rows
-// masked out of its solve, stands in for the rest: a block LU of the new matrix with the old
-// factor in the Schur complement's place (LaggedFactor::apply). The ring keeps the patch's edge,
-// where the two meet, in rows the cut did not change: 1-5 CG iterations a step, against 8-13
-// without it. A factor of the new structure
-// is refreshed in the background meanwhile and installed `lag` steps later, which drops the patch.
-// So a cut costs the step a local factorization and some CG iterations, not a global
-// factorization. The first step and a full rebuild still factor at once (factor_now).
+// integrator then patches it (patch()): the rows of the nodes the cut touched, and rings of
+// neighbours around them (SolverSettings::patch_rings), get a factor of their own, of the new
+// matrix restricted to them (a few hundred rows, factored in well under a millisecond), and the
+// installed factor, with those rows masked out of its solve, stands in for the rest: a block LU of
+// the new matrix with the old factor in the Schur complement's place (LaggedFactor::apply). The
+// rings keep the patch's edge, where the two meet, in rows the cut did not change, and CG needs a
+// few more iterations a step than usual (the default scene's cut: 8 with two rings, against 10
+// with one). A factor of the new structure is refreshed in the background meanwhile and
+// installed `lag` steps later; the integrator then drops the patch. So a cut costs the step a
+// local factorization and some CG iterations, not a global factorization. The first step and a
+// full rebuild still factor at once (factor_now).
+//
+// A grasp, or letting go, changes rows too: a node held since the factor's step has a diagonal
+// row now, and its free neighbours lose their coupling to it, which the factor (of the free node's
+// rows) does not know; a node let go has full rows the factor took as diagonal. Masking the held
+// rows alone left CG at 16-20 iterations a step on the default scene's grasp (68 on a released
+// bar's) until the refresh came. So the factor keeps the free mask of its matrix, and the nodes
+// whose kind changed since are patched like a cut's, with their rings (7-8 iterations on that
+// grasp, 9-23 on that bar), until a refresh that knows the new mask is installed.
 #pragma once
 
 #include <cstdint>
@@ -55,12 +64,18 @@ class LaggedFactor {
   void begin_step(std::uint64_t step);
   /// Factors `a` now and installs it (the first step, or after a full rebuild). `structure`
   /// identifies a's sparsity pattern (the integrator's structure counter). False if a is not SPD.
-  /// node_rot: (n) the nodes' rotations at a's step (warping, above).
-  bool factor_now(const CsrMatrix& a, std::uint64_t structure, std::span<const Quat> node_rot);
+  /// node_rot: (n) the nodes' rotations at a's step (warping, above); free: (n) 1 where the node
+  /// took part in a's solve (a's rows of the others are diagonal).
+  bool factor_now(const CsrMatrix& a, std::uint64_t structure, std::span<const Quat> node_rot,
+                  std::span<const std::uint8_t> free);
   /// Asks for the factor of `a` (copied), to be installed at the start of step `ready_step`.
   /// background: factor in a thread (true) or now (false; the install step is the same).
   void request(const CsrMatrix& a, std::uint64_t structure, std::uint64_t ready_step,
-               bool background, std::span<const Quat> node_rot);
+               bool background, std::span<const Quat> node_rot, std::span<const std::uint8_t> free);
+  /// The nodes held or let go since the installed factor's matrix: changed[i] = 1 where free[i]
+  /// differs from the factor's mask (nodes beyond the factor: 0, a cut's delta covers them).
+  /// True if there is any. free, changed: (n).
+  bool kinds_changed(std::span<const std::uint8_t> free, std::span<std::uint8_t> changed) const;
   /// After a cut: factors `a` (the matrix of structure `structure`) restricted to the rows of the
   /// nodes with in_patch[i] && free[i] (the nodes the cuts since the installed factor touched, new
   /// nodes included); apply() then solves those rows with it, until a factor of that structure or
@@ -68,8 +83,11 @@ class LaggedFactor {
   /// in_patch, free: (n).
   bool patch(const CsrMatrix& a, std::uint64_t structure, std::span<const std::uint8_t> in_patch,
              std::span<const std::uint8_t> free);
-  /// Structure of the patch in use (0: none).
-  [[nodiscard]] std::uint64_t patch_structure() const { return m_patch ? m_patch_structure : 0; }
+  /// Whether the patch in use was made for this structure and this free mask (free: (n)).
+  [[nodiscard]] bool patch_fits(std::uint64_t structure, std::span<const std::uint8_t> free) const;
+  [[nodiscard]] bool has_patch() const { return m_patch != nullptr; }
+  /// Drops the patch (the installed factor fits the matrix again).
+  void drop_patch() { m_patch.reset(); }
   /// The most rows any factor it holds (installed, pending, patch) applies to: a restored
   /// schedule must fit the mesh (3 x its nodes).
   [[nodiscard]] std::int64_t rows_needed() const;
@@ -88,8 +106,8 @@ class LaggedFactor {
              std::span<const std::uint8_t> free, std::span<const Mat3> warp);
 
   /// Its part of the whole state: the matrices of the installed factor and of the pending
-  /// refresh with their rotations, structures and install step (the factors themselves are
-  /// recomputed from them on restore: CHOLMOD gives the same bits for the same matrix).
+  /// refresh with their rotations, free masks, structures and install step (the factors themselves
+  /// are recomputed from them on restore: CHOLMOD gives the same bits for the same matrix).
   void save(StateWriter& out) const;
   /// Reads what save() wrote; the pending refresh is factored in the background or now
   /// (`background`), to be installed at its step as before.
@@ -109,7 +127,8 @@ class LaggedFactor {
     CsrMatrix a;
     std::uint64_t structure = 0;
     std::uint64_t ready_step = 0;
-    std::vector<Quat> node_rot;  // (n) the nodes' rotations at a's step
+    std::vector<Quat> node_rot;      // (n) the nodes' rotations at a's step
+    std::vector<std::uint8_t> free;  // (n) 1 where the node took part in a's solve
     std::unique_ptr<CholmodSolver> solver;
     bool analyzed = false;  // solver already holds the analysis of a's pattern
     bool ok = false;
@@ -123,7 +142,8 @@ class LaggedFactor {
   std::unique_ptr<CholmodSolver> m_installed;
   CsrMatrix m_installed_a;  // the matrix the installed factor was computed from (snapshots)
   std::int32_t m_installed_rows = 0;
-  std::vector<Quat> m_installed_rot;  // (rows / 3) R0 of the installed factor
+  std::vector<Quat> m_installed_rot;           // (rows / 3) R0 of the installed factor
+  std::vector<std::uint8_t> m_installed_free;  // (rows / 3) its matrix's free mask
   std::uint64_t m_installed_structure = 0;
   // The factor replaced at the last install, kept with its analysis for the next refresh of the
   // same pattern (a numeric refactorization skips the symbolic analysis).
@@ -138,10 +158,11 @@ class LaggedFactor {
   std::uint64_t m_patch_structure = 0;
   std::vector<std::int32_t> m_patch_nodes;    // ascending node ids
   std::vector<std::int32_t> m_patch_index;    // node -> index in m_patch_nodes, or -1
+  std::vector<std::uint8_t> m_patch_free;     // (n) the free mask the patch was made for
   std::vector<double> m_pr, m_pz, m_w, m_ty;  // (3 patch nodes) patch-sized work vectors
   std::vector<double> m_ru;                   // (3n) r_U - A_UT w
   bool install_patch(CsrMatrix tt, CsrMatrix tu, std::vector<std::int32_t> nodes,
-                     std::uint64_t structure);
+                     std::uint64_t structure, std::vector<std::uint8_t> free);
   void patch_solve(std::span<const double> r, std::span<const std::uint8_t> free,
                    std::vector<double>& w);
   void multiply_ut(std::span<const double> w, double s, std::span<double> out) const;

@@ -44,7 +44,8 @@ struct Taken {
 
 TEST(Snapshot, RestoreAtRandomStepsEqualsTheUninterruptedRunBitForBit) {
   const Scene scene = load_scene(source("config/appendectomy.toml"));
-  // Random steps from the grasp (1.8 s) to near the end, plus the first step after the cut.
+  // Random steps from the grasp (1.8 s) to near the end, plus the first steps after the grasp
+  // took hold and after the cut (the lagged factor patched for each).
   std::mt19937 rng(20261202);
   std::uniform_int_distribution<std::uint64_t> pick(340, kSteps - 40);
   std::set<std::uint64_t> wanted;
@@ -59,15 +60,19 @@ TEST(Snapshot, RestoreAtRandomStepsEqualsTheUninterruptedRunBitForBit) {
   std::map<std::uint64_t, std::uint64_t> hashes;  // steps taken -> state hash
   std::map<std::uint64_t, Taken> taken;
   bool cut_seen = false;
+  bool hold_seen = false;
   while (s.step < kSteps) {
     run->comp.runner->step(s);
     hashes[s.step] = state_hash(s);
     const bool cut_now = !s.handoff.cuts.empty();
     const bool first_after_cut = !cut_now && !cut_seen && run->comp.cutting->stats().cuts > 0;
     if (first_after_cut) cut_seen = true;
+    // The step after the grasp took hold: the lagged factor is patched for the held nodes.
+    const bool first_holding = !hold_seen && run->comp.contact->grasped_counts()[grasper] > 0;
+    if (first_holding) hold_seen = true;
     // A snapshot waits for a step with no cut in flight.
     const bool due = !wanted.empty() && s.step >= *wanted.begin();
-    if (!cut_now && (first_after_cut || due)) {
+    if (!cut_now && (first_after_cut || first_holding || due)) {
       wanted.erase(wanted.begin(), wanted.upper_bound(s.step));
       taken[s.step] = {run->comp.runner->snapshot(s),
                        run->comp.contact->grasped_counts()[grasper] > 0,
@@ -75,7 +80,8 @@ TEST(Snapshot, RestoreAtRandomStepsEqualsTheUninterruptedRunBitForBit) {
     }
   }
   const std::vector<std::uint8_t> final_bytes = run->comp.runner->snapshot(s);
-  ASSERT_GE(taken.size(), 5u);
+  ASSERT_GE(taken.size(), 6u);
+  ASSERT_TRUE(hold_seen);
   ASSERT_TRUE(cut_seen);
   const auto holding =
       std::count_if(taken.begin(), taken.end(), [](const auto& t) { return t.second.holding; });
