@@ -56,6 +56,10 @@ fem::FemConfig fem_config(const Scene& scene, const AssembledScene& assembled) {
   c.solver.patch_after_cut = scene.solver.patch_after_cut;
   c.solver.urgent_lag_steps = scene.solver.urgent_lag_steps;
   c.solver.threads = scene.solver.threads;
+  // pcg-lagged needs 1-3 CG iterations a step: filling the assembled blocks for so few products
+  // cost more than applying A per tet, so it fills them only on the steps that factor
+  // (docs/BENCHMARKS.md "Real time": 25 % less FEM time a step on the default scene).
+  c.solver.matrix_free = c.solver.kind == fem::SolverKind::pcg_lagged;
   // A capped CG's energy gains are taken back out (the grasper, the one stage that moves nodes
   // between steps, says so in SimState::handoff.nodes_moved).
   c.solver.remove_energy_gain = true;

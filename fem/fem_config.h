@@ -41,8 +41,10 @@ struct SolverSettings {
   int max_iterations = 100;  ///< CG iteration cap; the step reports converged = false past it
   bool warm_start = true;    ///< CG: start from the previous step's dv instead of 0
   /// CG: apply A per tet without assembling it (fem/system_matrix.h SystemOperator) instead of
-  /// filling the CSR matrix every step. CHOLMOD always assembles. Off by default: assembled CG
-  /// measured faster (docs/BENCHMARKS.md "FEM").
+  /// filling the CSR matrix every step. CHOLMOD always assembles; pcg_lagged assembles only on
+  /// the steps that factor or patch. Off by default: assembled CG at tens of iterations measured
+  /// faster (docs/BENCHMARKS.md "FEM"); scenes turn it on for pcg_lagged (app/compose.cpp), whose
+  /// 1-3 iterations a step do not pay for the fill.
   bool matrix_free = false;
   /// CG on the assembled matrix: store its 3x3 blocks in float instead of double (sums stay in
   /// double; fem/block_system.h). Halves the SpMV's memory traffic; the stored entries are

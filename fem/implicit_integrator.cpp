@@ -83,14 +83,14 @@ void ImplicitIntegrator::prepare(TetMesh& mesh, double dt_s) {
   // of the warm starts (the step redoes them from the same start).
   const std::vector<Quat> q = m_q, q_prev = m_q_prev;
   if (m_config.plasticity.on) m_plastic.resize(mesh.tets.size(), Mat3::Zero());
+  m_blocks_fresh = m_csr_fresh = false;
   (void)element_pass(mesh, dt_s);
   (void)assemble_system(mesh, dt_s);
   update_node_rotations(mesh);
-  blocks_to_csr<double>(m_pattern, m_blocks_d, m_a);
   m_free.resize(static_cast<std::size_t>(mesh.num_nodes()));
   for (std::size_t i = 0; i < m_free.size(); ++i)
     m_free[i] = node_constrained(mesh, m_el, i) ? 0 : 1;
-  m_lagged.factor_now(m_a, m_structure, m_node_rot, m_free);
+  m_lagged.factor_now(lagged_csr(mesh, dt_s), m_structure, m_node_rot, m_free);
   m_q = q;
   m_q_prev = q_prev;
 }
@@ -235,6 +235,7 @@ StepStatus ImplicitIntegrator::step_from(TetMesh& mesh, double dt_s, std::span<c
       m_pattern.topology_version != mesh.topology_version)
     rebuild(mesh);
   StepStatus st;
+  m_blocks_fresh = m_csr_fresh = false;
   if (m_config.plasticity.on) m_plastic.resize(mesh.tets.size(), Mat3::Zero());
   const ElementPass pass = element_pass(mesh, dt_s);
   st.inverted_tets = pass.inverted;

@@ -176,15 +176,18 @@ class ImplicitIntegrator {
   Preconditioner cg_preconditioner(const TetMesh& mesh, double dt_s, StepStatus& st);
   /// pcg_lagged after the solve: asks for a refreshed factor when CG needed too many iterations
   /// or the structure changed.
-  void schedule_refresh(int iterations, StepStatus& st);
+  void schedule_refresh(const TetMesh& mesh, double dt_s, int iterations, StepStatus& st);
   /// m_node_rot from this step's element rotations (fem/lagged_factor.h, warping).
   void update_node_rotations(const TetMesh& mesh);
   /// pcg_lagged's part of cg_preconditioner: the install schedule, the patch after a cut, a grasp
   /// or a release.
-  void lagged_preconditioner(const TetMesh& mesh, StepStatus& st, Preconditioner& precond);
+  void lagged_preconditioner(const TetMesh& mesh, double dt_s, StepStatus& st,
+                             Preconditioner& precond);
   /// Patches the lagged factor with the rows of m_kind_changed and their rings (factors the whole
   /// matrix instead if that submatrix is not SPD).
-  void patch_lagged_factor(const TetMesh& mesh, StepStatus& st);
+  void patch_lagged_factor(const TetMesh& mesh, double dt_s, StepStatus& st);
+  /// This step's A in m_a for the lagged factor (the blocks filled if the product did not).
+  const CsrMatrix& lagged_csr(const TetMesh& mesh, double dt_s);
   /// Jacobi's inverse diagonal of this step's A, into m_pcg.inv_diag.
   void fill_inverse_diagonal();
   /// v' = v + dv, x' = x + dt v' on free nodes; returns the work of gravity and f_ext, J.
@@ -195,6 +198,8 @@ class ImplicitIntegrator {
   SystemPattern m_pattern;
   CsrMatrix m_a;                       // (3n x 3n) system matrix (CHOLMOD; pattern for all)
   std::vector<double> m_blocks_d;      // A in 3x3 blocks for CG (fem/block_system.h), double
+  bool m_blocks_fresh = false;         // m_blocks_d holds this step's A
+  bool m_csr_fresh = false;            // m_a holds a copy of it (pcg_lagged)
   std::vector<float> m_blocks_f;       // the same in float (solver.float_matrix)
   std::vector<double> m_fill_scratch;  // fill_blocks' per-thread row sums (no step allocates)
   std::vector<TetScale> m_scale;       // (m) per-tet stiffness scales of the fill, this step

@@ -14,9 +14,10 @@ ImplicitIntegrator::SystemProduct ImplicitIntegrator::assemble_system(const TetM
                                                                       double dt_s) {
   const SolverSettings& s = m_config.solver;
   SystemProduct a;
-  // pcg_lagged factors the assembled double blocks: never matrix-free or float.
+  // pcg_lagged factors the assembled double blocks (never float); matrix-free, it assembles them
+  // only on the steps that factor (lagged_csr).
   const bool lagged = s.kind == SolverKind::pcg_lagged;
-  if (s.matrix_free && s.kind != SolverKind::cholmod && !lagged) {
+  if (s.matrix_free && s.kind != SolverKind::cholmod) {
     prepare_operator(mesh, m_el, dt_s, m_op);
     a.apply = [this, &mesh](std::span<const double> x, std::span<double> y) {
       apply_operator(mesh, m_el, m_pattern, m_rg, m_op, x, y);
@@ -35,6 +36,7 @@ ImplicitIntegrator::SystemProduct ImplicitIntegrator::assemble_system(const TetM
   } else {
     m_blocks_d.resize(block_storage(m_pattern));
     fill_blocks<double>(mesh, m_el, m_pattern, m_rg, m_scale, dt_s, m_blocks_d, m_fill_scratch);
+    m_blocks_fresh = true;
     a.apply_dot = [this](std::span<const double> x, std::span<double> y) {
       return multiply_blocks_dot<double>(m_pattern, m_blocks_d, x, y);
     };
@@ -78,14 +80,14 @@ SolveStatus ImplicitIntegrator::solve_cg(const TetMesh& mesh, double dt_s, const
   const SolveStatus ss =
       a.apply_dot ? pcg(a.apply_dot, m_rhs, m_dv, s.tolerance, s.max_iterations, precond, m_pcg)
                   : pcg(a.apply, m_rhs, m_dv, s.tolerance, s.max_iterations, precond, m_pcg);
-  if (s.kind == SolverKind::pcg_lagged) schedule_refresh(ss.iterations, st);
+  if (s.kind == SolverKind::pcg_lagged) schedule_refresh(mesh, dt_s, ss.iterations, st);
   return ss;
 }
 
 void ImplicitIntegrator::fill_inverse_diagonal() {
   m_pcg.inv_diag.resize(m_rhs.size());
   const bool lagged = m_config.solver.kind == SolverKind::pcg_lagged;
-  if (m_config.solver.matrix_free && !lagged)
+  if (m_config.solver.matrix_free)
     operator_inverse_diagonal(m_el, m_pattern, m_rg, m_op, m_pcg.inv_diag);
   else if (m_config.solver.float_matrix && !lagged)
     blocks_inverse_diagonal<float>(m_pattern, m_blocks_f, m_pcg.inv_diag);
@@ -125,11 +127,11 @@ Preconditioner ImplicitIntegrator::cg_preconditioner(const TetMesh& mesh, double
   }
   fill_inverse_diagonal();
   precond.inv_diag = m_pcg.inv_diag;
-  if (s.kind == SolverKind::pcg_lagged) lagged_preconditioner(mesh, st, precond);
+  if (s.kind == SolverKind::pcg_lagged) lagged_preconditioner(mesh, dt_s, st, precond);
   return precond;
 }
 
-void ImplicitIntegrator::lagged_preconditioner(const TetMesh& mesh, StepStatus& st,
+void ImplicitIntegrator::lagged_preconditioner(const TetMesh& mesh, double dt_s, StepStatus& st,
                                                Preconditioner& precond) {
   m_lagged.begin_step(m_steps);
   update_node_rotations(mesh);
@@ -142,8 +144,7 @@ void ImplicitIntegrator::lagged_preconditioner(const TetMesh& mesh, StepStatus& 
   if (!m_lagged.ready() || (stale && !m_config.solver.patch_after_cut)) {
     // The first step, after a full rebuild (or after a cut without patching): factor this
     // step's matrix now.
-    blocks_to_csr<double>(m_pattern, m_blocks_d, m_a);
-    m_lagged.factor_now(m_a, m_structure, m_node_rot, m_free);
+    m_lagged.factor_now(lagged_csr(mesh, dt_s), m_structure, m_node_rot, m_free);
     st.factor_refresh = true;
   } else {
     // A cut since the installed factor, or nodes held or let go since: their rows get a factor
@@ -155,7 +156,7 @@ void ImplicitIntegrator::lagged_preconditioner(const TetMesh& mesh, StepStatus& 
     } else if (!m_lagged.patch_fits(m_structure, m_free)) {
       for (std::size_t i = 0; i < n; ++i)
         if (stale && m_changed[i] != 0) m_kind_changed[i] = 1;
-      patch_lagged_factor(mesh, st);
+      patch_lagged_factor(mesh, dt_s, st);
     }
   }
   if (!m_lagged.ready()) return;
@@ -168,9 +169,9 @@ void ImplicitIntegrator::lagged_preconditioner(const TetMesh& mesh, StepStatus& 
 
 // The patch: the changed nodes (m_kind_changed) and rings of neighbours around them, so that the
 // patch's edge, where the old factor meets it, lies in rows that did not change.
-void ImplicitIntegrator::patch_lagged_factor(const TetMesh& mesh, StepStatus& st) {
+void ImplicitIntegrator::patch_lagged_factor(const TetMesh& mesh, double dt_s, StepStatus& st) {
   const auto n = static_cast<std::size_t>(mesh.num_nodes());
-  blocks_to_csr<double>(m_pattern, m_blocks_d, m_a);
+  const CsrMatrix& a = lagged_csr(mesh, dt_s);
   m_patch_nodes = m_kind_changed;
   for (std::int32_t ring = 0; ring < m_config.solver.patch_rings; ++ring) {
     const std::vector<std::uint8_t> inner = m_patch_nodes;
@@ -179,11 +180,26 @@ void ImplicitIntegrator::patch_lagged_factor(const TetMesh& mesh, StepStatus& st
         for (const std::int32_t j : m_pattern.nbr.of(i))
           m_patch_nodes[static_cast<std::size_t>(j)] = 1;
   }
-  st.factor_patch = m_lagged.patch(m_a, m_structure, m_patch_nodes, m_free);
+  st.factor_patch = m_lagged.patch(a, m_structure, m_patch_nodes, m_free);
   if (!st.factor_patch) {
-    m_lagged.factor_now(m_a, m_structure, m_node_rot, m_free);
+    m_lagged.factor_now(a, m_structure, m_node_rot, m_free);
     st.factor_refresh = true;
   }
+}
+
+// This step's A as the lagged factor takes it: the double blocks (filled now if the product was
+// matrix-free) copied into m_a, once a step.
+const CsrMatrix& ImplicitIntegrator::lagged_csr(const TetMesh& mesh, double dt_s) {
+  if (!m_blocks_fresh) {
+    m_blocks_d.resize(block_storage(m_pattern));
+    fill_blocks<double>(mesh, m_el, m_pattern, m_rg, m_scale, dt_s, m_blocks_d, m_fill_scratch);
+    m_blocks_fresh = true;
+  }
+  if (!m_csr_fresh) {
+    blocks_to_csr<double>(m_pattern, m_blocks_d, m_a);
+    m_csr_fresh = true;
+  }
+  return m_a;
 }
 
 // A node's rotation: the normalized sum of its tets' rotations (quaternions turned into one
@@ -204,7 +220,8 @@ void ImplicitIntegrator::update_node_rotations(const TetMesh& mesh) {
   }
 }
 
-void ImplicitIntegrator::schedule_refresh(int iterations, StepStatus& st) {
+void ImplicitIntegrator::schedule_refresh(const TetMesh& mesh, double dt_s, int iterations,
+                                          StepStatus& st) {
   const SolverSettings& s = m_config.solver;
   if (m_lagged.pending()) return;  // one job at a time
   // After a cut (the installed factor is of an older structure), a grasp or a release (a patch
@@ -212,15 +229,15 @@ void ImplicitIntegrator::schedule_refresh(int iterations, StepStatus& st) {
   const bool cut = m_lagged.structure() != m_structure;
   const bool patched = m_lagged.has_patch();
   if (!cut && !patched && iterations <= s.refresh_iterations) return;
-  blocks_to_csr<double>(m_pattern, m_blocks_d, m_a);
   // Urgent: a solve that needed several times the usual iterations (a sudden turn), or a grasp or
   // a release (patched, still a few times the usual while the jaws pull). After a cut the refresh
   // needs a new symbolic analysis too and gets the usual lag: at the urgent one, the step that
   // installed it waited for the background thread.
   const bool urgent = !cut && (patched || iterations > 3 * s.refresh_iterations);
   const int lag = urgent ? std::min(s.urgent_lag_steps, s.factor_lag_steps) : s.factor_lag_steps;
-  m_lagged.request(m_a, m_structure, m_steps + static_cast<std::uint64_t>(std::max(lag, 1)),
-                   s.background_factor, m_node_rot, m_free);
+  m_lagged.request(lagged_csr(mesh, dt_s), m_structure,
+                   m_steps + static_cast<std::uint64_t>(std::max(lag, 1)), s.background_factor,
+                   m_node_rot, m_free);
   st.factor_refresh = true;
 }
 
