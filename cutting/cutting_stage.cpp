@@ -71,17 +71,19 @@ void CuttingStage::step(const StepContext& ctx, SimState& state) {
     s.before = now;
     if (!before) continue;
     const bool closing = now.jaw_rad < before->jaw_rad;
-    // A stationary stroke goes on while the jaws close and the scissors stay in its place.
+    // A stationary stroke goes on while the jaws close or pause and the scissors stay in its
+    // place.
     if (s.stroke) {
-      if (closing && same_place(*s.stroke, now)) {
-        if (now.jaw_rad <= 0.0) {  // closed: nothing more to sweep
+      const bool opening = now.jaw_rad > before->jaw_rad;
+      if (!opening && same_place(*s.stroke, now)) {
+        if (closing && now.jaw_rad <= 0.0) {  // closed: nothing more to sweep
           const ToolState start = *s.stroke;
           s.stroke.reset();
           flush_stroke(ctx, state, s.tool, start, 0.0);
         }
         continue;
       }
-      // Stopped closing or moved: cut what the stroke swept up to the previous pose.
+      // Opened again or moved: cut what the stroke swept up to the previous pose.
       const ToolState start = *s.stroke;
       s.stroke.reset();
       flush_stroke(ctx, state, s.tool, start, before->jaw_rad);

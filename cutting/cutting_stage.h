@@ -12,13 +12,17 @@
 // the blade or not at all, and splits the same tets again at the next step (the
 // appendix transection grew from 3.8k to 245k tets in 18 steps and stayed one piece). So the
 // stage accumulates the stroke and cuts once, with the whole swept sector (hinge plus points on
-// the arc of the blade tips, convex), when the jaws stop closing, close completely, or the
+// the arc of the blade tips, convex), when the jaws open again, close completely, or the
 // scissors move off the stroke's plane; a stroke that closed fully is a single sector across
-// both blades. Steps in which the scissors move while closing sweep per step as before
-// (cutting/blade_sweep.h: the quad between the two poses of each blade). cutting::ProgressiveCut
-// would give the same single-cut result step by step (the wound opening while the jaws close),
-// but the two blades sweep two sectors that are one convex region only once the jaws meet, and
-// moving strokes sweep quads in changing planes, so the stage does not use it (yet).
+// both blades. A pause keeps the stroke: cut at the pause, the two blades' sectors leave a notch
+// between them that the rest of the closing then cuts as a third polygon next to the first two,
+// and the appendix stayed in one piece; the price is that the wound opens only when the stroke
+// ends (the jaws close or open, or the scissors move). Steps in which the scissors move while
+// closing sweep per step as before (cutting/blade_sweep.h: the quad between the two poses of each
+// blade). cutting::ProgressiveCut would give the same single-cut result step by step (the wound
+// opening while the jaws close), but the two blades sweep two sectors that are one convex region
+// only once the jaws meet, and moving strokes sweep quads in changing planes, so the stage does not
+// use it (yet).
 #pragma once
 
 #include <cstdint>

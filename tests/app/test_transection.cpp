@@ -5,6 +5,9 @@
 
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "app/headless.h"
 #include "app_test_util.h"
@@ -129,6 +132,62 @@ TEST(Transection, SceneWithoutCuttingNeverCuts) {
   EXPECT_FALSE(report.contains("cutting"));
   EXPECT_EQ(report["mesh_final"]["tets"], report["mesh_initial"]["tets"]);
   EXPECT_FALSE(report["time_per_stage_ms"].contains("cutting"));
+}
+
+// The transection's path with the scissors' jaw angles (rad) at the given times (s) between the
+// opening at 0.02 s and the closed jaws at the last time: pauses, or a close in a few steps.
+fs::path closing_path(const fs::path& dir, const std::string& name,
+                      const std::vector<std::pair<double, double>>& jaw_at) {
+  const std::string pose = "0.07217,-0.05211,-0.00455,0.081435,0.902719,0.373918,-0.196600,";
+  std::ostringstream csv;
+  csv << "t,tool,px,py,pz,qw,qx,qy,qz,jaw\n"
+      << "0.000,endoscope,0.0385,-0.0154,0.1110,0.029262,0.002558,0.995772,-0.087040,0.00\n"
+      << "0.000,grasper,0.0300,-0.0200,0.0600,0.324226,0.014191,0.944968,-0.041360,0.00\n"
+      << "0.000,scissors," << pose << "1.00\n0.020,scissors," << pose << "1.00\n";
+  for (const auto& [t, jaw] : jaw_at) csv << t << ",scissors," << pose << jaw << "\n";
+  csv << "0.400,scissors," << pose << "0.00\n"
+      << "0.400,grasper,0.0300,-0.0200,0.0600,0.324226,0.014191,0.944968,-0.041360,0.00\n"
+      << "0.400,endoscope,0.0385,-0.0154,0.1110,0.029262,0.002558,0.995772,-0.087040,0.00\n";
+  const fs::path path = dir / name;
+  { std::ofstream(path) << csv.str(); }
+  return path;
+}
+
+// Jaws that pause while they close, or close in a few steps with pauses between, without moving:
+// one stroke, cut once when the jaws have closed, like the uninterrupted close. Cut at the pause,
+// the two blades' sectors left a notch that the rest of the closing cut next to them: the appendix
+// stayed in one piece after a pause at 0.65 rad, with a tet of quality 6e-4.
+TEST(Transection, PausesWhileClosingCutTheAppendixInOneStroke) {
+  const fs::path dir = out_dir("transection_pauses");
+  const std::vector<std::vector<std::pair<double, double>>> closings = {
+      {{0.07, 0.35}, {0.15, 0.35}, {0.20, 0.0}},
+      {{0.07, 0.65}, {0.15, 0.65}, {0.20, 0.0}},
+      {{0.05, 0.75}, {0.09, 0.75}, {0.12, 0.5}, {0.20, 0.5}, {0.23, 0.25}, {0.30, 0.0}},
+  };
+  for (std::size_t k = 0; k < closings.size(); ++k) {
+    SCOPED_TRACE("closing " + std::to_string(k));
+    HeadlessOptions o;
+    o.scene = source("config/appendectomy.toml");
+    o.tool_path = closing_path(dir, "closing" + std::to_string(k) + ".csv", closings[k]);
+    o.steps = 80;
+    o.validate_cuts = true;
+    o.export_final = dir / ("final" + std::to_string(k) + ".msh");
+    o.progress = false;
+    const auto report = run_headless(o);
+    const auto& cut = report["cutting"];
+    EXPECT_EQ(cut["strokes"].get<int>(), 1);
+    EXPECT_EQ(cut["cuts"].get<int>(), 1);
+    EXPECT_EQ(cut["invalid"].get<int>(), 0) << cut["problems"].dump(1);
+    EXPECT_NEAR(report["mesh_final"]["rest_volume_m3"].get<double>(),
+                report["mesh_initial"]["rest_volume_m3"].get<double>(),
+                1e-9 * report["mesh_initial"]["rest_volume_m3"].get<double>());
+    EXPECT_GE(report["mesh_final"]["min_quality"].get<double>(), 1e-3);
+    EXPECT_LE(report["mesh_final"]["tets"].get<double>(),
+              1.1 * report["mesh_initial"]["tets"].get<double>());
+    const TetMesh after = read_mesh(dir / ("final" + std::to_string(k) + ".msh"));
+    EXPECT_EQ(cutting::count_components(group_only(after, 1)), 2);
+    EXPECT_TRUE(check_mesh(after).valid);
+  }
 }
 
 }  // namespace
