@@ -35,8 +35,8 @@
 // rows) does not know; a node let go has full rows the factor took as diagonal. Masking the held
 // rows alone left CG at 16-20 iterations a step on the default scene's grasp (68 on a released
 // bar's) until the refresh came. So the factor keeps the free mask of its matrix, and the nodes
-// whose kind changed since are patched like a cut's, with their rings (7-8 iterations on that
-// grasp, 9-23 on that bar), until a refresh that knows the new mask is installed.
+// whose kind changed since are patched like a cut's, with their rings (5-8 iterations on that
+// grasp, 8-11 on that bar), until a refresh that knows the new mask is installed.
 #pragma once
 
 #include <cstdint>
@@ -76,10 +76,11 @@ class LaggedFactor {
   /// differs from the factor's mask (nodes beyond the factor: 0, a cut's delta covers them).
   /// True if there is any. free, changed: (n).
   bool kinds_changed(std::span<const std::uint8_t> free, std::span<std::uint8_t> changed) const;
-  /// After a cut: factors `a` (the matrix of structure `structure`) restricted to the rows of the
-  /// nodes with in_patch[i] && free[i] (the nodes the cuts since the installed factor touched, new
-  /// nodes included); apply() then solves those rows with it, until a factor of that structure or
-  /// a later one is installed. False if that submatrix is not SPD (no patch then).
+  /// After a cut, a grasp or a release: factors `a` (the matrix of structure `structure`)
+  /// restricted to the rows of the nodes with in_patch[i] && free[i] (the nodes the cuts since the
+  /// installed factor touched, new nodes included, or held or let go since, with their rings);
+  /// apply() then solves those rows with it until the integrator drops it (drop_patch) or
+  /// replaces it. False if that submatrix is not SPD (no patch then).
   /// in_patch, free: (n).
   bool patch(const CsrMatrix& a, std::uint64_t structure, std::span<const std::uint8_t> in_patch,
              std::span<const std::uint8_t> free);
