@@ -87,9 +87,7 @@ void ImplicitIntegrator::prepare(TetMesh& mesh, double dt_s) {
   (void)element_pass(mesh, dt_s);
   (void)assemble_system(mesh, dt_s);
   update_node_rotations(mesh);
-  m_free.resize(static_cast<std::size_t>(mesh.num_nodes()));
-  for (std::size_t i = 0; i < m_free.size(); ++i)
-    m_free[i] = node_constrained(mesh, m_el, i) ? 0 : 1;
+  update_free_mask(mesh);
   m_lagged.factor_now(lagged_csr(mesh, dt_s), m_structure, m_node_rot, m_free);
   m_q = q;
   m_q_prev = q_prev;

@@ -177,6 +177,8 @@ class ImplicitIntegrator {
   /// pcg_lagged after the solve: asks for a refreshed factor when CG needed too many iterations
   /// or the structure changed.
   void schedule_refresh(const TetMesh& mesh, double dt_s, int iterations, StepStatus& st);
+  /// m_free from the mesh's Dirichlet flags and masses.
+  void update_free_mask(const TetMesh& mesh);
   /// m_node_rot from this step's element rotations (fem/lagged_factor.h, warping).
   void update_node_rotations(const TetMesh& mesh);
   /// pcg_lagged's part of cg_preconditioner: the install schedule, the patch after a cut, a grasp
@@ -229,6 +231,7 @@ class ImplicitIntegrator {
   std::vector<std::uint8_t> m_changed;  // (n) 1: a cut since the installed factor touched the node
   std::vector<std::uint8_t> m_kind_changed;  // (n) scratch: held or let go since the factor
   std::vector<std::uint8_t> m_patch_nodes;   // (n) scratch: the changed nodes and their rings
+  std::vector<std::uint8_t> m_ring_inner;    // (n) scratch: the patch before its next ring
   std::uint64_t m_steps = 0;
   std::vector<Tet> m_removed;  // scratch of update(): nodes of the removed tets
   PatternUpdateStats m_last_update;

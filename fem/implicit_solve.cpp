@@ -136,8 +136,7 @@ void ImplicitIntegrator::lagged_preconditioner(const TetMesh& mesh, double dt_s,
   m_lagged.begin_step(m_steps);
   update_node_rotations(mesh);
   const auto n = static_cast<std::size_t>(mesh.num_nodes());
-  m_free.resize(n);
-  for (std::size_t i = 0; i < n; ++i) m_free[i] = node_constrained(mesh, m_el, i) ? 0 : 1;
+  update_free_mask(mesh);
   m_changed.resize(n, 1);  // new nodes are touched
   const bool stale = m_lagged.ready() && m_lagged.structure() != m_structure;
   if (m_lagged.ready() && !stale) std::fill(m_changed.begin(), m_changed.end(), 0);
@@ -154,8 +153,8 @@ void ImplicitIntegrator::lagged_preconditioner(const TetMesh& mesh, double dt_s,
     if (!stale && !kinds) {
       m_lagged.drop_patch();  // the installed factor fits again
     } else if (!m_lagged.patch_fits(m_structure, m_free)) {
-      for (std::size_t i = 0; i < n; ++i)
-        if (stale && m_changed[i] != 0) m_kind_changed[i] = 1;
+      if (stale)  // the cut's touched nodes too
+        for (std::size_t i = 0; i < n; ++i) m_kind_changed[i] |= m_changed[i];
       patch_lagged_factor(mesh, dt_s, st);
     }
   }
@@ -174,9 +173,9 @@ void ImplicitIntegrator::patch_lagged_factor(const TetMesh& mesh, double dt_s, S
   const CsrMatrix& a = lagged_csr(mesh, dt_s);
   m_patch_nodes = m_kind_changed;
   for (std::int32_t ring = 0; ring < m_config.solver.patch_rings; ++ring) {
-    const std::vector<std::uint8_t> inner = m_patch_nodes;
+    m_ring_inner = m_patch_nodes;  // copies into kept capacity
     for (std::size_t i = 0; i < n; ++i)
-      if (inner[i] != 0)
+      if (m_ring_inner[i] != 0)
         for (const std::int32_t j : m_pattern.nbr.of(i))
           m_patch_nodes[static_cast<std::size_t>(j)] = 1;
   }
@@ -200,6 +199,13 @@ const CsrMatrix& ImplicitIntegrator::lagged_csr(const TetMesh& mesh, double dt_s
     m_csr_fresh = true;
   }
   return m_a;
+}
+
+// m_free: 1 where the node takes part in the solve (not fixed, not held, not massless).
+void ImplicitIntegrator::update_free_mask(const TetMesh& mesh) {
+  m_free.resize(static_cast<std::size_t>(mesh.num_nodes()));
+  for (std::size_t i = 0; i < m_free.size(); ++i)
+    m_free[i] = node_constrained(mesh, m_el, i) ? 0 : 1;
 }
 
 // A node's rotation: the normalized sum of its tets' rotations (quaternions turned into one
