@@ -113,6 +113,21 @@ Json cutting_json(const Composition& comp) {
          {"tets_added", c.tets_added},
          {"nodes_added", c.nodes_added},
          {"degenerate_tets", c.degenerate_tets}};
+    Json strokes = Json::array();
+    for (const cutting::StrokeReport& r : c.stroke_reports)
+      strokes.push_back({{"first_step", r.first_step},
+                         {"last_step", r.last_step},
+                         {"steps", r.steps},
+                         {"polygons", r.polygons},
+                         {"cuts", r.cuts},
+                         {"tets_crossed", r.tets_crossed},
+                         {"tets_created", r.tets_created},
+                         {"pinned", r.pinned},
+                         {"swept_area_m2", r.swept_area_m2},
+                         {"crack_area_m2", r.crack_area_m2},
+                         {"deviation_m", r.deviation_m},
+                         {"min_quality", r.min_quality}});
+    j["per_stroke"] = std::move(strokes);
     if (c.validated > 0) {
       j["validated"] = c.validated;
       j["invalid"] = c.invalid;

@@ -1,39 +1,11 @@
 #include "cutting/blade_sweep.h"
 
+#include "cutting/planar_hull.h"
+
 #include <algorithm>
 #include <vector>
 
 namespace serosa::cutting {
-namespace {
-
-double cross2(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
-}
-
-// Indices of the convex hull of pts, counter-clockwise (Andrew's monotone chain); collinear
-// points are dropped.
-std::vector<std::size_t> hull2d(const std::vector<Eigen::Vector2d>& pts) {
-  std::vector<std::size_t> idx(pts.size());
-  for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
-  std::sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) {
-    return pts[a].x() < pts[b].x() || (pts[a].x() == pts[b].x() && pts[a].y() < pts[b].y());
-  });
-  std::vector<std::size_t> h(2 * idx.size());
-  std::size_t k = 0;
-  for (std::size_t i : idx) {  // lower hull
-    while (k >= 2 && cross2(pts[h[k - 2]], pts[h[k - 1]], pts[i]) <= 0.0) --k;
-    h[k++] = i;
-  }
-  for (std::size_t j = idx.size() - 1, t = k + 1; j-- > 0;) {  // upper hull
-    const std::size_t i = idx[j];
-    while (k >= t && cross2(pts[h[k - 2]], pts[h[k - 1]], pts[i]) <= 0.0) --k;
-    h[k++] = i;
-  }
-  h.resize(k > 1 ? k - 1 : k);
-  return h;
-}
-
-}  // namespace
 
 std::optional<ConvexPolygon> sweep_polygon(const BladeEdge& before, const BladeEdge& after,
                                            SweepWarnings& warnings, const SweepOptions& options) {
@@ -95,7 +67,7 @@ std::optional<ConvexPolygon> sweep_polygon(const BladeEdge& before, const BladeE
   // Convex hull in the plane (repairs a crossed quad), counter-clockwise about n.
   const Vec3 u = (corners[1] - corners[0]).normalized();
   const Vec3 v = n.cross(u);
-  std::vector<Eigen::Vector2d> p2;
+  std::vector<Vec2> p2;
   for (const Vec3& c : corners) p2.emplace_back(u.dot(c - centroid), v.dot(c - centroid));
   std::vector<Vec3> outline;
   for (std::size_t i : hull2d(p2)) outline.push_back(corners[i]);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cutting/cut_areas.h"
 #include "cutting/cut_method.h"
 #include "cutting/tet_bvh.h"
 #include "cutting/validate.h"
@@ -15,7 +16,7 @@ namespace serosa::cutting {
 CuttingStage::CuttingStage(const Scene& scene, CuttingStageOptions options) : m_options(options) {
   for (std::size_t i = 0; i < scene.tools.size(); ++i)
     if (scene.tools[i].kind == ToolKind::kScissors)
-      m_scissors.push_back({i, std::nullopt, std::nullopt});
+      m_scissors.push_back(Scissors{i, std::nullopt, std::nullopt, std::nullopt, 0});
   m_cut_options.classify_rel = scene.cutting.tolerance;
   switch (scene.cutting.method) {
     case serosa::CutMethod::kPattern:
@@ -32,31 +33,10 @@ CuttingStage::CuttingStage(const Scene& scene, CuttingStageOptions options) : m_
 
 CuttingStage::~CuttingStage() = default;
 
-std::optional<cutting::ConvexPolygon> sector_polygon(const ToolFrame& frame, double a0, double a1,
-                                                     double length_m) {
-  if (a1 < a0) std::swap(a0, a1);
-  const double span = a1 - a0;
-  if (!(span > 1e-9) || !(length_m > 0.0)) return std::nullopt;
-  const int segments = std::max(1, static_cast<int>(std::ceil(span / kStrokeArcStep)));
-  std::vector<Vec3> points{frame.hinge};
-  // Counter-clockwise seen from +pin: from the side (+a) towards the other side.
-  for (int k = 0; k <= segments; ++k) {
-    const double a = a1 - span * static_cast<double>(k) / static_cast<double>(segments);
-    points.push_back(frame.hinge +
-                     length_m * (std::cos(a) * frame.forward + std::sin(a) * frame.side));
-  }
-  return cutting::ConvexPolygon::make(std::move(points));
-}
-
 namespace {
 
-// Whether two poses hold the blades in the same place, within the stroke tolerances.
-bool same_place(const ToolState& a, const ToolState& b) {
-  const ToolFrame fa = tool_frame(a), fb = tool_frame(b);
-  if (!((fa.hinge - fb.hinge).norm() <= kStrokeHingeTol)) return false;
-  const double turn =
-      std::max((fa.forward - fb.forward).norm(), (fa.side - fb.side).norm());  // ~ angle, rad
-  return turn <= kStrokeAngleTol;
+double hinge_distance(const ToolState& a, const ToolState& b) {
+  return (tool_frame(a).hinge - tool_frame(b).hinge).norm();
 }
 
 }  // namespace
@@ -69,87 +49,74 @@ void CuttingStage::step(const StepContext& ctx, SimState& state) {
     const ToolState now = state.tools[s.tool];
     const std::optional<ToolState> before = s.before;
     s.before = now;
-    if (!before) continue;
-    const bool closing = now.jaw_rad < before->jaw_rad;
-    // A stationary stroke goes on while the jaws close or pause and the scissors stay in its
-    // place.
-    if (s.stroke) {
-      const bool opening = now.jaw_rad > before->jaw_rad;
-      if (!opening && same_place(*s.stroke, now)) {
-        if (closing && now.jaw_rad <= 0.0) {  // closed: nothing more to sweep
-          const ToolState start = *s.stroke;
-          s.stroke.reset();
-          flush_stroke(ctx, state, s.tool, start, 0.0);
-        }
-        continue;
-      }
-      // Opened again or moved: cut what the stroke swept up to the previous pose.
-      const ToolState start = *s.stroke;
-      s.stroke.reset();
-      flush_stroke(ctx, state, s.tool, start, before->jaw_rad);
-      if (!closing) continue;
-    } else if (!closing) {
-      continue;
-    }
-    // Only closing jaws cut: the blades slide past each other over the tissue between them.
-    if (same_place(*before, now)) {
-      s.stroke = *before;  // a stationary stroke begins: cut it as a whole later
-      if (now.jaw_rad <= 0.0) {
-        s.stroke.reset();
-        flush_stroke(ctx, state, s.tool, *before, 0.0);
-      }
-      continue;
-    }
-    // Moving while closing: each blade sweeps the quad between its two poses.
-    const ToolFrame f0 = tool_frame(*before);
-    const ToolFrame f1 = tool_frame(now);
-    for (int blade = 0; blade < 2; ++blade) {
-      const cutting::BladeEdge e0{f0.hinge, jaw_tip(f0, before->jaw_rad, blade)};
-      const cutting::BladeEdge e1{f1.hinge, jaw_tip(f1, now.jaw_rad, blade)};
-      ++m_stats.sweeps;
-      const auto polygon = cutting::sweep_polygon(e0, e1, m_sweep_warnings);
-      if (!polygon) {
-        ++m_stats.degenerate_sweeps;
-        continue;
-      }
-      cut(ctx, state, s.tool, blade, *polygon);
-    }
+    if (before) follow(ctx, state, s, *before, now);
   }
 }
 
-void CuttingStage::flush_stroke(const StepContext& ctx, SimState& state, std::size_t tool,
-                                const ToolState& start, double end_jaw_rad) {
-  const ToolFrame f = tool_frame(start);
-  const double a0 = 0.5 * start.jaw_rad, a1 = 0.5 * std::max(end_jaw_rad, 0.0);
-  if (!(a0 > a1)) return;
+void CuttingStage::follow(const StepContext& ctx, SimState& state, Scissors& s,
+                          const ToolState& before, const ToolState& now) {
+  // Only closing jaws cut: the blades slide past each other over the tissue between them.
+  const bool closing = now.jaw_rad < before.jaw_rad;
+  if (s.stroke && s.paused && !closing) {
+    const bool reopened = now.jaw_rad >= s.stroke->start().jaw_rad - kStrokeReopenTol;
+    const bool drawn_away = hinge_distance(now, *s.paused) > kStrokeDriftTol;
+    if (reopened || drawn_away) {  // cut what it swept, up to where the jaws were most closed
+      end_stroke(ctx, state, s, *s.paused);
+      return;
+    }
+  }
+  if (!closing || before.jaw_rad <= kStrokeClosedRad) return;  // (closed already: nothing between)
+  extend(ctx, state, s, before, now);
+  if (now.jaw_rad <= kStrokeClosedRad) end_stroke(ctx, state, s, now);  // the blades met
+}
+
+void CuttingStage::extend(const StepContext& ctx, SimState& state, Scissors& s,
+                          const ToolState& before, const ToolState& now) {
+  const TetMesh& mesh = state.mesh;
+  refresh_bvh(ctx, mesh);
+  const auto begin = [&]() {
+    s.stroke.emplace(before, mesh.topology_version);
+    s.first_step = ctx.step;
+  };
+  if (!s.stroke) begin();
+  const std::size_t mark = s.stroke->size();
+  s.stroke->sweep(before, now, mesh, *m_bvh);
+  if (mark > 0 && s.stroke->deviation(mesh) > kStrokePlaneTol) {
+    // The swept surface bends off its plane: cut the stroke so far, go on with a new one.
+    s.stroke->undo_sweep(mark);
+    end_stroke(ctx, state, s, before);
+    refresh_bvh(ctx, state.mesh);
+    begin();
+    s.stroke->sweep(before, now, state.mesh, *m_bvh);
+  }
+  if (!s.paused || now.jaw_rad <= s.paused->jaw_rad) s.paused = now;
+}
+
+void CuttingStage::end_stroke(const StepContext& ctx, SimState& state, Scissors& s,
+                              ToolState end) {
+  if (!s.stroke) return;
+  const StrokePolygons cut_with_these = s.stroke->polygons(state.mesh, end, kStrokeClosedRad);
+  StrokeReport report;
+  report.first_step = s.first_step;
+  report.last_step = ctx.step;
+  report.steps = s.stroke->steps();
+  report.polygons = cut_with_these.polygons.size();
+  report.deviation_m = cut_with_these.deviation_m;
+  s.stroke.reset();
+  s.paused.reset();
   ++m_stats.strokes;
-  if (a1 <= 0.0) {
-    // Fully closed: the two blades swept one sector across the shaft axis.
+  if (cut_with_these.polygons.empty()) ++m_stats.degenerate_sweeps;
+  for (std::size_t k = 0; k < cut_with_these.polygons.size(); ++k) {
     ++m_stats.sweeps;
-    if (auto p = sector_polygon(f, -a0, a0, kJawLength)) {
-      cut(ctx, state, tool, 0, *p);
-    } else {
-      ++m_stats.degenerate_sweeps;
-    }
-    return;
+    cut(ctx, state, s.tool, cut_with_these.blades[k], cut_with_these.polygons[k], report);
   }
-  for (int blade = 0; blade < 2; ++blade) {
-    const double sign = blade == 0 ? 1.0 : -1.0;
-    ++m_stats.sweeps;
-    if (auto p = sector_polygon(f, sign * a1, sign * a0, kJawLength)) {
-      cut(ctx, state, tool, blade, *p);
-    } else {
-      ++m_stats.degenerate_sweeps;
-    }
-  }
+  if (m_stats.stroke_reports.size() < kMaxStrokeReports) m_stats.stroke_reports.push_back(report);
 }
 
-void CuttingStage::cut(const StepContext& ctx, SimState& state, std::size_t tool, int blade,
-                       const cutting::ConvexPolygon& polygon) {
-  TetMesh& mesh = state.mesh;
-  // Candidate search: a BVH over current positions, built once, updated locally after each of our
-  // cuts (cost follows the tets touched), refitted once a step; rebuilt only when the topology
-  // changed behind our back.
+void CuttingStage::refresh_bvh(const StepContext& ctx, const TetMesh& mesh) {
+  // A BVH over current positions, built once, updated locally after each of our cuts (cost
+  // follows the tets touched), refitted once a step; rebuilt only when the topology changed
+  // behind our back.
   if (!m_bvh || m_bvh_version != mesh.topology_version) {
     m_bvh = std::make_unique<cutting::TetBvh>(mesh);
     m_bvh_version = mesh.topology_version;
@@ -158,8 +125,15 @@ void CuttingStage::cut(const StepContext& ctx, SimState& state, std::size_t tool
     m_bvh->refit(mesh);
     m_bvh_step = ctx.step;
   }
+}
+
+void CuttingStage::cut(const StepContext& ctx, SimState& state, std::size_t tool, int blade,
+                       const cutting::ConvexPolygon& polygon, StrokeReport& report) {
+  TetMesh& mesh = state.mesh;
+  refresh_bvh(ctx, mesh);
   cutting::CutResult result = cut_with(m_method, mesh, polygon, m_cut_options, m_bvh->as_query());
   if (result.delta.empty()) return;
+  report.swept_area_m2 += swept_area(mesh, result.delta.removed_tets, polygon);
 
   CutEvent applied;
   applied.step = ctx.step;
@@ -181,13 +155,25 @@ void CuttingStage::cut(const StepContext& ctx, SimState& state, std::size_t tool
   m_bvh->update(mesh, result.delta);
   m_bvh_version = mesh.topology_version;
 
+  ++report.cuts;
+  report.tets_crossed += static_cast<std::int64_t>(result.delta.removed_tets.size());
+  report.tets_created += static_cast<std::int64_t>(result.delta.added_tets.size());
+  report.pinned += result.stats.tets_pinned;
+  report.crack_area_m2 +=
+      crack_area(mesh, result.delta, polygon, 2.0 * result.stats.tolerance_m + 1e-12);
+  report.min_quality = std::min(report.min_quality, min_added_quality(mesh, result.delta));
+
   ++m_stats.cuts;
   m_stats.tets_removed += static_cast<std::int64_t>(result.delta.removed_tets.size());
   m_stats.tets_added += static_cast<std::int64_t>(result.delta.added_tets.size());
   m_stats.nodes_added += static_cast<std::int64_t>(result.delta.added_nodes.size());
   m_stats.degenerate_tets += result.stats.degenerate_tets;
   if (before) {
-    const cutting::CutCheckReport r = cutting::check_cut(*before, mesh, polygon);
+    // Nodes within the cut's classification tolerance of the plane count as on it.
+    cutting::CutCheckOptions co;
+    co.geometry_tol_m = 4.0 * result.stats.tolerance_m + 1e-12;
+    co.plane_tol_m = result.stats.tolerance_m;
+    const cutting::CutCheckReport r = cutting::check_cut(*before, mesh, polygon, co);
     ++m_stats.validated;
     if (!r.ok) {
       ++m_stats.invalid;
@@ -221,7 +207,10 @@ void CuttingStage::save(StateWriter& out) const {
   out.u32(static_cast<std::uint32_t>(m_scissors.size()));
   for (const Scissors& s : m_scissors) {
     write_pose(out, s.before);
-    write_pose(out, s.stroke);
+    write_pose(out, s.paused);
+    out.u64(s.first_step);
+    out.u8(s.stroke ? 1 : 0);
+    if (s.stroke) s.stroke->save(out);
   }
 }
 
@@ -229,7 +218,10 @@ void CuttingStage::restore(StateReader& in, SimState& /*state*/) {
   if (in.u32() != m_scissors.size()) in.fail("another number of scissors than the scene's");
   for (Scissors& s : m_scissors) {
     s.before = read_pose(in);
-    s.stroke = read_pose(in);
+    s.paused = read_pose(in);
+    s.first_step = in.u64();
+    s.stroke.reset();
+    if (in.u8() != 0) s.stroke = ScissorsStroke::load(in);
   }
   m_bvh.reset();  // candidates are sorted: a fresh tree finds the same ones
 }

@@ -1,0 +1,246 @@
+#include "cutting/scissors_stroke.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "cutting/tet_bvh.h"
+#include "engine/state_codec.h"
+#include "engine/tool_geometry.h"
+
+namespace serosa::cutting {
+namespace {
+
+static_assert(sizeof(StrokeSample) == 64, "written as plain bytes: no padding");
+
+Eigen::Quaterniond quat(const ToolState& t) {
+  Eigen::Quaterniond q(t.quat_wxyz[0], t.quat_wxyz[1], t.quat_wxyz[2], t.quat_wxyz[3]);
+  if (!(q.norm() > 0.0)) return Eigen::Quaterniond::Identity();
+  return q.normalized();
+}
+
+// Barycentric weights of p in tet t (current positions); std::nullopt for a flat tet.
+std::optional<std::array<double, 4>> barycentric(const Vec3& p, const TetMesh& mesh,
+                                                 std::int32_t t) {
+  const Tet& tet = mesh.tets[static_cast<std::size_t>(t)];
+  const Vec3& a = mesh.x[static_cast<std::size_t>(tet[0])];
+  const Vec3& b = mesh.x[static_cast<std::size_t>(tet[1])];
+  const Vec3& c = mesh.x[static_cast<std::size_t>(tet[2])];
+  const Vec3& d = mesh.x[static_cast<std::size_t>(tet[3])];
+  Mat3 e;
+  e << b - a, c - a, d - a;
+  const double det = e.determinant();
+  const double scale = (b - a).norm() * (c - a).norm() * (d - a).norm();
+  if (!(std::abs(det) > 1e-12 * scale)) return std::nullopt;
+  const Vec3 l = e.inverse() * (p - a);
+  return std::array<double, 4>{1.0 - l.sum(), l.x(), l.y(), l.z()};
+}
+
+// The blade's final edge direction and the shaft's side, in the plane's coordinates.
+struct EndAxes {
+  Vec2 hinge, side, blade[2];
+};
+
+EndAxes end_axes(const PlaneFit& fit, const ToolState& end, const Vec2& hinge) {
+  const ToolFrame f = tool_frame(end);
+  const auto dir = [&](const Vec3& w) { return Vec2(fit.u.dot(w), fit.v.dot(w)); };
+  EndAxes a{hinge, dir(f.side), {}};
+  const double h = 0.5 * std::max(end.jaw_rad, 0.0);
+  for (int k = 0; k < 2; ++k) {
+    const double s = k == 0 ? 1.0 : -1.0;
+    a.blade[k] = dir(std::cos(h) * f.forward + s * std::sin(h) * f.side);
+  }
+  return a;
+}
+
+// Blade k's share of the stroke: its samples and the hinge's, beyond its final edge, on its side
+// of the shaft.
+std::vector<Vec2> blade_outline(const std::vector<Vec2>& q, const std::vector<StrokeSample>& s,
+                                int k, const EndAxes& ax) {
+  std::vector<Vec2> mine;
+  for (std::size_t i = 0; i < q.size(); ++i)
+    if (s[i].blade == k || s[i].blade < 0) mine.push_back(q[i]);
+  std::vector<Vec2> outline;
+  for (std::size_t i : hull2d(mine)) outline.push_back(mine[i]);
+  const double sign = k == 0 ? 1.0 : -1.0;
+  outline = clip_halfplane(outline, ax.hinge, sign * ax.side);
+  const Vec2 d = ax.blade[k].normalized();
+  const Vec2 away = sign * (ax.side - ax.side.dot(d) * d);
+  if (away.norm() > 0.0) outline = clip_halfplane(outline, ax.hinge, away);
+  return outline;
+}
+
+// The outline without corners closer than a millionth of its size to the previous one, nor
+// corners where it barely turns (rounding would call them repeated or concave).
+std::vector<Vec2> clean(const std::vector<Vec2>& outline) {
+  double size = 0.0;
+  for (const Vec2& q : outline) size = std::max(size, (q - outline.front()).norm());
+  const double near = 1e-6 * size;
+  std::vector<Vec2> out;
+  for (const Vec2& q : outline)
+    if (out.empty() || (q - out.back()).norm() > near) out.push_back(q);
+  while (out.size() > 1 && (out.back() - out.front()).norm() <= near) out.pop_back();
+  for (bool changed = true; changed && out.size() > 3;) {
+    changed = false;
+    for (std::size_t i = 0; i < out.size() && out.size() > 3; ++i) {
+      const Vec2& a = out[(i + out.size() - 1) % out.size()];
+      const Vec2& b = out[i];
+      const Vec2& c = out[(i + 1) % out.size()];
+      const Vec2 ab = b - a, bc = c - b;
+      if (ab.x() * bc.y() - ab.y() * bc.x() <= 1e-9 * ab.norm() * bc.norm()) {
+        out.erase(out.begin() + static_cast<std::ptrdiff_t>(i));
+        changed = true;
+      }
+    }
+  }
+  return out;
+}
+
+std::optional<ConvexPolygon> to_polygon(const PlaneFit& fit, const std::vector<Vec2>& raw) {
+  const std::vector<Vec2> outline = clean(raw);
+  if (outline.size() < 3) return std::nullopt;
+  std::vector<Vec3> w;
+  for (const Vec2& q : outline) w.push_back(fit.to_world(q));
+  return ConvexPolygon::make(std::move(w), 1e-6);
+}
+
+}  // namespace
+
+ToolState interpolate(const ToolState& a, const ToolState& b, double s) {
+  ToolState t = b;
+  for (int i = 0; i < 3; ++i) t.tip_m[i] = a.tip_m[i] + s * (b.tip_m[i] - a.tip_m[i]);
+  t.jaw_rad = a.jaw_rad + s * (b.jaw_rad - a.jaw_rad);
+  t.time_s = a.time_s + s * (b.time_s - a.time_s);
+  const Eigen::Quaterniond q = quat(a).slerp(s, quat(b));
+  t.quat_wxyz = {q.w(), q.x(), q.y(), q.z()};
+  return t;
+}
+
+ScissorsStroke::ScissorsStroke(const ToolState& start, std::uint64_t topology_version)
+    : m_start(start), m_topology_version(topology_version) {}
+
+void ScissorsStroke::add(const Vec3& x, std::int32_t blade, const TetMesh& mesh,
+                         const TetBvh& bvh) {
+  StrokeSample s;
+  s.x_m = x;
+  s.blade = blade;
+  double best = -std::numeric_limits<double>::infinity();
+  // The tet that holds x, or the one it is least outside of among the nearest: a blade tip far
+  // from the tissue follows the tissue nearest to it (extrapolated, exact for tissue moving
+  // rigidly or affinely), so the stroke's outline keeps its shape around the tissue it cut.
+  for (double r = kStrokeTrackRadius; r <= 16.0 * kStrokeTrackRadius && s.tet < 0; r *= 2.0) {
+    m_candidates.clear();
+    if (x.allFinite()) bvh.query(x - Vec3::Constant(r), x + Vec3::Constant(r), m_candidates);
+    for (std::int32_t t : m_candidates) {
+      const auto w = barycentric(x, mesh, t);
+      if (!w) continue;
+      const double inside = *std::min_element(w->begin(), w->end());
+      if (inside > best) {
+        best = inside;
+        s.tet = t;
+        s.bary = *w;
+      }
+    }
+  }
+  m_samples.push_back(s);
+}
+
+void ScissorsStroke::sweep(const ToolState& before, const ToolState& now, const TetMesh& mesh,
+                           const TetBvh& bvh) {
+  const auto sample = [&](const ToolState& pose) {
+    const ToolFrame f = tool_frame(pose);
+    add(f.hinge, -1, mesh, bvh);
+    add(jaw_tip(f, pose.jaw_rad, 0), 0, mesh, bvh);
+    add(jaw_tip(f, pose.jaw_rad, 1), 1, mesh, bvh);
+  };
+  if (m_samples.empty()) sample(before);
+  const double half_angle = 0.5 * std::abs(now.jaw_rad - before.jaw_rad);
+  const double turn = quat(before).angularDistance(quat(now));
+  const double steps = std::ceil(std::max(half_angle, turn) / kStrokeArcStep);
+  const int n = std::isfinite(steps) ? std::clamp(static_cast<int>(steps), 1, 64) : 1;
+  for (int j = 1; j <= n; ++j)
+    sample(interpolate(before, now, static_cast<double>(j) / static_cast<double>(n)));
+  ++m_steps;
+}
+
+void ScissorsStroke::undo_sweep(std::size_t size_before) {
+  if (size_before >= m_samples.size()) return;
+  m_samples.resize(size_before);
+  if (m_steps > 0) --m_steps;
+}
+
+std::vector<Vec3> ScissorsStroke::carried(const TetMesh& mesh) const {
+  const bool same_tets = mesh.topology_version == m_topology_version;
+  std::vector<Vec3> out;
+  out.reserve(m_samples.size());
+  for (const StrokeSample& s : m_samples) {
+    if (!same_tets || s.tet < 0 || s.tet >= mesh.num_tets()) {
+      out.push_back(s.x_m);
+      continue;
+    }
+    const Tet& tet = mesh.tets[static_cast<std::size_t>(s.tet)];
+    Vec3 p = Vec3::Zero();
+    for (int i = 0; i < 4; ++i) p += s.bary[static_cast<std::size_t>(i)] *
+                                     mesh.x[static_cast<std::size_t>(tet[static_cast<std::size_t>(i)])];
+    out.push_back(p);
+  }
+  return out;
+}
+
+double ScissorsStroke::deviation(const TetMesh& mesh) const {
+  const std::vector<Vec3> p = carried(mesh);
+  const auto fit = fit_plane(p, tool_frame(m_start).pin);
+  return fit ? fit->deviation_m : 0.0;
+}
+
+StrokePolygons ScissorsStroke::polygons(const TetMesh& mesh, const ToolState& end,
+                                        double closed_rad) const {
+  StrokePolygons out;
+  const std::vector<Vec3> p = carried(mesh);
+  const auto fit = fit_plane(p, tool_frame(m_start).pin);
+  if (!fit) return out;
+  out.deviation_m = fit->deviation_m;
+  std::vector<Vec2> q;
+  q.reserve(p.size());
+  for (const Vec3& x : p) q.push_back(fit->to_plane(x));
+  if (end.jaw_rad <= closed_rad) {  // closed: the blades met, one region across both
+    std::vector<Vec2> outline;
+    for (std::size_t i : hull2d(q)) outline.push_back(q[i]);
+    if (auto poly = to_polygon(*fit, outline)) {
+      out.polygons.push_back(std::move(*poly));
+      out.blades.push_back(0);
+    }
+    return out;
+  }
+  Vec2 hinge = fit->to_plane(tool_frame(end).hinge);  // the last hinge sample, carried
+  for (std::size_t i = m_samples.size(); i-- > 0;)
+    if (m_samples[i].blade < 0) {
+      hinge = q[i];
+      break;
+    }
+  const EndAxes ax = end_axes(*fit, end, hinge);
+  for (int k = 0; k < 2; ++k)
+    if (auto poly = to_polygon(*fit, blade_outline(q, m_samples, k, ax))) {
+      out.polygons.push_back(std::move(*poly));
+      out.blades.push_back(k);
+    }
+  return out;
+}
+
+void ScissorsStroke::save(StateWriter& out) const {
+  out.tool_state(m_start);
+  out.u64(m_topology_version);
+  out.u64(m_steps);
+  out.array(m_samples);
+}
+
+ScissorsStroke ScissorsStroke::load(StateReader& in) {
+  const ToolState start = in.tool_state();
+  ScissorsStroke s(start, in.u64());
+  s.m_steps = in.u64();
+  in.array(s.m_samples);
+  return s;
+}
+
+}  // namespace serosa::cutting

@@ -1,0 +1,94 @@
+// ScissorsStroke: what a pair of scissors swept in one closing stroke, however they moved. Each
+// step the jaws close, the stroke samples the blade edges between the step's two poses (hinge and
+// both blade tips, at most kStrokeArcStep of jaw half-angle apart) and pins every sample to the
+// tissue under it: the tet that holds it (or the nearest one, extrapolated) and its barycentric
+// weights in that step's positions. When the stroke ends, the samples are carried to where that
+// tissue is now, so a stroke through tissue the grasper pulls or the FEM deforms cuts the
+// material the blades passed through, not the empty space they left behind. The stroke is cut
+// as convex polygons in the plane that fits those samples best: one across both blades when the
+// jaws closed, one per blade (up to where it stopped) when they opened again part way.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "cutting/convex_polygon.h"
+#include "cutting/planar_hull.h"
+#include "engine/tet_mesh.h"
+#include "engine/tool_state.h"
+
+namespace serosa {
+class StateWriter;
+class StateReader;
+}  // namespace serosa
+
+namespace serosa::cutting {
+class TetBvh;
+
+/// Jaw half-angle between two samples of a blade tip, rad.
+inline constexpr double kStrokeArcStep = 0.05;
+/// A sample is pinned to a tet found within this distance (m), doubled up to 16 times as far.
+/// Farther than that from every tet, it stays where it was in the world.
+inline constexpr double kStrokeTrackRadius = 3e-3;
+
+/// One sampled point of the swept surface.
+struct StrokeSample {
+  Vec3 x_m = Vec3::Zero();  ///< where it was swept, world, m
+  std::int32_t blade = -1;  ///< 0 or 1: a blade tip; -1: the hinge (both blades)
+  std::int32_t tet = -1;    ///< the tet it is pinned to, -1: none
+  std::array<double, 4> bary{0.0, 0.0, 0.0, 0.0};  ///< its weights in that tet (may be < 0 outside)
+};
+
+/// The polygons a stroke is cut with, and how far its samples lie from their plane.
+struct StrokePolygons {
+  std::vector<ConvexPolygon> polygons;
+  std::vector<std::int32_t> blades;  ///< blade of each polygon (0 for the one across both)
+  double deviation_m = 0.0;  ///< largest distance of a (carried) sample from the polygons' plane
+};
+
+class ScissorsStroke {
+ public:
+  /// A stroke that begins at `start` on a mesh of topology version `topology_version`.
+  ScissorsStroke(const ToolState& start, std::uint64_t topology_version);
+
+  /// Samples the blades closing from `before` to `now` (same stroke), pinned to `mesh` (current
+  /// positions; `bvh` refitted to them).
+  void sweep(const ToolState& before, const ToolState& now, const TetMesh& mesh, const TetBvh& bvh);
+  /// Takes back the last sweep, which found the stroke holding `size_before` samples (a sweep
+  /// that would have bent the stroke too far).
+  void undo_sweep(std::size_t size_before);
+
+  /// The samples carried to `mesh`'s current positions (world positions where the mesh changed
+  /// topology since the stroke began, or a sample is pinned to no tet).
+  [[nodiscard]] std::vector<Vec3> carried(const TetMesh& mesh) const;
+  /// Largest distance of the carried samples from their best-fit plane, m (0 with no plane yet).
+  [[nodiscard]] double deviation(const TetMesh& mesh) const;
+  /// What to cut when the stroke ends with the jaws at `end` (closed when end.jaw_rad <=
+  /// closed_rad).
+  [[nodiscard]] StrokePolygons polygons(const TetMesh& mesh, const ToolState& end,
+                                        double closed_rad) const;
+
+  [[nodiscard]] const ToolState& start() const noexcept { return m_start; }
+  [[nodiscard]] const std::vector<StrokeSample>& samples() const noexcept { return m_samples; }
+  [[nodiscard]] std::size_t size() const noexcept { return m_samples.size(); }
+  [[nodiscard]] std::uint64_t steps() const noexcept { return m_steps; }
+
+  void save(StateWriter& out) const;
+  [[nodiscard]] static ScissorsStroke load(StateReader& in);
+
+ private:
+  void add(const Vec3& x, std::int32_t blade, const TetMesh& mesh, const TetBvh& bvh);
+
+  ToolState m_start;
+  std::uint64_t m_topology_version = 0;
+  std::uint64_t m_steps = 0;  // sweeps taken
+  std::vector<StrokeSample> m_samples;
+  std::vector<std::int32_t> m_candidates;  // scratch
+};
+
+/// The pose a fraction s in [0, 1] of the way from a to b (tip and jaw linear, turn slerped).
+[[nodiscard]] ToolState interpolate(const ToolState& a, const ToolState& b, double s);
+
+}  // namespace serosa::cutting
