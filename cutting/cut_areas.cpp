@@ -25,7 +25,8 @@ Triple sorted(std::int32_t a, std::int32_t b, std::int32_t c) {
 // counter-clockwise; empty when the plane misses it.
 std::vector<Vec2> section(const ConvexPolygon& p, const std::array<Vec3, 4>& x) {
   std::array<double, 4> d{};
-  for (int i = 0; i < 4; ++i) d[static_cast<std::size_t>(i)] = p.signed_distance(x[static_cast<std::size_t>(i)]);
+  for (int i = 0; i < 4; ++i)
+    d[static_cast<std::size_t>(i)] = p.signed_distance(x[static_cast<std::size_t>(i)]);
   std::vector<Vec2> pts;
   for (int i = 0; i < 4; ++i) {
     const auto ui = static_cast<std::size_t>(i);
@@ -73,11 +74,14 @@ double crack_area(const TetMesh& after, const TopologyDelta& delta, const Convex
   for (std::int32_t slot : delta.slot_of_added) {
     const Tet& t = after.tets[static_cast<std::size_t>(slot)];
     for (const auto& f : kFaces) {
-      const std::int32_t a = t[static_cast<std::size_t>(f[0])], b = t[static_cast<std::size_t>(f[1])],
+      const std::int32_t a = t[static_cast<std::size_t>(f[0])],
+                         b = t[static_cast<std::size_t>(f[1])],
                          c = t[static_cast<std::size_t>(f[2])];
       if (!on_plane(a) || !on_plane(b) || !on_plane(c)) continue;
-      const Vec3 mid = (after.x[static_cast<std::size_t>(a)] + after.x[static_cast<std::size_t>(b)] +
-                        after.x[static_cast<std::size_t>(c)]) / 3.0;
+      const Vec3 mid =
+          (after.x[static_cast<std::size_t>(a)] + after.x[static_cast<std::size_t>(b)] +
+           after.x[static_cast<std::size_t>(c)]) /
+          3.0;
       if (!polygon.contains_projection(mid, tol_m)) continue;
       crack.push_back(sorted(a, b, c));
       touched[static_cast<std::size_t>(a)] = 1;

@@ -92,8 +92,7 @@ void CuttingStage::extend(const StepContext& ctx, SimState& state, Scissors& s,
   if (!s.paused || now.jaw_rad <= s.paused->jaw_rad) s.paused = now;
 }
 
-void CuttingStage::end_stroke(const StepContext& ctx, SimState& state, Scissors& s,
-                              ToolState end) {
+void CuttingStage::end_stroke(const StepContext& ctx, SimState& state, Scissors& s, ToolState end) {
   if (!s.stroke) return;
   const StrokePolygons cut_with_these = s.stroke->polygons(state.mesh, end, kStrokeClosedRad);
   StrokeReport report;

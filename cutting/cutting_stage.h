@@ -99,10 +99,10 @@ struct CuttingStageStats {
   std::int64_t tets_removed = 0;
   std::int64_t tets_added = 0;
   std::int64_t nodes_added = 0;
-  std::int64_t degenerate_tets = 0;   ///< emitted tets of non-positive volume (must stay 0)
-  std::uint64_t validated = 0;        ///< cuts checked (validate option)
-  std::uint64_t invalid = 0;          ///< cuts whose check failed
-  std::vector<std::string> problems;  ///< first problems found by the checks (at most 20)
+  std::int64_t degenerate_tets = 0;          ///< emitted tets of non-positive volume (must stay 0)
+  std::uint64_t validated = 0;               ///< cuts checked (validate option)
+  std::uint64_t invalid = 0;                 ///< cuts whose check failed
+  std::vector<std::string> problems;         ///< first problems found by the checks (at most 20)
   std::vector<StrokeReport> stroke_reports;  ///< the first kMaxStrokeReports strokes, in order
 };
 inline constexpr std::size_t kMaxStrokeReports = 256;
@@ -125,8 +125,8 @@ class CuttingStage final : public Stage {
 
  private:
   struct Scissors {
-    std::size_t tool = 0;             // index into Scene::tools / SimState::tools
-    std::optional<ToolState> before;  // pose consumed at the previous step
+    std::size_t tool = 0;                  // index into Scene::tools / SimState::tools
+    std::optional<ToolState> before;       // pose consumed at the previous step
     std::optional<ScissorsStroke> stroke;  // the closing stroke in progress
     std::optional<ToolState> paused;       // pose where its jaws last closed
     std::uint64_t first_step = 0;          // step of the stroke's first sweep

@@ -33,7 +33,8 @@ std::optional<PlaneFit> fit_plane(std::span<const Vec3> points, const Vec3& towa
   if (f.normal.dot(towards) < 0.0) f.normal = -f.normal;
   f.u = eig.eigenvectors().col(2).normalized();
   f.v = f.normal.cross(f.u);
-  for (const Vec3& p : points) f.deviation_m = std::max(f.deviation_m, std::abs(f.normal.dot(p - c)));
+  for (const Vec3& p : points)
+    f.deviation_m = std::max(f.deviation_m, std::abs(f.normal.dot(p - c)));
   return f;
 }
 
@@ -67,7 +68,8 @@ std::vector<Vec2> clip_halfplane(const std::vector<Vec2>& poly, const Vec2& at, 
     const Vec2& b = poly[(i + 1) % m];
     const double da = n.dot(a - at), db = n.dot(b - at);
     if (da >= 0.0) out.push_back(a);
-    if ((da > 0.0 && db < 0.0) || (da < 0.0 && db > 0.0)) out.push_back(a + (da / (da - db)) * (b - a));
+    if ((da > 0.0 && db < 0.0) || (da < 0.0 && db > 0.0))
+      out.push_back(a + (da / (da - db)) * (b - a));
   }
   return out;
 }

@@ -22,7 +22,9 @@ struct PlaneFit {
   Vec3 v = Vec3::UnitY();
   double deviation_m = 0.0;  ///< largest distance of the fitted points from the plane, m
 
-  [[nodiscard]] Vec2 to_plane(const Vec3& p) const { return {u.dot(p - centroid), v.dot(p - centroid)}; }
+  [[nodiscard]] Vec2 to_plane(const Vec3& p) const {
+    return {u.dot(p - centroid), v.dot(p - centroid)};
+  }
   [[nodiscard]] Vec3 to_world(const Vec2& q) const { return centroid + q.x() * u + q.y() * v; }
 };
 

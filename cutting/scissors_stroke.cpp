@@ -181,8 +181,9 @@ std::vector<Vec3> ScissorsStroke::carried(const TetMesh& mesh) const {
     }
     const Tet& tet = mesh.tets[static_cast<std::size_t>(s.tet)];
     Vec3 p = Vec3::Zero();
-    for (int i = 0; i < 4; ++i) p += s.bary[static_cast<std::size_t>(i)] *
-                                     mesh.x[static_cast<std::size_t>(tet[static_cast<std::size_t>(i)])];
+    for (int i = 0; i < 4; ++i)
+      p += s.bary[static_cast<std::size_t>(i)] *
+           mesh.x[static_cast<std::size_t>(tet[static_cast<std::size_t>(i)])];
     out.push_back(p);
   }
   return out;

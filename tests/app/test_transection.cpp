@@ -220,7 +220,8 @@ fs::path moving_path(const fs::path& dir, const Closing& c) {
   const auto sample = [&](double t, double s, double jaw) {
     const Eigen::Quaterniond q = Eigen::Quaterniond(Eigen::AngleAxisd(s * c.roll, forward)) * q0;
     const Vec3 hinge0 = tip0 - kJawLength * forward;
-    const Vec3 hinge = hinge0 + s * (c.drift.x() * side + c.drift.y() * forward + c.drift.z() * pin) +
+    const Vec3 hinge = hinge0 +
+                       s * (c.drift.x() * side + c.drift.y() * forward + c.drift.z() * pin) +
                        c.tremor * Vec3(u(rng), u(rng), u(rng));
     const Vec3 tip = hinge + kJawLength * (q.normalized().toRotationMatrix().col(2));
     csv << t << ",scissors," << tip.x() << "," << tip.y() << "," << tip.z() << "," << q.w() << ","

@@ -38,7 +38,8 @@ TEST(PlanarHull, FitsPlanesHullsAndClipsOverRandomClouds) {
     const Vec3 c(u(rng), u(rng), u(rng));
     const double noise = trial % 2 == 0 ? 0.0 : 1e-3;
     std::vector<Vec3> p;
-    for (int k = 0; k < 3 + trial % 40; ++k) p.push_back(c + u(rng) * a + u(rng) * b + noise * u(rng) * n);
+    for (int k = 0; k < 3 + trial % 40; ++k)
+      p.push_back(c + u(rng) * a + u(rng) * b + noise * u(rng) * n);
     const auto fit = fit_plane(p, n);
     ASSERT_TRUE(fit);
     EXPECT_GT(fit->normal.dot(n), 1.0 - 1e-3);  // turned towards n
@@ -49,7 +50,7 @@ TEST(PlanarHull, FitsPlanesHullsAndClipsOverRandomClouds) {
     for (std::size_t i : hull2d(q)) hull.push_back(q[i]);
     ASSERT_GE(hull.size(), 3u);
     const double area = signed_area(hull);
-    EXPECT_GT(area, 0.0);  // counter-clockwise
+    EXPECT_GT(area, 0.0);    // counter-clockwise
     for (const Vec2& x : q)  // every point inside or on the hull
       for (std::size_t i = 0; i < hull.size(); ++i) {
         const Vec2 e = hull[(i + 1) % hull.size()] - hull[i];
@@ -68,21 +69,21 @@ TEST(PlanarHull, FitsPlanesHullsAndClipsOverRandomClouds) {
 
 // ---- strokes over a bar -------------------------------------------------------------------
 
-constexpr double kCell = 2e-3;                              // bar cells, m
-constexpr int kNx = 8, kNy = 3, kNz = 3;                    // 16 x 6 x 6 mm, 432 tets
+constexpr double kCell = 2e-3;            // bar cells, m
+constexpr int kNx = 8, kNy = 3, kNz = 3;  // 16 x 6 x 6 mm, 432 tets
 constexpr double kLx = kNx * kCell, kLy = kNy * kCell, kLz = kNz * kCell;
-constexpr double kOpen = 1.4;                               // jaw opening at the start, rad
+constexpr double kOpen = 1.4;  // jaw opening at the start, rad
 
 // How the scissors and the tissue move during one closing stroke, s in [0, 1] its fraction.
 struct Motion {
-  double cut_x = 0.5 * kLx;       // blade plane's x at the start, m
-  Vec3 drift = Vec3::Zero();      // hinge displacement over the stroke (side, forward, pin), m
-  double roll = 0.0;              // turn about the shaft over the stroke, rad
-  double tremor = 0.0;            // random hinge jitter per step, m
-  int steps = 20;                 // steps from open to closed
+  double cut_x = 0.5 * kLx;            // blade plane's x at the start, m
+  Vec3 drift = Vec3::Zero();           // hinge displacement over the stroke (side, forward, pin), m
+  double roll = 0.0;                   // turn about the shaft over the stroke, rad
+  double tremor = 0.0;                 // random hinge jitter per step, m
+  int steps = 20;                      // steps from open to closed
   int pause_at = -1, pause_steps = 0;  // hold the jaws at step pause_at for pause_steps steps
-  double reopen_at = -1.0;        // close to this angle (rad), open by 0.2 rad, then close
-  bool end_open = false;          // with reopen_at: open wide there instead (a part-way stroke)
+  double reopen_at = -1.0;             // close to this angle (rad), open by 0.2 rad, then close
+  bool end_open = false;            // with reopen_at: open wide there instead (a part-way stroke)
   Vec3 tissue_pull = Vec3::Zero();  // tissue translation over the stroke, m
   double tissue_shear = 0.0;        // tissue y += shear (x - cut_x) over the stroke
 };
@@ -131,10 +132,10 @@ ToolState pose(const Motion& m, double s, double jaw, const Vec3& jitter) {
   const Vec3 pin = roll * Vec3::UnitX(), side = roll * Vec3::UnitZ();
   Mat3 r;
   r << side, pin, forward;
-  const Vec3 hinge = Vec3(m.cut_x, -5e-3, 0.5 * kLz) + s * (m.drift.x() * Vec3::UnitZ() +
-                                                            m.drift.y() * forward +
-                                                            m.drift.z() * Vec3::UnitX()) +
-                     jitter;
+  const Vec3 hinge =
+      Vec3(m.cut_x, -5e-3, 0.5 * kLz) +
+      s * (m.drift.x() * Vec3::UnitZ() + m.drift.y() * forward + m.drift.z() * Vec3::UnitX()) +
+      jitter;
   const Vec3 tip = hinge + kJawLength * forward;
   const Eigen::Quaterniond q(r);
   ToolState t;
@@ -233,8 +234,8 @@ StrokeOutcome run_stroke(const TetMesh& bar, const Motion& m, std::mt19937& rng)
       for (int f = 0; f <= 8; ++f) {
         const ToolState p = interpolate(previous, now, f / 8.0);
         const ToolFrame fr = tool_frame(p);
-        const double sf = (static_cast<double>(k) - 1.0 + f / 8.0) /
-                          static_cast<double>(jaw.size() - 1);
+        const double sf =
+            (static_cast<double>(k) - 1.0 + f / 8.0) / static_cast<double>(jaw.size() - 1);
         rest_edges.push_back({unplace(m, sf, fr.hinge), unplace(m, sf, jaw_tip(fr, p.jaw_rad, 0)),
                               unplace(m, sf, jaw_tip(fr, p.jaw_rad, 1))});
       }
