@@ -292,5 +292,51 @@ TEST(Transection, MovingScissorsCutTheAppendixInOneStroke) {
   }
 }
 
+// The default procedure with the grasper, which holds the appendix from 1.8 s, pulling it 3 mm
+// while the scissors close (3.0-3.3 s): the tissue moves under the blades, and the stroke, pinned
+// to the tissue it swept, still separates it along one crack.
+TEST(Transection, AGrasperPullingWhileTheScissorsCloseStillTransects) {
+  const fs::path dir = out_dir("transection_pull");
+  std::ifstream in(source("config/paths/appendectomy.csv"));
+  std::ostringstream csv;
+  const std::string held = "0.07909,-0.05534,-0.00153,0.221251,0.886205,0.311960,0.261474,0.00";
+  const std::string pulled = "0.08209,-0.05534,-0.00153,0.221251,0.886205,0.311960,0.261474,0.00";
+  int replaced = 0;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("3.500,grasper,", 0) == 0) {
+      line = "3.500,grasper," + pulled;
+      ++replaced;
+    }
+    csv << line << "\n";
+    if (line.rfind("3.000,scissors,", 0) == 0) {
+      csv << "3.000,grasper," << held << "\n3.300,grasper," << pulled << "\n";
+      ++replaced;
+    }
+  }
+  ASSERT_EQ(replaced, 2) << "the default path changed: update this test";
+  const fs::path path = dir / "pull.csv";
+  { std::ofstream(path) << csv.str(); }
+  HeadlessOptions o;
+  o.scene = source("config/appendectomy.toml");
+  o.tool_path = path;
+  o.steps = 680;
+  o.validate_cuts = true;
+  o.export_final = dir / "final.msh";
+  o.progress = false;
+  const auto report = run_headless(o);
+  const auto& cut = report["cutting"];
+  EXPECT_EQ(cut["strokes"].get<int>(), 1);
+  EXPECT_EQ(cut["invalid"].get<int>(), 0) << cut["problems"].dump(1);
+  const auto& stroke = cut["per_stroke"].back();
+  EXPECT_GT(stroke["deviation_m"].get<double>(), 0.3e-3);  // the tissue moved under the blades
+  EXPECT_EQ(stroke["pinned"].get<int>(), 0);
+  EXPECT_GE(report["mesh_final"]["min_quality"].get<double>(), 1e-3);
+  EXPECT_LE(report["mesh_final"]["tets"].get<double>(),
+            1.5 * report["mesh_initial"]["tets"].get<double>());
+  const TetMesh after = read_mesh(dir / "final.msh");
+  EXPECT_EQ(cutting::count_components(group_only(after, 1)), 2);
+  EXPECT_TRUE(check_mesh(after).valid);
+}
+
 }  // namespace
 }  // namespace serosa::app
