@@ -1,5 +1,7 @@
 #include "cutting/progressive_cut.h"
 
+#include "cutting/planar_hull.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -13,16 +15,6 @@ using V2 = Eigen::Vector2d;
 
 double cross2(const V2& o, const V2& a, const V2& b) {
   return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
-}
-
-double area2d(const std::vector<V2>& p) {
-  double a = 0.0;
-  for (std::size_t k = 0; k < p.size(); ++k) {
-    const V2& u = p[k];
-    const V2& w = p[(k + 1) % p.size()];
-    a += u.x() * w.y() - u.y() * w.x();
-  }
-  return 0.5 * a;
 }
 
 // Convex polygon `subject` clipped by the counter-clockwise convex polygon `clip` (Sutherland-
@@ -58,9 +50,9 @@ std::optional<ConvexPolygon> convex_union(const ConvexPolygon& a, const ConvexPo
   for (const Vec3& p : a.points()) pa.push_back(a.to_plane(p));
   for (const Vec3& p : b.points()) pb.push_back(a.to_plane(p));
   // (a's own outline is counter-clockwise in its own frame; b's may turn the other way.)
-  if (area2d(pb) < 0.0) std::reverse(pb.begin(), pb.end());
-  const double overlap = std::abs(area2d(clip_convex(pb, pa)));
-  const double union_area = std::abs(area2d(pa)) + std::abs(area2d(pb)) - overlap;
+  if (signed_area(pb) < 0.0) std::reverse(pb.begin(), pb.end());
+  const double overlap = std::abs(signed_area(clip_convex(pb, pa)));
+  const double union_area = std::abs(signed_area(pa)) + std::abs(signed_area(pb)) - overlap;
   // The hull of every corner (Andrew's monotone chain; points closer than 1e-12 of the size
   // merged, collinear points dropped), keeping each hull point's world position.
   struct P {
@@ -98,7 +90,7 @@ std::optional<ConvexPolygon> convex_union(const ConvexPolygon& a, const ConvexPo
     h2.push_back(p.q);
     corners.push_back(p.x);
   }
-  const double hull_area = area2d(h2);
+  const double hull_area = signed_area(h2);
   if (!(hull_area - union_area <= area_rel * hull_area)) return std::nullopt;
   // Counter-clockwise about a's normal: the union keeps a's orientation (its positive side).
   return ConvexPolygon::make(std::move(corners));

@@ -34,6 +34,25 @@ TetMesh group_only(const TetMesh& m, std::uint16_t group) {
   return g;
 }
 
+// The run cut the appendix in two in one stroke, with the cut invariants and the volume kept, no
+// tet below quality 1e-3 and at most `growth` times the tets it began with.
+void expect_transected_in_one_stroke(const nlohmann::json& report, const fs::path& final_mesh,
+                                     double growth) {
+  const auto& cut = report["cutting"];
+  EXPECT_EQ(cut["strokes"].get<int>(), 1);
+  EXPECT_EQ(cut["invalid"].get<int>(), 0) << cut["problems"].dump(1);
+  EXPECT_EQ(cut["per_stroke"].back()["pinned"].get<int>(), 0);
+  EXPECT_NEAR(report["mesh_final"]["rest_volume_m3"].get<double>(),
+              report["mesh_initial"]["rest_volume_m3"].get<double>(),
+              1e-9 * report["mesh_initial"]["rest_volume_m3"].get<double>());
+  EXPECT_GE(report["mesh_final"]["min_quality"].get<double>(), 1e-3);
+  EXPECT_LE(report["mesh_final"]["tets"].get<double>(),
+            growth * report["mesh_initial"]["tets"].get<double>());
+  const TetMesh after = read_mesh(final_mesh);
+  EXPECT_EQ(cutting::count_components(group_only(after, 1)), 2);
+  EXPECT_TRUE(check_mesh(after).valid);
+}
+
 TEST(Transection, ScissorsCutTheAppendixInTwo) {
   const fs::path dir = out_dir("transection");
   HeadlessOptions o;
@@ -177,19 +196,8 @@ TEST(Transection, PausesWhileClosingCutTheAppendixInOneStroke) {
     o.export_final = dir / ("final" + std::to_string(k) + ".msh");
     o.progress = false;
     const auto report = run_headless(o);
-    const auto& cut = report["cutting"];
-    EXPECT_EQ(cut["strokes"].get<int>(), 1);
-    EXPECT_EQ(cut["cuts"].get<int>(), 1);
-    EXPECT_EQ(cut["invalid"].get<int>(), 0) << cut["problems"].dump(1);
-    EXPECT_NEAR(report["mesh_final"]["rest_volume_m3"].get<double>(),
-                report["mesh_initial"]["rest_volume_m3"].get<double>(),
-                1e-9 * report["mesh_initial"]["rest_volume_m3"].get<double>());
-    EXPECT_GE(report["mesh_final"]["min_quality"].get<double>(), 1e-3);
-    EXPECT_LE(report["mesh_final"]["tets"].get<double>(),
-              1.1 * report["mesh_initial"]["tets"].get<double>());
-    const TetMesh after = read_mesh(dir / ("final" + std::to_string(k) + ".msh"));
-    EXPECT_EQ(cutting::count_components(group_only(after, 1)), 2);
-    EXPECT_TRUE(check_mesh(after).valid);
+    EXPECT_EQ(report["cutting"]["cuts"].get<int>(), 1);
+    expect_transected_in_one_stroke(report, dir / ("final" + std::to_string(k) + ".msh"), 1.1);
   }
 }
 
@@ -274,21 +282,9 @@ TEST(Transection, MovingScissorsCutTheAppendixInOneStroke) {
     o.export_final = dir / (c.name + ".msh");
     o.progress = false;
     const auto report = run_headless(o);
-    const auto& cut = report["cutting"];
-    EXPECT_EQ(cut["strokes"].get<int>(), 1);
-    EXPECT_EQ(cut["invalid"].get<int>(), 0) << cut["problems"].dump(1);
-    EXPECT_NEAR(report["mesh_final"]["rest_volume_m3"].get<double>(),
-                report["mesh_initial"]["rest_volume_m3"].get<double>(),
-                1e-9 * report["mesh_initial"]["rest_volume_m3"].get<double>());
-    EXPECT_GE(report["mesh_final"]["min_quality"].get<double>(), 1e-3);
-    EXPECT_LE(report["mesh_final"]["tets"].get<double>(),
-              1.5 * report["mesh_initial"]["tets"].get<double>());
-    const auto& last = cut["per_stroke"].back();
-    EXPECT_EQ(last["pinned"].get<int>(), 0);
+    const auto& last = report["cutting"]["per_stroke"].back();
     EXPECT_GT(last["crack_area_m2"].get<double>(), 0.9 * last["swept_area_m2"].get<double>());
-    const TetMesh after = read_mesh(dir / (c.name + ".msh"));
-    EXPECT_EQ(cutting::count_components(group_only(after, 1)), 2);
-    EXPECT_TRUE(check_mesh(after).valid);
+    expect_transected_in_one_stroke(report, dir / (c.name + ".msh"), 1.5);
   }
 }
 
@@ -324,18 +320,9 @@ TEST(Transection, AGrasperPullingWhileTheScissorsCloseStillTransects) {
   o.export_final = dir / "final.msh";
   o.progress = false;
   const auto report = run_headless(o);
-  const auto& cut = report["cutting"];
-  EXPECT_EQ(cut["strokes"].get<int>(), 1);
-  EXPECT_EQ(cut["invalid"].get<int>(), 0) << cut["problems"].dump(1);
-  const auto& stroke = cut["per_stroke"].back();
-  EXPECT_GT(stroke["deviation_m"].get<double>(), 0.3e-3);  // the tissue moved under the blades
-  EXPECT_EQ(stroke["pinned"].get<int>(), 0);
-  EXPECT_GE(report["mesh_final"]["min_quality"].get<double>(), 1e-3);
-  EXPECT_LE(report["mesh_final"]["tets"].get<double>(),
-            1.5 * report["mesh_initial"]["tets"].get<double>());
-  const TetMesh after = read_mesh(dir / "final.msh");
-  EXPECT_EQ(cutting::count_components(group_only(after, 1)), 2);
-  EXPECT_TRUE(check_mesh(after).valid);
+  // The tissue moved under the blades: the swept samples, carried with it, bend off one plane.
+  EXPECT_GT(report["cutting"]["per_stroke"].back()["deviation_m"].get<double>(), 0.3e-3);
+  expect_transected_in_one_stroke(report, dir / "final.msh", 1.5);
 }
 
 }  // namespace
