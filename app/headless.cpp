@@ -261,7 +261,15 @@ Json run_headless(const HeadlessOptions& options) {
   report["real_time_factor"] = stepped_s > 0.0 ? state.time_s / stepped_s : 0.0;
   report["mesh_final"] = mesh_json(state.mesh);
   report["state_hash"] = hash_hex(state_hash(state));
-  if (comp.cutting) report["cutting"] = cutting_json(comp);
+  if (comp.cutting) {
+    report["cutting"] = cutting_json(comp);
+    // The step a stroke was cut in, and the next (whose FEM takes the new tets), against dt.
+    for (Json& stroke : report["cutting"]["per_stroke"]) {
+      const auto at = stroke["last_step"].get<std::size_t>();
+      if (at < step_ms.size()) stroke["step_ms"] = step_ms[at];
+      if (at + 1 < step_ms.size()) stroke["next_step_ms"] = step_ms[at + 1];
+    }
+  }
   if (comp.metrics) report["metrics"] = comp.metrics->report();
   if (comp.contact) {
     const auto held = comp.contact->grasped_counts();
