@@ -263,12 +263,17 @@ Json run_headless(const HeadlessOptions& options) {
   report["state_hash"] = hash_hex(state_hash(state));
   if (comp.cutting) {
     report["cutting"] = cutting_json(comp);
-    // The step a stroke was cut in, and the next (whose FEM takes the new tets), against dt.
-    for (Json& stroke : report["cutting"]["per_stroke"]) {
-      const auto at = stroke["last_step"].get<std::size_t>();
-      if (at < step_ms.size()) stroke["step_ms"] = step_ms[at];
-      if (at + 1 < step_ms.size()) stroke["next_step_ms"] = step_ms[at + 1];
+    // The step each stroke was cut in, and the next (whose FEM takes the new tets), against dt;
+    // kept out of "cutting", which a replay reproduces exactly.
+    Json cut_steps = Json::array();
+    for (const cutting::StrokeReport& r : comp.cutting->stats().stroke_reports) {
+      const auto at = static_cast<std::size_t>(r.last_step);
+      if (at >= step_ms.size()) continue;
+      cut_steps.push_back({{"step", r.last_step},
+                           {"ms", step_ms[at]},
+                           {"next_ms", at + 1 < step_ms.size() ? step_ms[at + 1] : 0.0}});
     }
+    report["cut_steps"] = std::move(cut_steps);
   }
   if (comp.metrics) report["metrics"] = comp.metrics->report();
   if (comp.contact) {
