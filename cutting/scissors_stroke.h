@@ -6,7 +6,7 @@
 // tissue is now, so a stroke through tissue the grasper pulls or the FEM deforms cuts the
 // material the blades passed through, not the empty space they left behind. The stroke is cut
 // as convex polygons in the plane that fits those samples best: one across both blades when the
-// jaws closed, one per blade (up to where it stopped) when they opened again part way.
+// jaws closed, one per blade (up to where it stopped) when the stroke ended part way.
 #pragma once
 
 #include <array>
