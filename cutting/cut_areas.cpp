@@ -54,11 +54,7 @@ double swept_area(const TetMesh& mesh, std::span<const std::int32_t> tets,
     const Tet& tet = mesh.tets[static_cast<std::size_t>(t)];
     std::array<Vec3, 4> x;
     for (std::size_t i = 0; i < 4; ++i) x[i] = mesh.x[static_cast<std::size_t>(tet[i])];
-    std::vector<Vec2> s = section(polygon, x);
-    for (std::size_t i = 0; i < outline.size() && s.size() >= 3; ++i) {
-      const Vec2 e = outline[(i + 1) % outline.size()] - outline[i];
-      s = clip_halfplane(s, outline[i], Vec2(-e.y(), e.x()));
-    }
+    const std::vector<Vec2> s = clip_convex(section(polygon, x), outline);
     if (s.size() >= 3) area += std::abs(signed_area(s));
   }
   return area;

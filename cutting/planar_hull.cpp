@@ -74,6 +74,14 @@ std::vector<Vec2> clip_halfplane(const std::vector<Vec2>& poly, const Vec2& at, 
   return out;
 }
 
+std::vector<Vec2> clip_convex(std::vector<Vec2> subject, const std::vector<Vec2>& clip) {
+  for (std::size_t i = 0; i < clip.size() && subject.size() >= 3; ++i) {
+    const Vec2 e = clip[(i + 1) % clip.size()] - clip[i];
+    subject = clip_halfplane(subject, clip[i], Vec2(-e.y(), e.x()));
+  }
+  return subject;
+}
+
 double signed_area(const std::vector<Vec2>& poly) {
   double a = 0.0;
   for (std::size_t i = 0; i < poly.size(); ++i) {

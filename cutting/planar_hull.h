@@ -44,6 +44,11 @@ struct PlaneFit {
 [[nodiscard]] std::vector<Vec2> clip_halfplane(const std::vector<Vec2>& poly, const Vec2& at,
                                                const Vec2& n);
 
+/// The convex outline `subject` cut to the counter-clockwise convex outline `clip`: their
+/// intersection (Sutherland-Hodgman).
+[[nodiscard]] std::vector<Vec2> clip_convex(std::vector<Vec2> subject,
+                                            const std::vector<Vec2>& clip);
+
 /// Area of a simple outline (m^2; positive counter-clockwise).
 [[nodiscard]] double signed_area(const std::vector<Vec2>& poly);
 

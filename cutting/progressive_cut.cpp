@@ -17,25 +17,6 @@ double cross2(const V2& o, const V2& a, const V2& b) {
   return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
 }
 
-// Convex polygon `subject` clipped by the counter-clockwise convex polygon `clip` (Sutherland-
-// Hodgman; both convex, so the result is their intersection).
-std::vector<V2> clip_convex(std::vector<V2> subject, const std::vector<V2>& clip) {
-  for (std::size_t k = 0; k < clip.size() && !subject.empty(); ++k) {
-    const V2& a = clip[k];
-    const V2& b = clip[(k + 1) % clip.size()];
-    std::vector<V2> out;
-    for (std::size_t i = 0; i < subject.size(); ++i) {
-      const V2& p = subject[i];
-      const V2& q = subject[(i + 1) % subject.size()];
-      const double sp = cross2(a, b, p), sq = cross2(a, b, q);
-      if (sp >= 0.0) out.push_back(p);
-      if ((sp >= 0.0) != (sq >= 0.0)) out.push_back(p + (sp / (sp - sq)) * (q - p));
-    }
-    subject = std::move(out);
-  }
-  return subject;
-}
-
 }  // namespace
 
 std::optional<ConvexPolygon> convex_union(const ConvexPolygon& a, const ConvexPolygon& b,

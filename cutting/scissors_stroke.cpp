@@ -170,10 +170,9 @@ void ScissorsStroke::undo_sweep(std::size_t size_before) {
   if (m_steps > 0) --m_steps;
 }
 
-std::vector<Vec3> ScissorsStroke::carried(const TetMesh& mesh) const {
+void ScissorsStroke::carried(const TetMesh& mesh, std::vector<Vec3>& out) const {
   const bool same_tets = mesh.topology_version == m_topology_version;
-  std::vector<Vec3> out;
-  out.reserve(m_samples.size());
+  out.clear();
   for (const StrokeSample& s : m_samples) {
     if (!same_tets || s.tet < 0 || s.tet >= mesh.num_tets()) {
       out.push_back(s.x_m);
@@ -186,19 +185,19 @@ std::vector<Vec3> ScissorsStroke::carried(const TetMesh& mesh) const {
            mesh.x[static_cast<std::size_t>(tet[static_cast<std::size_t>(i)])];
     out.push_back(p);
   }
-  return out;
 }
 
-double ScissorsStroke::deviation(const TetMesh& mesh) const {
-  const std::vector<Vec3> p = carried(mesh);
-  const auto fit = fit_plane(p, tool_frame(m_start).pin);
+double ScissorsStroke::deviation(const TetMesh& mesh) {
+  carried(mesh, m_carried);  // kept: checked every closing step, in the solver's step
+  const auto fit = fit_plane(m_carried, tool_frame(m_start).pin);
   return fit ? fit->deviation_m : 0.0;
 }
 
 StrokePolygons ScissorsStroke::polygons(const TetMesh& mesh, const ToolState& end,
                                         double closed_rad) const {
   StrokePolygons out;
-  const std::vector<Vec3> p = carried(mesh);
+  std::vector<Vec3> p;
+  carried(mesh, p);
   const auto fit = fit_plane(p, tool_frame(m_start).pin);
   if (!fit) return out;
   out.deviation_m = fit->deviation_m;

@@ -62,9 +62,9 @@ class ScissorsStroke {
 
   /// The samples carried to `mesh`'s current positions (world positions where the mesh changed
   /// topology since the stroke began, or a sample is pinned to no tet).
-  [[nodiscard]] std::vector<Vec3> carried(const TetMesh& mesh) const;
+  void carried(const TetMesh& mesh, std::vector<Vec3>& out) const;
   /// Largest distance of the carried samples from their best-fit plane, m (0 with no plane yet).
-  [[nodiscard]] double deviation(const TetMesh& mesh) const;
+  [[nodiscard]] double deviation(const TetMesh& mesh);
   /// What to cut when the stroke ends with the jaws at `end` (closed when end.jaw_rad <=
   /// closed_rad).
   [[nodiscard]] StrokePolygons polygons(const TetMesh& mesh, const ToolState& end,
@@ -86,6 +86,7 @@ class ScissorsStroke {
   std::uint64_t m_steps = 0;  // sweeps taken
   std::vector<StrokeSample> m_samples;
   std::vector<std::int32_t> m_candidates;  // scratch
+  std::vector<Vec3> m_carried;             // scratch of deviation()
 };
 
 /// The pose a fraction s in [0, 1] of the way from a to b (tip and jaw linear, turn slerped).
