@@ -7,21 +7,26 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include "support/test_paths.h"
 
 namespace serosa::app::testing {
 
 namespace fs = std::filesystem;
 
 inline fs::path out_dir(const std::string& name) {
-  const fs::path d = fs::path(SEROSA_BINARY_DIR) / "test-output" / "app" / name;
+  const fs::path d = fs::path(::serosa::test_paths::binary_dir()) / "test-output" / "app" / name;
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
 }
 
-inline fs::path source(const std::string& rel) { return fs::path(SEROSA_SOURCE_DIR) / rel; }
+inline fs::path source(const std::string& rel) {
+  return fs::path(::serosa::test_paths::source_dir()) / rel;
+}
 
-inline fs::path serosa_exe() { return fs::path(SEROSA_BINARY_DIR) / "app" / "serosa"; }
+inline fs::path serosa_exe() {
+  return fs::path(::serosa::test_paths::binary_dir()) / "app" / "serosa";
+}
 
 struct CliResult {
   int code = -1;

@@ -1,6 +1,6 @@
 // `serosa check` and `serosa surface` end to end: run the built executable on small meshes written
 // with write_gmsh22 into a temporary folder, and check exit codes, JSON and the OBJ it writes.
-// Needs the `serosa` executable built (SEROSA_BINARY_DIR/app/serosa).
+// Needs the `serosa` executable built (::serosa::test_paths::binary_dir()/app/serosa).
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -18,6 +18,7 @@
 #include "engine/boundary.h"
 #include "engine/box_meshes.h"
 #include "engine/mesh_io.h"
+#include "support/test_paths.h"
 
 namespace serosa {
 namespace {
@@ -76,7 +77,7 @@ class CliCheck : public ::testing::Test {
     return p;
   }
 
-  fs::path m_exe = fs::path(SEROSA_BINARY_DIR) / "app" / "serosa";
+  fs::path m_exe = fs::path(::serosa::test_paths::binary_dir()) / "app" / "serosa";
   fs::path m_dir;
 };
 

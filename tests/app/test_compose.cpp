@@ -9,16 +9,18 @@
 #include "engine/mesh_io.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"
+#include "support/test_paths.h"
 
 namespace serosa::app {
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kBeam = fs::path(SEROSA_SOURCE_DIR) / "assets" / "beam_xcoarse.msh";
+const fs::path kBeam = fs::path(::serosa::test_paths::source_dir()) / "assets" / "beam_xcoarse.msh";
 
 Scene scene_with(const std::string& effects, const std::string& extra = {}) {
-  const fs::path scene_path = fs::path(SEROSA_SOURCE_DIR) / "assets" / "test_scene.toml";
+  const fs::path scene_path =
+      fs::path(::serosa::test_paths::source_dir()) / "assets" / "test_scene.toml";
   const std::string toml = "[scene]\ndt = 0.01\neffects = [" + effects +
                            "]\n[[organ]]\nname = \"beam\"\nmesh = \"beam_xcoarse.msh\"\n"
                            "fixed = { box = [[-0.001, -1, -1], [0.001, 1, 1]] }\n" +

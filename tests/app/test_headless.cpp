@@ -11,6 +11,7 @@
 #include "engine/input_error.h"
 #include "engine/mesh_io.h"
 #include "engine/sim_state.h"
+#include "support/test_paths.h"
 
 namespace serosa::app {
 namespace {
@@ -18,7 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path out_dir(const std::string& name) {
-  const fs::path d = fs::path(SEROSA_BINARY_DIR) / "test-output" / "app" / name;
+  const fs::path d = fs::path(::serosa::test_paths::binary_dir()) / "test-output" / "app" / name;
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
@@ -27,7 +28,7 @@ fs::path out_dir(const std::string& name) {
 TEST(Headless, BeamSceneRunsAndReportsWhatItSimulated) {
   const fs::path dir = out_dir("beam");
   HeadlessOptions o;
-  o.scene = fs::path(SEROSA_SOURCE_DIR) / "config" / "beam.toml";
+  o.scene = fs::path(::serosa::test_paths::source_dir()) / "config" / "beam.toml";
   o.steps = 20;
   o.report = dir / "report.json";
   o.export_final = dir / "final.msh";
@@ -47,7 +48,7 @@ TEST(Headless, BeamSceneRunsAndReportsWhatItSimulated) {
 
 TEST(Headless, SameInputsGiveTheSameStateHash) {
   HeadlessOptions o;
-  o.scene = fs::path(SEROSA_SOURCE_DIR) / "config" / "beam.toml";
+  o.scene = fs::path(::serosa::test_paths::source_dir()) / "config" / "beam.toml";
   o.steps = 10;
   o.progress = false;
   EXPECT_EQ(run_headless(o)["state_hash"], run_headless(o)["state_hash"]);
@@ -56,7 +57,7 @@ TEST(Headless, SameInputsGiveTheSameStateHash) {
 TEST(Headless, AppendectomyWritesPictures) {
   const fs::path dir = out_dir("appendectomy");
   HeadlessOptions o;
-  o.scene = fs::path(SEROSA_SOURCE_DIR) / "config" / "appendectomy.toml";
+  o.scene = fs::path(::serosa::test_paths::source_dir()) / "config" / "appendectomy.toml";
   o.steps = 4;
   o.frames = dir / "frames";
   o.frame_count = 2;
@@ -71,8 +72,9 @@ TEST(Headless, AppendectomyWritesPictures) {
 TEST(Headless, ReportHasEveryFieldWithPlausibleValues) {
   const fs::path dir = out_dir("report_fields");
   HeadlessOptions o;
-  o.scene = fs::path(SEROSA_SOURCE_DIR) / "config" / "appendectomy.toml";
-  o.tool_path = fs::path(SEROSA_SOURCE_DIR) / "config" / "paths" / "appendix_transection.csv";
+  o.scene = fs::path(::serosa::test_paths::source_dir()) / "config" / "appendectomy.toml";
+  o.tool_path = fs::path(::serosa::test_paths::source_dir()) / "config" / "paths" /
+                "appendix_transection.csv";
   o.steps = 26;  // the stroke closes at step 23
   o.frames = dir / "frames";
   o.frame_count = 2;
@@ -124,7 +126,7 @@ TEST(Headless, DefaultSceneRunsWithoutAWarning) {
   sink->set_level(spdlog::level::warn);
   spdlog::default_logger()->sinks().push_back(sink);
   HeadlessOptions o;
-  o.scene = fs::path(SEROSA_SOURCE_DIR) / "config" / "appendectomy.toml";
+  o.scene = fs::path(::serosa::test_paths::source_dir()) / "config" / "appendectomy.toml";
   o.steps = 5;
   o.progress = false;
   const auto r = run_headless(o);

@@ -32,6 +32,7 @@
 #include "engine/topology_delta.h"
 #include "render/image.h"
 #include "render/png_writer.h"
+#include "support/test_paths.h"
 
 namespace serosa::app {
 namespace {
@@ -40,13 +41,15 @@ namespace fs = std::filesystem;
 using View = FramePictures::View;
 
 fs::path render_out(const std::string& name) {
-  const fs::path d = fs::path(SEROSA_BINARY_DIR) / "test-output" / "render" / name;
+  const fs::path d = fs::path(::serosa::test_paths::binary_dir()) / "test-output" / "render" / name;
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
 }
 
-fs::path source(const std::string& rel) { return fs::path(SEROSA_SOURCE_DIR) / rel; }
+fs::path source(const std::string& rel) {
+  return fs::path(::serosa::test_paths::source_dir()) / rel;
+}
 
 // The wound's look (render/materials.cpp: {0.45, 0.04, 0.06}; lit, with its wet highlight adding
 // some white): green and blue below 0.45 of red. The tissues in these scenes keep green and blue

@@ -16,6 +16,7 @@
 #include "app/replay_controller.h"
 #include "app_test_util.h"
 #include "engine/input_error.h"
+#include "support/test_paths.h"
 
 namespace serosa::app {
 namespace {
@@ -235,7 +236,8 @@ TEST(ReplayController, BranchRecordsAFileThatReplaysVerified) {
 // `serosa replay REC.lapr` (no --headless) opens a window on a virtual X display, plays and
 // closes by itself, leaving its last picture (scene, tools, overlay timeline) as a PNG.
 TEST(ReplayWindow, PlaysInAWindowUnderXvfb) {
-  const fs::path png = fs::path(SEROSA_BINARY_DIR) / "test-output" / "render" / "replay_window.png";
+  const fs::path png =
+      fs::path(::serosa::test_paths::binary_dir()) / "test-output" / "render" / "replay_window.png";
   fs::remove(png);
   const std::string cmd = "xvfb-run -a -s '-screen 0 1280x720x24' '" + serosa_exe().string() +
                           "' replay '" + recording().string() + "' --seconds 2 --speed 0.5 " +

@@ -12,6 +12,7 @@
 
 #include "engine/input_error.h"
 #include "engine/mesh_io.h"
+#include "support/test_paths.h"
 #include "test_mesh_io_util.h"
 
 namespace serosa {
@@ -112,7 +113,7 @@ const std::map<std::string, Expect>& expectations() {
   return table;
 }
 
-fs::path broken_dir() { return fs::path(SEROSA_TEST_DATA) / "broken"; }
+fs::path broken_dir() { return fs::path(::serosa::test_paths::test_data()) / "broken"; }
 
 std::vector<fs::path> corpus() {
   std::vector<fs::path> files;

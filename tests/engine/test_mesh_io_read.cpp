@@ -9,6 +9,7 @@
 
 #include "engine/input_error.h"
 #include "engine/mesh_io.h"
+#include "support/test_paths.h"
 #include "test_mesh_io_util.h"
 
 namespace serosa {
@@ -16,7 +17,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path sample(const std::string& name) { return fs::path(SEROSA_TEST_DATA) / "meshes" / name; }
+fs::path sample(const std::string& name) {
+  return fs::path(::serosa::test_paths::test_data()) / "meshes" / name;
+}
 
 // Total and per-group volume of a mesh, m^3.
 std::map<int, double> group_volumes(const TetMesh& m) {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "engine/mesh_io.h"
+#include "support/test_paths.h"
 #include "test_mesh_io_util.h"
 
 namespace serosa {
@@ -203,7 +204,8 @@ TEST(MeshIoWrite, VtuIsWellFormedWithRightCountsAndValues) {
 
 TEST(MeshIoWrite, VtuOfTheSampleMesh) {
   test::ScratchDir dir;
-  const TetMesh m = read_mesh(std::filesystem::path(SEROSA_TEST_DATA) / "meshes" / "box22.msh");
+  const TetMesh m =
+      read_mesh(std::filesystem::path(::serosa::test_paths::test_data()) / "meshes" / "box22.msh");
   write_vtu(dir / "box.vtu", m);
   check_vtu(m, test::slurp(dir / "box.vtu"));
 }

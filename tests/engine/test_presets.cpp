@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 #include <vector>
+#include "support/test_paths.h"
 
 namespace serosa {
 namespace {
@@ -39,7 +40,7 @@ std::vector<std::vector<std::string>> read_csv(const std::string& path) {
 }
 
 std::string plots(const char* name) {
-  return std::string(SEROSA_SOURCE_DIR) + "/docs/plots/" + name;
+  return std::string(::serosa::test_paths::source_dir()) + "/docs/plots/" + name;
 }
 
 // One `serosa bench` CSV as maps column name -> cell, one per row.

@@ -12,6 +12,7 @@
 
 #include "engine/input_error.h"
 #include "engine/presets.h"
+#include "support/test_paths.h"
 
 namespace serosa {
 namespace {
@@ -641,7 +642,7 @@ TEST_F(SceneTest, BadScriptReportsTheCsvLine) {
 // Bundled scenes
 
 void expect_bundled_scene_loads(const std::string& scene, const std::string& asset) {
-  const fs::path root = SEROSA_SOURCE_DIR;
+  const fs::path root = ::serosa::test_paths::source_dir();
   if (!fs::exists(root / asset)) {
     GTEST_SKIP() << asset << " has not been generated yet (tools/ writes it); " << scene
                  << " cannot be checked without it";
@@ -654,7 +655,8 @@ void expect_bundled_scene_loads(const std::string& scene, const std::string& ass
 TEST(BundledScenes, AppendectomyLoads) {
   expect_bundled_scene_loads("config/appendectomy.toml", "assets/appendectomy_coarse.msh");
   if (IsSkipped()) return;
-  const Scene s = load_scene(fs::path(SEROSA_SOURCE_DIR) / "config/appendectomy.toml");
+  const Scene s =
+      load_scene(fs::path(::serosa::test_paths::source_dir()) / "config/appendectomy.toml");
   // No "gravity": the scene does not simulate what holds the organs up (see its header).
   EXPECT_FALSE(s.settings.has(Effect::kGravity));
   for (const Effect e : {Effect::kFem, Effect::kCutting, Effect::kSurface, Effect::kContact,
@@ -670,7 +672,7 @@ TEST(BundledScenes, AppendectomyLoads) {
 TEST(BundledScenes, BeamLoads) {
   expect_bundled_scene_loads("config/beam.toml", "assets/beam_coarse.msh");
   if (IsSkipped()) return;
-  const Scene s = load_scene(fs::path(SEROSA_SOURCE_DIR) / "config/beam.toml");
+  const Scene s = load_scene(fs::path(::serosa::test_paths::source_dir()) / "config/beam.toml");
   EXPECT_EQ(s.settings.effects, (std::set<Effect>{Effect::kFem, Effect::kGravity}));
   ASSERT_TRUE(s.organs[0].fixed.box.has_value());
 }

@@ -14,6 +14,7 @@
 
 #include "engine/mesh_io.h"
 #include "fem_fixtures.h"
+#include "support/test_paths.h"
 
 namespace serosa::fem {
 namespace {
@@ -260,7 +261,7 @@ TEST(Cantilever, BundledBeamsConvergeTowardsEulerBernoulli) {
   const double w_eb = q * std::pow(length, 4) / (8.0 * 5e6 * std::pow(thick, 4) / 12.0);
   double prev_err = 1.0;
   for (const char* name : {"beam_xcoarse.msh", "beam_coarse.msh", "beam_fine.msh"}) {
-    TetMesh m = read_mesh(std::string(SEROSA_SOURCE_DIR) + "/assets/" + name);
+    TetMesh m = read_mesh(std::string(::serosa::test_paths::source_dir()) + "/assets/" + name);
     m.fill_node_state();
     for (std::size_t i = 0; i < m.rest.size(); ++i) m.fixed[i] = m.rest[i].x() < 1e-9 ? 1 : 0;
     ImplicitIntegrator integ(cfg);

@@ -9,6 +9,7 @@
 #include "haptics/mouse_device.h"
 #include "haptics/replay_device.h"
 #include "haptics/script_device.h"
+#include "support/test_paths.h"
 
 namespace serosa::haptics {
 namespace {
@@ -42,7 +43,8 @@ TEST(ScriptDevice, FollowsThePathInRealTime) {
 }
 
 TEST(ScriptDevice, RepositoryPathsLoadAndPlay) {
-  const ToolPath path = read_tool_path(SEROSA_SOURCE_DIR "/config/paths/appendectomy.csv");
+  const ToolPath path = read_tool_path(std::string(::serosa::test_paths::source_dir()) +
+                                       "/config/paths/appendectomy.csv");
   ScriptDevice dev(path, {0, std::nullopt}, trocars());
   DeviceSample s;
   for (double t = 0.0; t < path.end_time_s(); t += 0.25) {

@@ -17,6 +17,7 @@
 #include "render/image.h"
 #include "render/render_frame.h"
 #include "render/vertex_normals.h"
+#include "support/test_paths.h"
 
 namespace serosa::render::fixtures {
 
@@ -146,7 +147,7 @@ inline void pin_gl_driver() {
 
 /// Where test pictures go so that a person can look at them.
 inline std::string output_path(const std::string& name) {
-  return std::string(SEROSA_BINARY_DIR) + "/test-output/render/" + name;
+  return std::string(::serosa::test_paths::binary_dir()) + "/test-output/render/" + name;
 }
 
 }  // namespace serosa::render::fixtures
