@@ -36,8 +36,21 @@ struct LameTable {
 /// Von Mises equivalent of tet t's second Piola-Kirchhoff stress, Pa (0 for a degenerate tet).
 [[nodiscard]] double von_mises_pa(const TetMesh& mesh, std::int32_t t, const Lame& lame);
 
-/// Largest von Mises stress over all tets, Pa.
-[[nodiscard]] double peak_von_mises_pa(const TetMesh& mesh, const LameTable& table);
+/// What each tet's stress needs from its rest shape, which changes only with the topology: kept
+/// across steps, the peak stress costs one 3x3 product per tet instead of an inverse and a table
+/// look-up.
+struct RestStress {
+  std::vector<Mat3> dm_inv;      ///< (m) inverse rest edge matrices, 1/m
+  std::vector<Lame> lame;        ///< (m) the tet's Lamé parameters, Pa
+  std::vector<std::uint8_t> ok;  ///< (m) 0 for a degenerate rest tet (stress 0)
+};
+
+/// Fills `rest` for the mesh's current topology (reusing its memory).
+void fill_rest_stress(const TetMesh& mesh, const LameTable& table, RestStress& rest);
+
+/// Largest von Mises stress over all tets, Pa, given the rest data of the mesh's current
+/// topology: the same bits as the largest von_mises_pa.
+[[nodiscard]] double peak_von_mises_pa(const TetMesh& mesh, const RestStress& rest);
 
 /// Adds to f (n) the elastic forces on the nodes flagged in `wanted` (n, nonzero = wanted), N,
 /// from every tet touching one of them.

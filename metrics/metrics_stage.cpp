@@ -54,7 +54,17 @@ void MetricsStage::step(const StepContext& ctx, SimState& state) {
   }
   for (const CutEvent& cut : state.handoff.cuts) add_cut(cut);
   if (static_cast<std::int64_t>(ctx.step) % m_stress_every == 0)
-    m_peak_stress = std::max(m_peak_stress, peak_von_mises_pa(state.mesh, m_lame));
+    m_peak_stress = std::max(m_peak_stress, peak_stress(state.mesh));
+}
+
+double MetricsStage::peak_stress(const TetMesh& mesh) {
+  if (!m_rest_valid || m_rest_version != mesh.topology_version ||
+      m_rest.ok.size() != static_cast<std::size_t>(mesh.num_tets())) {
+    fill_rest_stress(mesh, m_lame, m_rest);
+    m_rest_version = mesh.topology_version;
+    m_rest_valid = true;
+  }
+  return peak_von_mises_pa(mesh, m_rest);
 }
 
 void MetricsStage::add_cut(const CutEvent& cut) {
@@ -108,6 +118,7 @@ void MetricsStage::save(StateWriter& out) const {
 }
 
 void MetricsStage::restore(StateReader& in, SimState& /*state*/) {
+  m_rest_valid = false;
   const std::size_t tools = m_path.size();
   m_forces = in.u8() != 0;
   m_time = in.f64();

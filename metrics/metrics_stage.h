@@ -62,6 +62,8 @@ class MetricsStage final : public Stage {
   double m_band;
   /// Accounts one cut: volume, deviation from the planned line, collateral.
   void add_cut(const CutEvent& cut);
+  /// The mesh's largest von Mises stress now, Pa.
+  [[nodiscard]] double peak_stress(const TetMesh& mesh);
 
   LameTable m_lame;
   bool m_forces = false;  // a contact stage hands tool forces over
@@ -73,6 +75,10 @@ class MetricsStage final : public Stage {
   std::vector<double> m_force_max, m_force_sum;  // (tools)
   std::vector<std::int64_t> m_force_steps;       // (tools)
   double m_peak_stress = 0.0;
+  // The rest data of the stress, refilled when the topology changes or a snapshot is restored.
+  RestStress m_rest;
+  std::uint64_t m_rest_version = 0;
+  bool m_rest_valid = false;
   double m_cut_volume = 0.0, m_collateral = 0.0, m_dev_weighted = 0.0, m_dev_max = 0.0;
   std::int64_t m_cut_tets = 0;
 };

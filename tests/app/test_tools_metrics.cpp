@@ -19,6 +19,7 @@
 #include "engine/tool_geometry.h"
 #include "fem/fem_stage.h"
 #include "metrics/metrics_stage.h"
+#include "support/test_meshes.h"
 
 namespace serosa::app {
 namespace {
@@ -64,6 +65,95 @@ TEST(TissueStress, RigidMotionIsStressFreeAndStretchMatchesClosedForm) {
   for (const Vec3& fi : f) sum += fi;
   EXPECT_LT(sum.norm(), 1e-9 * mat.young_pa);
   EXPECT_LT(f[1].x(), 0.0);
+}
+
+LameTable two_materials() {
+  Material soft, stiff;
+  soft.young_pa = 3e3;
+  soft.poisson = 0.45;
+  stiff.young_pa = 8e4;
+  stiff.poisson = 0.3;
+  LameTable table;
+  table.groups[1] = lame(soft);
+  table.groups[2] = lame(stiff);
+  return table;
+}
+
+// Moves every node by up to `amount` (m) in each coordinate from its rest position.
+void deform(TetMesh& m, std::mt19937& rng, double amount) {
+  std::uniform_real_distribution<double> u(-amount, amount);
+  for (std::size_t i = 0; i < m.x.size(); ++i) m.x[i] = m.rest[i] + Vec3(u(rng), u(rng), u(rng));
+}
+
+double peak_per_tet(const TetMesh& m, const LameTable& table) {
+  double peak = 0.0;
+  for (std::int32_t t = 0; t < m.num_tets(); ++t)
+    peak = std::max(peak, von_mises_pa(m, t, table.of(m.group[static_cast<std::size_t>(t)])));
+  return peak;
+}
+
+TEST(TissueStress, PeakFromKeptRestDataIsThePerTetPeakBitForBit) {
+  const LameTable table = two_materials();
+  std::mt19937 rng(7);
+  RestStress rest;
+  for (int trial = 0; trial < 200; ++trial) {
+    TetMesh m = test_meshes::kuhn_cube(3, 0.01, trial % 2 ? 0.3 : 0.0, 1 + trial);
+    if (trial % 10 == 3) m.rest[5] = m.rest[0];    // a degenerate rest tet or more: stress 0
+    deform(m, rng, trial % 3 == 0 ? 1e-2 : 1e-4);  // up to inverted tets
+    if (trial % 10 == 7) m.x[2] = Vec3::Constant(std::nan(""));  // non-finite: those tets give 0
+    fill_rest_stress(m, table, rest);
+    ASSERT_EQ(peak_von_mises_pa(m, rest), peak_per_tet(m, table)) << "trial " << trial;
+  }
+}
+
+TEST(Metrics, PeakStressFollowsATopologyChangeAndARestore) {
+  const LameTable table = two_materials();
+  Scene scene;
+  SimState state;
+  state.mesh = test_meshes::kuhn_cube(3, 0.01, 0.2, 3);
+  std::mt19937 rng(2);
+  deform(state.mesh, rng, 1e-4);
+  MetricsStage metrics(scene, table);
+  metrics.step({0, 0.0, 0.005}, state);
+  const double before = metrics.peak_stress_pa();
+  EXPECT_EQ(before, peak_per_tet(state.mesh, table));
+  // Split tet 0 at its centroid and pull the new node far out: the new tets hold the peak.
+  TopologyDelta split;
+  split.removed_tets = {0};
+  const Tet t0 = state.mesh.tets[0];
+  NodeParent centroid;
+  centroid.nodes = t0;
+  centroid.weights = {0.25, 0.25, 0.25, 0.25};
+  centroid.count = 4;
+  split.added_nodes = {centroid};
+  const std::int32_t c = static_cast<std::int32_t>(state.mesh.x.size());
+  for (int k = 0; k < 4; ++k) {
+    Tet t = t0;
+    t[static_cast<std::size_t>(k)] = c;
+    split.added_tets.push_back(t);
+    split.added_groups.push_back(state.mesh.group[0]);
+  }
+  apply(state.mesh, split);
+  state.mesh.x[static_cast<std::size_t>(c)] += Vec3(3e-3, 0.0, 0.0);
+  metrics.step({1, 0.005, 0.005}, state);
+  const double after = peak_per_tet(state.mesh, table);
+  ASSERT_GT(after, before);
+  EXPECT_EQ(metrics.peak_stress_pa(), after);
+  // A restored stage refills its rest data: the mesh it steps next may be another of the same
+  // topology version (a branch that cut elsewhere), here other rest positions, same tets.
+  SimState first;
+  first.mesh = test_meshes::kuhn_cube(3, 0.01, 0.2, 3);
+  SimState other;
+  other.mesh = test_meshes::kuhn_cube(3, 0.01, 0.2, 4);
+  deform(other.mesh, rng, 1e-3);
+  MetricsStage restored(scene, table);
+  restored.step({0, 0.0, 0.005}, first);
+  StateWriter out;
+  MetricsStage(scene, table).save(out);
+  StateReader in(out.bytes(), "metrics snapshot");
+  restored.restore(in, other);
+  restored.step({1, 0.005, 0.005}, other);
+  EXPECT_EQ(restored.peak_stress_pa(), peak_per_tet(other.mesh, table));
 }
 
 TEST(Metrics, DistanceToPolylineMatchesDenseSampling) {
