@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <numeric>
 #include <sstream>
 
 #include "app/assemble_state.h"
@@ -137,14 +138,22 @@ Json cutting_json(const Composition& comp) {
   return j;
 }
 
-Json step_time_json(std::vector<double> ms) {
-  if (ms.empty()) return {{"p50", 0.0}, {"p99", 0.0}, {"max", 0.0}};
-  std::sort(ms.begin(), ms.end());
-  const auto at = [&](double q) {
-    return ms[std::min(ms.size() - 1,
-                       static_cast<std::size_t>(q * static_cast<double>(ms.size())))];
+Json step_time_json(const std::vector<double>& ms) {
+  if (ms.empty()) return {{"p50", 0.0}, {"p99", 0.0}, {"max", 0.0}, {"slowest", Json::array()}};
+  std::vector<std::size_t> order(ms.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  // Slowest first; equal times by step, so the report does not depend on the sort.
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return ms[a] != ms[b] ? ms[a] > ms[b] : a < b; });
+  const auto at = [&](double q) {  // the q-quantile counted from the fastest step
+    const auto k =
+        std::min(ms.size() - 1, static_cast<std::size_t>(q * static_cast<double>(ms.size())));
+    return ms[order[ms.size() - 1 - k]];
   };
-  return {{"p50", at(0.5)}, {"p99", at(0.99)}, {"max", ms.back()}};
+  Json slowest = Json::array();
+  for (std::size_t i = 0; i < std::min<std::size_t>(8, order.size()); ++i)
+    slowest.push_back({{"step", order[i]}, {"ms", ms[order[i]]}});
+  return {{"p50", at(0.5)}, {"p99", at(0.99)}, {"max", ms[order[0]]}, {"slowest", slowest}};
 }
 
 std::string hash_hex(std::uint64_t hash) {

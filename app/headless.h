@@ -46,8 +46,9 @@ struct HeadlessOptions {
 /// A state hash as the report writes it: 16 lower-case hex digits.
 [[nodiscard]] std::string hash_hex(std::uint64_t hash);
 
-/// The report's "step_time_ms" object: p50, p99 and max of the solver steps' wall times (ms).
-[[nodiscard]] nlohmann::json step_time_json(std::vector<double> ms);
+/// The report's "step_time_ms" object: p50, p99 and max of the solver steps' wall times (ms),
+/// and the eight slowest steps (`slowest`: step index from 0, ms), slowest first.
+[[nodiscard]] nlohmann::json step_time_json(const std::vector<double>& ms);
 
 /// The report's "cutting" object (empty without a cutting stage).
 [[nodiscard]] nlohmann::json cutting_json(const Composition& comp);

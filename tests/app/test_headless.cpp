@@ -1,8 +1,10 @@
 // serosa headless end to end: the bundled scenes run, the report is honest, outputs round trip.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <random>
 
 #include <spdlog/sinks/ringbuffer_sink.h>
 #include <spdlog/spdlog.h>
@@ -118,6 +120,36 @@ TEST(Headless, ReportHasEveryFieldWithPlausibleValues) {
   EXPECT_LE(st["p50"].get<double>(), st["p99"].get<double>());
   EXPECT_LE(st["p99"].get<double>(), st["max"].get<double>());
   EXPECT_GT(r["real_time_factor"].get<double>(), 0.0);
+}
+
+TEST(Headless, StepTimesGiveQuantilesAndTheSlowestStepsByIndex) {
+  std::mt19937 rng(4);
+  std::uniform_int_distribution<int> ms(1, 40);  // many ties
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<double> steps(1 + static_cast<std::size_t>(trial) * 7);
+    for (double& v : steps) v = 0.25 * ms(rng);
+    const auto j = step_time_json(steps);
+    std::vector<double> sorted = steps;
+    std::sort(sorted.begin(), sorted.end());
+    const auto q = [&](double f) {
+      return sorted[std::min(sorted.size() - 1,
+                             static_cast<std::size_t>(f * static_cast<double>(sorted.size())))];
+    };
+    ASSERT_EQ(j["p50"].get<double>(), q(0.5));
+    ASSERT_EQ(j["p99"].get<double>(), q(0.99));
+    ASSERT_EQ(j["max"].get<double>(), sorted.back());
+    const auto& slow = j["slowest"];
+    ASSERT_EQ(slow.size(), std::min<std::size_t>(8, steps.size()));
+    for (std::size_t i = 0; i < slow.size(); ++i) {
+      const auto at = slow[i]["step"].get<std::size_t>();
+      ASSERT_EQ(slow[i]["ms"].get<double>(), steps[at]);
+      ASSERT_EQ(steps[at], sorted[sorted.size() - 1 - i]);  // the i-th slowest
+      if (i > 0 && steps[at] == slow[i - 1]["ms"].get<double>()) {
+        ASSERT_GT(at, slow[i - 1]["step"].get<std::size_t>());  // ties by step
+      }
+    }
+  }
+  EXPECT_TRUE(step_time_json({})["slowest"].empty());
 }
 
 TEST(Headless, DefaultSceneRunsWithoutAWarning) {
