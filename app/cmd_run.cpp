@@ -24,8 +24,12 @@ void add_run_command(CLI::App& app, Action& action) {
                   "Record the session (.lapr) here (default: the scene's [record] path)");
   cmd->add_option("--report", *report,
                   "Write a JSON report at the end (frames, steps, haptic telemetry, metrics)");
-  cmd->callback([&action, scene, seconds, snapshot, record, report] {
-    action = [scene, seconds, snapshot, record, report] {
+  auto path = std::make_shared<std::string>();
+  cmd->add_option("--path", *path,
+                  "Tool path CSV every scripted tool plays (default: the scripted instruments "
+                  "follow the rig when it is plugged in, else the mouse)");
+  cmd->callback([&action, scene, seconds, snapshot, record, report, path] {
+    action = [scene, seconds, snapshot, record, report, path] {
       const char* x = std::getenv("DISPLAY");
       const char* wl = std::getenv("WAYLAND_DISPLAY");
       if ((x == nullptr || *x == '\0') && (wl == nullptr || *wl == '\0'))
@@ -36,6 +40,7 @@ void add_run_command(CLI::App& app, Action& action) {
       so.snapshot = *snapshot;
       if (!record->empty()) so.record = *record;
       if (!report->empty()) so.report = *report;
+      if (!path->empty()) so.tool_path = *path;
       return run_session(*scene, so);
     };
   });

@@ -16,6 +16,7 @@
 #include "app/assemble_state.h"
 #include "app/compose.h"
 #include "app/frame_pictures.h"
+#include "app/instrument_devices.h"
 #include "app/preset_report.h"
 #include "app/version.h"
 #include "contact/tool_contact_stage.h"
@@ -165,12 +166,7 @@ std::string hash_hex(std::uint64_t hash) {
 Json run_headless(const HeadlessOptions& options) {
   const auto wall0 = std::chrono::steady_clock::now();
   Scene scene = load_scene(options.scene);
-  if (options.tool_path) {
-    if (!std::filesystem::exists(*options.tool_path))
-      throw InputError(options.tool_path->string(), 0, "tool path file not found");
-    for (Tool& t : scene.tools)
-      if (t.device.kind == DeviceKind::kScript) t.device.script = *options.tool_path;
-  }
+  if (options.tool_path) play_tool_path(scene, *options.tool_path);
   const std::int64_t steps = options.steps.value_or(scene.headless.steps);
   if (steps < 0) throw InputError("--steps", 0, "negative step count", ">= 0");
   AssembledScene assembled = assemble_state(scene);

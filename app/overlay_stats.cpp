@@ -47,6 +47,22 @@ void flatten(const nlohmann::json& j, const std::string& name, std::string_view 
 
 }  // namespace
 
+const char* instruments_label(std::optional<DeviceKind> loop_device, bool connected,
+                              bool scripted) {
+  if (!loop_device) return scripted ? "script" : nullptr;
+  switch (*loop_device) {
+    case DeviceKind::kMouse:
+      return "mouse";
+    case DeviceKind::kScript:
+      return "script";
+    case DeviceKind::kRig:
+      return connected ? "rig" : "rig not connected";
+    case DeviceKind::kRigEmulated:
+      return connected ? "emulated rig" : "emulated rig not connected";
+  }
+  return nullptr;
+}
+
 double haptic_rate_hz(const haptics::LoopTelemetry& telemetry) {
   if (telemetry.periods == 0) return 0.0;
   const double median = telemetry.period_percentile(0.5);
@@ -66,6 +82,7 @@ render::OverlayData overlay_data(const FrameStats& s) {
   o.solver_rate_hz = s.solver_rate_hz;
   o.real_time_factor = s.real_time_factor;
   o.haptic_rate_hz = s.haptics != nullptr ? haptic_rate_hz(*s.haptics) : s.haptic_live_rate_hz;
+  o.instruments = s.instruments;
   o.cuts = s.cuts;
   o.paused = s.paused;
   o.slow_motion = s.slow_motion;

@@ -4,10 +4,12 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "engine/scene.h"
 #include "render/render_frame.h"
 
 namespace serosa::haptics {
@@ -27,7 +29,8 @@ struct FrameStats {
   /// The haptic loop's live rate while it runs (its telemetry is the loop thread's then): ticks
   /// of its LoopStatus per wall second, Hz. Shown when `haptics` is null; 0: no loop (a dash).
   double haptic_live_rate_hz = 0.0;
-  std::int64_t cuts = 0;  ///< topology changes applied so far
+  const char* instruments = nullptr;  ///< instruments_label(), shown beside the haptic rate
+  std::int64_t cuts = 0;              ///< topology changes applied so far
   bool paused = false;
   bool slow_motion = false;
   /// Replay (instructors): position and length of the recording, s, and the playback speed.
@@ -38,6 +41,12 @@ struct FrameStats {
   /// The metrics report (MetricsStage::report()), or null: listed for instructors.
   const nlohmann::json* metrics = nullptr;
 };
+
+/// What drives the instruments, as the overlay says it (a string literal): the haptic loop's
+/// device when a loop runs ("mouse", "script", "rig" or "emulated rig", each rig with " not
+/// connected" while it is absent), else "script" when a tool is scripted; null otherwise.
+[[nodiscard]] const char* instruments_label(std::optional<DeviceKind> loop_device, bool connected,
+                                            bool scripted);
 
 /// The haptic loop's rate, Hz: 1 / the median tick period; 0 when it has recorded no period.
 [[nodiscard]] double haptic_rate_hz(const haptics::LoopTelemetry& telemetry);

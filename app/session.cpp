@@ -19,6 +19,7 @@
 #include "app/drawn_surface.h"
 #include "app/frame_pacer.h"
 #include "app/headless.h"
+#include "app/instrument_devices.h"
 #include "app/mouse_takeover.h"
 #include "app/overlay_stats.h"
 #include "app/render_frame_from_surface.h"
@@ -31,6 +32,7 @@
 #include "haptics/haptic_loop.h"
 #include "haptics/haptics_stage.h"
 #include "haptics/mouse_device.h"
+#include "haptics/usb_rig.h"
 #include "metrics/metrics_stage.h"
 #include "render/camera.h"
 #include "render/frame_renderer.h"
@@ -227,6 +229,10 @@ class SolverLoop {
       }
       stats.haptic_live_rate_hz = m_hap_rate_hz;
     }
+    stats.instruments = instruments_label(
+        m_comp.haptics != nullptr ? std::optional<DeviceKind>(m_comp.haptics->device_kind())
+                                  : std::nullopt,
+        m_comp.haptics != nullptr && m_comp.haptics->device_connected(), m_comp.tools != nullptr);
     stats.cuts = m_cuts;
     stats.paused = m_control.paused.load();
     stats.slow_motion = m_slow;
@@ -262,7 +268,13 @@ class SolverLoop {
 int run_session(const std::filesystem::path& scene_path, const SessionOptions& so) {
   const double seconds = so.seconds;
   const std::filesystem::path& snapshot = so.snapshot;
-  const Scene scene = load_scene(scene_path);
+  Scene scene = load_scene(scene_path);
+  if (so.tool_path) {
+    play_tool_path(scene, *so.tool_path);
+  } else if (const auto device = give_instruments_to_trainee(scene, haptics::rig_plugged_in())) {
+    spdlog::info("the instruments follow the {} (serosa headless plays the scene's script)",
+                 device == DeviceKind::kRig ? "rig" : "mouse and keyboard");
+  }
   AssembledScene assembled = assemble_state(scene);
   ComposeOptions co;
   co.realtime_haptics = true;  // the trainee's machine: SCHED_FIFO when granted

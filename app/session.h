@@ -16,6 +16,9 @@ struct SessionOptions {
   /// JSON report written at the end: frames, steps, simulated time, the haptic loop's telemetry
   /// ("haptics", as headless writes it), the recording, the metrics.
   std::optional<std::filesystem::path> report;
+  /// A tool path every scripted tool plays instead of its own; without one the scripted
+  /// instruments follow the rig when it is plugged in, else the mouse (app/instrument_devices.h).
+  std::optional<std::filesystem::path> tool_path;
 };
 
 /// Opens a window on the scene and runs it in real time until the window closes, Ctrl-C (SIGINT

@@ -178,6 +178,22 @@ void UsbRig::out_callback(libusb_transfer* t) {
   self->m_out_busy.store(false, std::memory_order_release);
 }
 
+bool rig_plugged_in(std::uint16_t vendor_id, std::uint16_t product_id) {
+  libusb_context* ctx = nullptr;
+  if (libusb_init(&ctx) != 0) return false;
+  libusb_device** list = nullptr;
+  const ssize_t n = libusb_get_device_list(ctx, &list);
+  bool found = false;
+  for (ssize_t i = 0; i < n && !found; ++i) {
+    libusb_device_descriptor d{};
+    found = libusb_get_device_descriptor(list[i], &d) == 0 && d.idVendor == vendor_id &&
+            d.idProduct == product_id;
+  }
+  if (n >= 0) libusb_free_device_list(list, 1);
+  libusb_exit(ctx);
+  return found;
+}
+
 bool UsbRig::try_open() {
   libusb_device_handle* h = libusb_open_device_with_vid_pid(m_ctx, m_c.vendor_id, m_c.product_id);
   if (!h) return false;

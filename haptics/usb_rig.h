@@ -57,6 +57,12 @@ struct UsbRigCounters {
   std::uint64_t disconnects = 0;  ///< unplugs seen
 };
 
+/// Whether a device with the rig's ids is on the USB bus now (a real rig, or the emulated one
+/// under umockdev), enumerated through a libusb context of its own; false when libusb cannot
+/// start. The session asks it once, to give the instruments to the rig or to the mouse.
+[[nodiscard]] bool rig_plugged_in(std::uint16_t vendor_id = kRigVendorId,
+                                  std::uint16_t product_id = kRigProductId);
+
 class UsbRig final : public Device {
  public:
   static constexpr int kInTransfers = 4;

@@ -79,12 +79,14 @@ OverlayText overlay_text(const OverlayData& data) {
   std::snprintf(line, sizeof line, "FEM %.2f ms/step  (%.0f steps/s)", data.fem_ms_per_step,
                 data.solver_rate_hz);
   t.stats.emplace_back(line);
+  char drive[64] = "";
+  if (data.instruments != nullptr) std::snprintf(drive, sizeof drive, "  (%s)", data.instruments);
   if (data.haptic_rate_hz > 0.0) {
-    std::snprintf(line, sizeof line, "haptics %.0f Hz", data.haptic_rate_hz);
-    t.stats.emplace_back(line);
+    std::snprintf(line, sizeof line, "haptics %.0f Hz%s", data.haptic_rate_hz, drive);
   } else {
-    t.stats.emplace_back("haptics \u2014");
+    std::snprintf(line, sizeof line, "haptics \u2014%s", drive);
   }
+  t.stats.emplace_back(line);
   if (data.frame_rate_hz > 0.0) {
     std::snprintf(line, sizeof line, "cuts %lld   %.0f frames/s, tess %d, %.0f%% res",
                   static_cast<long long>(data.cuts), data.frame_rate_hz, data.drawn_tessellation,
@@ -240,7 +242,9 @@ OverlayResult Overlay::layout(const OverlayData& data, const SnapshotOptions& op
       if (i == 4) ImGui::Separator();  // the metrics
       if (i == 2 && data.haptic_rate_hz <= 0.0) {
         // ImGui's built-in font has no em dash: a hyphen in the picture, greyed out.
-        ImGui::TextDisabled("haptics -");
+        ImGui::TextDisabled("haptics -%s%s%s", data.instruments != nullptr ? "  (" : "",
+                            data.instruments != nullptr ? data.instruments : "",
+                            data.instruments != nullptr ? ")" : "");
       } else {
         ImGui::TextUnformatted(text.stats[i].c_str());
       }

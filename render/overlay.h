@@ -76,7 +76,8 @@ class Overlay {
 struct OverlayText {
   /// The statistics panel: "t = 12.50 s" (with "  [paused]", "  [slow motion]"),
   /// "FEM 3.20 ms/step  (200 steps/s)", "haptics 1000 Hz" or "haptics \u2014" (an em dash: no
-  /// haptic loop runs), "cuts 2", then one line per metric: "max force 1.8 N".
+  /// haptic loop runs) followed by what drives the instruments ("  (mouse)", "  (rig not
+  /// connected)"), "cuts 2", then one line per metric: "max force 1.8 N".
   std::vector<std::string> stats;
   /// The replay timeline's label, "0:15.0 / 1:00.0  x1.0" (with "  [paused]"); empty outside
   /// replays.

@@ -55,6 +55,9 @@ struct OverlayData {
   /// <= 0: not measured yet.
   double real_time_factor = 0.0;
   double haptic_rate_hz = 0.0;  ///< haptic loop rate, Hz; <= 0: no haptic loop
+  /// What drives the instruments, a string literal: "mouse", "rig", "rig not connected",
+  /// "emulated rig", "emulated rig not connected", "script", "recording"; null: not shown.
+  const char* instruments = nullptr;
   /// The window's measured frame rate, frames/s, and the tessellation it draws with now (the
   /// renderer steps them down when the solver falls behind, app/frame_pacer.h); <= 0: unknown.
   double frame_rate_hz = 0.0;

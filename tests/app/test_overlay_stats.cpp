@@ -37,6 +37,25 @@ TEST(OverlayStats, HapticRateIsTheMedianTickRateAndADashWithoutALoop) {
   EXPECT_EQ(haptic_rate_hz(haptics::LoopTelemetry{}), 0.0);
 }
 
+TEST(OverlayStats, TheOverlaySaysWhatDrivesTheInstruments) {
+  EXPECT_STREQ(instruments_label(DeviceKind::kMouse, true, true), "mouse");
+  EXPECT_STREQ(instruments_label(DeviceKind::kRig, true, false), "rig");
+  EXPECT_STREQ(instruments_label(DeviceKind::kRig, false, false), "rig not connected");
+  EXPECT_STREQ(instruments_label(DeviceKind::kRigEmulated, false, false),
+               "emulated rig not connected");
+  EXPECT_STREQ(instruments_label(DeviceKind::kScript, true, true), "script");
+  EXPECT_STREQ(instruments_label(std::nullopt, false, true), "script");
+  EXPECT_EQ(instruments_label(std::nullopt, false, false), nullptr);
+
+  FrameStats s;
+  s.haptic_live_rate_hz = 998.0;
+  s.instruments = instruments_label(DeviceKind::kRig, false, false);
+  EXPECT_EQ(render::overlay_text(overlay_data(s)).stats[2], "haptics 998 Hz  (rig not connected)");
+  s.haptic_live_rate_hz = 0.0;
+  s.instruments = instruments_label(std::nullopt, false, true);
+  EXPECT_EQ(render::overlay_text(overlay_data(s)).stats[2], "haptics \u2014  (script)");
+}
+
 TEST(OverlayStats, ReplayAndMetricsReachTheOverlay) {
   const nlohmann::json report = {{"time_s", 3.5},
                                  {"path_length_m", {{"grasper", 0.25}, {"scissors", 0.125}}},

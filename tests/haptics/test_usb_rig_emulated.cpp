@@ -182,6 +182,18 @@ TEST(UsbRigEmulated, UnplugAndReplugWithoutRestart) {
   EXPECT_EQ(usb.counters().connects, 2u);
 }
 
+TEST(UsbRigEmulated, RigPluggedInSeesTheRigComeAndGo) {
+  SEROSA_UNDER_UMOCKDEV();
+  EXPECT_FALSE(rig_plugged_in());  // the testbed holds no device yet
+  EmulatedRig rig(rig_config());
+  EXPECT_TRUE(rig_plugged_in());
+  EXPECT_FALSE(rig_plugged_in(kRigVendorId, kRigProductId + 1));  // another device's ids
+  rig.unplug();
+  EXPECT_FALSE(rig_plugged_in());
+  rig.replug();
+  EXPECT_TRUE(rig_plugged_in());
+}
+
 TEST(UsbRigEmulated, HapticLoopOverUsbRendersAndZeroesOnUnplug) {
   SEROSA_UNDER_UMOCKDEV();
   EmulatedRig rig(rig_config());

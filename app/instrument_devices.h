@@ -1,0 +1,28 @@
+// Which device drives a scene's instruments in each use. A scene names one device per tool; the
+// shipped scenes script theirs (the procedure, played headless), and the same scene is the
+// trainee's in a window:
+//  - `--path FILE` (headless and run): every scripted tool plays FILE instead of its own path;
+//  - `serosa run` without it: the scripted graspers and scissors follow the rig when one is
+//    plugged in, else the mouse and keyboard, through the haptic loop (the "haptics" effect is
+//    added: the loop is what reads a device); endoscopes keep their script. A scene that already
+//    drives an instrument by a device (rig, rig-emulated or mouse) keeps the devices it names;
+//  - `serosa headless`: the devices the scene names.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+
+#include "engine/scene.h"
+
+namespace serosa::app {
+
+/// Every scripted tool of `scene` plays the tool path `csv`. Throws InputError naming the file
+/// when it does not exist.
+void play_tool_path(Scene& scene, const std::filesystem::path& csv);
+
+/// Hands the scene's scripted instruments to the trainee (above): to the rig when
+/// `rig_plugged_in`, else to the mouse. Returns the device they were given, or nullopt when the
+/// scene's own devices stand (an instrument already driven by a device, or none scripted).
+std::optional<DeviceKind> give_instruments_to_trainee(Scene& scene, bool rig_plugged_in);
+
+}  // namespace serosa::app
