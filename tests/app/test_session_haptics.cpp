@@ -338,5 +338,40 @@ TEST(SessionHaptics, SessionUnderXvfbRecordsAndReportsTheLoop) {
   EXPECT_EQ(bverify.code, 0) << bverify.out;
 }
 
+// One scene, every use: the default scene, whose instruments are scripted, is the trainee's in
+// the window. With no rig plugged in the grasper and scissors follow the mouse through the
+// haptic loop, and the session's recording replays --verify from the scene as written (whose
+// effects do not list the loop); with --path the tool path plays and no loop runs.
+TEST(SessionHaptics, TheDefaultSceneInAWindowIsDrivenByTheTrainee) {
+  const fs::path dir = own_dir("default_scene_window");
+  const std::string xvfb =
+      "xvfb-run -a -s '-screen 0 1280x720x24' '" + serosa_exe().string() + "' ";
+  std::string scene = "'";  // (one append at a time: GCC 12 warns on "'" + string + "'")
+  scene.append(source("config/appendectomy.toml").string()).append("'");
+  const Shell run =
+      shell(xvfb + "run " + scene + " --seconds 2 --record '" + (dir / "s.lapr").string() +
+            "' --report '" + (dir / "s.json").string() + "'");
+  ASSERT_EQ(run.code, 0) << run.out;
+  EXPECT_NE(run.out.find("the instruments follow the mouse"), std::string::npos) << run.out;
+  nlohmann::json rep;
+  std::ifstream(dir / "s.json") >> rep;
+  ASSERT_TRUE(rep.contains("haptics")) << rep.dump(1);
+  EXPECT_EQ(rep["haptics"]["device"], "mouse");
+  EXPECT_TRUE(rep["haptics"]["device_connected"].get<bool>());
+  EXPECT_GT(rep["haptics"]["ticks"].get<std::uint64_t>(), 100u) << rep["haptics"].dump(1);
+  const CliResult verify =
+      run_serosa("replay '" + (dir / "s.lapr").string() + "' --headless --verify");
+  EXPECT_EQ(verify.code, 0) << verify.out;
+
+  const Shell scripted = shell(xvfb + "run " + scene + " --seconds 1 --path '" +
+                               source("config/paths/appendix_transection.csv").string() +
+                               "' --report '" + (dir / "p.json").string() + "'");
+  ASSERT_EQ(scripted.code, 0) << scripted.out;
+  nlohmann::json prep;
+  std::ifstream(dir / "p.json") >> prep;
+  EXPECT_FALSE(prep.contains("haptics")) << prep.dump(1);
+  EXPECT_GT(prep["steps_taken"].get<std::int64_t>(), 10);
+}
+
 }  // namespace
 }  // namespace serosa::app
