@@ -54,6 +54,8 @@ struct ComposeOptions {
   bool validate_cuts = false;
   /// The haptic loop asks for SCHED_FIFO and runs its gap monitor (the trainee session).
   bool realtime_haptics = false;
+  /// (tools, or empty) Where mouse-driven tools rest at the start, m (HapticsStageOptions).
+  std::vector<std::optional<Vec3>> mouse_rest_tip_m;
 };
 
 /// The runner with its stages, plus non-owning handles to the stages app needs to talk to.

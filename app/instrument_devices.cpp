@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "engine/input_error.h"
+#include "engine/tool_path.h"
 
 namespace serosa::app {
 
@@ -12,7 +13,7 @@ void play_tool_path(Scene& scene, const std::filesystem::path& csv) {
     if (t.device.kind == DeviceKind::kScript) t.device.script = csv;
 }
 
-std::optional<DeviceKind> give_instruments_to_trainee(Scene& scene, bool rig_plugged_in) {
+std::optional<TraineeInstruments> give_instruments_to_trainee(Scene& scene, bool rig_plugged_in) {
   const auto instrument = [](const Tool& t) { return t.kind != ToolKind::kEndoscope; };
   const auto scripted = [](const Tool& t) { return t.device.kind == DeviceKind::kScript; };
   const bool chosen = std::any_of(scene.tools.begin(), scene.tools.end(),
@@ -20,14 +21,22 @@ std::optional<DeviceKind> give_instruments_to_trainee(Scene& scene, bool rig_plu
   const bool any = std::any_of(scene.tools.begin(), scene.tools.end(),
                                [&](const Tool& t) { return instrument(t) && scripted(t); });
   if (chosen || !any) return std::nullopt;
-  const DeviceKind device = rig_plugged_in ? DeviceKind::kRig : DeviceKind::kMouse;
-  for (Tool& t : scene.tools) {
+  TraineeInstruments given;
+  given.device = rig_plugged_in ? DeviceKind::kRig : DeviceKind::kMouse;
+  given.start_tip_m.resize(scene.tools.size());
+  for (std::size_t i = 0; i < scene.tools.size(); ++i) {
+    Tool& t = scene.tools[i];
     if (!instrument(t)) continue;
-    t.device.kind = device;
+    const ToolPath path = read_tool_path(t.device.script);  // the loader read it: it parses
+    if (path.index_of(t.name)) {
+      const ToolState start = sample(path, t.name, 0.0);
+      given.start_tip_m[i] = Vec3(start.tip_m[0], start.tip_m[1], start.tip_m[2]);
+    }
+    t.device.kind = given.device;
     t.device.script.clear();
   }
   scene.settings.effects.insert(Effect::kHaptics);
-  return device;
+  return given;
 }
 
 }  // namespace serosa::app

@@ -11,6 +11,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <vector>
 
 #include "engine/scene.h"
 
@@ -20,9 +21,18 @@ namespace serosa::app {
 /// when it does not exist.
 void play_tool_path(Scene& scene, const std::filesystem::path& csv);
 
+/// The instruments handed to the trainee.
+struct TraineeInstruments {
+  DeviceKind device = DeviceKind::kMouse;  ///< rig or mouse
+  /// (tools) Where each handed-over instrument's script started it, m (nullopt for the others,
+  /// and for a tool its script does not name): mouse handles rest there, in the endoscope's view
+  /// (ComposeOptions::mouse_rest_tip_m).
+  std::vector<std::optional<Vec3>> start_tip_m;
+};
+
 /// Hands the scene's scripted instruments to the trainee (above): to the rig when
-/// `rig_plugged_in`, else to the mouse. Returns the device they were given, or nullopt when the
+/// `rig_plugged_in`, else to the mouse. Returns what they were given, or nullopt when the
 /// scene's own devices stand (an instrument already driven by a device, or none scripted).
-std::optional<DeviceKind> give_instruments_to_trainee(Scene& scene, bool rig_plugged_in);
+std::optional<TraineeInstruments> give_instruments_to_trainee(Scene& scene, bool rig_plugged_in);
 
 }  // namespace serosa::app

@@ -269,14 +269,15 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
   const double seconds = so.seconds;
   const std::filesystem::path& snapshot = so.snapshot;
   Scene scene = load_scene(scene_path);
+  ComposeOptions co;
   if (so.tool_path) {
     play_tool_path(scene, *so.tool_path);
-  } else if (const auto device = give_instruments_to_trainee(scene, haptics::rig_plugged_in())) {
+  } else if (auto given = give_instruments_to_trainee(scene, haptics::rig_plugged_in())) {
     spdlog::info("the instruments follow the {} (serosa headless plays the scene's script)",
-                 device == DeviceKind::kRig ? "rig" : "mouse and keyboard");
+                 given->device == DeviceKind::kRig ? "rig" : "mouse and keyboard");
+    co.mouse_rest_tip_m = std::move(given->start_tip_m);
   }
   AssembledScene assembled = assemble_state(scene);
-  ComposeOptions co;
   co.realtime_haptics = true;  // the trainee's machine: SCHED_FIFO when granted
   Composition comp = compose(scene, assembled, std::move(co));
   const std::unique_ptr<recording::RecordingWriter> writer =

@@ -18,14 +18,15 @@
 
 namespace serosa::haptics {
 
-MouseHandle mouse_handle(const Tool& tool, std::size_t handle, const Vec3& aim_m) {
+MouseHandle mouse_handle(const Tool& tool, std::size_t handle, const Vec3& aim_m,
+                         const std::optional<Vec3>& rest_tip_m) {
   MouseHandle m;
   const Vec3 side = handle == 0 ? Vec3(-0.05, 0.0, 0.0) : Vec3(0.05, 0.0, 0.0);
   m.trocar.pivot_m = tool.trocar_m.value_or(Vec3(aim_m + Vec3(0.0, 0.12, 0.0) + side));
-  Vec3 axis = aim_m - m.trocar.pivot_m;
+  Vec3 axis = rest_tip_m.value_or(aim_m) - m.trocar.pivot_m;
   if (axis.norm() < 1e-6) axis = Vec3(0.0, -1.0, 0.0);
   m.trocar.rotation = Quat::FromTwoVectors(Vec3::UnitZ(), axis.normalized());
-  m.rest.insertion_m = 0.5 * axis.norm();
+  m.rest.insertion_m = (rest_tip_m ? 1.0 : 0.5) * axis.norm();
   return m;
 }
 
@@ -129,7 +130,10 @@ HapticsStage::HapticsStage(const Scene& scene, const HapticsStageOptions& option
     haptics::MouseMapping map;
     for (std::size_t h = 0; h < haptics::kHandles; ++h) {
       if (!m_tool[h]) continue;
-      const MouseHandle mh = mouse_handle(scene.tools[*m_tool[h]], h, options.aim_m);
+      const std::size_t tool = *m_tool[h];
+      const MouseHandle mh =
+          mouse_handle(scene.tools[tool], h, options.aim_m,
+                       tool < options.rest_tip_m.size() ? options.rest_tip_m[tool] : std::nullopt);
       trocars[h] = mh.trocar;
       map.rest[h] = mh.rest;
     }

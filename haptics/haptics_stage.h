@@ -36,6 +36,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -60,6 +61,9 @@ struct HapticsStageOptions {
   bool realtime = false;
   /// Where mouse handles' trocar axes point, m (compose passes the organs' centroid).
   Vec3 aim_m = Vec3::Zero();
+  /// (tools, or empty) Where a mouse-driven tool rests at the start, m: its trocar axis points
+  /// there and the tip starts on it. nullopt: halfway to aim_m.
+  std::vector<std::optional<Vec3>> rest_tip_m;
   /// Rig devices: how long the constructor waits for the rig to connect before it warns "rig not
   /// connected" and goes on, s.
   double rig_wait_s = 1.0;
@@ -113,12 +117,13 @@ class HapticsStage final : public Stage {
 
 /// The trocar and rest joints of a mouse-driven handle (see the header comment): pivot at the
 /// tool's trocar, else 12 cm above `aim` (handle 1: 5 cm to the side), axis towards `aim`,
-/// resting halfway there.
+/// resting halfway there; or, given `rest_tip`, axis towards it and the tip resting on it.
 struct MouseHandle {
   haptics::Trocar trocar;
   haptics::JointState rest;
 };
-[[nodiscard]] MouseHandle mouse_handle(const Tool& tool, std::size_t handle, const Vec3& aim_m);
+[[nodiscard]] MouseHandle mouse_handle(const Tool& tool, std::size_t handle, const Vec3& aim_m,
+                                       const std::optional<Vec3>& rest_tip_m = std::nullopt);
 
 /// The trocar of a rig-driven handle: the same as a mouse handle's (mouse_handle().trocar).
 [[nodiscard]] haptics::Trocar rig_trocar(const Tool& tool, std::size_t handle, const Vec3& aim_m);

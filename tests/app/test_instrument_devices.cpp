@@ -11,7 +11,9 @@
 #include "app_test_util.h"
 #include "engine/input_error.h"
 #include "engine/scene.h"
+#include "engine/tool_path.h"
 #include "haptics/haptics_stage.h"
+#include "haptics/trocar_kinematics.h"
 
 namespace serosa::app {
 namespace {
@@ -28,16 +30,38 @@ const Tool& tool(const Scene& s, const std::string& name) {
 TEST(InstrumentDevices, TheDefaultSceneGoesToTheMouseWithoutARig) {
   Scene scene = load_scene(source("config/appendectomy.toml"));
   ASSERT_FALSE(scene.settings.has(Effect::kHaptics));
-  const auto device = give_instruments_to_trainee(scene, false);
-  ASSERT_EQ(device, DeviceKind::kMouse);
+  const auto given = give_instruments_to_trainee(scene, false);
+  ASSERT_TRUE(given.has_value());
+  EXPECT_EQ(given->device, DeviceKind::kMouse);
   EXPECT_EQ(tool(scene, "grasper").device.kind, DeviceKind::kMouse);
   EXPECT_EQ(tool(scene, "scissors").device.kind, DeviceKind::kMouse);
   EXPECT_EQ(tool(scene, "endoscope").device.kind, DeviceKind::kScript);  // the camera plays on
   EXPECT_TRUE(scene.settings.has(Effect::kHaptics));
+  // They start where the script started them (config/paths/appendectomy.csv at t = 0), in the
+  // endoscope's view: each mouse handle's trocar axis points there and its rest pose puts the
+  // tip on it.
+  ASSERT_EQ(given->start_tip_m.size(), scene.tools.size());
+  const ToolPath path = read_tool_path(source("config/paths/appendectomy.csv"));
+  for (std::size_t i = 0; i < scene.tools.size(); ++i) {
+    const Tool& t = scene.tools[i];
+    if (t.kind == ToolKind::kEndoscope) {
+      EXPECT_FALSE(given->start_tip_m[i].has_value());
+      continue;
+    }
+    ASSERT_TRUE(given->start_tip_m[i].has_value()) << t.name;
+    const ToolState first = sample(path, t.name, 0.0);
+    const Vec3 start = *given->start_tip_m[i];
+    EXPECT_EQ(start, Vec3(first.tip_m[0], first.tip_m[1], first.tip_m[2])) << t.name;
+    const haptics::MouseHandle mh = haptics::mouse_handle(t, i % 2, Vec3::Zero(), start);
+    const ToolState rest = haptics::forward(mh.trocar, mh.rest);
+    EXPECT_LT((Vec3(rest.tip_m[0], rest.tip_m[1], rest.tip_m[2]) - start).norm(), 1e-12) << t.name;
+  }
   // The scene composes as written: the loop's handles are the grasper and the scissors, driven
   // by the mouse, and the endoscope's script still plays.
   AssembledScene assembled = assemble_state(scene);
-  const Composition comp = compose(scene, assembled);
+  ComposeOptions options;
+  options.mouse_rest_tip_m = given->start_tip_m;
+  const Composition comp = compose(scene, assembled, std::move(options));
   ASSERT_NE(comp.haptics, nullptr);
   EXPECT_EQ(comp.haptics->device_kind(), DeviceKind::kMouse);
   ASSERT_TRUE(comp.haptics->handle_tools()[0].has_value());
@@ -47,7 +71,9 @@ TEST(InstrumentDevices, TheDefaultSceneGoesToTheMouseWithoutARig) {
 
 TEST(InstrumentDevices, ARigPluggedInTakesTheInstruments) {
   Scene scene = load_scene(source("config/appendectomy.toml"));
-  EXPECT_EQ(give_instruments_to_trainee(scene, true), DeviceKind::kRig);
+  const auto given = give_instruments_to_trainee(scene, true);
+  ASSERT_TRUE(given.has_value());
+  EXPECT_EQ(given->device, DeviceKind::kRig);
   EXPECT_EQ(tool(scene, "grasper").device.kind, DeviceKind::kRig);
   EXPECT_EQ(tool(scene, "scissors").device.kind, DeviceKind::kRig);
   EXPECT_EQ(tool(scene, "endoscope").device.kind, DeviceKind::kScript);
@@ -59,14 +85,14 @@ TEST(InstrumentDevices, ASceneThatNamesADeviceKeepsIt) {
   for (Tool& t : scene.tools)
     if (t.name == "grasper") t.device.kind = DeviceKind::kRigEmulated;
   const Scene before = scene;
-  EXPECT_EQ(give_instruments_to_trainee(scene, false), std::nullopt);
+  EXPECT_FALSE(give_instruments_to_trainee(scene, false).has_value());
   EXPECT_EQ(tool(scene, "scissors").device.kind, DeviceKind::kScript);
   EXPECT_EQ(tool(scene, "grasper").device.kind, DeviceKind::kRigEmulated);
   EXPECT_EQ(scene.settings.effects, before.settings.effects);
   // Nothing scripted but the camera: nothing to give.
   Scene camera_only = load_scene(source("config/appendectomy.toml"));
   std::erase_if(camera_only.tools, [](const Tool& t) { return t.kind != ToolKind::kEndoscope; });
-  EXPECT_EQ(give_instruments_to_trainee(camera_only, true), std::nullopt);
+  EXPECT_FALSE(give_instruments_to_trainee(camera_only, true).has_value());
   EXPECT_FALSE(camera_only.settings.has(Effect::kHaptics));
 }
 
