@@ -26,7 +26,9 @@
 // scripted handle's trocar is its tool's `trocar` (its axis pointing at the tool's first scripted
 // tip), or the first tip itself when none is given. A mouse handle's trocar is its tool's
 // `trocar`, else 12 cm above the aim point (the organs' centroid; handle 1 5 cm to the side);
-// its axis points at the aim point and the tool rests halfway there.
+// its axis points at the aim point and the tool rests halfway there, or, given a rest tip
+// (HapticsStageOptions::rest_tip_m: `serosa run` passes where the scene's script started the
+// tool), at that tip.
 #pragma once
 
 #include <array>
