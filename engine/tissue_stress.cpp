@@ -13,6 +13,10 @@ struct TetKinematics {
   bool ok = false;
 };
 
+// A rest edge matrix with this determinant can be inverted (0 for a flat tet, NaN for a broken
+// one).
+bool invertible(double det) { return std::abs(det) > 0.0 && std::isfinite(det); }
+
 Mat3 rest_edges(const TetMesh& mesh, const Tet& tet) {
   Mat3 dm;
   const Vec3& r0 = mesh.rest[static_cast<std::size_t>(tet[0])];
@@ -35,7 +39,7 @@ TetKinematics kinematics(const TetMesh& mesh, std::int32_t t) {
   const Mat3 dm = rest_edges(mesh, tet);
   TetKinematics kin;
   const double det = dm.determinant();
-  if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return kin;
+  if (!invertible(det)) return kin;
   kin.dm_inv = dm.inverse();
   kin.f = deformation_gradient(mesh, tet, kin.dm_inv);
   kin.v0 = std::abs(det) / 6.0;
@@ -78,7 +82,7 @@ void fill_rest_stress(const TetMesh& mesh, const LameTable& table, RestStress& r
     rest.lame[t] = table.of(mesh.group[t]);
     const Mat3 dm = rest_edges(mesh, mesh.tets[t]);
     const double det = dm.determinant();
-    if (!(std::abs(det) > 0.0) || !std::isfinite(det)) continue;
+    if (!invertible(det)) continue;
     rest.dm_inv[t] = dm.inverse();
     rest.ok[t] = 1;
   }
