@@ -1,14 +1,18 @@
 // serosa check MESH [--json] [--repair-inverted]: load and validate a mesh; print counts, volume
-// per group, quality, inverted/flat tets, overshared and boundary faces (docs/ARCHITECTURE.md
-// "External contracts"). Exit 0 on a valid mesh, 1 on bad input (the reader's InputError, printed
-// by main.cpp with file and line) or on a mesh that parses but is invalid (problems printed).
+// and pieces per group, quality, inverted/flat tets, overshared and boundary faces
+// (docs/ARCHITECTURE.md "External contracts"). Exit 0 on a valid mesh, 1 on bad input (the reader's
+// InputError, printed by main.cpp with file and line) or on a mesh that parses but is invalid
+// (problems printed).
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "app/command.h"
+#include "cutting/validate.h"
 #include "engine/input_error.h"
 #include "engine/mesh_check.h"
 #include "engine/mesh_io.h"
@@ -29,11 +33,21 @@ std::string group_label(int g, const MeshReadReport& read) {
                                       : std::to_string(g) + " (" + it->second + ")";
 }
 
+// Pieces per group: tets connected through shared nodes (a transected organ part has two).
+using Pieces = std::map<int, std::int32_t>;
+
+Pieces count_pieces(const TetMesh& mesh, const MeshCheckReport& r) {
+  Pieces p;
+  for (const auto& [g, tets] : r.group_tets)
+    p[g] = cutting::count_components(mesh, static_cast<std::uint16_t>(g));
+  return p;
+}
+
 nlohmann::json to_json(const std::string& file, const MeshReadReport& read,
-                       const MeshCheckReport& r) {
+                       const MeshCheckReport& r, const Pieces& pieces) {
   nlohmann::json groups = nlohmann::json::array();
   for (const auto& [g, tets] : r.group_tets) {
-    nlohmann::json j{{"id", g}, {"tets", tets}, {"volume_m3", 0.0}};
+    nlohmann::json j{{"id", g}, {"tets", tets}, {"volume_m3", 0.0}, {"pieces", pieces.at(g)}};
     if (const auto v = r.group_volume_m3.find(g); v != r.group_volume_m3.end()) {
       j["volume_m3"] = v->second;
     }
@@ -70,15 +84,18 @@ nlohmann::json to_json(const std::string& file, const MeshReadReport& read,
   };
 }
 
-void print_text(const std::string& file, const MeshReadReport& read, const MeshCheckReport& r) {
+void print_text(const std::string& file, const MeshReadReport& read, const MeshCheckReport& r,
+                const Pieces& pieces) {
   std::printf("mesh        %s (%s)\n", file.c_str(), read.format.c_str());
   std::printf("nodes       %lld\n", static_cast<long long>(r.nodes));
   std::printf("tets        %lld\n", static_cast<long long>(r.tets));
   std::printf("volume      %.6g m^3\n", r.volume_m3);
   for (const auto& [g, tets] : r.group_tets) {
     const auto v = r.group_volume_m3.find(g);
-    std::printf("  group %-16s %lld tets, %.6g m^3\n", group_label(g, read).c_str(),
-                static_cast<long long>(tets), v == r.group_volume_m3.end() ? 0.0 : v->second);
+    const std::int32_t n = pieces.at(g);
+    std::printf("  group %-16s %lld tets, %.6g m^3, %d piece%s\n", group_label(g, read).c_str(),
+                static_cast<long long>(tets), v == r.group_volume_m3.end() ? 0.0 : v->second, n,
+                n == 1 ? "" : "s");
   }
   std::printf("bbox        [%.6g, %.6g, %.6g] .. [%.6g, %.6g, %.6g] m\n", r.bbox_min.x(),
               r.bbox_min.y(), r.bbox_min.z(), r.bbox_max.x(), r.bbox_max.y(), r.bbox_max.z());
@@ -118,10 +135,11 @@ int run_check(const CheckArgs& args) {
   check_options.flat_tolerance = options.flat_tolerance;
   const MeshCheckReport report = check_mesh(mesh, check_options);
 
+  const Pieces pieces = count_pieces(mesh, report);
   if (args.json) {
-    std::printf("%s\n", to_json(args.mesh, read, report).dump(2).c_str());
+    std::printf("%s\n", to_json(args.mesh, read, report, pieces).dump(2).c_str());
   } else {
-    print_text(args.mesh, read, report);
+    print_text(args.mesh, read, report, pieces);
   }
   if (!report.valid) {
     for (const auto& p : report.problems) {

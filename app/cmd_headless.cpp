@@ -9,9 +9,11 @@
 #include <memory>
 
 #include "app/command.h"
+#include "app/emulated_rig_process.h"
 #include "app/golden.h"
 #include "app/headless.h"
 #include "engine/input_error.h"
+#include "engine/scene.h"
 
 namespace serosa::app {
 namespace {
@@ -55,6 +57,7 @@ void add_headless_command(CLI::App& app, Action& action) {
         action = [opts, record, steps, path, final_msh, report, frames, golden, update_golden] {
           if (*update_golden && golden->empty())
             throw InputError("--update-golden", 0, "needs --golden FILE", "--golden FILE");
+          run_under_umockdev_if_rig_emulated(load_scene(opts->scene));
           if (!record->empty()) opts->record = *record;
           opts->stop = &g_stop_requested;
           std::signal(SIGINT, request_stop);

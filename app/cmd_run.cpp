@@ -4,8 +4,10 @@
 #include <string>
 
 #include "app/command.h"
+#include "app/emulated_rig_process.h"
 #include "app/session.h"
 #include "engine/input_error.h"
+#include "engine/scene.h"
 
 namespace serosa::app {
 
@@ -35,6 +37,7 @@ void add_run_command(CLI::App& app, Action& action) {
       if ((x == nullptr || *x == '\0') && (wl == nullptr || *wl == '\0'))
         throw InputError(*scene, 0, "serosa run needs a display and none is set",
                          "DISPLAY or WAYLAND_DISPLAY; without one use `serosa headless`");
+      run_under_umockdev_if_rig_emulated(load_scene(*scene));
       SessionOptions so;
       so.seconds = *seconds;
       so.snapshot = *snapshot;

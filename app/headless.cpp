@@ -12,6 +12,7 @@
 #include <memory>
 #include <numeric>
 #include <sstream>
+#include <thread>
 
 #include "app/assemble_state.h"
 #include "app/compose.h"
@@ -229,8 +230,16 @@ Json run_headless(const HeadlessOptions& options) {
   std::int64_t taken = 0;
   std::vector<double> step_ms;  // wall time of each solver step (all stages), ms
   step_ms.reserve(static_cast<std::size_t>(steps));
+  // A rig's hand moves in wall-clock time: step no faster than real time, or the run would end
+  // before the hand got anywhere (slower is slow motion, as in the window).
+  const bool paced = comp.haptics && comp.haptics->driven_by_rig();
+  const auto pace0 = std::chrono::steady_clock::now();
   for (std::int64_t i = 0; i < steps; ++i) {
     if (options.stop && options.stop->load()) break;
+    if (paced)
+      std::this_thread::sleep_until(
+          pace0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                      std::chrono::duration<double>(static_cast<double>(i) * scene.settings.dt_s)));
     const auto s0 = std::chrono::steady_clock::now();
     comp.runner->step(state);
     step_ms.push_back(
@@ -241,6 +250,7 @@ Json run_headless(const HeadlessOptions& options) {
   }
   if (bar && taken < steps) std::fputc('\n', stderr);
   report["steps_taken"] = taken;
+  report["paced_to_real_time"] = paced;
   if (taken < steps) report["interrupted"] = true;
   if (comp.haptics) report["haptics"] = comp.haptics->telemetry_json();  // stops the loop
   if (writer)

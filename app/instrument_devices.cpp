@@ -9,8 +9,11 @@ namespace serosa::app {
 
 void play_tool_path(Scene& scene, const std::filesystem::path& csv) {
   if (!std::filesystem::exists(csv)) throw InputError(csv.string(), 0, "tool path file not found");
-  for (Tool& t : scene.tools)
-    if (t.device.kind == DeviceKind::kScript) t.device.script = csv;
+  for (Tool& t : scene.tools) {
+    const bool emulated_rig_plays =
+        t.device.kind == DeviceKind::kRigEmulated && !t.device.script.empty();
+    if (t.device.kind == DeviceKind::kScript || emulated_rig_plays) t.device.script = csv;
+  }
 }
 
 std::optional<TraineeInstruments> give_instruments_to_trainee(Scene& scene, bool rig_plugged_in) {

@@ -1,7 +1,8 @@
 // Which device drives a scene's instruments in each use. A scene names one device per tool; the
 // shipped scenes script theirs (the procedure, played headless), and the same scene is the
 // trainee's in a window:
-//  - `--path FILE` (headless and run): every scripted tool plays FILE instead of its own path;
+//  - `--path FILE` (headless and run): every scripted tool plays FILE instead of its own path,
+//    and so do the emulated rig's handles (device "rig-emulated:FILE");
 //  - `serosa run` without it: the scripted graspers and scissors follow the rig when one is
 //    plugged in, else the mouse and keyboard, through the haptic loop (the "haptics" effect is
 //    added: the loop is what reads a device); endoscopes keep their script. A scene that already
@@ -17,7 +18,8 @@
 
 namespace serosa::app {
 
-/// Every scripted tool of `scene` plays the tool path `csv`. Throws InputError naming the file
+/// Every scripted tool of `scene`, and every emulated rig handle that plays a path, plays the
+/// tool path `csv`. Throws InputError naming the file
 /// when it does not exist.
 void play_tool_path(Scene& scene, const std::filesystem::path& csv);
 

@@ -268,7 +268,11 @@ double clipped_positive_volume(const TetMesh& mesh, const Vec3& normal, double o
   return total;
 }
 
-std::int32_t count_components(const TetMesh& mesh) {
+namespace {
+
+// Components of the tets `keep` accepts (by index), connected through shared nodes.
+template <typename Keep>
+std::int32_t count_components_of(const TetMesh& mesh, Keep keep) {
   std::vector<std::int32_t> parent(static_cast<std::size_t>(mesh.num_nodes()));
   std::iota(parent.begin(), parent.end(), 0);
   auto find = [&](std::int32_t a) {
@@ -276,14 +280,27 @@ std::int32_t count_components(const TetMesh& mesh) {
     return a;
   };
   std::vector<char> used(parent.size(), 0);
-  for (const Tet& t : mesh.tets)
+  for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
+    if (!keep(i)) continue;
+    const Tet& t = mesh.tets[i];
     for (int k = 0; k < 4; ++k) {
       used[t[k]] = 1;
       parent[find(t[k])] = find(t[0]);
     }
+  }
   std::int32_t count = 0;
   for (std::int32_t i = 0; i < mesh.num_nodes(); ++i) count += used[i] && find(i) == i ? 1 : 0;
   return count;
+}
+
+}  // namespace
+
+std::int32_t count_components(const TetMesh& mesh) {
+  return count_components_of(mesh, [](std::size_t) { return true; });
+}
+
+std::int32_t count_components(const TetMesh& mesh, std::uint16_t group) {
+  return count_components_of(mesh, [&](std::size_t t) { return mesh.group[t] == group; });
 }
 
 }  // namespace serosa::cutting

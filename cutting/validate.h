@@ -59,6 +59,8 @@ struct CutCheckReport {
 
 /// Number of connected components of the mesh, tets connected through shared nodes.
 [[nodiscard]] std::int32_t count_components(const TetMesh& mesh);
+/// Same, over the tets of one group only (how many pieces an organ part is in).
+[[nodiscard]] std::int32_t count_components(const TetMesh& mesh, std::uint16_t group);
 
 /// Component id (0-based, dense) of every tet, tets connected through shared nodes.
 [[nodiscard]] std::vector<std::int32_t> tet_components(const TetMesh& mesh);

@@ -183,7 +183,10 @@ struct RenderSettings {
 
 struct ToolDevice {
   DeviceKind kind = DeviceKind::kMouse;
-  std::filesystem::path script;  ///< kScript only: the tool path CSV, resolved, exists
+  /// The tool path CSV (resolved, exists, has rows for the tool): for kScript the path the tool
+  /// follows; for kRigEmulated the path the emulated rig's handle plays (then the process sets
+  /// up the emulated rig itself), or empty when someone else emulates the rig (tests).
+  std::filesystem::path script;
 };
 
 struct Tool {

@@ -701,14 +701,17 @@ class Loader {
           enum_value<ToolKind>(required(t, "kind", p, "scissors, grasper, endoscope"),
                                sub(p, "kind"), tool_kind_from_name, "scissors, grasper, endoscope");
 
-      // device = "rig" | "rig-emulated" | "mouse" | "script:FILE"
-      const std::string dev_expected = "rig, rig-emulated, mouse or script:FILE";
+      // device = "rig" | "rig-emulated[:FILE]" | "mouse" | "script:FILE"
+      const std::string dev_expected = "rig, rig-emulated[:FILE], mouse or script:FILE";
       const toml::node& dev_node = required(t, "device", p, dev_expected);
       const std::string dp = sub(p, "device");
       const std::string& dev = string(dev_node, dp, dev_expected);
-      if (dev.rfind("script:", 0) == 0) {
-        tool.device.kind = DeviceKind::kScript;
-        tool.device.script = existing_file(dev_node, dp, dev.substr(7), "script file");
+      const bool script = dev.rfind("script:", 0) == 0;
+      if (script || dev.rfind("rig-emulated:", 0) == 0) {
+        // A script the solver plays, or the one the emulated rig's handles play.
+        const std::size_t colon = dev.find(':');
+        tool.device.kind = script ? DeviceKind::kScript : DeviceKind::kRigEmulated;
+        tool.device.script = existing_file(dev_node, dp, dev.substr(colon + 1), "script file");
         const ToolPath& path = tool_path(tool.device.script);
         if (!path.index_of(tool.name)) {
           fail(dev_node, dp,

@@ -61,7 +61,8 @@ struct EmulatedRig::Impl {
   std::deque<RigFault> faults;
   bool halted = false;
   bool unplugged = false;
-  double t0 = 0.0;
+  double t0 = 0.0;       // construction: the device clock
+  double path_t0 = 0.0;  // path time 0
   double next_due = 0.0;
   std::uint32_t seq = 0;
   std::array<std::pair<std::uint32_t, double>, 256> delivered{};
@@ -89,7 +90,7 @@ struct EmulatedRig::Impl {
     p.sequence = ++seq;
     p.device_time_us = static_cast<std::uint32_t>((now - t0) * 1e6);
     for (std::size_t h = 0; h < kHandles; ++h) {
-      p.handles[h] = to_counts(c.calibration, joints_at(h, now - t0));
+      p.handles[h] = to_counts(c.calibration, joints_at(h, now - path_t0));
     }
     update_watchdog(now);
     p.status = static_cast<std::uint16_t>(
@@ -344,6 +345,7 @@ EmulatedRig::EmulatedRig(EmulatedRigConfig c) : m(std::make_unique<Impl>()) {
   }
   m->c = std::move(c);
   m->t0 = monotonic_s();
+  m->path_t0 = m->t0;
   m->latencies.reserve(1 << 16);
   m->tb = umockdev_testbed_new();
   m->handler = umockdev_ioctl_base_new();
@@ -360,6 +362,11 @@ EmulatedRig::~EmulatedRig() {
   }
   g_object_unref(m->handler);
   g_object_unref(m->tb);
+}
+
+void EmulatedRig::restart_path() {
+  std::lock_guard<std::mutex> lock(m->mu);
+  m->path_t0 = monotonic_s();
 }
 
 void EmulatedRig::unplug() {

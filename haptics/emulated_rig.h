@@ -26,7 +26,7 @@
 namespace serosa::haptics {
 
 struct EmulatedRigConfig {
-  ToolPath path;  ///< drives the handles (time 0 = construction)
+  ToolPath path;  ///< drives the handles (time 0 = construction, or restart_path())
   std::array<std::optional<std::size_t>, kHandles> tool_of_handle{};  ///< path tool per handle
   std::array<Trocar, kHandles> trocars{};
   RigCalibration calibration{};
@@ -61,6 +61,9 @@ class EmulatedRig {
   EmulatedRig(const EmulatedRig&) = delete;
   EmulatedRig& operator=(const EmulatedRig&) = delete;
 
+  /// Path time 0 is now: the handles start the path over (the session calls it at its first
+  /// step, so that the path and the simulation start together).
+  void restart_path();
   void unplug();
   void replug();
   [[nodiscard]] bool plugged() const;

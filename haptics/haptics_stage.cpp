@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <sstream>
 #include <stdexcept>
@@ -48,6 +49,23 @@ class NoRig final : public haptics::Device {
   [[nodiscard]] const char* name() const noexcept override { return "no-rig"; }
 };
 
+// What the emulated rig's firmware saw: the state packets it sent, the force packets it decoded,
+// and how long each state packet took to be answered (ms).
+nlohmann::json emulated_rig_json(const haptics::EmulatedRig& rig) {
+  const haptics::EmulatedRigStats st = rig.stats();
+  std::vector<double> lat = rig.latencies();
+  std::sort(lat.begin(), lat.end());
+  const auto at = [&](double q) {
+    return lat.empty()
+               ? 0.0
+               : 1e3 * lat[std::min(lat.size() - 1,
+                                    static_cast<std::size_t>(q * static_cast<double>(lat.size())))];
+  };
+  return {{"packets_sent", st.packets_sent}, {"forces_ok", st.forces_ok},
+          {"forces_bad", st.forces_bad},     {"watchdog_trips", st.watchdog_trips},
+          {"latency_p50_ms", at(0.5)},       {"latency_p99_ms", at(0.99)}};
+}
+
 }  // namespace
 
 HapticsStage::HapticsStage(const Scene& scene, const HapticsStageOptions& options) {
@@ -77,7 +95,7 @@ HapticsStage::HapticsStage(const Scene& scene, const HapticsStageOptions& option
                            "' is driven by " + std::string(device_kind_name(t.device.kind)),
                        std::string(device_kind_name(*kind)));
     kind = t.device.kind;
-    if (t.device.kind == DeviceKind::kScript) {
+    if (!t.device.script.empty()) {  // a script, or the path an emulated rig plays
       if (script && *script != t.device.script)
         throw InputError(t.device.script.string(), 0,
                          "the haptic handles' tools must share one script file", script->string());
@@ -115,6 +133,7 @@ HapticsStage::HapticsStage(const Scene& scene, const HapticsStageOptions& option
       if (m_tool[h]) trocars[h] = rig_trocar(scene.tools[*m_tool[h]], h, options.aim_m);
     }
     rc.trocars = trocars;
+    if (m_kind == DeviceKind::kRigEmulated && script) emulate_rig(scene, *script, trocars);
     try {
       auto rig = std::make_unique<haptics::UsbRig>(rc);
       m_rig = rig.get();
@@ -151,6 +170,22 @@ HapticsStage::HapticsStage(const Scene& scene, const HapticsStageOptions& option
 }
 
 HapticsStage::~HapticsStage() { stop(); }
+
+void HapticsStage::emulate_rig(const Scene& scene, const std::filesystem::path& script,
+                               const std::array<haptics::Trocar, haptics::kHandles>& trocars) {
+  if (!haptics::umockdev_preload_active())
+    throw std::runtime_error("device \"rig-emulated:" + script.string() +
+                             "\" needs the process under umockdev-wrapper (serosa headless and "
+                             "serosa run arrange that themselves)");
+  haptics::EmulatedRigConfig c;
+  c.path = read_tool_path(script);
+  for (std::size_t h = 0; h < haptics::kHandles; ++h) {
+    if (!m_tool[h]) continue;
+    c.tool_of_handle[h] = c.path.index_of(scene.tools[*m_tool[h]].name);  // the loader checked
+  }
+  c.trocars = trocars;
+  m_emulated = std::make_unique<haptics::EmulatedRig>(std::move(c));  // before the driver's libusb
+}
 
 void HapticsStage::wait_for_rig(double seconds) {
   const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
@@ -204,8 +239,12 @@ void HapticsStage::step(const StepContext& ctx, SimState& state) {
       tc.n_contacts = 1;
     }
   }
+  count_events(state);
+  model.cut_events = m_cut_events;
+  model.contact_events = m_contact_events;
   m_model.store(model);
   if (!m_started) {
+    if (m_emulated) m_emulated->restart_path();  // the handles' path starts with the first step
     m_loop->start();
     m_started = true;
   }
@@ -222,6 +261,20 @@ void HapticsStage::step(const StepContext& ctx, SimState& state) {
     if (!m_tool[h] || *m_tool[h] >= state.tools.size()) continue;
     const ToolState t = m_loop->tool_state(h).load();
     if (t.tick > 0) state.tools[*m_tool[h]] = t;
+  }
+}
+
+// The loop marks a force event when these counters move: the cuts made so far (the cutting stage
+// runs after this one, so handoff.cuts holds the previous step's), and every time a handle's tool
+// starts or stops pressing on or holding tissue (its force on the tissue becomes or stops being
+// non-zero).
+void HapticsStage::count_events(const SimState& state) noexcept {
+  m_cut_events += static_cast<std::uint32_t>(state.handoff.cuts.size());
+  const auto& force = state.handoff.tool_force_n;
+  for (std::size_t h = 0; h < haptics::kHandles; ++h) {
+    const bool touching = m_tool[h] && *m_tool[h] < force.size() && force[*m_tool[h]].norm() > 0.0;
+    if (touching != m_touching[h]) ++m_contact_events;
+    m_touching[h] = touching;
   }
 }
 
@@ -249,6 +302,7 @@ nlohmann::json HapticsStage::telemetry_json() {
         {"connects", n.connects},
         {"disconnects", n.disconnects}};
     if (!m_usb_error.empty()) j["rig"]["error"] = m_usb_error;
+    if (m_emulated) j["rig"]["emulated"] = emulated_rig_json(*m_emulated);
   }
   return j;
 }

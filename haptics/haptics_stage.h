@@ -5,11 +5,13 @@
 //  - mouse: a MouseKeyboardDevice the trainee session's window feeds (feed_pointer());
 //  - rig / rig-emulated: the libusb driver haptics::UsbRig (docs/rig-protocol.md) reads both
 //    handles and receives the loop's force commands. "rig-emulated" is the same driver against
-//    haptics::EmulatedRig (umockdev), which the process must run under umockdev-wrapper with the
-//    EmulatedRig created before this stage. A rig that is absent is not an error: the session
-//    runs, the handles' tools stay where they are with zero force, a warning names the tools and
-//    the device, telemetry counts the "not_connected_ticks", and a rig plugged in later is
-//    picked up without a restart (UsbRig's hotplug).
+//    haptics::EmulatedRig (umockdev): with "rig-emulated:FILE" this stage creates the emulated
+//    rig, whose handles play FILE (poses through the trocar kinematics into encoder counts,
+//    jaw included) from the first step on; with plain "rig-emulated" someone else (a test)
+//    created it before this stage. Either way the process runs under umockdev-wrapper. A rig that
+//    is absent is not an error: the session runs, the handles' tools stay where they are with zero
+//    force, a warning names the tools and the device, telemetry counts the "not_connected_ticks",
+//    and a rig plugged in later is picked up without a restart (UsbRig's hotplug).
 // Hand-offs (docs/ARCHITECTURE.md "Threads and hand-offs"), all through engine/seqlock.h:
 //   loop -> solver: each handle's ToolState, written every tick; this stage (right after the
 //     "tools" stage) takes the newest one at the step boundary and puts it into SimState::tools,
@@ -34,6 +36,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -50,6 +53,7 @@
 
 namespace serosa::haptics {
 class Device;
+class EmulatedRig;
 class UsbRig;
 class HapticLoop;
 struct LoopStatus;
@@ -96,6 +100,11 @@ class HapticsStage final : public Stage {
   [[nodiscard]] DeviceKind device_kind() const noexcept { return m_kind; }
   /// Mouse handles: the window's cumulative input (any one thread; no-op for a script device).
   void feed_pointer(const haptics::PointerInput& in) noexcept;
+  /// Whether a rig drives the handles: its samples come in wall-clock time, so a run without a
+  /// window must step at real time for the solver to see the hand's motion as it was made.
+  [[nodiscard]] bool driven_by_rig() const noexcept {
+    return m_kind == DeviceKind::kRig || m_kind == DeviceKind::kRigEmulated;
+  }
   /// Whether the device is connected now (always true for script and mouse).
   [[nodiscard]] bool device_connected() const noexcept;
   /// The contact model published last (tests).
@@ -105,6 +114,8 @@ class HapticsStage final : public Stage {
   std::array<std::optional<std::size_t>, haptics::kHandles> m_tool{};
   DeviceKind m_kind = DeviceKind::kScript;
   haptics::ContactModelChannel m_model;
+  // Declared before the device, so the driver (UsbRig) closes before the rig it talks to goes.
+  std::unique_ptr<haptics::EmulatedRig> m_emulated;  // device "rig-emulated:FILE" only
   std::unique_ptr<haptics::Device> m_device;
   haptics::MouseKeyboardDevice* m_mouse = nullptr;  // m_device when it is the mouse
   haptics::UsbRig* m_rig = nullptr;                 // m_device when it is the rig
@@ -112,7 +123,13 @@ class HapticsStage final : public Stage {
   std::string m_usb_error;  // why libusb could not start (then a never-connected stand-in)
   std::unique_ptr<haptics::HapticLoop> m_loop;
   bool m_started = false;
+  std::uint32_t m_cut_events = 0;      // cuts seen so far (solver thread)
+  std::uint32_t m_contact_events = 0;  // handles' touching-or-not changes so far
+  std::array<bool, haptics::kHandles> m_touching{};
 
+  void emulate_rig(const Scene& scene, const std::filesystem::path& script,
+                   const std::array<haptics::Trocar, haptics::kHandles>& trocars);
+  void count_events(const SimState& state) noexcept;
   void wait_for_rig(double seconds);
   void warn_not_connected(const Scene& scene) const;
 };

@@ -23,17 +23,6 @@ namespace {
 
 using namespace serosa::app::testing;
 
-// The tets of `group` as a mesh of their own (all nodes kept; unused ones are not counted).
-TetMesh group_only(const TetMesh& m, std::uint16_t group) {
-  TetMesh g;
-  g.rest = m.rest;
-  g.fill_node_state();
-  for (std::int32_t t = 0; t < m.num_tets(); ++t)
-    if (m.group[static_cast<std::size_t>(t)] == group)
-      g.add_tet(m.tets[static_cast<std::size_t>(t)], group);
-  return g;
-}
-
 // The run cut the appendix in two in one stroke, with the cut invariants and the volume kept, no
 // tet below quality 1e-3 and at most `growth` times the tets it began with.
 void expect_transected_in_one_stroke(const nlohmann::json& report, const fs::path& final_mesh,
@@ -50,7 +39,7 @@ void expect_transected_in_one_stroke(const nlohmann::json& report, const fs::pat
   EXPECT_LE(report["mesh_final"]["tets"].get<double>(),
             growth * report["mesh_initial"]["tets"].get<double>());
   const TetMesh after = read_mesh(final_mesh);
-  EXPECT_EQ(cutting::count_components(group_only(after, 1)), 2);
+  EXPECT_EQ(cutting::count_components(after, 1), 2);
   EXPECT_TRUE(check_mesh(after).valid);
 }
 
@@ -88,9 +77,9 @@ TEST(Transection, ScissorsCutTheAppendixInTwo) {
 
   // The appendix (group 1) is in two pieces; before the cut it was one.
   const TetMesh before = read_mesh(source("assets/appendectomy_coarse.msh"));
-  EXPECT_EQ(cutting::count_components(group_only(before, 1)), 1);
+  EXPECT_EQ(cutting::count_components(before, 1), 1);
   const TetMesh after = read_mesh(dir / "final.msh");
-  EXPECT_EQ(cutting::count_components(group_only(after, 1)), 2);
+  EXPECT_EQ(cutting::count_components(after, 1), 2);
   EXPECT_TRUE(check_mesh(after).valid);
 }
 
