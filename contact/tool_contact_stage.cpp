@@ -30,6 +30,7 @@ ToolContactStage::ToolContactStage(const Scene& scene, LameTable lame, bool hapt
   m_grasps.resize(scene.tools.size());
   m_tool_force.assign(scene.tools.size(), Vec3::Zero());
   m_planes.resize(scene.tools.size());
+  m_reactions.resize(scene.tools.size());
 }
 
 void ToolContactStage::update_planes(SimState& state) {
@@ -61,6 +62,23 @@ void ToolContactStage::update_planes(SimState& state) {
     m_planes[i] = p;
   }
   state.handoff.contact_planes = m_planes;
+}
+
+// A scissors stroke begins where the jaws last opened (the widest opening since, kept in the
+// grasp's widest_rad) and ends with the cut the cutting stage made of it: its cuts are still in
+// the hand-off (the cutting stage runs after this one). The tissue closed on in between resists.
+void ToolContactStage::resist_blades(const SimState& state, std::size_t tool, Grasp& g) {
+  const ToolState& ts = state.tools[tool];
+  const bool cut = std::any_of(state.handoff.cuts.begin(), state.handoff.cuts.end(),
+                               [&](const CutEvent& c) { return c.tool == tool; });
+  if (cut || ts.jaw_rad >= g.widest_rad) g.widest_rad = ts.jaw_rad;
+  if (!m_haptic) return;
+  if (m_blades.topology_version() != state.mesh.topology_version ||
+      m_blade_nodes != state.mesh.num_nodes()) {
+    m_blades.update(state.mesh, m_lame);
+    m_blade_nodes = state.mesh.num_nodes();
+  }
+  m_reactions[tool].jaw_torque_nm = m_blades.torque_nm(state.mesh, ts, g.widest_rad);
 }
 
 std::vector<std::size_t> ToolContactStage::grasped_counts() const {
@@ -130,9 +148,11 @@ void ToolContactStage::step(const StepContext& ctx, SimState& state) {
   for (std::size_t i = 0; i < m_kinds.size() && i < state.tools.size(); ++i) {
     const ToolState& ts = state.tools[i];
     m_tool_force[i].setZero();
+    m_reactions[i] = ToolReaction{};
     if (m_kinds[i] == ToolKind::kEndoscope) continue;
     const ToolFrame f = tool_frame(ts);
     Grasp& g = m_grasps[i];
+    if (m_kinds[i] == ToolKind::kScissors) resist_blades(state, i, g);
 
     // Grasping: grab on closing past the threshold, let go on opening past it.
     if (m_kinds[i] == ToolKind::kGrasper) {
@@ -152,6 +172,7 @@ void ToolContactStage::step(const StepContext& ctx, SimState& state) {
         Vec3 total = Vec3::Zero();
         for (std::int32_t k : g.nodes) total += pull[static_cast<std::size_t>(k)];
         m_tool_force[i] = -total;  // the tool pulls against the tissue
+        m_reactions[i].held_pull_n = total;
         // Move the held nodes with the jaws (Dirichlet: FEM keeps them where put).
         const Mat3 r = frame_matrix(f);
         for (std::size_t k = 0; k < g.nodes.size(); ++k) {
@@ -198,7 +219,10 @@ void ToolContactStage::step(const StepContext& ctx, SimState& state) {
       }
     }
   }
-  if (m_haptic) update_planes(state);
+  if (m_haptic) {
+    update_planes(state);
+    state.handoff.tool_reactions = m_reactions;
+  }
   state.handoff.tool_force_n = m_tool_force;
   if (any_force)
     state.handoff.external_force_n = m_force;
@@ -232,6 +256,7 @@ void ToolContactStage::restore(StateReader& in, SimState& state) {
   }
   m_boundary_version = ~0ull;
   m_bvh_version = ~0ull;
+  m_blade_nodes = -1;
 }
 
 }  // namespace serosa::contact

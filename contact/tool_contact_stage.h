@@ -14,6 +14,10 @@
 //   grabbed nodes (engine/tissue_stress.h).
 // Each tool's total force on the tissue (N) is handed on (SimState::handoff.tool_force_n) for
 // metrics and the haptic model; the node forces go to FEM (handoff.external_force_n).
+// - Reactions (with the haptic planes): what each tool feels besides its tip's contact plane,
+//   handed on in SimState::handoff.tool_reactions: a grasper's held tissue's pull (the elastic
+//   force on its held nodes), and the torque of the tissue between closing scissor blades
+//   (contact/blade_resistance.h; a stroke begins at the widest opening and ends with its cut).
 // - Haptic contact planes (on when the haptic loop is built): after the
 //   forces, per tool the organ surface point nearest its tip within kHapticRange (collision BVH,
 //   engine/geometry/surface_bvh.h, rebuilt on topology changes and refitted every step) with its
@@ -30,10 +34,12 @@
 #include <string_view>
 #include <vector>
 
+#include "contact/blade_resistance.h"
 #include "engine/contact_plane.h"
 #include "engine/geometry/surface_bvh.h"
 #include "engine/math.h"
 #include "engine/scene.h"
+#include "engine/sim_state.h"
 #include "engine/stage.h"
 #include "engine/surface_mesh.h"
 #include "engine/tissue_stress.h"
@@ -73,9 +79,11 @@ class ToolContactStage final : public Stage {
     std::vector<Vec3> local;          // their positions in the tool frame at the grab, m
     std::vector<std::uint8_t> was_fixed;
     bool holding = false;
-    double widest_rad = 0.0;  // widest opening since the last release
+    double widest_rad = 0.0;  // grasper: widest opening since the last release; scissors: the
+                              // opening the stroke began with
   };
   void refresh_boundary(const SimState& state);
+  void resist_blades(const SimState& state, std::size_t tool, Grasp& g);
   void grab(SimState& state, std::size_t tool, Grasp& g);
   void release(SimState& state, Grasp& g);
   void update_planes(SimState& state);
@@ -95,6 +103,9 @@ class ToolContactStage final : public Stage {
   geometry::SurfaceBvh m_bvh;
   std::uint64_t m_bvh_version = ~0ull;
   std::vector<std::optional<ContactPlane>> m_planes;  // (tools), none: endoscope, out of range
+  std::vector<ToolReaction> m_reactions;              // (tools) this step's
+  BladeResistance m_blades;                           // node volumes and strengths
+  std::int64_t m_blade_nodes = -1;                    // node count m_blades was updated for
 };
 
 }  // namespace serosa::contact

@@ -24,6 +24,12 @@ struct CutEvent {
   std::vector<double> removed_volumes_m3;  ///< (r) rest volume of each removed tet, m^3
 };
 
+/// The tissue's pull and torque on one tool, for the haptic loop (contact/tool_contact_stage.h).
+struct ToolReaction {
+  Vec3 held_pull_n = Vec3::Zero();  ///< the grasped tissue's elastic pull on a grasper's jaws, N
+  double jaw_torque_nm = 0.0;       ///< tissue between closing scissor blades, N m (+ opens)
+};
+
 /// What the stages of a step hand to each other: one stage writes a field, later stages (of this
 /// step, or the next) read it; stages never call each other (docs/ARCHITECTURE.md "The step").
 struct StepHandoff {
@@ -38,6 +44,9 @@ struct StepHandoff {
   /// contact -> haptics: each tool's local contact plane; (tools), or empty when no haptic loop
   /// asked for planes.
   std::vector<std::optional<ContactPlane>> contact_planes;
+  /// contact -> haptics: what each tool feels from the tissue besides its tip's contact plane;
+  /// (tools), or empty when no haptic loop asked for it.
+  std::vector<ToolReaction> tool_reactions;
   /// cutting -> surface and metrics (this step) and FEM (the next step's): the cuts of this step,
   /// in order; cleared by the cutting stage before it cuts.
   std::vector<CutEvent> cuts;

@@ -87,8 +87,8 @@ class StateReader {
 
 /// SimState's part of a snapshot. Not written: the step's cuts (handoff.cuts; snapshots are
 /// taken between steps with none in flight, write_sim_state throws std::logic_error otherwise)
-/// and the haptic contact planes (handoff.contact_planes: only a live haptic loop reads them,
-/// and a replay, which restores snapshots, runs none).
+/// and the haptic contact planes and tool reactions (handoff.contact_planes, tool_reactions: only
+/// a live haptic loop reads them, and a replay, which restores snapshots, runs none).
 void write_sim_state(StateWriter& out, const SimState& s);
 /// Reads what write_sim_state wrote; checks the mesh's arrays agree in size.
 [[nodiscard]] SimState read_sim_state(StateReader& in);

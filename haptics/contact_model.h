@@ -1,6 +1,7 @@
 // ContactModel: what the solver publishes (through a Seqlock, at its own rate) for the 1 kHz loop
-// to render: per tool the simulated tool tip for the virtual coupling and up to kMaxContacts local
-// contact planes (point, normal, stiffness). Plain fixed-size data: no pointers, no allocation.
+// to render: per tool the simulated tool tip for the virtual coupling, up to kMaxContacts local
+// contact planes (point, normal, stiffness), the pull of grasped tissue and the torque of tissue
+// between closing blades. Plain fixed-size data: no pointers, no allocation.
 #pragma once
 
 #include <array>
@@ -23,6 +24,8 @@ struct ToolContact {
   std::uint32_t coupled = 0;                       ///< 1: render the virtual coupling to sim_tip_m
   std::uint32_t n_contacts = 0;                    ///< valid entries of contacts (<= kMaxContacts)
   std::array<ContactPlane, kMaxContacts> contacts{};
+  std::array<double, 3> held_pull_N{0.0, 0.0, 0.0};  ///< grasped tissue's pull on the jaws, N
+  double jaw_torque_Nm = 0.0;  ///< tissue between closing blades, N m (+ opens the jaws)
 };
 
 /// The whole model, one per solver step.

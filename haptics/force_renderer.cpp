@@ -13,6 +13,12 @@ Vec3 v3(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
 void ForceRenderer::reset() noexcept {
   m_have_prev = false;
   for (auto& f : m_last) f.setZero();
+  m_last_jaw.fill(0.0);
+}
+
+double ForceRenderer::blend(double now_s) const noexcept {
+  if (!m_have_prev) return 1.0;
+  return std::clamp((now_s - m_blend_start_s) / m_blend_len_s, 0.0, 1.0);
 }
 
 void ForceRenderer::set_model(const ContactModel& m, double now_s) noexcept {
@@ -41,7 +47,7 @@ Vec3 ForceRenderer::field_force(const ContactModel& m, std::size_t tool, const V
     const double depth = (v3(c.point_m) - x).dot(nrm);
     if (depth > 0.0 || std::isnan(depth)) f += c.stiffness_Npm * depth * nrm;
   }
-  return f;
+  return f + v3(t.held_pull_N);
 }
 
 bool ForceRenderer::render(std::size_t tool, const Vec3& x, double now_s, double dt_s,
@@ -49,10 +55,8 @@ bool ForceRenderer::render(std::size_t tool, const Vec3& x, double now_s, double
   Vec3 f = Vec3::Zero();
   if (m_have_cur) {
     f = field_force(m_cur, tool, x);
-    if (m_have_prev) {
-      const double a = std::clamp((now_s - m_blend_start_s) / m_blend_len_s, 0.0, 1.0);
-      if (a < 1.0) f = a * f + (1.0 - a) * field_force(m_prev, tool, x);
-    }
+    const double a = blend(now_s);
+    if (a < 1.0) f = a * f + (1.0 - a) * field_force(m_prev, tool, x);
   }
   if (!f.allFinite() || !x.allFinite()) {
     m_last[tool].setZero();
@@ -69,6 +73,26 @@ bool ForceRenderer::render(std::size_t tool, const Vec3& x, double now_s, double
   if (s > max_step) f = m_last[tool] + step * (max_step / s);
   m_last[tool] = f;
   out = f;
+  return true;
+}
+
+bool ForceRenderer::jaw_torque(std::size_t tool, double now_s, double dt_s, double& out) noexcept {
+  double t = 0.0;
+  if (m_have_cur) {
+    const double a = blend(now_s);
+    t = m_cur.tools[tool].jaw_torque_Nm;
+    if (a < 1.0) t = a * t + (1.0 - a) * m_prev.tools[tool].jaw_torque_Nm;
+  }
+  if (!std::isfinite(t)) {
+    m_last_jaw[tool] = 0.0;
+    out = 0.0;
+    return false;
+  }
+  t = std::clamp(t, -m_p.rated_jaw_torque_Nm, m_p.rated_jaw_torque_Nm);
+  const double max_step = m_p.jaw_slew_Nm_per_s * std::clamp(dt_s, 0.0, 2e-3);
+  t = std::clamp(t, m_last_jaw[tool] - max_step, m_last_jaw[tool] + max_step);
+  m_last_jaw[tool] = t;
+  out = t;
   return true;
 }
 

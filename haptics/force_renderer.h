@@ -2,6 +2,7 @@
 //
 //   F_raw(x) = k_c (sim_tip - x)                       virtual coupling (when the tool is coupled)
 //            + sum_i k_i max(0, (p_i - x) . n_i) n_i     local contact planes
+//            + P                                        the grasped tissue's pull on the jaws
 // evaluated at the device proxy x every tick, so contact stiffness is rendered at 1 kHz with the
 // latest hand position while the solver runs at its own rate. When a new model arrives, the
 // rendered force blends linearly from the previous model to the new one over the last observed
@@ -11,7 +12,9 @@
 //   3. slew limited: |F(k) - F(k-1)| <= slew_N_per_s * dt per tick (default 1000 N/s, i.e. at
 //      most 1 N per 1 ms tick), so a cut or a contact change never steps the handle force.
 // Safety zeroing (unplug, stall, missing model) bypasses the slew limit: zero is immediate, and
-// after reset() the force ramps back from zero at the slew limit.
+// after reset() the force ramps back from zero at the slew limit. The jaw torque (tissue between
+// closing blades) is blended, clamped and slew limited the same way (jaw_torque()), so the drop
+// when the tissue gives way at a cut is felt as a bounded step.
 #pragma once
 
 #include <array>
@@ -23,10 +26,12 @@
 namespace serosa::haptics {
 
 struct ForceRendererParams {
-  double rated_force_N = 8.0;    ///< maximum tip force magnitude per handle, N
-  double slew_N_per_s = 1000.0;  ///< maximum rate of change of the rendered force, N/s
-  double blend_min_s = 1e-3;     ///< shortest blend between two models, s
-  double blend_max_s = 50e-3;    ///< longest blend between two models, s
+  double rated_force_N = 8.0;        ///< maximum tip force magnitude per handle, N
+  double slew_N_per_s = 1000.0;      ///< maximum rate of change of the rendered force, N/s
+  double blend_min_s = 1e-3;         ///< shortest blend between two models, s
+  double blend_max_s = 50e-3;        ///< longest blend between two models, s
+  double rated_jaw_torque_Nm = 0.2;  ///< maximum jaw torque magnitude, N m
+  double jaw_slew_Nm_per_s = 10.0;   ///< maximum rate of change of the jaw torque, N m/s
 };
 
 class ForceRenderer {
@@ -49,8 +54,15 @@ class ForceRenderer {
   /// blended, clamped, slew-limited force.
   bool render(std::size_t tool, const Vec3& x, double now_s, double dt_s, Vec3& out) noexcept;
 
+  /// Rendered jaw torque for `tool` at now_s, dt_s after the previous tick (N m, + opens):
+  /// the models' jaw torques blended, clamped and slew limited. Non-finite gives false and zero.
+  bool jaw_torque(std::size_t tool, double now_s, double dt_s, double& out) noexcept;
+
   /// Sets the last output of a tool to zero (a safety zero outside render()).
-  void zero_output(std::size_t tool) noexcept { m_last[tool].setZero(); }
+  void zero_output(std::size_t tool) noexcept {
+    m_last[tool].setZero();
+    m_last_jaw[tool] = 0.0;
+  }
 
   [[nodiscard]] const ForceRendererParams& params() const noexcept { return m_p; }
 
@@ -64,6 +76,9 @@ class ForceRenderer {
   double m_blend_len_s = 1e-3;
   double m_last_model_s = 0.0;
   std::array<Vec3, kHandles> m_last{Vec3::Zero(), Vec3::Zero()};
+  std::array<double, kHandles> m_last_jaw{};
+
+  [[nodiscard]] double blend(double now_s) const noexcept;  // weight of the current model
 };
 
 }  // namespace serosa::haptics

@@ -144,8 +144,9 @@ void HapticLoop::tick(std::int64_t now_ns) noexcept {
   DeviceCommand cmd;
   std::array<Vec3, kHandles> force{Vec3::Zero(), Vec3::Zero()};
   const ZeroReason zero = render_force(now, dt, gap, cmd, force);
-  record_event_steps(now, force);
+  record_event_steps(now, force, cmd);
   m_prev_force = force;
+  for (std::size_t h = 0; h < kHandles; ++h) m_prev_jaw_Nm[h] = cmd.effort[h].jaw_Nm;
   send(now, cmd, zero, force);
   m_last_work_ns = monotonic_ns() - work_start_ns;
   m_tel->max_tick_work_ns =
@@ -201,6 +202,8 @@ void HapticLoop::poll_device(double now) noexcept {
     m_sample = s;
     m_have_sample = true;
     m_sample_time_s = now;
+    for (std::size_t h = 0; h < kHandles; ++h)
+      m_friction[h].sample(s.joints[h].insertion_m, now, m_c.trocar_friction);
     ++m_tel->device_samples;
   }
 }
@@ -225,6 +228,7 @@ void HapticLoop::take_model(double now) noexcept {
     e.kind =
         (m.cut_events != m_cut_events ? 1u : 0u) | (m.contact_events != m_contact_events ? 2u : 0u);
     e.max_step_N = 0.0;
+    e.max_jaw_step_Nm = 0.0;
     ++tel.n_events;
     m_event_until_s = now + kEventWindowS;
   }
@@ -265,7 +269,14 @@ ZeroReason HapticLoop::render_force(double now, double dt, bool gap, DeviceComma
       if ((f - m_prev_force[h]).norm() >= max_step * (1.0 - 1e-9) && max_step > 0.0) {
         ++tel.slew_limited_ticks;
       }
-      JointEffort e = tip_to_joint(m_c.trocars[h], m_sample.joints[h], f);
+      double jaw = 0.0;
+      if (!m_renderer.jaw_torque(h, now, dt, jaw)) {
+        zero = ZeroReason::kNotFinite;
+        break;
+      }
+      JointEffort e = tip_to_joint(m_c.trocars[h], m_sample.joints[h], f, Vec3::Zero(), jaw);
+      e.insertion_N +=
+          m_friction[h].force_N(m_c.trocar_friction);  // the port's drag, along the shaft
       e.pitch_Nm = clamp_abs(e.pitch_Nm, m_c.max_joint_torque_Nm);
       e.yaw_Nm = clamp_abs(e.yaw_Nm, m_c.max_joint_torque_Nm);
       e.roll_Nm = clamp_abs(e.roll_Nm, m_c.max_roll_torque_Nm);
@@ -286,6 +297,7 @@ ZeroReason HapticLoop::render_force(double now, double dt, bool gap, DeviceComma
     cmd.tip_force_N = {Vec3::Zero(), Vec3::Zero()};
     force = {Vec3::Zero(), Vec3::Zero()};
     m_renderer.reset();  // the model stays; the force ramps back from zero afterwards
+    for (TrocarFriction& fr : m_friction) fr.reset();
     ++tel.zero_ticks[static_cast<std::size_t>(zero)];
   } else {
     cmd.enable = true;
@@ -294,12 +306,16 @@ ZeroReason HapticLoop::render_force(double now, double dt, bool gap, DeviceComma
 }
 
 // Force steps after contact and cut events.
-void HapticLoop::record_event_steps(double now, const std::array<Vec3, kHandles>& force) noexcept {
+void HapticLoop::record_event_steps(double now, const std::array<Vec3, kHandles>& force,
+                                    const DeviceCommand& cmd) noexcept {
   LoopTelemetry& tel = *m_tel;
   if (now > m_event_until_s || tel.n_events == 0) return;
   ForceEvent& e = tel.events[(tel.n_events - 1) % LoopTelemetry::kEvents];
-  for (std::size_t h = 0; h < kHandles; ++h)
+  for (std::size_t h = 0; h < kHandles; ++h) {
     e.max_step_N = std::max(e.max_step_N, (force[h] - m_prev_force[h]).norm());
+    e.max_jaw_step_Nm =
+        std::max(e.max_jaw_step_Nm, std::abs(cmd.effort[h].jaw_Nm - m_prev_jaw_Nm[h]));
+  }
 }
 
 // Out: the device command, the tool states for the solver, the live status.

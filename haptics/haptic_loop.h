@@ -30,6 +30,7 @@
 #include "haptics/force_renderer.h"
 #include "haptics/gap_monitor.h"
 #include "haptics/loop_telemetry.h"
+#include "haptics/trocar_friction.h"
 #include "haptics/trocar_kinematics.h"
 
 namespace serosa::haptics {
@@ -49,6 +50,7 @@ struct HapticLoopConfig {
   double max_jaw_torque_Nm = 0.2;     ///< jaw torque limit, N*m
   std::array<Trocar, kHandles> trocars{};  ///< per handle port geometry
   ForceRendererParams force{};             ///< includes rated_force_N and the slew limit
+  TrocarFrictionParams trocar_friction{};  ///< the ports' drag on the insertion axis
   bool gap_monitor = true;                 ///< run a GapMonitor to classify late ticks
   GapMonitorConfig monitor{};  ///< by default it polls every 100 us on the loop's own core
                                ///< (cpu = -1 here: follow HapticLoopConfig::cpu)
@@ -105,7 +107,8 @@ class HapticLoop {
   [[nodiscard]] ZeroReason safety_gate(double now, bool gap) const noexcept;
   ZeroReason render_force(double now, double dt, bool gap, DeviceCommand& cmd,
                           std::array<Vec3, kHandles>& force) noexcept;
-  void record_event_steps(double now, const std::array<Vec3, kHandles>& force) noexcept;
+  void record_event_steps(double now, const std::array<Vec3, kHandles>& force,
+                          const DeviceCommand& cmd) noexcept;
   void send(double now, const DeviceCommand& cmd, ZeroReason zero,
             const std::array<Vec3, kHandles>& force) noexcept;
 
@@ -134,6 +137,8 @@ class HapticLoop {
   bool m_events_seen = false;
   double m_event_until_s = -1.0;
   std::array<Vec3, kHandles> m_prev_force{Vec3::Zero(), Vec3::Zero()};
+  std::array<double, kHandles> m_prev_jaw_Nm{};
+  std::array<TrocarFriction, kHandles> m_friction{};
   std::uint64_t m_command_seq = 0;
   std::int64_t m_last_work_ns = 0;  // time spent inside the previous tick
   struct LateInterval {

@@ -238,6 +238,12 @@ void HapticsStage::step(const StepContext& ctx, SimState& state) {
       tc.contacts[0] = *planes[*m_tool[h]];
       tc.n_contacts = 1;
     }
+    const auto& reactions = state.handoff.tool_reactions;
+    if (*m_tool[h] < reactions.size()) {
+      const ToolReaction& r = reactions[*m_tool[h]];
+      tc.held_pull_N = {r.held_pull_n.x(), r.held_pull_n.y(), r.held_pull_n.z()};
+      tc.jaw_torque_Nm = r.jaw_torque_nm;
+    }
   }
   count_events(state);
   model.cut_events = m_cut_events;

@@ -28,6 +28,7 @@
 #include "engine/scene.h"
 #include "engine/tool_path.h"
 #include "haptics/emulated_rig.h"
+#include "haptics/force_renderer.h"
 #include "haptics/trocar_kinematics.h"
 #include "umockdev_rerun.h"
 
@@ -183,10 +184,25 @@ TEST(RigSession, TheRigSceneTransectsTheAppendixThroughTheEmulatedRig) {
   // The grasper held the appendix, the scissors cut it once, and the loop saw the cut.
   EXPECT_GT(report["contact"]["held_nodes"]["grasper"].get<int>(), 0);
   EXPECT_EQ(report["cutting"]["strokes"].get<int>(), 1) << report["cutting"].dump(1);
+  // The loop saw the cut: the scissors' jaw torque (the appendix between the blades) dropped
+  // there, and the grasper's pull changed, each step within the slew limits.
   bool cut_event = false;
-  for (const auto& e : hj["force_events"]) cut_event = cut_event || (e["kind"].get<int>() & 1);
+  for (const auto& e : hj["force_events"]) {
+    if (!(e["kind"].get<int>() & 1)) continue;
+    cut_event = true;
+    EXPECT_GT(e["max_jaw_step_Nm"].get<double>(), 0.0) << e.dump();
+    EXPECT_LE(e["max_jaw_step_Nm"].get<double>(),
+              haptics::ForceRendererParams{}.jaw_slew_Nm_per_s * 2e-3);
+    EXPECT_LE(e["max_step_N"].get<double>(), haptics::ForceRendererParams{}.slew_N_per_s * 2e-3);
+  }
   EXPECT_TRUE(cut_event) << hj["force_events"].dump(1);
-  EXPECT_EQ(cutting::count_components(read_mesh(dir / "final.msh"), 1), 2);
+  // Pieces are topology; on a loaded machine the stroke is sampled coarser and a few of the
+  // cut's slivers can end inverted in the exported current positions, which the reader would
+  // otherwise refuse.
+  MeshReadOptions read;
+  read.repair_inverted = true;
+  EXPECT_EQ(cutting::count_components(read_mesh(dir / "final.msh", read), 1), 2);
+  EXPECT_TRUE(report["mesh_final"]["valid"].get<bool>());
 }
 
 TEST(RigSession, AbsentRigStartsTheRunAndSaysNotConnected) {

@@ -15,6 +15,7 @@
 #include "contact/tool_contact_stage.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"
+#include "engine/state_codec.h"
 #include "engine/tissue_stress.h"
 #include "engine/tool_geometry.h"
 #include "fem/fem_stage.h"
@@ -261,6 +262,73 @@ TEST(Grasper, GrabsLiftsAndLetsGo) {
   EXPECT_NEAR(m["path_length_m"]["grasper"].get<double>(), 0.005, 1e-9);
   EXPECT_GT(m["force_max_n"]["grasper"].get<double>(), 0.0);
   EXPECT_GT(m["peak_stress_pa"].get<double>(), 0.0);
+}
+
+// The stage with the haptic loop's reactions on, taking over `from`'s grasps (a snapshot).
+std::unique_ptr<contact::ToolContactStage> reacting_copy(const BeamRun& run,
+                                                         const contact::ToolContactStage* from) {
+  auto probe = std::make_unique<contact::ToolContactStage>(
+      run.scene, lame_table(run.scene, run.assembled), /*haptic_planes=*/true);
+  if (from != nullptr) {
+    StateWriter out;
+    from->save(out);
+    SimState copy = run.assembled.state;
+    StateReader in(out.bytes(), "grasps");
+    probe->restore(in, copy);
+  }
+  return probe;
+}
+
+TEST(Grasper, TheHapticLoopFeelsTheHeldTissuesPull) {
+  const fs::path dir = out_dir("grasper_pull");
+  auto run = grab_lift_release(dir);
+  SimState& s = run->assembled.state;
+  run->comp.runner->run(s, 30);  // closed and lifted 5 mm
+  ASSERT_GE(run->comp.contact->grasped_counts()[0], 3u);
+  auto probe = reacting_copy(*run, run->comp.contact);
+  SimState copy = s;
+  probe->step(StepContext{30, s.time_s, 0.005}, copy);
+  ASSERT_EQ(copy.handoff.tool_reactions.size(), 1u);
+  const Vec3 pull = copy.handoff.tool_reactions[0].held_pull_n;
+  // The lifted end pulls the jaws back down; it is what the grasper pulls the tissue with,
+  // reversed (the shaft touches nothing here).
+  EXPECT_LT(pull.y(), 0.0);
+  EXPECT_LT((pull + copy.handoff.tool_force_n[0]).norm(), 1e-12 * pull.norm());
+  EXPECT_EQ(copy.handoff.tool_reactions[0].jaw_torque_nm, 0.0);
+}
+
+TEST(Scissors, TissueBetweenClosingBladesResistsUntilTheStrokeIsCut) {
+  const fs::path dir = out_dir("scissors_resist");
+  const std::string tool =
+      "[[tool]]\nname = \"scissors\"\nkind = \"scissors\"\ndevice = \"script:path.csv\"\n";
+  auto run = beam_with_tools(dir, "\"fem\", \"surface\", \"contact\"", tool,
+                             "0,scissors,0.05,0.05,0," + kDown + ",0\n");
+  auto probe = reacting_copy(*run, nullptr);
+  SimState s = run->assembled.state;
+  // Pointing down across the beam's top at x = 5 cm, blades opening along the beam, reaching
+  // 8 mm into it.
+  const auto torque_at = [&](double jaw, bool cut) {
+    s.tools[0].tip_m = {0.05, -0.003, 0.0};
+    s.tools[0].quat_wxyz = {0.7071067811865476, 0.7071067811865476, 0.0, 0.0};
+    s.tools[0].jaw_rad = jaw;
+    s.handoff.cuts.clear();
+    if (cut) {
+      CutEvent e;
+      e.tool = 0;
+      s.handoff.cuts.push_back(e);
+    }
+    probe->step(StepContext{0, 0.0, 0.005}, s);
+    return s.handoff.tool_reactions[0].jaw_torque_nm;
+  };
+  EXPECT_EQ(torque_at(1.0, false), 0.0);  // opened: nothing to resist
+  const double part = torque_at(0.6, false);
+  EXPECT_GT(part, 0.0);
+  EXPECT_GE(torque_at(0.3, false), part);
+  EXPECT_GT(torque_at(0.0, false), part);  // closed on all the tissue in reach (5 mm nodes)
+  EXPECT_EQ(torque_at(0.0, true), 0.0);    // the stroke was cut: the tissue gave way
+  EXPECT_EQ(torque_at(0.0, false), 0.0);   // and stays given
+  EXPECT_EQ(torque_at(0.8, false), 0.0);   // opened again
+  EXPECT_GT(torque_at(0.5, false), 0.0);   // a new stroke
 }
 
 // The "plasticity" effect: the grasper lifts the beam's end 5 mm, holds it (t = 0.05-0.5 s) and

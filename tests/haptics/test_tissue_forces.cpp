@@ -1,0 +1,154 @@
+// The forces a surgeon feels besides the tip's contact plane, rendered by the 1 kHz loop: the pull
+// of grasped tissue, the torque of tissue between closing scissor blades (and its drop at the
+// cut), and the trocar's friction. Driven tick by tick with synthetic times, like
+// test_haptic_loop.cpp.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "fake_device.h"
+#include "haptics/force_renderer.h"
+#include "haptics/haptic_loop.h"
+#include "haptics/trocar_friction.h"
+
+namespace serosa::haptics {
+namespace {
+
+using testing::FakeDevice;
+constexpr std::int64_t kMs = 1'000'000;
+
+HapticLoopConfig tick_config() {
+  HapticLoopConfig c;
+  c.realtime = false;
+  c.gap_monitor = false;
+  return c;
+}
+
+// A model with no contact plane: only what a test sets.
+ContactModel free_model(std::uint64_t step) {
+  ContactModel m;
+  m.step = step;
+  return m;
+}
+
+TEST(ForceRenderer, HeldTissuePullIsRenderedWhereverTheHandIs) {
+  ContactModel m = free_model(1);
+  m.tools[0].held_pull_N = {0.0, -0.6, 0.2};  // the lifted tissue pulls down and back
+  ForceRenderer r;
+  r.set_model(m, 0.0);
+  Vec3 f;
+  for (int k = 1; k <= 5; ++k) ASSERT_TRUE(r.render(0, Vec3(0, 0, 0.1), k * 1e-3, 1e-3, f));
+  EXPECT_LT((f - Vec3(0.0, -0.6, 0.2)).norm(), 1e-12);
+  // It is the tissue's reaction, not a spring about a point: the same at another proxy.
+  ASSERT_TRUE(r.render(0, Vec3(0.02, 0.01, 0.08), 6e-3, 1e-3, f));
+  EXPECT_LT((f - Vec3(0.0, -0.6, 0.2)).norm(), 1e-12);
+  ASSERT_TRUE(r.render(1, Vec3(0, 0, 0.1), 6e-3, 1e-3, f));
+  EXPECT_EQ(f.norm(), 0.0);  // the other handle holds nothing
+}
+
+TEST(ForceRenderer, JawTorqueIsBlendedClampedAndSlewLimited) {
+  ForceRendererParams p;
+  p.rated_jaw_torque_Nm = 0.05;
+  p.jaw_slew_Nm_per_s = 10.0;  // 0.01 N m per 1 ms tick
+  ForceRenderer r(p);
+  ContactModel m = free_model(1);
+  m.tools[0].jaw_torque_Nm = 0.2;  // beyond the rating
+  r.set_model(m, 0.0);
+  double t = 0.0, prev = 0.0;
+  for (int k = 1; k <= 10; ++k) {
+    ASSERT_TRUE(r.jaw_torque(0, k * 1e-3, 1e-3, t));
+    EXPECT_LE(std::abs(t - prev), 0.01 + 1e-12);
+    EXPECT_GE(t, prev);
+    prev = t;
+  }
+  EXPECT_NEAR(t, 0.05, 1e-12);
+  m.tools[0].jaw_torque_Nm = std::nan("");
+  m.step = 2;
+  r.set_model(m, 10e-3);
+  EXPECT_FALSE(r.jaw_torque(0, 20e-3, 1e-3, t));
+  EXPECT_EQ(t, 0.0);
+}
+
+TEST(HapticLoop, TissueBetweenTheBladesResistsThroughTheJawChannelAndGivesWayBounded) {
+  FakeDevice dev;
+  ContactModel m = free_model(1);
+  m.tools[1].jaw_torque_Nm = 0.03;  // the right hand's scissors close on tissue
+  ContactModelChannel ch(m);
+  HapticLoopConfig c = tick_config();
+  HapticLoop loop(dev, ch, c);
+  std::int64_t t = 1000 * kMs;
+  for (std::uint64_t step = 2; step < 8; ++step) {  // solver at 200 Hz
+    for (int i = 0; i < 5; ++i) loop.tick(t += kMs);
+    m.step = step;
+    ch.store(m);
+  }
+  EXPECT_NEAR(dev.last().cmd.effort[1].jaw_Nm, 0.03, 1e-12);  // + opens: it resists closing
+  EXPECT_EQ(dev.last().cmd.effort[0].jaw_Nm, 0.0);
+  // The cut: the tissue gives way, the torque drops, never faster than the slew limit.
+  m.step = 100;
+  m.cut_events = 1;
+  m.tools[1].jaw_torque_Nm = 0.0;
+  ch.store(m);
+  for (int i = 0; i < 30; ++i) loop.tick(t += kMs);
+  EXPECT_EQ(dev.last().cmd.effort[1].jaw_Nm, 0.0);
+  const LoopTelemetry& tel = loop.telemetry();
+  ASSERT_EQ(tel.n_events, 1u);
+  EXPECT_EQ(tel.events[0].kind, 1u);
+  EXPECT_GT(tel.events[0].max_jaw_step_Nm, 0.0);
+  EXPECT_LE(tel.events[0].max_jaw_step_Nm, c.force.jaw_slew_Nm_per_s * 1e-3 + 1e-12);
+}
+
+TEST(TrocarFriction, AlwaysOpposesTheMotionAndIsZeroAtRest) {
+  const TrocarFrictionParams p;
+  EXPECT_EQ(TrocarFriction::force_N(0.0, p), 0.0);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> speed(-0.5, 0.5);
+  for (int k = 0; k < 5000; ++k) {
+    const double v = speed(rng);
+    const double f = TrocarFriction::force_N(v, p);
+    EXPECT_LE(f * v, 0.0) << v;  // passive: it only takes energy out
+    EXPECT_LE(std::abs(f), p.coulomb_N + p.viscous_Nspm * std::abs(v) + 1e-12);
+    EXPECT_EQ(TrocarFriction::force_N(-v, p), -f);  // the same either way
+  }
+  // Sliding well past the smoothing speed: the seal's full drag plus the viscous part.
+  EXPECT_NEAR(TrocarFriction::force_N(0.1, p), -(p.coulomb_N + p.viscous_Nspm * 0.1), 1e-8);
+}
+
+TEST(HapticLoop, TrocarFrictionDragsOnTheInsertionAxisWhileTheShaftSlides) {
+  FakeDevice dev;
+  ContactModelChannel ch(free_model(1));
+  HapticLoop loop(dev, ch, tick_config());
+  const TrocarFrictionParams p;
+  JointState q;
+  q.insertion_m = 0.10;
+  std::int64_t t = 1000 * kMs;
+  std::uint64_t step = 1;
+  const auto tick = [&] {  // the solver publishes a model every 5 ms
+    loop.tick(t += kMs);
+    if (t / kMs % 5 == 0) ch.store(free_model(++step));
+  };
+  // Pushing in at 40 mm/s for 0.2 s (ten filter time constants): the drag pulls back.
+  for (int i = 0; i < 200; ++i) {
+    q.insertion_m += 40e-6;
+    dev.set_joints(0, q);
+    tick();
+  }
+  const double in = dev.last().cmd.effort[0].insertion_N;
+  EXPECT_NEAR(in, TrocarFriction::force_N(0.04, p), 1e-3);
+  EXPECT_LT(in, 0.0);
+  EXPECT_EQ(dev.last().cmd.effort[1].insertion_N, 0.0);  // the other shaft does not move
+  // Drawing out: the drag reverses.
+  for (int i = 0; i < 200; ++i) {
+    q.insertion_m -= 40e-6;
+    dev.set_joints(0, q);
+    tick();
+  }
+  EXPECT_NEAR(dev.last().cmd.effort[0].insertion_N, TrocarFriction::force_N(-0.04, p), 1e-3);
+  // Held still: it fades to nothing.
+  for (int i = 0; i < 300; ++i) tick();
+  EXPECT_LT(std::abs(dev.last().cmd.effort[0].insertion_N), 1e-3);
+}
+
+}  // namespace
+}  // namespace serosa::haptics
