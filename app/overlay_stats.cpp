@@ -47,8 +47,8 @@ void flatten(const nlohmann::json& j, const std::string& name, std::string_view 
 
 }  // namespace
 
-const char* instruments_label(std::optional<DeviceKind> loop_device, bool connected,
-                              bool scripted) {
+const char* instruments_label(std::optional<DeviceKind> loop_device, bool connected, bool scripted,
+                              bool was_connected) {
   if (!loop_device) return scripted ? "script" : nullptr;
   switch (*loop_device) {
     case DeviceKind::kMouse:
@@ -56,9 +56,11 @@ const char* instruments_label(std::optional<DeviceKind> loop_device, bool connec
     case DeviceKind::kScript:
       return "script";
     case DeviceKind::kRig:
-      return connected ? "rig" : "rig not connected";
+      return connected ? "rig" : was_connected ? "rig disconnected" : "rig not connected";
     case DeviceKind::kRigEmulated:
-      return connected ? "emulated rig" : "emulated rig not connected";
+      return connected       ? "emulated rig"
+             : was_connected ? "emulated rig disconnected"
+                             : "emulated rig not connected";
   }
   return nullptr;
 }

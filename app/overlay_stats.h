@@ -44,9 +44,10 @@ struct FrameStats {
 
 /// What drives the instruments, as the overlay says it (a string literal): the haptic loop's
 /// device when a loop runs ("mouse", "script", "rig" or "emulated rig", each rig with " not
-/// connected" while it is absent), else "script" when a tool is scripted; null otherwise.
+/// connected" while it has never been there, " disconnected" once it was and is gone), else
+/// "script" when a tool is scripted; null otherwise.
 [[nodiscard]] const char* instruments_label(std::optional<DeviceKind> loop_device, bool connected,
-                                            bool scripted);
+                                            bool scripted, bool was_connected = false);
 
 /// The haptic loop's rate, Hz: 1 / the median tick period; 0 when it has recorded no period.
 [[nodiscard]] double haptic_rate_hz(const haptics::LoopTelemetry& telemetry);

@@ -232,7 +232,8 @@ class SolverLoop {
     stats.instruments = instruments_label(
         m_comp.haptics != nullptr ? std::optional<DeviceKind>(m_comp.haptics->device_kind())
                                   : std::nullopt,
-        m_comp.haptics != nullptr && m_comp.haptics->device_connected(), m_comp.tools != nullptr);
+        m_comp.haptics != nullptr && m_comp.haptics->device_connected(), m_comp.tools != nullptr,
+        m_comp.haptics != nullptr && m_comp.haptics->rig_was_connected());
     stats.cuts = m_cuts;
     stats.paused = m_control.paused.load();
     stats.slow_motion = m_slow;

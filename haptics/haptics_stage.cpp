@@ -214,6 +214,10 @@ bool HapticsStage::device_connected() const noexcept {
   return m_device != nullptr && m_device->connected();
 }
 
+bool HapticsStage::rig_was_connected() const noexcept {
+  return m_rig != nullptr && m_rig->counters().connects > 0;
+}
+
 void HapticsStage::stop() {
   if (m_loop && m_loop->running()) m_loop->stop();
 }

@@ -105,8 +105,13 @@ class HapticsStage final : public Stage {
   [[nodiscard]] bool driven_by_rig() const noexcept {
     return m_kind == DeviceKind::kRig || m_kind == DeviceKind::kRigEmulated;
   }
+  /// Whether a rig drives the handles and has been connected at some time in this run (so that
+  /// its absence now is an unplug).
+  [[nodiscard]] bool rig_was_connected() const noexcept;
   /// Whether the device is connected now (always true for script and mouse).
   [[nodiscard]] bool device_connected() const noexcept;
+  /// The rig this stage emulates (device "rig-emulated:FILE"), else null: tests unplug it.
+  [[nodiscard]] haptics::EmulatedRig* emulated_rig() noexcept { return m_emulated.get(); }
   /// The contact model published last (tests).
   [[nodiscard]] haptics::ContactModel last_model() const noexcept { return m_model.load(); }
 

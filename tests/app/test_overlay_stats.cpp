@@ -41,6 +41,10 @@ TEST(OverlayStats, TheOverlaySaysWhatDrivesTheInstruments) {
   EXPECT_STREQ(instruments_label(DeviceKind::kMouse, true, true), "mouse");
   EXPECT_STREQ(instruments_label(DeviceKind::kRig, true, false), "rig");
   EXPECT_STREQ(instruments_label(DeviceKind::kRig, false, false), "rig not connected");
+  EXPECT_STREQ(instruments_label(DeviceKind::kRig, false, false, true), "rig disconnected");
+  EXPECT_STREQ(instruments_label(DeviceKind::kRigEmulated, false, false, true),
+               "emulated rig disconnected");
+  EXPECT_STREQ(instruments_label(DeviceKind::kRig, true, false, true), "rig");
   EXPECT_STREQ(instruments_label(DeviceKind::kRigEmulated, false, false),
                "emulated rig not connected");
   EXPECT_STREQ(instruments_label(DeviceKind::kScript, true, true), "script");

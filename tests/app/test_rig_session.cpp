@@ -21,6 +21,7 @@
 #include "app/assemble_state.h"
 #include "app/compose.h"
 #include "app/headless.h"
+#include "app/overlay_stats.h"
 #include "app_test_util.h"
 #include "cutting/validate.h"
 #include "engine/mesh_io.h"
@@ -29,6 +30,8 @@
 #include "engine/tool_path.h"
 #include "haptics/emulated_rig.h"
 #include "haptics/force_renderer.h"
+#include "haptics/haptic_loop.h"
+#include "haptics/haptics_stage.h"
 #include "haptics/trocar_kinematics.h"
 #include "umockdev_rerun.h"
 
@@ -203,6 +206,61 @@ TEST(RigSession, TheRigSceneTransectsTheAppendixThroughTheEmulatedRig) {
   read.repair_inverted = true;
   EXPECT_EQ(cutting::count_components(read_mesh(dir / "final.msh", read), 1), 2);
   EXPECT_TRUE(report["mesh_final"]["valid"].get<bool>());
+}
+
+// Unplugging the rig mid-session: the loop renders zero and the overlay says "disconnected" (not
+// "not connected", as for a rig never seen); plugged back in, the session goes on with it.
+TEST(RigSession, UnplugMidSessionIsToldApartAndAReplugResumes) {
+  if (!haptics::umockdev_preload_active()) {
+    ASSERT_EQ(rerun_under_umockdev(), 0) << "the test failed under umockdev-wrapper";
+    return;
+  }
+  const fs::path dir = out_dir("rig_unplug");
+  std::ofstream(dir / "path.csv") << "t,tool,px,py,pz,qw,qx,qy,qz,jaw\n"
+                                  << "0,grasper,0.05,0.03,0.0,1,0,0,0,0.3\n";
+  std::string toml = "[scene]\ndt = 0.005\neffects = [\"fem\", \"haptics\"]\n";
+  toml.append("[[organ]]\nname = \"beam\"\nmesh = \"")
+      .append(source("assets/beam_coarse.msh").string())
+      .append("\"\nyoung = 1e5\ndensity = 1000\n")
+      .append("[[tool]]\nname = \"grasper\"\nkind = \"grasper\"\n")
+      .append("device = \"rig-emulated:path.csv\"\nhand = \"left\"\ntrocar = [0.05, 0.2, 0.0]\n");
+  std::ofstream(dir / "scene.toml") << toml;
+  const Scene scene = load_scene(dir / "scene.toml");
+  haptics::HapticsStage stage(scene, haptics::HapticsStageOptions{});
+  ASSERT_TRUE(stage.device_connected());
+  SimState s;
+  s.tools.resize(1);
+  s.handoff.tool_reactions.resize(1);
+  s.handoff.tool_reactions[0].held_pull_n = Vec3(0.0, -0.5, 0.0);  // held tissue pulls down
+  std::uint64_t step = 0;
+  const auto run_for = [&](double seconds) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    while (std::chrono::steady_clock::now() < end) {
+      stage.step(StepContext{step, 0.005 * static_cast<double>(step), 0.005}, s);
+      ++step;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  };
+  const auto label = [&] {
+    return std::string(instruments_label(stage.device_kind(), stage.device_connected(), false,
+                                         stage.rig_was_connected()));
+  };
+  run_for(0.3);
+  EXPECT_EQ(label(), "emulated rig");
+  EXPECT_NEAR(std::abs(stage.status().tip_force_N[0][1]), 0.5, 1e-9);
+  ASSERT_TRUE(stage.emulated_rig() != nullptr);
+  stage.emulated_rig()->unplug();
+  run_for(0.2);
+  EXPECT_FALSE(stage.device_connected());
+  EXPECT_EQ(label(), "emulated rig disconnected");
+  EXPECT_EQ(stage.status().enabled, 0u);
+  EXPECT_EQ(stage.status().tip_force_N[0][1], 0.0);
+  stage.emulated_rig()->replug();
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (!stage.device_connected() && std::chrono::steady_clock::now() < end) run_for(0.05);
+  run_for(0.3);
+  EXPECT_EQ(label(), "emulated rig");
+  EXPECT_NEAR(std::abs(stage.status().tip_force_N[0][1]), 0.5, 1e-9);
 }
 
 TEST(RigSession, AbsentRigStartsTheRunAndSaysNotConnected) {
