@@ -130,7 +130,9 @@ HapticsStage::HapticsStage(const Scene& scene, const HapticsStageOptions& option
   } else if (is_rig(m_kind)) {
     haptics::UsbRigConfig rc;
     for (std::size_t h = 0; h < haptics::kHandles; ++h) {
-      if (m_tool[h]) trocars[h] = rig_trocar(scene.tools[*m_tool[h]], h, options.aim_m);
+      if (!m_tool[h]) continue;
+      trocars[h] = rig_trocar(scene.tools[*m_tool[h]], h, options.aim_m);
+      m_rest_pose[h] = haptics::forward(trocars[h], haptics::JointState{});  // at its port
     }
     rc.trocars = trocars;
     if (m_kind == DeviceKind::kRigEmulated && script) emulate_rig(scene, *script, trocars);
@@ -155,6 +157,7 @@ HapticsStage::HapticsStage(const Scene& scene, const HapticsStageOptions& option
                        tool < options.rest_tip_m.size() ? options.rest_tip_m[tool] : std::nullopt);
       trocars[h] = mh.trocar;
       map.rest[h] = mh.rest;
+      m_rest_pose[h] = haptics::forward(mh.trocar, mh.rest);
     }
     auto mouse = std::make_unique<haptics::MouseKeyboardDevice>(trocars, map);
     m_mouse = mouse.get();
@@ -266,11 +269,16 @@ void HapticsStage::step(const StepContext& ctx, SimState& state) {
     else
       spdlog::warn("haptics: rig not connected (unplugged): zero force until it is back");
   }
-  // Loop -> solver: the newest state of each handle (kept from the script until the first tick).
+  // Loop -> solver: the newest state of each handle. Until the loop's first tick a scripted
+  // handle keeps what the tools stage gave it; a mouse or rig handle rests where its device
+  // starts it (not at the scene origin, inside the organs).
   for (std::size_t h = 0; h < haptics::kHandles; ++h) {
     if (!m_tool[h] || *m_tool[h] >= state.tools.size()) continue;
     const ToolState t = m_loop->tool_state(h).load();
-    if (t.tick > 0) state.tools[*m_tool[h]] = t;
+    if (t.tick > 0)
+      state.tools[*m_tool[h]] = t;
+    else if (m_rest_pose[h])
+      state.tools[*m_tool[h]] = *m_rest_pose[h];
   }
 }
 

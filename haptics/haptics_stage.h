@@ -131,6 +131,8 @@ class HapticsStage final : public Stage {
   std::uint32_t m_cut_events = 0;      // cuts seen so far (solver thread)
   std::uint32_t m_contact_events = 0;  // handles' touching-or-not changes so far
   std::array<bool, haptics::kHandles> m_touching{};
+  // Mouse and rig handles: the pose before the device's first sample (script handles: none).
+  std::array<std::optional<ToolState>, haptics::kHandles> m_rest_pose{};
 
   void emulate_rig(const Scene& scene, const std::filesystem::path& script,
                    const std::array<haptics::Trocar, haptics::kHandles>& trocars);

@@ -373,5 +373,35 @@ TEST(SessionHaptics, TheDefaultSceneInAWindowIsDrivenByTheTrainee) {
   EXPECT_GT(prep["steps_taken"].get<std::int64_t>(), 10);
 }
 
+// The trainee drives with the mouse: a drag across the window (xdotool, under Xvfb) moves the
+// active instrument (the grasper), so its path in the session report grows well beyond that of
+// an equally long session without input, in which no instrument moves at all.
+TEST(SessionHaptics, DraggingTheMouseInTheWindowMovesTheInstrument) {
+  const fs::path dir = own_dir("drag_window");
+  const auto session = [&](bool drag) {
+    const fs::path report = dir / (drag ? "drag.json" : "still.json");
+    std::string cmd = "xvfb-run -a -s '-screen 0 1280x720x24' '";
+    cmd.append(source("tests/app/drag_in_window.sh").string()).append("' '");
+    cmd.append(serosa_exe().string()).append("' '");
+    cmd.append(source("config/appendectomy.toml").string()).append("' '");
+    cmd.append(report.string()).append(drag ? "' 4 1" : "' 4 0");
+    const Shell run = shell(cmd);
+    EXPECT_EQ(run.code, 0) << run.out;
+    nlohmann::json rep;
+    std::ifstream(report) >> rep;
+    return rep;
+  };
+  const nlohmann::json still = session(false);
+  const nlohmann::json dragged = session(true);
+  ASSERT_TRUE(still.contains("metrics")) << still.dump(1);
+  ASSERT_TRUE(dragged.contains("metrics")) << dragged.dump(1);
+  for (const auto& [tool, length] : still["metrics"]["path_length_m"].items())
+    EXPECT_EQ(length.get<double>(), 0.0) << tool << " moved without input";
+  EXPECT_GT(dragged["metrics"]["path_length_m"]["grasper"].get<double>(),
+            still["metrics"]["path_length_m"]["grasper"].get<double>() + 0.02)
+      << dragged["metrics"].dump(1);
+  EXPECT_EQ(dragged["metrics"]["path_length_m"]["scissors"].get<double>(), 0.0);
+}
+
 }  // namespace
 }  // namespace serosa::app
