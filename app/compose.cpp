@@ -154,6 +154,8 @@ Composition compose(const Scene& scene, const AssembledScene& assembled, Compose
     c.tools = tools.get();
     c.runner->add(Slot::tools, std::move(tools));
   }
+  if (!options.live_poses.empty())
+    c.runner->add(Slot::tools, std::make_unique<LivePoseStage>(std::move(options.live_poses)));
   // the haptic loop's handles override their scripted tools (a replay feeds recorded inputs)
   if (haptic_loop) {
     HapticsStageOptions ho;

@@ -11,6 +11,7 @@
 #include "app/assemble_state.h"
 #include "contact/tool_contact_stage.h"
 #include "cutting/cutting_stage.h"
+#include "engine/live_pose_stage.h"
 #include "engine/record_stage.h"
 #include "engine/recording_writer.h"
 #include "engine/runner.h"
@@ -56,6 +57,9 @@ struct ComposeOptions {
   bool realtime_haptics = false;
   /// (tools, or empty) Where mouse-driven tools rest at the start, m (HapticsStageOptions).
   std::vector<std::optional<Vec3>> mouse_rest_tip_m;
+  /// Tools another thread poses (the session's endoscope in the trainee's hands): a
+  /// LivePoseStage in the tools slot, after the scripts.
+  std::vector<LivePoseStage::Source> live_poses;
 };
 
 /// The runner with its stages, plus non-owning handles to the stages app needs to talk to.

@@ -27,15 +27,21 @@ std::optional<TraineeInstruments> give_instruments_to_trainee(Scene& scene, bool
   TraineeInstruments given;
   given.device = rig_plugged_in ? DeviceKind::kRig : DeviceKind::kMouse;
   given.start_tip_m.resize(scene.tools.size());
+  given.scope_start.resize(scene.tools.size());
   for (std::size_t i = 0; i < scene.tools.size(); ++i) {
     Tool& t = scene.tools[i];
-    if (!instrument(t)) continue;
+    if (!scripted(t)) continue;
     const ToolPath path = read_tool_path(t.device.script);  // the loader read it: it parses
-    if (path.index_of(t.name)) {
-      const ToolState start = sample(path, t.name, 0.0);
-      given.start_tip_m[i] = Vec3(start.tip_m[0], start.tip_m[1], start.tip_m[2]);
+    std::optional<ToolState> start;
+    if (path.index_of(t.name)) start = sample(path, t.name, 0.0);
+    if (instrument(t)) {
+      if (start) given.start_tip_m[i] = Vec3(start->tip_m[0], start->tip_m[1], start->tip_m[2]);
+      t.device.kind = given.device;
+    } else {
+      if (!start) continue;  // an endoscope its script does not pose keeps the script
+      given.scope_start[i] = start;
+      t.device.kind = DeviceKind::kMouse;  // the window's keys and right button
     }
-    t.device.kind = given.device;
     t.device.script.clear();
   }
   scene.settings.effects.insert(Effect::kHaptics);

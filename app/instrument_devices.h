@@ -5,8 +5,10 @@
 //    and so do the emulated rig's handles (device "rig-emulated:FILE");
 //  - `serosa run` without it: the scripted graspers and scissors follow the rig when one is
 //    plugged in, else the mouse and keyboard, through the haptic loop (the "haptics" effect is
-//    added: the loop is what reads a device); endoscopes keep their script. A scene that already
-//    drives an instrument by a device (rig, rig-emulated or mouse) keeps the devices it names;
+//    added: the loop is what reads a device); the scripted endoscope follows the window's keys
+//    and right button (app/scope_control.h; the rig has no third handle), from where its script
+//    starts it. A scene that already drives an instrument by a device (rig, rig-emulated or
+//    mouse) keeps the devices it names;
 //  - `serosa headless`: the devices the scene names.
 #pragma once
 
@@ -15,6 +17,7 @@
 #include <vector>
 
 #include "engine/scene.h"
+#include "engine/tool_state.h"
 
 namespace serosa::app {
 
@@ -30,6 +33,9 @@ struct TraineeInstruments {
   /// and for a tool its script does not name): mouse handles rest there, in the endoscope's view
   /// (ComposeOptions::mouse_rest_tip_m).
   std::vector<std::optional<Vec3>> start_tip_m;
+  /// (tools) The handed-over endoscope's first scripted pose (nullopt for the other tools): the
+  /// trainee's scope starts there.
+  std::vector<std::optional<ToolState>> scope_start;
 };
 
 /// Hands the scene's scripted instruments to the trainee (above): to the rig when

@@ -24,6 +24,7 @@
 #include "app/overlay_stats.h"
 #include "app/render_frame_from_surface.h"
 #include "app/replay_controller.h"
+#include "app/scope_control.h"
 #include "engine/input_error.h"
 #include "engine/record_stage.h"
 #include "engine/recording_writer.h"
@@ -271,12 +272,19 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
   const std::filesystem::path& snapshot = so.snapshot;
   Scene scene = load_scene(scene_path);
   ComposeOptions co;
+  std::unique_ptr<ScopeControl> scope;  // the endoscope in the trainee's hands
   if (so.tool_path) {
     play_tool_path(scene, *so.tool_path);
   } else if (auto given = give_instruments_to_trainee(scene, haptics::rig_plugged_in())) {
     spdlog::info("the instruments follow the {} (serosa headless plays the scene's script)",
                  given->device == DeviceKind::kRig ? "rig" : "mouse and keyboard");
     co.mouse_rest_tip_m = std::move(given->start_tip_m);
+    for (std::size_t i = 0; i < given->scope_start.size() && !scope; ++i) {
+      if (!given->scope_start[i]) continue;
+      scope = std::make_unique<ScopeControl>(scene.tools[i], *given->scope_start[i]);
+      co.live_poses.push_back({i, &scope->pose()});
+      spdlog::info("the endoscope follows the right mouse button, I/K and ,/.");
+    }
   }
   AssembledScene assembled = assemble_state(scene);
   co.realtime_haptics = true;  // the trainee's machine: SCHED_FIFO when granted
@@ -332,6 +340,7 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
         control.scope_angle_deg.store(control.scope_angle_deg.load() > 0.0f ? 0.0f : 30.0f);
       if (window.pressed(render::Key::kH)) show_overlay = !show_overlay;
       if (mouse) comp.haptics->feed_pointer(pointer.update(window));
+      if (scope) scope->update(window);
 
       frames.take();  // the newest frame, if the solver published one since
       const render::RenderFrame& frame = frames.front();

@@ -49,6 +49,14 @@ int glfw_key(Key k) {
       return GLFW_KEY_J;
     case Key::kB:
       return GLFW_KEY_B;
+    case Key::kI:
+      return GLFW_KEY_I;
+    case Key::kK:
+      return GLFW_KEY_K;
+    case Key::kComma:
+      return GLFW_KEY_COMMA;
+    case Key::kPeriod:
+      return GLFW_KEY_PERIOD;
     case Key::kCount:
       break;
   }
@@ -138,6 +146,10 @@ void Window::cursor(float& x, float& y) const {
 
 bool Window::mouse_down() const {
   return glfwGetMouseButton(m_window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+}
+
+bool Window::right_mouse_down() const {
+  return glfwGetMouseButton(m_window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
 }
 
 Image Window::read_image() {

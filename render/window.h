@@ -25,13 +25,17 @@ enum class Key {
   kRight,
   kPlus,
   kMinus,
-  kTab,  ///< the session's active instrument (mouse input)
-  kW,    ///< insert the active instrument
-  kS,    ///< retract it
-  kQ,    ///< roll it counter-clockwise
-  kE,    ///< roll it clockwise
-  kJ,    ///< open/close its jaws
-  kB,    ///< replay: branch here and take over with the mouse
+  kTab,     ///< the session's active instrument (mouse input)
+  kW,       ///< insert the active instrument
+  kS,       ///< retract it
+  kQ,       ///< roll it counter-clockwise
+  kE,       ///< roll it clockwise
+  kJ,       ///< open/close its jaws
+  kB,       ///< replay: branch here and take over with the mouse
+  kI,       ///< insert the endoscope
+  kK,       ///< retract it
+  kComma,   ///< rotate it (the 30 degree optic sweeps the view) counter-clockwise
+  kPeriod,  ///< clockwise
   kCount
 };
 
@@ -68,6 +72,8 @@ class Window {
   void cursor(float& x, float& y) const;
   /// True while the primary mouse button is held.
   [[nodiscard]] bool mouse_down() const;
+  /// Whether the right mouse button is held.
+  [[nodiscard]] bool right_mouse_down() const;
 
  private:
   GLFWwindow* m_window = nullptr;

@@ -1,7 +1,7 @@
 #!/bin/sh
 # Runs `serosa run SCENE` for SECONDS on the current X display and, with DRAG=1, drags the mouse
 # across its window with the left button held (xdotool): the trainee moving the active
-# instrument. Usage: drag_in_window.sh SEROSA SCENE REPORT SECONDS DRAG
+# instrument; then pushes the endoscope in with the I key. Usage: drag_in_window.sh SEROSA SCENE REPORT SECONDS DRAG
 set -eu
 serosa=$1 scene=$2 report=$3 seconds=$4 drag=$5
 "$serosa" run "$scene" --seconds "$seconds" --report "$report" &
@@ -19,5 +19,16 @@ if [ "$drag" = 1 ]; then
     i=$((i + 1))
   done
   xdotool mouseup 1
+  # Push the endoscope in 3 cm: I six times (held 0.2 s each: the window polls its keys once a
+  # frame).
+  xdotool windowfocus --sync "$window"
+  i=0
+  while [ $i -lt 6 ]; do
+    xdotool keydown i
+    sleep 0.2
+    xdotool keyup i
+    sleep 0.1
+    i=$((i + 1))
+  done
 fi
 wait $pid

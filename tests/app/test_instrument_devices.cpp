@@ -35,7 +35,7 @@ TEST(InstrumentDevices, TheDefaultSceneGoesToTheMouseWithoutARig) {
   EXPECT_EQ(given->device, DeviceKind::kMouse);
   EXPECT_EQ(tool(scene, "grasper").device.kind, DeviceKind::kMouse);
   EXPECT_EQ(tool(scene, "scissors").device.kind, DeviceKind::kMouse);
-  EXPECT_EQ(tool(scene, "endoscope").device.kind, DeviceKind::kScript);  // the camera plays on
+  EXPECT_EQ(tool(scene, "endoscope").device.kind, DeviceKind::kMouse);  // the window's keys
   EXPECT_TRUE(scene.settings.has(Effect::kHaptics));
   // They start where the script started them (config/paths/appendectomy.csv at t = 0), in the
   // endoscope's view: each mouse handle's trocar axis points there and its rest pose puts the
@@ -46,8 +46,14 @@ TEST(InstrumentDevices, TheDefaultSceneGoesToTheMouseWithoutARig) {
     const Tool& t = scene.tools[i];
     if (t.kind == ToolKind::kEndoscope) {
       EXPECT_FALSE(given->start_tip_m[i].has_value());
+      // The scope is the trainee's too, from the script's first pose.
+      EXPECT_EQ(t.device.kind, DeviceKind::kMouse);
+      ASSERT_TRUE(given->scope_start[i].has_value());
+      EXPECT_EQ(given->scope_start[i]->tip_m, sample(path, t.name, 0.0).tip_m);
+      EXPECT_EQ(given->scope_start[i]->quat_wxyz, sample(path, t.name, 0.0).quat_wxyz);
       continue;
     }
+    EXPECT_FALSE(given->scope_start[i].has_value()) << t.name;
     ASSERT_TRUE(given->start_tip_m[i].has_value()) << t.name;
     const ToolState first = sample(path, t.name, 0.0);
     const Vec3 start = *given->start_tip_m[i];
@@ -57,7 +63,7 @@ TEST(InstrumentDevices, TheDefaultSceneGoesToTheMouseWithoutARig) {
     EXPECT_LT((Vec3(rest.tip_m[0], rest.tip_m[1], rest.tip_m[2]) - start).norm(), 1e-12) << t.name;
   }
   // The scene composes as written: the loop's handles are the grasper and the scissors, driven
-  // by the mouse, and the endoscope's script still plays.
+  // by the mouse; no script plays (the window poses the endoscope).
   AssembledScene assembled = assemble_state(scene);
   ComposeOptions options;
   options.mouse_rest_tip_m = given->start_tip_m;
@@ -66,7 +72,7 @@ TEST(InstrumentDevices, TheDefaultSceneGoesToTheMouseWithoutARig) {
   EXPECT_EQ(comp.haptics->device_kind(), DeviceKind::kMouse);
   ASSERT_TRUE(comp.haptics->handle_tools()[0].has_value());
   ASSERT_TRUE(comp.haptics->handle_tools()[1].has_value());
-  EXPECT_NE(comp.tools, nullptr);
+  EXPECT_EQ(comp.tools, nullptr);
 }
 
 TEST(InstrumentDevices, ARigPluggedInTakesTheInstruments) {
@@ -76,7 +82,7 @@ TEST(InstrumentDevices, ARigPluggedInTakesTheInstruments) {
   EXPECT_EQ(given->device, DeviceKind::kRig);
   EXPECT_EQ(tool(scene, "grasper").device.kind, DeviceKind::kRig);
   EXPECT_EQ(tool(scene, "scissors").device.kind, DeviceKind::kRig);
-  EXPECT_EQ(tool(scene, "endoscope").device.kind, DeviceKind::kScript);
+  EXPECT_EQ(tool(scene, "endoscope").device.kind, DeviceKind::kMouse);  // the rig has 2 handles
   EXPECT_TRUE(scene.settings.has(Effect::kHaptics));
 }
 
