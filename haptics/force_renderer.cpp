@@ -36,16 +36,20 @@ void ForceRenderer::set_model(const ContactModel& m, double now_s) noexcept {
   m_last_model_s = now_s;
 }
 
-Vec3 ForceRenderer::field_force(const ContactModel& m, std::size_t tool, const Vec3& x) {
+Vec3 ForceRenderer::field_force(const ContactModel& m, std::size_t tool, const Vec3& x,
+                                double max_stiffness_Npm) {
   const ToolContact& t = m.tools[tool];
-  Vec3 f = Vec3::Zero();
-  if (t.coupled) f += m.coupling_stiffness_Npm * (v3(t.sim_tip_m) - x);
   const std::uint32_t n = std::min<std::uint32_t>(t.n_contacts, kMaxContacts);
+  double total_k = t.coupled ? m.coupling_stiffness_Npm : 0.0;
+  for (std::uint32_t i = 0; i < n; ++i) total_k += t.contacts[i].stiffness_Npm;
+  const double scale = total_k > max_stiffness_Npm ? max_stiffness_Npm / total_k : 1.0;
+  Vec3 f = Vec3::Zero();
+  if (t.coupled) f += scale * m.coupling_stiffness_Npm * (v3(t.sim_tip_m) - x);
   for (std::uint32_t i = 0; i < n; ++i) {
     const ContactPlane& c = t.contacts[i];
     const Vec3 nrm = v3(c.normal);
     const double depth = (v3(c.point_m) - x).dot(nrm);
-    if (depth > 0.0 || std::isnan(depth)) f += c.stiffness_Npm * depth * nrm;
+    if (depth > 0.0 || std::isnan(depth)) f += scale * c.stiffness_Npm * depth * nrm;
   }
   return f + v3(t.held_pull_N);
 }
@@ -54,9 +58,9 @@ bool ForceRenderer::render(std::size_t tool, const Vec3& x, double now_s, double
                            Vec3& out) noexcept {
   Vec3 f = Vec3::Zero();
   if (m_have_cur) {
-    f = field_force(m_cur, tool, x);
+    f = field_force(m_cur, tool, x, m_p.max_stiffness_Npm);
     const double a = blend(now_s);
-    if (a < 1.0) f = a * f + (1.0 - a) * field_force(m_prev, tool, x);
+    if (a < 1.0) f = a * f + (1.0 - a) * field_force(m_prev, tool, x, m_p.max_stiffness_Npm);
   }
   if (!f.allFinite() || !x.allFinite()) {
     m_last[tool].setZero();

@@ -19,6 +19,7 @@
 
 #include <array>
 #include <cstddef>
+#include <limits>
 
 #include "engine/math.h"
 #include "haptics/contact_model.h"
@@ -26,13 +27,25 @@
 namespace serosa::haptics {
 
 struct ForceRendererParams {
-  double rated_force_N = 8.0;        ///< maximum tip force magnitude per handle, N
-  double slew_N_per_s = 1000.0;      ///< maximum rate of change of the rendered force, N/s
-  double blend_min_s = 1e-3;         ///< shortest blend between two models, s
-  double blend_max_s = 50e-3;        ///< longest blend between two models, s
+  double rated_force_N = 8.0;    ///< maximum tip force magnitude per handle, N
+  double slew_N_per_s = 1000.0;  ///< maximum rate of change of the rendered force, N/s
+  double blend_min_s = 1e-3;     ///< shortest blend between two models, s
+  double blend_max_s = 50e-3;    ///< longest blend between two models, s
+  /// Largest total stiffness rendered (coupling plus contact planes), N/m: beyond it every term
+  /// is scaled down together. The loop sets it to kPassivityMargin of the passivity bound 2 b / T
+  /// of its device's damping b and its period T (HapticLoopConfig::device_damping_Nspm).
+  double max_stiffness_Npm = std::numeric_limits<double>::infinity();
   double rated_jaw_torque_Nm = 0.2;  ///< maximum jaw torque magnitude, N m
   double jaw_slew_Nm_per_s = 10.0;   ///< maximum rate of change of the jaw torque, N m/s
 };
+
+/// The stiffness a device with damping b (N s/m) sampled with period T (s), the force held
+/// between samples, renders passively below: 2 b / T, N/m (Colgate and Schenkel 1997). At the
+/// bound itself a wall is marginal, so the loop keeps kPassivityMargin of it.
+[[nodiscard]] inline double passivity_bound_Npm(double damping_Nspm, double period_s) noexcept {
+  return 2.0 * damping_Nspm / period_s;
+}
+inline constexpr double kPassivityMargin = 0.8;
 
 class ForceRenderer {
  public:
@@ -46,8 +59,11 @@ class ForceRenderer {
   /// True once a model with step != 0 was set.
   [[nodiscard]] bool has_model() const noexcept { return m_have_cur; }
 
-  /// Unfiltered force of model m on tool `tool` at proxy x (N); NaN propagates.
-  [[nodiscard]] static Vec3 field_force(const ContactModel& m, std::size_t tool, const Vec3& x);
+  /// Unfiltered force of model m on tool `tool` at proxy x (N), its stiffnesses scaled to at most
+  /// max_stiffness_Npm in total; NaN propagates.
+  [[nodiscard]] static Vec3 field_force(
+      const ContactModel& m, std::size_t tool, const Vec3& x,
+      double max_stiffness_Npm = std::numeric_limits<double>::infinity());
 
   /// Rendered force for `tool` at proxy x and time now_s, dt_s after the previous tick. Returns
   /// false and writes zero when the force is not finite (the caller counts it); otherwise the

@@ -40,6 +40,11 @@ HapticLoop::HapticLoop(Device& device, const ContactModelChannel& model, const H
       m_monitor(monitor_config(c)),
       m_tel(std::make_unique<LoopTelemetry>()) {
   m_tel->period_s = c.period_s;
+  ForceRendererParams force = c.force;
+  force.max_stiffness_Npm =
+      std::min(force.max_stiffness_Npm,
+               kPassivityMargin * passivity_bound_Npm(c.device_damping_Nspm, c.period_s));
+  m_renderer = ForceRenderer(force);
 }
 
 HapticLoop::~HapticLoop() { stop(); }

@@ -51,7 +51,13 @@ struct HapticLoopConfig {
   std::array<Trocar, kHandles> trocars{};  ///< per handle port geometry
   ForceRendererParams force{};             ///< includes rated_force_N and the slew limit
   TrocarFrictionParams trocar_friction{};  ///< the ports' drag on the insertion axis
-  bool gap_monitor = true;                 ///< run a GapMonitor to classify late ticks
+  /// The device's own damping at the tool tip, N s/m. A sampled virtual wall of stiffness K is
+  /// passive while K < 2 b / T (Colgate and Schenkel 1997; T the period): the renderer's total
+  /// stiffness is capped at kPassivityMargin of that (ForceRendererParams::max_stiffness_Npm,
+  /// unless set lower). The default is the design value for the rig (0.4 N s/m: a cap of 640 N/m
+  /// at 1 kHz, above the contact planes' 500 N/m); identify it on each rig.
+  double device_damping_Nspm = 0.4;
+  bool gap_monitor = true;     ///< run a GapMonitor to classify late ticks
   GapMonitorConfig monitor{};  ///< by default it polls every 100 us on the loop's own core
                                ///< (cpu = -1 here: follow HapticLoopConfig::cpu)
 };

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "fake_device.h"
@@ -148,6 +149,81 @@ TEST(HapticLoop, TrocarFrictionDragsOnTheInsertionAxisWhileTheShaftSlides) {
   // Held still: it fades to nothing.
   for (int i = 0; i < 300; ++i) tick();
   EXPECT_LT(std::abs(dev.last().cmd.effort[0].insertion_N), 1e-3);
+}
+
+// A handle of mass m with its own damping b strikes a virtual wall rendered at 1 kHz (the force
+// held between ticks). Returns the energy the wall put in over the bounce beyond what the
+// handle's damping took out while in contact, J: the wall with the device is passive when it is
+// <= 0 (an ideal spring gives back what it took; a sampled one gives back more).
+double bounce_energy_gain_J(double stiffness_Npm, const ForceRendererParams& p, double b_Nspm) {
+  const double m = 0.1, T = 1e-3, v0 = 0.05;
+  ContactModel wall = free_model(1);
+  wall.tools[0].n_contacts = 1;
+  wall.tools[0].contacts[0].point_m = {0.0, 0.0, 0.0};
+  wall.tools[0].contacts[0].normal = {0.0, 0.0, 1.0};
+  wall.tools[0].contacts[0].stiffness_Npm = stiffness_Npm;
+  ForceRenderer r(p);
+  r.set_model(wall, 0.0);
+  double z = 1e-4, v = -v0, work = 0.0, dissipated = 0.0;
+  bool touched = false;
+  const int sub = 200;
+  for (int k = 1; k < 5000; ++k) {
+    Vec3 f;
+    r.render(0, Vec3(0.0, 0.0, z), k * T, T, f);
+    if (touched && f.z() == 0.0) break;  // out of the wall again
+    touched = touched || f.z() != 0.0;
+    for (int i = 0; i < sub; ++i) {  // the continuous handle between two ticks
+      const double h = T / sub;
+      v += h * (f.z() - b_Nspm * v) / m;
+      z += h * v;
+      work += f.z() * h * v;
+      if (f.z() != 0.0) dissipated += b_Nspm * v * v * h;
+    }
+  }
+  return work - dissipated;
+}
+
+TEST(ForceRenderer, AWallStiffenedPastThePassivityBoundIsCappedThere) {
+  const double b = 0.4, T = 1e-3;
+  ForceRendererParams capped;
+  capped.rated_force_N = 1e3;  // the wall itself, not the clamps, is under test
+  capped.slew_N_per_s = 1e9;
+  capped.max_stiffness_Npm = kPassivityMargin * passivity_bound_Npm(b, T);  // as the loop does
+  ForceRendererParams uncapped = capped;
+  uncapped.max_stiffness_Npm = std::numeric_limits<double>::infinity();
+  // Asked for 20 times the bound, the capped wall gives no energy; the same wall uncapped does;
+  // just under the bound it gives none either.
+  EXPECT_LE(bounce_energy_gain_J(16000.0, capped, b), 0.0);
+  EXPECT_GT(bounce_energy_gain_J(16000.0, uncapped, b), 0.0);
+  EXPECT_LE(bounce_energy_gain_J(0.9 * passivity_bound_Npm(b, T), uncapped, b), 0.0);
+  // The cap scales coupling and planes together.
+  ContactModel m = free_model(1);
+  m.tools[0].coupled = 1;
+  m.coupling_stiffness_Npm = 600.0;
+  m.tools[0].sim_tip_m = {0.0, 0.0, 0.01};
+  m.tools[0].n_contacts = 1;
+  m.tools[0].contacts[0].point_m = {0.0, 0.0, 0.01};
+  m.tools[0].contacts[0].normal = {0.0, 0.0, 1.0};
+  m.tools[0].contacts[0].stiffness_Npm = 1000.0;
+  const Vec3 f = ForceRenderer::field_force(m, 0, Vec3::Zero(), 800.0);
+  EXPECT_NEAR(f.z(), 800.0 * 0.01, 1e-12);
+}
+
+TEST(HapticLoop, ContactStiffnessStaysWithinThePassivityBoundOfTheDevicesDamping) {
+  FakeDevice dev;  // tips at z = 0.1
+  ContactModel m = free_model(1);
+  m.tools[0].n_contacts = 1;
+  m.tools[0].contacts[0].point_m = {0.0, 0.0, 0.099};  // 1 mm deep
+  m.tools[0].contacts[0].normal = {0.0, 0.0, -1.0};
+  m.tools[0].contacts[0].stiffness_Npm = 1e5;  // far stiffer than the device can render
+  ContactModelChannel ch(m);
+  HapticLoopConfig c = tick_config();
+  c.device_damping_Nspm = 0.25;
+  HapticLoop loop(dev, ch, c);
+  std::int64_t t = 1000 * kMs;
+  for (int i = 0; i < 20; ++i) loop.tick(t += kMs);
+  const double cap = kPassivityMargin * passivity_bound_Npm(0.25, c.period_s);  // 400 N/m
+  EXPECT_NEAR(dev.last().cmd.tip_force_N[0].norm(), cap * 0.001, 1e-12);
 }
 
 }  // namespace
