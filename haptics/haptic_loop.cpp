@@ -230,6 +230,7 @@ void HapticLoop::take_model(double now) noexcept {
   if (m_events_seen && (m.cut_events != m_cut_events || m.contact_events != m_contact_events)) {
     ForceEvent& e = tel.events[tel.n_events % LoopTelemetry::kEvents];
     e.time_s = now;
+    e.sim_time_s = m.time_s;
     e.kind =
         (m.cut_events != m_cut_events ? 1u : 0u) | (m.contact_events != m_contact_events ? 2u : 0u);
     e.max_step_N = 0.0;

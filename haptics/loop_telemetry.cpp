@@ -88,8 +88,9 @@ void LoopTelemetry::write_json(std::ostream& os) const {
   const std::uint64_t n = std::min<std::uint64_t>(n_events, kEvents);
   for (std::uint64_t k = 0; k < n; ++k) {
     const ForceEvent& e = events[(n_events - n + k) % kEvents];
-    os << (k ? "," : "") << "{\"time_s\":" << e.time_s << ",\"kind\":" << e.kind
-       << ",\"max_step_N\":" << e.max_step_N << ",\"max_jaw_step_Nm\":" << e.max_jaw_step_Nm << '}';
+    os << (k ? "," : "") << "{\"time_s\":" << e.time_s << ",\"sim_time_s\":" << e.sim_time_s
+       << ",\"kind\":" << e.kind << ",\"max_step_N\":" << e.max_step_N
+       << ",\"max_jaw_step_Nm\":" << e.max_jaw_step_Nm << '}';
   }
   os << "]}";
 }

@@ -193,6 +193,9 @@ TEST(RigSession, TheRigSceneTransectsTheAppendixThroughTheEmulatedRig) {
   for (const auto& e : hj["force_events"]) {
     if (!(e["kind"].get<int>() & 1)) continue;
     cut_event = true;
+    // Reported by the model of the step after the one the stroke was cut in.
+    const double cut_s = report["cutting"]["per_stroke"][0]["last_step"].get<double>() * 0.005;
+    EXPECT_NEAR(e["sim_time_s"].get<double>(), cut_s, 0.0101) << e.dump();
     EXPECT_GT(e["max_jaw_step_Nm"].get<double>(), 0.0) << e.dump();
     EXPECT_LE(e["max_jaw_step_Nm"].get<double>(),
               haptics::ForceRendererParams{}.jaw_slew_Nm_per_s * 2e-3);
