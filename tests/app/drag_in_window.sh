@@ -1,34 +1,51 @@
 #!/bin/sh
-# Runs `serosa run SCENE` for SECONDS on the current X display and, with DRAG=1, drags the mouse
-# across its window with the left button held (xdotool): the trainee moving the active
-# instrument; then pushes the endoscope in with the I key. Usage: drag_in_window.sh SEROSA SCENE REPORT SECONDS DRAG
+# Runs `serosa run SCENE` on the current X display and, with DRAG=1, drags the mouse across its
+# window with the left button held (xdotool): the trainee moving the active instrument; then
+# pushes the endoscope in with two presses of I. Without DRAG it waits as long, counted in the
+# window's frames, and sends nothing; either way it then closes the window with Escape. Each
+# input is held over two frames, since the window reads the pointer and keys once a frame (a
+# sanitizer build draws about one frame a second). Usage: drag_in_window.sh SEROSA SCENE REPORT DRAG
 set -eu
-serosa=$1 scene=$2 report=$3 seconds=$4 drag=$5
-"$serosa" run "$scene" --seconds "$seconds" --report "$report" &
+serosa=$1 scene=$2 report=$3 drag=$4
+"$serosa" run "$scene" --seconds 120 --report "$report" &
 pid=$!
-# The window's title starts "Serosa" (it then shows the state); give up after 30 s.
-window=$(timeout 30 xdotool search --sync --name '^Serosa' | head -n 1)
+# The window's title starts "Serosa" (then it shows the simulated time); give up after 60 s.
+window=$(timeout 60 xdotool search --sync --name '^Serosa' | head -n 1)
 [ -n "$window" ] || { echo "drag_in_window.sh: no Serosa window" >&2; kill $pid; exit 1; }
-sleep 1
-if [ "$drag" = 1 ]; then
-  xdotool mousemove --window "$window" 640 360 mousedown 1
-  i=0
-  while [ $i -lt 40 ]; do  # 200 px right and 80 px down over about a second
-    xdotool mousemove_relative -- 5 2
-    sleep 0.02
-    i=$((i + 1))
+
+# Waits until the window has drawn another frame (its title changes with the time), at most 5 s.
+frame() {
+  before=$(xdotool getwindowname "$window")
+  n=0
+  while [ "$(xdotool getwindowname "$window")" = "$before" ] && [ $n -lt 100 ]; do
+    sleep 0.05
+    n=$((n + 1))
   done
-  xdotool mouseup 1
-  # Push the endoscope in 3 cm: I six times (held 0.2 s each: the window polls its keys once a
-  # frame).
-  xdotool windowfocus --sync "$window"
-  i=0
-  while [ $i -lt 6 ]; do
-    xdotool keydown i
-    sleep 0.2
-    xdotool keyup i
-    sleep 0.1
-    i=$((i + 1))
-  done
-fi
+}
+frames() { k=0; while [ $k -lt "$1" ]; do frame; k=$((k + 1)); done; }
+act() { if [ "$drag" = 1 ]; then xdotool "$@"; fi; }
+
+frames 3
+act mousemove --window "$window" 640 360
+act mousedown 1
+frames 2
+i=0
+while [ $i -lt 4 ]; do  # 200 px right and 80 px down in four moves
+  act mousemove_relative -- 50 20
+  frames 2
+  i=$((i + 1))
+done
+act mouseup 1
+frames 2
+xdotool windowfocus --sync "$window"
+i=0
+while [ $i -lt 2 ]; do
+  act keydown i
+  frames 2
+  act keyup i
+  frames 2
+  i=$((i + 1))
+done
+xdotool keydown Escape  # held until the window has closed
 wait $pid
+xdotool keyup Escape
