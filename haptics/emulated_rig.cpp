@@ -62,7 +62,11 @@ struct EmulatedRig::Impl {
   bool halted = false;
   bool unplugged = false;
   double t0 = 0.0;       // construction: the device clock
-  double path_t0 = 0.0;  // path time 0
+  double path_t0 = 0.0;  // path time 0, wall clock (until follow() is called)
+  bool following = false;
+  double anchor_s = 0.0;       // follow(): the simulated time given
+  double anchor_wall_s = 0.0;  // when it was given
+  double cap_s = 0.0;          // the path never runs past this
   double next_due = 0.0;
   std::uint32_t seq = 0;
   std::array<std::pair<std::uint32_t, double>, 256> delivered{};
@@ -90,13 +94,18 @@ struct EmulatedRig::Impl {
     p.sequence = ++seq;
     p.device_time_us = static_cast<std::uint32_t>((now - t0) * 1e6);
     for (std::size_t h = 0; h < kHandles; ++h) {
-      p.handles[h] = to_counts(c.calibration, joints_at(h, now - path_t0));
+      p.handles[h] = to_counts(c.calibration, joints_at(h, path_time(now)));
     }
     update_watchdog(now);
     p.status = static_cast<std::uint16_t>(
         (st.motors_on ? kStatusMotorsEnabled : 0) |
         (!st.motors_on && st.forces_ok > 0 ? kStatusWatchdogTripped : 0));
     return p;
+  }
+
+  double path_time(double now) const {
+    if (!following) return now - path_t0;
+    return std::min(anchor_s + (now - anchor_wall_s), cap_s);
   }
 
   JointState joints_at(std::size_t h, double t) const {
@@ -364,9 +373,12 @@ EmulatedRig::~EmulatedRig() {
   g_object_unref(m->tb);
 }
 
-void EmulatedRig::restart_path() {
+void EmulatedRig::follow(double sim_time_s, double step_s) {
   std::lock_guard<std::mutex> lock(m->mu);
-  m->path_t0 = monotonic_s();
+  m->following = true;
+  m->anchor_s = sim_time_s;
+  m->anchor_wall_s = monotonic_s();
+  m->cap_s = sim_time_s + step_s;
 }
 
 void EmulatedRig::unplug() {

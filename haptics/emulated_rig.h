@@ -26,7 +26,7 @@
 namespace serosa::haptics {
 
 struct EmulatedRigConfig {
-  ToolPath path;  ///< drives the handles (time 0 = construction, or restart_path())
+  ToolPath path;  ///< drives the handles (time 0 = construction; or follow())
   std::array<std::optional<std::size_t>, kHandles> tool_of_handle{};  ///< path tool per handle
   std::array<Trocar, kHandles> trocars{};
   RigCalibration calibration{};
@@ -61,9 +61,12 @@ class EmulatedRig {
   EmulatedRig(const EmulatedRig&) = delete;
   EmulatedRig& operator=(const EmulatedRig&) = delete;
 
-  /// Path time 0 is now: the handles start the path over (the session calls it at its first
-  /// step, so that the path and the simulation start together).
-  void restart_path();
+  /// The handles follow a simulation that is at `sim_time_s` now and steps `step_s` at a time:
+  /// from here the path plays on in wall-clock time, but never past sim_time_s + step_s. A
+  /// simulation at real time sees the hand move as recorded; a slower one (a sanitizer build)
+  /// sees the hand wait for it, so the procedure it plays stays the procedure. Called at every
+  /// step (the path starts with the first).
+  void follow(double sim_time_s, double step_s);
   void unplug();
   void replug();
   [[nodiscard]] bool plugged() const;

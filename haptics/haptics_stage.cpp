@@ -252,12 +252,12 @@ void HapticsStage::step(const StepContext& ctx, SimState& state) {
       tc.jaw_torque_Nm = r.jaw_torque_nm;
     }
   }
+  if (m_emulated) m_emulated->follow(ctx.time_s, ctx.dt_s);
   count_events(state);
   model.cut_events = m_cut_events;
   model.contact_events = m_contact_events;
   m_model.store(model);
   if (!m_started) {
-    if (m_emulated) m_emulated->restart_path();  // the handles' path starts with the first step
     m_loop->start();
     m_started = true;
   }

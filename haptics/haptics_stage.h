@@ -7,7 +7,8 @@
 //    handles and receives the loop's force commands. "rig-emulated" is the same driver against
 //    haptics::EmulatedRig (umockdev): with "rig-emulated:FILE" this stage creates the emulated
 //    rig, whose handles play FILE (poses through the trocar kinematics into encoder counts,
-//    jaw included) from the first step on; with plain "rig-emulated" someone else (a test)
+//    jaw included) from the first step on, in wall-clock time but never more than a step ahead
+//    of the simulation (EmulatedRig::follow); with plain "rig-emulated" someone else (a test)
 //    created it before this stage. Either way the process runs under umockdev-wrapper. A rig that
 //    is absent is not an error: the session runs, the handles' tools stay where they are with zero
 //    force, a warning names the tools and the device, telemetry counts the "not_connected_ticks",
