@@ -54,9 +54,10 @@ struct HapticLoopConfig {
   /// The device's own damping at the tool tip, N s/m. A sampled virtual wall of stiffness K is
   /// passive while K < 2 b / T (Colgate and Schenkel 1997; T the period): the renderer's total
   /// stiffness is capped at kPassivityMargin of that (ForceRendererParams::max_stiffness_Npm,
-  /// unless set lower). The default is the design value for the rig (0.4 N s/m: a cap of 640 N/m
-  /// at 1 kHz, above the contact planes' 500 N/m); identify it on each rig.
-  double device_damping_Nspm = 0.4;
+  /// unless set lower). The default is the device model `serosa bench haptics` measures the
+  /// bound on (handle and hand, 2 N s/m: its energy decay crosses zero at 2 b / T = 4000 N/m,
+  /// docs/BENCHMARKS.md "Coupling stiffness"), so a cap of 3200 N/m; identify it on each rig.
+  double device_damping_Nspm = 2.0;
   bool gap_monitor = true;     ///< run a GapMonitor to classify late ticks
   GapMonitorConfig monitor{};  ///< by default it polls every 100 us on the loop's own core
                                ///< (cpu = -1 here: follow HapticLoopConfig::cpu)
