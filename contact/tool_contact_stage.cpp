@@ -199,10 +199,12 @@ void ToolContactStage::step(const StepContext& ctx, SimState& state) {
     caps.push_back({back, f.hinge, kShaftRadius});
     if (m_kinds[i] == ToolKind::kGrasper && !g.holding)
       for (int k = 0; k < 2; ++k) caps.push_back({f.hinge, jaw_tip(f, ts.jaw_rad, k), kJawRadius});
+    double shaft_weight = 0.0, shaft_at = 0.0;  // sum |f| and sum |f| * distance from `back`
     for (std::int32_t node : m_boundary) {
       const auto un = static_cast<std::size_t>(node);
       if (mesh.fixed[un] != 0 || !(mesh.mass[un] > 0.0)) continue;
-      for (const Capsule& c : caps) {
+      for (std::size_t ci = 0; ci < caps.size(); ++ci) {
+        const Capsule& c = caps[ci];
         const Vec3 q = geometry::closest_point_on_segment(mesh.x[un], c.a, c.b);
         const Vec3 d = mesh.x[un] - q;
         const double dist = d.norm();
@@ -216,8 +218,18 @@ void ToolContactStage::step(const StepContext& ctx, SimState& state) {
         m_tool_force[i] += fc;
         ++m_contacts;
         any_force = true;
+        if (ci == 0) {  // the shaft: what pushes back on it, and where
+          m_reactions[i].shaft_push_n -= fc;
+          shaft_weight += fc.norm();
+          shaft_at += fc.norm() * (q - back).norm();
+        }
       }
     }
+    // Where along the shaft the push acts, as a fraction of the pivot-to-tip length: at the hand
+    // it weighs by that lever about the port (haptics renders it so).
+    const double reach = (f.tip - back).norm();
+    if (shaft_weight > 0.0 && reach > 0.0)
+      m_reactions[i].shaft_lever = std::clamp(shaft_at / shaft_weight / reach, 0.0, 1.0);
   }
   if (m_haptic) {
     update_planes(state);

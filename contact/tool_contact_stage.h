@@ -16,8 +16,10 @@
 // metrics and the haptic model; the node forces go to FEM (handoff.external_force_n).
 // - Reactions (with the haptic planes): what each tool feels besides its tip's contact plane,
 //   handed on in SimState::handoff.tool_reactions: a grasper's held tissue's pull (the elastic
-//   force on its held nodes), and the torque of the tissue between closing scissor blades
-//   (contact/blade_resistance.h; a stroke begins at the widest opening and ends with its cut).
+//   force on its held nodes), the tissue's push on the shaft and where along it (the shaft
+//   capsule's contact forces, reversed), and the torque of the tissue between closing scissor
+//   blades (contact/blade_resistance.h; a stroke begins at the widest opening and ends with its
+//   cut).
 // - Haptic contact planes (on when the haptic loop is built): after the
 //   forces, per tool the organ surface point nearest its tip within kHapticRange (collision BVH,
 //   engine/geometry/surface_bvh.h, rebuilt on topology changes and refitted every step) with its

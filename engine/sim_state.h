@@ -26,8 +26,12 @@ struct CutEvent {
 
 /// The tissue's pull and torque on one tool, for the haptic loop (contact/tool_contact_stage.h).
 struct ToolReaction {
-  Vec3 held_pull_n = Vec3::Zero();  ///< the grasped tissue's elastic pull on a grasper's jaws, N
-  double jaw_torque_nm = 0.0;       ///< tissue between closing scissor blades, N m (+ opens)
+  Vec3 held_pull_n = Vec3::Zero();   ///< the grasped tissue's elastic pull on a grasper's jaws, N
+  double jaw_torque_nm = 0.0;        ///< tissue between closing scissor blades, N m (+ opens)
+  Vec3 shaft_push_n = Vec3::Zero();  ///< the tissue's push on the shaft, N
+  /// where it acts: distance from the port over the port-to-tip distance (0: at the port, 1: at
+  /// the tip)
+  double shaft_lever = 0.0;
 };
 
 /// What the stages of a step hand to each other: one stage writes a field, later stages (of this

@@ -26,6 +26,9 @@ struct ToolContact {
   std::array<ContactPlane, kMaxContacts> contacts{};
   std::array<double, 3> held_pull_N{0.0, 0.0, 0.0};  ///< grasped tissue's pull on the jaws, N
   double jaw_torque_Nm = 0.0;  ///< tissue between closing blades, N m (+ opens the jaws)
+  /// The tissue's push on the shaft as the tip force with the same effect at the port's joints
+  /// (its lateral part times the lever of where it acts, its axial part as it is), N.
+  std::array<double, 3> shaft_push_N{0.0, 0.0, 0.0};
 };
 
 /// The whole model, one per solver step.

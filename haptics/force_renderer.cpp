@@ -51,7 +51,7 @@ Vec3 ForceRenderer::field_force(const ContactModel& m, std::size_t tool, const V
     const double depth = (v3(c.point_m) - x).dot(nrm);
     if (depth > 0.0 || std::isnan(depth)) f += scale * c.stiffness_Npm * depth * nrm;
   }
-  return f + v3(t.held_pull_N);
+  return f + v3(t.held_pull_N) + v3(t.shaft_push_N);
 }
 
 bool ForceRenderer::render(std::size_t tool, const Vec3& x, double now_s, double dt_s,

@@ -3,6 +3,7 @@
 //   F_raw(x) = k_c (sim_tip - x)                       virtual coupling (when the tool is coupled)
 //            + sum_i k_i max(0, (p_i - x) . n_i) n_i     local contact planes
 //            + P                                        the grasped tissue's pull on the jaws
+//            + S                                        the tissue's push on the shaft, at the tip
 // evaluated at the device proxy x every tick, so contact stiffness is rendered at 1 kHz with the
 // latest hand position while the solver runs at its own rate. When a new model arrives, the
 // rendered force blends linearly from the previous model to the new one over the last observed

@@ -31,6 +31,14 @@ MouseHandle mouse_handle(const Tool& tool, std::size_t handle, const Vec3& aim_m
   return m;
 }
 
+Vec3 shaft_push_at_tip(const ToolReaction& r, const ToolState& tool) {
+  const Quat q =
+      Quat(tool.quat_wxyz[0], tool.quat_wxyz[1], tool.quat_wxyz[2], tool.quat_wxyz[3]).normalized();
+  const Vec3 d = q * Vec3::UnitZ();
+  const Vec3 axial = r.shaft_push_n.dot(d) * d;
+  return axial + r.shaft_lever * (r.shaft_push_n - axial);
+}
+
 haptics::Trocar rig_trocar(const Tool& tool, std::size_t handle, const Vec3& aim_m) {
   return mouse_handle(tool, handle, aim_m).trocar;
 }
@@ -250,6 +258,8 @@ void HapticsStage::step(const StepContext& ctx, SimState& state) {
       const ToolReaction& r = reactions[*m_tool[h]];
       tc.held_pull_N = {r.held_pull_n.x(), r.held_pull_n.y(), r.held_pull_n.z()};
       tc.jaw_torque_Nm = r.jaw_torque_nm;
+      const Vec3 at_tip = shaft_push_at_tip(r, state.tools[*m_tool[h]]);
+      tc.shaft_push_N = {at_tip.x(), at_tip.y(), at_tip.z()};
     }
   }
   if (m_emulated) m_emulated->follow(ctx.time_s, ctx.dt_s);

@@ -48,6 +48,7 @@
 
 #include "engine/math.h"
 #include "engine/scene.h"
+#include "engine/sim_state.h"
 #include "engine/stage.h"
 #include "haptics/contact_model.h"
 #include "haptics/mouse_device.h"
@@ -151,6 +152,11 @@ struct MouseHandle {
 };
 [[nodiscard]] MouseHandle mouse_handle(const Tool& tool, std::size_t handle, const Vec3& aim_m,
                                        const std::optional<Vec3>& rest_tip_m = std::nullopt);
+
+/// The tissue's push on a tool's shaft (r.shaft_push_n, acting r.shaft_lever of the way from
+/// the port to the tip) as the tip force with the same moment about the port: its lateral part
+/// times the lever, its axial part unchanged (it passes through the port along the shaft), N.
+[[nodiscard]] Vec3 shaft_push_at_tip(const ToolReaction& r, const ToolState& tool);
 
 /// The trocar of a rig-driven handle: the same as a mouse handle's (mouse_handle().trocar).
 [[nodiscard]] haptics::Trocar rig_trocar(const Tool& tool, std::size_t handle, const Vec3& aim_m);

@@ -297,6 +297,28 @@ TEST(Grasper, TheHapticLoopFeelsTheHeldTissuesPull) {
   EXPECT_EQ(copy.handoff.tool_reactions[0].jaw_torque_nm, 0.0);
 }
 
+TEST(Contact, TheHapticLoopFeelsTheTissuePushingOnTheShaft) {
+  const fs::path dir = out_dir("shaft_push");
+  // A closed grasper's shaft across the top of the beam at x = 8 cm, 1 mm deep (as in
+  // Contact.ShaftPressesTheBeamDownAndTwoToolsActAtOnce), its port 20 cm up the shaft.
+  const std::string csv = "0,left,0.08,0.0065,-0.025,0,0,1,0,0\n";
+  const std::string tools =
+      "[[tool]]\nname = \"left\"\nkind = \"grasper\"\ndevice = \"script:path.csv\"\n"
+      "trocar = [0.08, 0.0065, 0.2]\n";
+  auto run = beam_with_tools(dir, "\"fem\", \"surface\", \"contact\"", tools, csv);
+  auto probe = reacting_copy(*run, nullptr);
+  SimState s = run->assembled.state;
+  run->comp.runner->step(s);  // the script poses the tool
+  probe->step(StepContext{1, s.time_s, 0.005}, s);
+  const ToolReaction& r = s.handoff.tool_reactions[0];
+  // The beam pushes the shaft up, as hard as the shaft pushes it down (the jaws, beyond the
+  // beam, touch nothing), where it crosses the beam: 20 of the 22.5 cm from port to tip.
+  EXPECT_GT(r.shaft_push_n.y(), 0.0);
+  EXPECT_LT((r.shaft_push_n + s.handoff.tool_force_n[0]).norm(), 1e-12 * r.shaft_push_n.norm());
+  EXPECT_NEAR(r.shaft_lever, 0.2 / 0.225, 0.03);
+  EXPECT_EQ(r.held_pull_n.norm(), 0.0);
+}
+
 TEST(Scissors, TissueBetweenClosingBladesResistsUntilTheStrokeIsCut) {
   const fs::path dir = out_dir("scissors_resist");
   const std::string tool =

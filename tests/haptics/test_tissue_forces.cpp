@@ -11,6 +11,7 @@
 #include "fake_device.h"
 #include "haptics/force_renderer.h"
 #include "haptics/haptic_loop.h"
+#include "haptics/haptics_stage.h"
 #include "haptics/trocar_friction.h"
 
 namespace serosa::haptics {
@@ -207,6 +208,36 @@ TEST(ForceRenderer, AWallStiffenedPastThePassivityBoundIsCappedThere) {
   m.tools[0].contacts[0].stiffness_Npm = 1000.0;
   const Vec3 f = ForceRenderer::field_force(m, 0, Vec3::Zero(), 800.0);
   EXPECT_NEAR(f.z(), 800.0 * 0.01, 1e-12);
+}
+
+TEST(HapticsStage, AShaftPushActsAtTheHandleThroughItsLeverAboutThePort) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int k = 0; k < 2000; ++k) {
+    ToolState tool;
+    const Quat q = Quat(u(rng), u(rng), u(rng), u(rng)).normalized();
+    tool.quat_wxyz = {q.w(), q.x(), q.y(), q.z()};
+    const Vec3 pivot(u(rng), u(rng), u(rng));
+    const double reach = 0.05 + 0.2 * (u(rng) + 1.0);  // port to tip, m
+    const Vec3 d = q * Vec3::UnitZ();
+    const Vec3 tip = pivot + reach * d;
+    tool.tip_m = {tip.x(), tip.y(), tip.z()};
+    ToolReaction r;
+    r.shaft_push_n = Vec3(u(rng), u(rng), u(rng));
+    r.shaft_lever = 0.5 * (u(rng) + 1.0);
+    const Vec3 at = pivot + r.shaft_lever * reach * d;  // where the tissue pushes
+    const Vec3 f = shaft_push_at_tip(r, tool);
+    // The same moment about the port, and the same push along the shaft.
+    EXPECT_LT(((tip - pivot).cross(f) - (at - pivot).cross(r.shaft_push_n)).norm(), 1e-12) << k;
+    EXPECT_NEAR(f.dot(d), r.shaft_push_n.dot(d), 1e-12) << k;
+  }
+}
+
+TEST(ForceRenderer, TheShaftPushIsRenderedWithTheRest) {
+  ContactModel m = free_model(1);
+  m.tools[0].held_pull_N = {0.0, -0.2, 0.0};
+  m.tools[0].shaft_push_N = {0.3, 0.0, 0.0};
+  EXPECT_LT((ForceRenderer::field_force(m, 0, Vec3::Zero()) - Vec3(0.3, -0.2, 0.0)).norm(), 1e-15);
 }
 
 TEST(HapticLoop, ContactStiffnessStaysWithinThePassivityBoundOfTheDevicesDamping) {
