@@ -16,9 +16,12 @@ namespace serosa {
 namespace {
 
 constexpr std::string_view kHeader = "t,tool,px,py,pz,qw,qx,qy,qz,jaw";
-constexpr std::size_t kColumns = 10;
-constexpr const char* kColumnNames[kColumns] = {"t",  "tool", "px", "py", "pz",
-                                                "qw", "qx",   "qy", "qz", "jaw"};
+// The same with the buttons a rig's handle reports (bit 0 clutch, 1 cautery pedal, 2 handle
+// button: docs/rig-protocol.md), for the emulated rig's handles.
+constexpr std::string_view kHeaderWithButtons = "t,tool,px,py,pz,qw,qx,qy,qz,jaw,buttons";
+constexpr std::size_t kMaxColumns = 11;
+constexpr const char* kColumnNames[kMaxColumns] = {"t",  "tool", "px", "py",  "pz",     "qw",
+                                                   "qx", "qy",   "qz", "jaw", "buttons"};
 
 std::string_view trim(std::string_view s) {
   const auto first = s.find_first_not_of(" \t\r");
@@ -85,6 +88,7 @@ ToolPath parse_tool_path_text(const std::string& text, const std::string& name) 
   std::string raw;
   std::int64_t line = 0;
   bool have_header = false;
+  std::size_t columns = 10;             // 11 with buttons
   std::vector<std::int64_t> last_line;  // (k) line of each tool's previous row
 
   while (std::getline(in, raw)) {
@@ -99,21 +103,23 @@ ToolPath parse_tool_path_text(const std::string& text, const std::string& name) 
         if (!header.empty()) header += ',';
         header += f;
       }
-      if (header != kHeader) {
+      if (header != kHeader && header != kHeaderWithButtons) {
         throw InputError(name, line, "bad tool path header '" + std::string(content) + "'",
-                         "the header " + std::string(kHeader));
+                         "the header " + std::string(kHeader) + " (or with ,buttons)");
       }
+      columns = header == kHeader ? 10 : 11;
       have_header = true;
       continue;
     }
 
     const auto fields = split_commas(content);
-    if (fields.size() != kColumns) {
+    if (fields.size() != columns) {
       throw InputError(name, line, "row has " + std::to_string(fields.size()) + " columns",
-                       std::to_string(kColumns) + " columns: " + std::string(kHeader));
+                       std::to_string(columns) + " columns: " +
+                           std::string(columns == 10 ? kHeader : kHeaderWithButtons));
     }
-    double v[kColumns] = {};
-    for (std::size_t c = 0; c < kColumns; ++c) {
+    double v[kMaxColumns] = {};
+    for (std::size_t c = 0; c < columns; ++c) {
       if (c != 1) v[c] = parse_number(fields[c], name, line, c);
     }
     const std::string tool(fields[1]);
@@ -140,6 +146,14 @@ ToolPath parse_tool_path_text(const std::string& text, const std::string& name) 
                        "a jaw opening angle in rad within [0, pi]");
     }
 
+    const double buttons = v[10];
+    if (buttons < 0.0 || buttons > 65535.0 || buttons != std::floor(buttons)) {
+      throw InputError(name, line,
+                       "column 'buttons': " + std::string(fields[10]) + " is not a button mask",
+                       "an integer 0..65535 (bit 0 clutch, bit 1 cautery pedal, bit 2 handle "
+                       "button)");
+    }
+
     // Append to the tool's rows; time must not go backwards within one tool.
     std::size_t k = 0;
     if (const auto found = path.index_of(tool)) {
@@ -163,6 +177,7 @@ ToolPath parse_tool_path_text(const std::string& text, const std::string& name) 
     s.tip_m = {v[2], v[3], v[4]};
     s.quat_wxyz = {v[5] / norm, v[6] / norm, v[7] / norm, v[8] / norm};
     s.jaw_rad = jaw;
+    s.buttons = static_cast<std::uint32_t>(buttons);
     rows.push_back(s);
     last_line[k] = line;
   }
@@ -215,8 +230,7 @@ ToolState sample(const ToolPath& path, std::size_t tool, double t_s) {
   }
   out.time_s = t_s;
   out.tick = it == rows.begin() ? 0 : static_cast<std::uint64_t>(it - rows.begin() - 1);
-  out.buttons = 0;
-  return out;
+  return out;  // buttons: the row's at or before t_s (a button is pressed or not)
 }
 
 ToolState sample(const ToolPath& path, std::string_view tool, double t_s) {

@@ -7,7 +7,9 @@
 // tool tip position, m; qw..qz: orientation quaternion (normalized on read; an error when its
 // norm is outside [0.5, 1.5]); jaw: jaw opening angle, rad (0 = closed, 0..pi). Blank lines and
 // lines starting with '#' are skipped; fields may carry surrounding spaces; CRLF is accepted.
-// Rows of different tools may interleave.
+// Rows of different tools may interleave. The header may end in ",buttons", a column of button
+// masks (an integer 0..65535: bit 0 clutch, bit 1 cautery pedal, bit 2 handle button, as the rig
+// reports them), held from their row to the next: how the emulated rig's handles press them.
 #pragma once
 
 #include <cstddef>
@@ -46,7 +48,8 @@ struct ToolPath {
 /// The pose of tool `tool` (index into path.tools) at time t_s: linear in position and jaw,
 /// slerp (shortest arc) in orientation, clamped to the first and last samples outside their
 /// time span. Where two rows share a time the pose jumps there: t at that time gives the later
-/// row. Result: time_s = t_s, tick = 0-based index of the row at or before t_s, buttons = 0.
+/// row. Result: time_s = t_s, tick = 0-based index of the row at or before t_s, buttons those of
+/// that row (0 in a file without the buttons column).
 /// Throws std::out_of_range when tool is not an index of path.tools.
 [[nodiscard]] ToolState sample(const ToolPath& path, std::size_t tool, double t_s);
 

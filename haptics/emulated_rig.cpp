@@ -94,7 +94,9 @@ struct EmulatedRig::Impl {
     p.sequence = ++seq;
     p.device_time_us = static_cast<std::uint32_t>((now - t0) * 1e6);
     for (std::size_t h = 0; h < kHandles; ++h) {
-      p.handles[h] = to_counts(c.calibration, joints_at(h, path_time(now)));
+      const double t = path_time(now);
+      p.handles[h] = to_counts(c.calibration, joints_at(h, t));
+      if (c.tool_of_handle[h]) p.handles[h].buttons = buttons_at(h, t);
     }
     update_watchdog(now);
     p.status = static_cast<std::uint16_t>(
@@ -106,6 +108,11 @@ struct EmulatedRig::Impl {
   double path_time(double now) const {
     if (!following) return now - path_t0;
     return std::min(anchor_s + (now - anchor_wall_s), cap_s);
+  }
+
+  // The clutch, pedal and handle buttons the path holds down (docs/rig-protocol.md).
+  std::uint16_t buttons_at(std::size_t h, double t) const {
+    return static_cast<std::uint16_t>(sample(c.path, *c.tool_of_handle[h], t).buttons);
   }
 
   JointState joints_at(std::size_t h, double t) const {

@@ -4,8 +4,9 @@
 // umockdev's testbed provides the sysfs entry and the /dev/bus/usb node of a 1209:5E70 device; an
 // ioctl handler answers usbdevfs (SUBMITURB, REAPURBNDELAY, DISCARDURB, CLEAR_HALT, ...). The
 // emulated firmware produces one state packet per millisecond from a scripted tool path (poses ->
-// trocar joints -> encoder counts), decodes force packets strictly, keeps the 2 ms motor watchdog
-// and measures the latency from each state packet it delivered to the force packet answering it.
+// trocar joints -> encoder counts; the path's buttons: clutch, pedal, handle button), decodes
+// force packets strictly, keeps the 2 ms motor watchdog and measures the latency from each state
+// packet it delivered to the force packet answering it.
 // Faults can be injected: short packet, bad checksum, bad version, endpoint stall, unplug, replug.
 //
 // Requirements: the process runs with libumockdev-preload (umockdev-wrapper, or LD_PRELOAD) and

@@ -50,6 +50,7 @@ std::pair<double, double> along(const Vec3& p, const Vec3& a, const Vec3& b) {
 }
 
 constexpr double kMoveS = 0.4;  // path time of the motion; the handles hold still afterwards
+constexpr int kPedal = 2;       // the cautery pedal's bit (docs/rig-protocol.md)
 
 TEST(RigSession, EmulatedRigDrivesBothToolsAndReceivesForces) {
   if (!haptics::umockdev_preload_active()) {
@@ -82,13 +83,14 @@ TEST(RigSession, EmulatedRigDrivesBothToolsAndReceivesForces) {
   const std::array<haptics::Trocar, haptics::kHandles> trocars{rig_trocar(scene.tools[1], 0, aim),
                                                                rig_trocar(scene.tools[0], 1, aim)};
 
-  // Each handle moves its tip 1 cm, 2-3 cm above the beam, then holds; the jaw opens meanwhile.
+  // Each handle moves its tip 1 cm, 2-3 cm above the beam, then holds; the jaw opens meanwhile;
+  // the right foot holds the cautery pedal down.
   const std::array<Vec3, 2> from{Vec3(0.03, 0.04, 0.0), Vec3(0.07, 0.035, 0.005)};
   const std::array<Vec3, 2> to{Vec3(0.04, 0.03, 0.0), Vec3(0.06, 0.03, -0.005)};
   const std::array<std::string, 2> names{"grasper", "scissors"};
   std::ostringstream csv;
   csv.precision(17);
-  csv << "t,tool,px,py,pz,qw,qx,qy,qz,jaw\n";
+  csv << "t,tool,px,py,pz,qw,qx,qy,qz,jaw,buttons\n";
   for (double t : {0.0, kMoveS, 100.0}) {
     const double s = std::min(t / kMoveS, 1.0);
     for (std::size_t h = 0; h < 2; ++h) {
@@ -99,7 +101,7 @@ TEST(RigSession, EmulatedRigDrivesBothToolsAndReceivesForces) {
       const ToolState p = haptics::forward(trocars[h], q);
       csv << t << ',' << names[h] << ',' << p.tip_m[0] << ',' << p.tip_m[1] << ',' << p.tip_m[2]
           << ',' << p.quat_wxyz[0] << ',' << p.quat_wxyz[1] << ',' << p.quat_wxyz[2] << ','
-          << p.quat_wxyz[3] << ',' << p.jaw_rad << '\n';
+          << p.quat_wxyz[3] << ',' << p.jaw_rad << ',' << kPedal * h << '\n';  // scissors: pedal
     }
   }
   haptics::EmulatedRigConfig rc;
@@ -147,6 +149,7 @@ TEST(RigSession, EmulatedRigDrivesBothToolsAndReceivesForces) {
       EXPECT_LT(off, 5e-4) << "step " << k << " handle " << h;
       EXPECT_GE(s, last[h] - 0.02) << "step " << k << " handle " << h << " went back";
       EXPECT_NEAR(t.jaw_rad, 0.5 * s, 0.02) << "step " << k << " handle " << h;
+      EXPECT_EQ(t.buttons, static_cast<std::uint32_t>(kPedal * h)) << "step " << k;  // pedal too
       last[h] = std::max(last[h], s);
       max_progress = std::max(max_progress, s);
     }
@@ -184,9 +187,19 @@ TEST(RigSession, TheRigSceneTransectsTheAppendixThroughTheEmulatedRig) {
   // The force commands reached the emulated firmware, none malformed.
   EXPECT_GT(rig["emulated"]["forces_ok"].get<double>(), 0.5 * rig["packets"].get<double>());
   EXPECT_EQ(rig["emulated"]["forces_bad"].get<std::uint64_t>(), 0u);
-  // The grasper held the appendix, the scissors cut it once, and the loop saw the cut.
+  // The grasper held the appendix and the scissors cut it in one stroke. (On a loaded machine
+  // the handle's jaw can flicker by an encoder count as the closing starts: a one-step stroke
+  // that crosses no tissue and cuts nothing may come first.)
   EXPECT_GT(report["contact"]["held_nodes"]["grasper"].get<int>(), 0);
-  EXPECT_EQ(report["cutting"]["strokes"].get<int>(), 1) << report["cutting"].dump(1);
+  int cutting_strokes = 0;
+  for (const auto& st : report["cutting"]["per_stroke"]) {
+    if (st["cuts"].get<int>() > 0)
+      ++cutting_strokes;
+    else
+      EXPECT_EQ(st["tets_crossed"].get<int>(), 0) << st.dump();
+  }
+  EXPECT_EQ(cutting_strokes, 1) << report["cutting"].dump(1);
+  EXPECT_EQ(report["cutting"]["cuts"].get<int>(), 1) << report["cutting"].dump(1);
   // The loop saw the cut: the scissors' jaw torque (the appendix between the blades) dropped
   // there, and the grasper's pull changed, each step within the slew limits.
   bool cut_event = false;
@@ -194,7 +207,7 @@ TEST(RigSession, TheRigSceneTransectsTheAppendixThroughTheEmulatedRig) {
     if (!(e["kind"].get<int>() & 1)) continue;
     cut_event = true;
     // Reported by the model of the step after the one the stroke was cut in.
-    const double cut_s = report["cutting"]["per_stroke"][0]["last_step"].get<double>() * 0.005;
+    const double cut_s = report["cutting"]["per_stroke"].back()["last_step"].get<double>() * 0.005;
     EXPECT_NEAR(e["sim_time_s"].get<double>(), cut_s, 0.0101) << e.dump();
     EXPECT_GT(e["max_jaw_step_Nm"].get<double>(), 0.0) << e.dump();
     EXPECT_LE(e["max_jaw_step_Nm"].get<double>(),

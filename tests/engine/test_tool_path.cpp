@@ -138,6 +138,30 @@ TEST(ToolPath, SingleSampleIsConstant) {
   for (const double t : {0.0, 0.5, 7.0}) EXPECT_DOUBLE_EQ(sample(p, "cam", t).tip_m[1], 0.1);
 }
 
+TEST(ToolPath, ButtonsAreHeldFromTheirRowToTheNext) {
+  // The pedal (bit 1) pressed from 1 s to 2 s, the clutch (bit 0) at 3 s; without the column, 0.
+  const ToolPath p = parse_tool_path_text(
+      "t,tool,px,py,pz,qw,qx,qy,qz,jaw,buttons\n"
+      "0,g,0,0,0,1,0,0,0,0,0\n"
+      "1,g,1,0,0,1,0,0,0,0,2\n"
+      "2,g,2,0,0,1,0,0,0,0,0\n"
+      "3,g,3,0,0,1,0,0,0,0,1\n",
+      "p.csv");
+  const std::vector<std::pair<double, std::uint32_t>> expected{
+      {0.0, 0u}, {0.99, 0u}, {1.0, 2u}, {1.5, 2u}, {2.0, 0u}, {2.9, 0u}, {3.0, 1u}, {9.0, 1u}};
+  for (const auto& [t, b] : expected) EXPECT_EQ(sample(p, "g", t).buttons, b) << t;
+  EXPECT_NEAR(sample(p, "g", 1.5).tip_m[0], 1.5, 1e-12);  // the pose still interpolates
+  const ToolPath plain = parse_tool_path_text(kHeader + "0,g,0,0,0,1,0,0,0,0\n", "q.csv");
+  EXPECT_EQ(sample(plain, "g", 0.0).buttons, 0u);
+}
+
+TEST(ToolPathErrors, ButtonsMustBeAMask) {
+  const std::string h = "t,tool,px,py,pz,qw,qx,qy,qz,jaw,buttons\n";
+  for (const std::string bad : {"-1", "1.5", "65536", "x"})
+    expect_error(h + "0,g,0,0,0,1,0,0,0,0," + bad + "\n", 2, "buttons");
+  expect_error(h + "0,g,0,0,0,1,0,0,0,0\n", 2, "11 columns");  // the header promised buttons
+}
+
 TEST(ToolPath, EqualTimesMakeAJump) {
   const ToolPath p = parse_tool_path_text(kHeader +
                                               "0,g,0,0,0,1,0,0,0,0\n"
