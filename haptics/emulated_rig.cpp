@@ -16,6 +16,7 @@
 #include <string>
 #include <utility>
 
+#include "engine/seqlock.h"
 #include "haptics/device.h"
 
 namespace serosa::haptics {
@@ -63,10 +64,15 @@ struct EmulatedRig::Impl {
   bool unplugged = false;
   double t0 = 0.0;       // construction: the device clock
   double path_t0 = 0.0;  // path time 0, wall clock (until follow() is called)
-  bool following = false;
-  double anchor_s = 0.0;       // follow(): the simulated time given
-  double anchor_wall_s = 0.0;  // when it was given
-  double cap_s = 0.0;          // the path never runs past this
+  // follow(): written by the solver at every step, read by the handler thread. A seqlock, so
+  // the solver's step never waits on the handler's mutex.
+  struct PathClock {
+    bool following = false;
+    double anchor_s = 0.0;       // the simulated time given
+    double anchor_wall_s = 0.0;  // when it was given
+    double cap_s = 0.0;          // the path never runs past this
+  };
+  Seqlock<PathClock> clock{};
   double next_due = 0.0;
   std::uint32_t seq = 0;
   std::array<std::pair<std::uint32_t, double>, 256> delivered{};
@@ -106,8 +112,9 @@ struct EmulatedRig::Impl {
   }
 
   double path_time(double now) const {
-    if (!following) return now - path_t0;
-    return std::min(anchor_s + (now - anchor_wall_s), cap_s);
+    const PathClock k = clock.load();
+    if (!k.following) return now - path_t0;
+    return std::min(k.anchor_s + (now - k.anchor_wall_s), k.cap_s);
   }
 
   // The clutch, pedal and handle buttons the path holds down (docs/rig-protocol.md).
@@ -381,11 +388,7 @@ EmulatedRig::~EmulatedRig() {
 }
 
 void EmulatedRig::follow(double sim_time_s, double step_s) {
-  std::lock_guard<std::mutex> lock(m->mu);
-  m->following = true;
-  m->anchor_s = sim_time_s;
-  m->anchor_wall_s = monotonic_s();
-  m->cap_s = sim_time_s + step_s;
+  m->clock.store({true, sim_time_s, monotonic_s(), sim_time_s + step_s});
 }
 
 void EmulatedRig::unplug() {

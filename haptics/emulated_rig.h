@@ -66,7 +66,7 @@ class EmulatedRig {
   /// from here the path plays on in wall-clock time, but never past sim_time_s + step_s. A
   /// simulation at real time sees the hand move as recorded; a slower one (a sanitizer build)
   /// sees the hand wait for it, so the procedure it plays stays the procedure. Called at every
-  /// step (the path starts with the first).
+  /// step (the path starts with the first). Never blocks (a seqlock, not the rig's mutex).
   void follow(double sim_time_s, double step_s);
   void unplug();
   void replug();

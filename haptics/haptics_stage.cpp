@@ -225,6 +225,8 @@ bool HapticsStage::device_connected() const noexcept {
   return m_device != nullptr && m_device->connected();
 }
 
+bool HapticsStage::driven_by_rig() const noexcept { return is_rig(m_kind); }
+
 bool HapticsStage::rig_was_connected() const noexcept {
   return m_rig != nullptr && m_rig->counters().connects > 0;
 }

@@ -104,9 +104,7 @@ class HapticsStage final : public Stage {
   void feed_pointer(const haptics::PointerInput& in) noexcept;
   /// Whether a rig drives the handles: its samples come in wall-clock time, so a run without a
   /// window must step at real time for the solver to see the hand's motion as it was made.
-  [[nodiscard]] bool driven_by_rig() const noexcept {
-    return m_kind == DeviceKind::kRig || m_kind == DeviceKind::kRigEmulated;
-  }
+  [[nodiscard]] bool driven_by_rig() const noexcept;
   /// Whether a rig drives the handles and has been connected at some time in this run (so that
   /// its absence now is an unplug).
   [[nodiscard]] bool rig_was_connected() const noexcept;
