@@ -275,7 +275,10 @@ TEST(RigSession, UnplugMidSessionIsToldApartAndAReplugResumes) {
   EXPECT_TRUE(wait_until(pulls)) << label() << ", force " << stage.status().tip_force_N[0][1];
   ASSERT_TRUE(stage.emulated_rig() != nullptr);
   stage.emulated_rig()->unplug();
-  run_for(0.2);
+  // The loop notices on its next failed transfer; a sanitizer build on a loaded machine can take
+  // longer than the firmware's watchdog to get there, so wait for it (at most 10 s).
+  EXPECT_TRUE(wait_until([&] { return !stage.device_connected(); }));
+  run_for(0.05);
   EXPECT_FALSE(stage.device_connected());
   EXPECT_EQ(label(), "emulated rig disconnected");
   EXPECT_EQ(stage.status().enabled, 0u);
