@@ -6,9 +6,11 @@
 #include <exception>
 
 #include "app/command.h"
+#include "app/heap_policy.h"
 #include "engine/input_error.h"
 
 int main(int argc, char** argv) {
+  serosa::app::keep_freed_memory();
   CLI::App cli{"Serosa: real-time laparoscopic surgery simulator"};
   cli.require_subcommand(1);
   serosa::app::Action action;

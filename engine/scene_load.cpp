@@ -549,7 +549,7 @@ class Loader {
     const std::string p = "solver";
     check_keys(t, p,
                {"kind", "tolerance", "max_iterations", "refresh_iterations", "factor_lag_steps",
-                "threads", "after_cut", "urgent_lag_steps"});
+                "threads", "after_cut", "urgent_lag_steps", "cut_lag_steps"});
     if (const auto* n = t.get("kind")) {
       s.kind = enum_value<SolverKind>(*n, sub(p, "kind"), solver_kind_from_name,
                                       "pcg, cholmod, pcg-cholmod, pcg-lagged");
@@ -573,6 +573,10 @@ class Loader {
     if (const auto* n = t.get("urgent_lag_steps")) {
       s.urgent_lag_steps = static_cast<int>(ranged_int(*n, sub(p, "urgent_lag_steps"), 1, 10000,
                                                        "a number of steps within [1, 10000]"));
+    }
+    if (const auto* n = t.get("cut_lag_steps")) {
+      s.cut_lag_steps = static_cast<int>(
+          ranged_int(*n, sub(p, "cut_lag_steps"), 1, 10000, "a number of steps within [1, 10000]"));
     }
     if (const auto* n = t.get("after_cut")) {
       const std::string v = string(*n, sub(p, "after_cut"), "\"patch\" or \"factor\"");

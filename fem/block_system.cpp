@@ -16,7 +16,8 @@ std::size_t block_storage(const SystemPattern& p) { return 9 * p.nbr.data.size()
 template <class T>
 void fill_blocks(const TetMesh& mesh, const FemElements& el, const SystemPattern& p,
                  std::span<const Vec3> rg, std::span<const TetScale> scale, double dt_s,
-                 std::span<T> blocks, std::vector<double>& scratch) {
+                 std::span<T> blocks, std::vector<double>& scratch,
+                 std::span<const std::uint8_t> rows) {
   T* out = blocks.data();
   // One slice of the scratch per thread, for one node's blocks (9 per neighbour, summed in
   // double): sized here, so it allocates only when the pattern's widest row or the thread count
@@ -33,6 +34,7 @@ void fill_blocks(const TetMesh& mesh, const FemElements& el, const SystemPattern
 #pragma omp for schedule(static)
     for (std::int32_t i = 0; i < p.nodes; ++i) {
       const auto ui = static_cast<std::size_t>(i);
+      if (!rows.empty() && rows[ui] == 0) continue;
       const std::int32_t base = 9 * p.nbr.start[ui];
       const auto len = static_cast<std::size_t>(9 * p.nbr.count[ui]);
       // Diagonal block's offset in the node's storage: 9 * (index of i in its neighbour list).
@@ -171,9 +173,11 @@ void blocks_inverse_diagonal(const SystemPattern& p, std::span<const T> blocks,
 }
 
 template <class T>
-void blocks_to_csr(const SystemPattern& p, std::span<const T> blocks, CsrMatrix& a) {
+void blocks_to_csr(const SystemPattern& p, std::span<const T> blocks, CsrMatrix& a,
+                   std::span<const std::uint8_t> rows) {
   for (std::int32_t i = 0; i < p.nodes; ++i) {
     const auto ui = static_cast<std::size_t>(i);
+    if (!rows.empty() && rows[ui] == 0) continue;
     const auto base = static_cast<std::size_t>(9 * p.nbr.start[ui]);
     const auto cnt = static_cast<std::size_t>(p.nbr.count[ui]);
     const std::size_t len = 3 * cnt;
@@ -186,10 +190,12 @@ void blocks_to_csr(const SystemPattern& p, std::span<const T> blocks, CsrMatrix&
 
 template void fill_blocks<double>(const TetMesh&, const FemElements&, const SystemPattern&,
                                   std::span<const Vec3>, std::span<const TetScale>, double,
-                                  std::span<double>, std::vector<double>&);
+                                  std::span<double>, std::vector<double>&,
+                                  std::span<const std::uint8_t>);
 template void fill_blocks<float>(const TetMesh&, const FemElements&, const SystemPattern&,
                                  std::span<const Vec3>, std::span<const TetScale>, double,
-                                 std::span<float>, std::vector<double>&);
+                                 std::span<float>, std::vector<double>&,
+                                 std::span<const std::uint8_t>);
 template double multiply_blocks_dot<double>(const SystemPattern&, std::span<const double>,
                                             std::span<const double>, std::span<double>);
 template double multiply_blocks_dot<float>(const SystemPattern&, std::span<const float>,
@@ -198,7 +204,9 @@ template void blocks_inverse_diagonal<double>(const SystemPattern&, std::span<co
                                               std::span<double>);
 template void blocks_inverse_diagonal<float>(const SystemPattern&, std::span<const float>,
                                              std::span<double>);
-template void blocks_to_csr<double>(const SystemPattern&, std::span<const double>, CsrMatrix&);
-template void blocks_to_csr<float>(const SystemPattern&, std::span<const float>, CsrMatrix&);
+template void blocks_to_csr<double>(const SystemPattern&, std::span<const double>, CsrMatrix&,
+                                    std::span<const std::uint8_t>);
+template void blocks_to_csr<float>(const SystemPattern&, std::span<const float>, CsrMatrix&,
+                                   std::span<const std::uint8_t>);
 
 }  // namespace serosa::fem

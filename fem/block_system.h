@@ -15,6 +15,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -43,11 +44,14 @@ using TetScale = std::array<double, 2>;
 /// Fills the blocks (block_storage() values; gaps left untouched) of
 /// A = M + dt C + dt^2 K_R from the rotated gradients rg (4m, rotated_gradients()) and the tet
 /// scales (m, tet_scale() with the same dt_s). scratch: the caller's, kept between calls (one
-/// node's row per thread; grown only when the pattern's widest row grows).
+/// node's row per thread; grown only when the pattern's widest row grows). rows: (n) when not
+/// empty, only the block rows of the nodes with rows[i] != 0 are filled (the others keep their
+/// values): a node's row sums only the tets around it, so those rows are exact.
 template <class T>
 void fill_blocks(const TetMesh& mesh, const FemElements& el, const SystemPattern& pattern,
                  std::span<const Vec3> rg, std::span<const TetScale> scale, double dt_s,
-                 std::span<T> blocks, std::vector<double>& scratch);
+                 std::span<T> blocks, std::vector<double>& scratch,
+                 std::span<const std::uint8_t> rows = {});
 
 /// y = A x (x, y: (3n), distinct), accumulated in double, parallel over nodes; returns x . y,
 /// summed over fixed node chunks (fem/parallel.h chunked: the same bits for any thread count) in
@@ -62,8 +66,9 @@ void blocks_inverse_diagonal(const SystemPattern& pattern, std::span<const T> bl
                              std::span<double> inv_diag);
 
 /// Copies the blocks into the CSR values of `a` (built on the same pattern), for CHOLMOD-side
-/// consumers and tests.
+/// consumers and tests. rows: as fill_blocks'.
 template <class T>
-void blocks_to_csr(const SystemPattern& pattern, std::span<const T> blocks, CsrMatrix& a);
+void blocks_to_csr(const SystemPattern& pattern, std::span<const T> blocks, CsrMatrix& a,
+                   std::span<const std::uint8_t> rows = {});
 
 }  // namespace serosa::fem

@@ -26,6 +26,11 @@ struct CsrMatrix {
   [[nodiscard]] std::int64_t storage() const { return static_cast<std::int64_t>(col.size()); }
 };
 
+/// to = from with its rows packed (no slack). to's buffers are reused, and grown with a quarter to
+/// spare when they must grow, so that copying a matrix that grows a little after each cut touches
+/// no fresh memory most of the time.
+void copy_packed(const CsrMatrix& from, CsrMatrix& to);
+
 /// y = A x, parallel over rows (OpenMP). x and y: (rows), distinct.
 void multiply(const CsrMatrix& a, std::span<const double> x, std::span<double> y);
 

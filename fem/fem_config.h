@@ -86,6 +86,11 @@ struct SolverSettings {
   /// normal one, so the sooner the cheaper, as long as the background thread finishes in time
   /// (the step waits for it otherwise). A refresh after a cut is not urgent: the patch bridges it.
   int urgent_lag_steps = 6;
+  /// pcg_lagged: the lag (steps) of the refresh after a cut, when more than factor_lag_steps. Its
+  /// factorization needs a new symbolic analysis as well, so it takes longer in the background
+  /// (about 20 ms for the default scene, against 12 steps of about 1.3 ms: the install step
+  /// waited); the patch bridges the lag at a few CG iterations a step.
+  int cut_lag_steps = 24;
   /// pcg_lagged: rings of neighbours added around the changed nodes (a cut's, a grasp's) in the
   /// patch. More: a larger patch to factor on the step of the change, fewer CG iterations until
   /// the refresh (the default scene, a cut: 10 a step with 1 ring, 8 with 2, 6 with 3; a grasp:

@@ -190,6 +190,9 @@ class ImplicitIntegrator {
   void patch_lagged_factor(const TetMesh& mesh, double dt_s, StepStatus& st);
   /// This step's A in m_a for the lagged factor (the blocks filled if the product did not).
   const CsrMatrix& lagged_csr(const TetMesh& mesh, double dt_s);
+  /// m_a with at least the rows of m_patch_nodes filled for this step (all of them when the
+  /// blocks are already fresh).
+  const CsrMatrix& patch_rows_csr(const TetMesh& mesh, double dt_s);
   /// Jacobi's inverse diagonal of this step's A, into m_pcg.inv_diag.
   void fill_inverse_diagonal();
   /// v' = v + dv, x' = x + dt v' on free nodes; returns the work of gravity and f_ext, J.

@@ -170,7 +170,6 @@ void ImplicitIntegrator::lagged_preconditioner(const TetMesh& mesh, double dt_s,
 // patch's edge, where the old factor meets it, lies in rows that did not change.
 void ImplicitIntegrator::patch_lagged_factor(const TetMesh& mesh, double dt_s, StepStatus& st) {
   const auto n = static_cast<std::size_t>(mesh.num_nodes());
-  const CsrMatrix& a = lagged_csr(mesh, dt_s);
   m_patch_nodes = m_kind_changed;
   for (std::int32_t ring = 0; ring < m_config.solver.patch_rings; ++ring) {
     m_ring_inner = m_patch_nodes;  // copies into kept capacity
@@ -179,9 +178,9 @@ void ImplicitIntegrator::patch_lagged_factor(const TetMesh& mesh, double dt_s, S
         for (const std::int32_t j : m_pattern.nbr.of(i))
           m_patch_nodes[static_cast<std::size_t>(j)] = 1;
   }
-  st.factor_patch = m_lagged.patch(a, m_structure, m_patch_nodes, m_free);
+  st.factor_patch = m_lagged.patch(patch_rows_csr(mesh, dt_s), m_structure, m_patch_nodes, m_free);
   if (!st.factor_patch) {
-    m_lagged.factor_now(a, m_structure, m_node_rot, m_free);
+    m_lagged.factor_now(lagged_csr(mesh, dt_s), m_structure, m_node_rot, m_free);
     st.factor_refresh = true;
   }
 }
@@ -198,6 +197,17 @@ const CsrMatrix& ImplicitIntegrator::lagged_csr(const TetMesh& mesh, double dt_s
     blocks_to_csr<double>(m_pattern, m_blocks_d, m_a);
     m_csr_fresh = true;
   }
+  return m_a;
+}
+
+// The patch reads only its own rows of A: those alone are filled and copied (the whole matrix's
+// fill, a millisecond of the step after a cut, waits for the refresh on the next step).
+const CsrMatrix& ImplicitIntegrator::patch_rows_csr(const TetMesh& mesh, double dt_s) {
+  if (m_blocks_fresh) return lagged_csr(mesh, dt_s);
+  m_blocks_d.resize(block_storage(m_pattern));
+  fill_blocks<double>(mesh, m_el, m_pattern, m_rg, m_scale, dt_s, m_blocks_d, m_fill_scratch,
+                      m_patch_nodes);
+  blocks_to_csr<double>(m_pattern, m_blocks_d, m_a, m_patch_nodes);
   return m_a;
 }
 
@@ -230,6 +240,9 @@ void ImplicitIntegrator::schedule_refresh(const TetMesh& mesh, double dt_s, int 
                                           StepStatus& st) {
   const SolverSettings& s = m_config.solver;
   if (m_lagged.pending()) return;  // one job at a time
+  // A step that patched asks on the next one: the refresh takes the whole matrix, filled and
+  // copied, which would double the cost of the step that already pays for the cut or the grasp.
+  if (st.factor_patch) return;
   // After a cut (the installed factor is of an older structure), a grasp or a release (a patch
   // in use) a refresh is due whatever the iterations: the patch only bridges the lag.
   const bool cut = m_lagged.structure() != m_structure;
@@ -237,10 +250,13 @@ void ImplicitIntegrator::schedule_refresh(const TetMesh& mesh, double dt_s, int 
   if (!cut && !patched && iterations <= s.refresh_iterations) return;
   // Urgent: a solve that needed several times the usual iterations (a sudden turn), or a grasp or
   // a release (patched, still a few times the usual while the jaws pull). After a cut the refresh
-  // needs a new symbolic analysis too and gets the usual lag: at the urgent one, the step that
-  // installed it waited for the background thread.
+  // needs a new symbolic analysis too and gets a longer lag (cut_lag_steps): at the urgent one,
+  // and at the usual one on the default scene, the step that installed it waited for the
+  // background thread.
   const bool urgent = !cut && (patched || iterations > 3 * s.refresh_iterations);
-  const int lag = urgent ? std::min(s.urgent_lag_steps, s.factor_lag_steps) : s.factor_lag_steps;
+  const int lag = urgent ? std::min(s.urgent_lag_steps, s.factor_lag_steps)
+                  : cut  ? std::max(s.cut_lag_steps, s.factor_lag_steps)
+                         : s.factor_lag_steps;
   m_lagged.request(lagged_csr(mesh, dt_s), m_structure,
                    m_steps + static_cast<std::uint64_t>(std::max(lag, 1)), s.background_factor,
                    m_node_rot, m_free);

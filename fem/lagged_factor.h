@@ -139,7 +139,10 @@ class LaggedFactor {
   void install();  // joins the job and installs its factor if it succeeded
   std::unique_ptr<CholmodSolver> take_spare(std::uint64_t structure, bool& analyzed);
 
+  std::unique_ptr<Job> new_job();
+
   std::unique_ptr<Job> m_job;
+  std::unique_ptr<Job> m_recycled;  // the last job done, its buffers kept for the next
   std::unique_ptr<CholmodSolver> m_installed;
   CsrMatrix m_installed_a;  // the matrix the installed factor was computed from (snapshots)
   std::int32_t m_installed_rows = 0;

@@ -185,6 +185,7 @@ tolerance = 1e-5
 max_iterations = 50
 after_cut = "factor"
 urgent_lag_steps = 7
+cut_lag_steps = 30
 
 [render]
 tessellation = 5
@@ -278,6 +279,7 @@ steps = 250
   EXPECT_DOUBLE_EQ(s.record.snapshot_every_s, 0.5);
   EXPECT_FALSE(s.solver.patch_after_cut);
   EXPECT_EQ(s.solver.urgent_lag_steps, 7);
+  EXPECT_EQ(s.solver.cut_lag_steps, 30);
   EXPECT_EQ(s.cutting.method, CutMethod::kSnap);
   EXPECT_DOUBLE_EQ(s.cutting.tolerance, 0.05);
   EXPECT_EQ(s.headless.steps, 250);

@@ -203,6 +203,20 @@ GraspRun grasp_run(SolverKind kind, bool matrix_free = false, double tolerance =
   return r;
 }
 
+// The step that patches (a grasp, a release, a cut) fills only the patch's rows; the refresh,
+// which takes the whole matrix, is asked for on the step after it.
+TEST(LaggedFactor, TheStepThatPatchesLeavesTheRefreshToTheNext) {
+  const GraspRun g = grasp_run(SolverKind::pcg_lagged);
+  for (const int k : {30, 60}) {
+    EXPECT_TRUE(g.steps[static_cast<std::size_t>(k)].factor_patch) << "step " << k;
+    EXPECT_FALSE(g.steps[static_cast<std::size_t>(k)].factor_refresh) << "step " << k;
+    EXPECT_TRUE(g.steps[static_cast<std::size_t>(k + 1)].factor_refresh) << "step " << k + 1;
+  }
+  const History c = run(SolverKind::pcg_lagged, false);
+  EXPECT_TRUE(c.steps[60].factor_patch);
+  EXPECT_FALSE(c.steps[60].factor_refresh);
+}
+
 TEST(LaggedFactor, AGraspAndItsReleaseArePatchedAndCostCgLittle) {
   const GraspRun r = grasp_run(SolverKind::pcg_lagged);
   const auto it = [&](int k) { return r.steps[static_cast<std::size_t>(k)].iterations; };

@@ -140,6 +140,88 @@ TEST(BlockSystem, EqualsCsrFillInDoubleAndRoundsOnlyTheEntriesInFloat) {
   }
 }
 
+// The patch after a cut or a grasp fills only its own rows: over random masks, every masked row
+// (blocks and CSR) has the full fill's bits, and every other row keeps what it held before.
+TEST(BlockSystem, AMaskedFillGivesTheMaskedRowsExactlyAndLeavesTheOthers) {
+  std::mt19937 rng(11);
+  TetMesh m = test_meshes::kuhn_bar(6, 3, 3, 0.1, 0.1, 0.1);
+  fixtures::jitter_interior(m, 0, 0.6, 0, 0.3, 0, 0.3, 0.02, 3);
+  m.fill_node_state();
+  for (std::size_t i = 0; i < m.rest.size(); ++i) m.fixed[i] = m.rest[i].x() < 1e-9 ? 1 : 0;
+  FemConfig cfg;
+  FemElements el;
+  build_elements(m, cfg, el);
+  SystemPattern pat;
+  CsrMatrix a;
+  build_pattern(m, pat, a);
+  std::vector<Mat3> rot(m.tets.size());
+  for (Mat3& r : rot) r = fixtures::random_rotation(rng);
+  std::vector<Vec3> rg(4 * m.tets.size());
+  rotated_gradients(el, rot, rg);
+  std::vector<TetScale> sc(m.tets.size());
+  for (std::size_t t = 0; t < sc.size(); ++t) sc[t] = tet_scale(el.elements[t], 0.005);
+  std::vector<double> full(block_storage(pat)), scratch;
+  fill_blocks<double>(m, el, pat, rg, sc, 0.005, full, scratch);
+  CsrMatrix full_csr = a;
+  blocks_to_csr<double>(pat, full, full_csr);
+  std::bernoulli_distribution pick(0.2);
+  for (int trial = 0; trial < 50; ++trial) {
+    std::vector<std::uint8_t> rows(m.rest.size());
+    for (auto& r : rows) r = pick(rng) ? 1 : 0;
+    std::vector<double> blocks(full.size(), -3.0);
+    CsrMatrix csr = a;
+    std::fill(csr.val.begin(), csr.val.end(), -5.0);
+    fill_blocks<double>(m, el, pat, rg, sc, 0.005, blocks, scratch, rows);
+    blocks_to_csr<double>(pat, blocks, csr, rows);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const auto b0 = static_cast<std::size_t>(9 * pat.nbr.start[i]);
+      const auto len = static_cast<std::size_t>(9 * pat.nbr.count[i]);
+      for (std::size_t k = b0; k < b0 + len; ++k)
+        ASSERT_EQ(blocks[k], rows[i] != 0 ? full[k] : -3.0) << "node " << i;
+      for (std::size_t c = 0; c < 3; ++c) {
+        const std::size_t r = 3 * i + c;
+        const auto begin = static_cast<std::size_t>(csr.row_start[r]);
+        for (std::size_t k = begin; k < begin + static_cast<std::size_t>(csr.row_nz[r]); ++k)
+          ASSERT_EQ(csr.val[k], rows[i] != 0 ? full_csr.val[k] : -5.0) << "row " << r;
+      }
+    }
+  }
+}
+
+// The lagged factor's copy of A drops the slack between rows and keeps every row's entries.
+TEST(CsrMatrix, CopyPackedKeepsEveryRowAndDropsTheSlack) {
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> len(0, 6), slack(0, 3);
+  for (int trial = 0; trial < 100; ++trial) {
+    CsrMatrix a;
+    a.rows = 1 + trial % 17;
+    for (std::int32_t r = 0; r < a.rows; ++r) {
+      a.row_start.push_back(static_cast<std::int32_t>(a.col.size()));
+      a.row_nz.push_back(len(rng));
+      const int room = a.row_nz.back() + slack(rng);
+      for (int k = 0; k < room; ++k) {
+        a.col.push_back(k);
+        a.val.push_back(k < a.row_nz.back() ? 1.0 + r + 0.1 * k : -1.0);
+      }
+    }
+    a.row_start.push_back(static_cast<std::int32_t>(a.col.size()));
+    CsrMatrix b;
+    copy_packed(a, b);
+    ASSERT_EQ(b.rows, a.rows);
+    ASSERT_EQ(b.storage(), a.nnz());
+    for (std::size_t r = 0; r < static_cast<std::size_t>(a.rows); ++r) {
+      ASSERT_EQ(b.row_nz[r], a.row_nz[r]);
+      for (std::int32_t k = 0; k < a.row_nz[r]; ++k) {
+        ASSERT_EQ(b.col[static_cast<std::size_t>(b.row_start[r] + k)],
+                  a.col[static_cast<std::size_t>(a.row_start[r] + k)]);
+        ASSERT_EQ(b.val[static_cast<std::size_t>(b.row_start[r] + k)],
+                  a.val[static_cast<std::size_t>(a.row_start[r] + k)]);
+      }
+    }
+    ASSERT_EQ(b.row_start.back(), b.storage());
+  }
+}
+
 TEST(Rotation, NewtonMatchesSvdAndConvergesFastFromAWarmStart) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> s(0.3, 2.0);
