@@ -166,7 +166,7 @@ struct SolverSettings {
   int refresh_iterations = 2;          ///< pcg-lagged: refresh the factor above this; >= 0
   int factor_lag_steps = 12;           ///< pcg-lagged: steps a refresh may take; >= 1
   int urgent_lag_steps = 6;            ///< pcg-lagged: the same for urgent refreshes; >= 1
-  int cut_lag_steps = 24;  ///< pcg-lagged: the same after a cut, when more than factor_lag_steps
+  int cut_lag_steps = 20;  ///< pcg-lagged: the same after a cut, when more than factor_lag_steps
   /// pcg-lagged after a cut: patch the factor on the touched rows until a refresh is in (true:
   /// "patch"), or factor the new matrix on the step after the cut (false: "factor").
   bool patch_after_cut = true;

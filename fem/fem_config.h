@@ -90,7 +90,7 @@ struct SolverSettings {
   /// factorization needs a new symbolic analysis as well, so it takes longer in the background
   /// (about 20 ms for the default scene, against 12 steps of about 1.3 ms: the install step
   /// waited); the patch bridges the lag at a few CG iterations a step.
-  int cut_lag_steps = 24;
+  int cut_lag_steps = 20;
   /// pcg_lagged: rings of neighbours added around the changed nodes (a cut's, a grasp's) in the
   /// patch. More: a larger patch to factor on the step of the change, fewer CG iterations until
   /// the refresh (the default scene, a cut: 10 a step with 1 ring, 8 with 2, 6 with 3; a grasp:
