@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "app/assemble_state.h"
+#include "app/assessment_report.h"
 #include "app/compose.h"
 #include "app/frame_pictures.h"
 #include "app/instrument_devices.h"
@@ -291,6 +292,9 @@ Json run_headless(const HeadlessOptions& options) {
     report["cut_steps"] = std::move(cut_steps);
   }
   if (comp.metrics) report["metrics"] = comp.metrics->report();
+  if (auto a = assessment_report(scene, comp.metrics, state.mesh, assembled.group_names());
+      !a.is_null())
+    report["assessment"] = std::move(a);
   if (comp.contact) {
     const auto held = comp.contact->grasped_counts();
     for (std::size_t i = 0; i < scene.tools.size() && i < held.size(); ++i)

@@ -10,6 +10,7 @@
 #include <span>
 
 #include "app/assemble_state.h"
+#include "app/assessment_report.h"
 #include "app/compose.h"
 #include "app/frame_pictures.h"
 #include "app/headless.h"
@@ -167,6 +168,9 @@ ReplayResult run_replay(const ReplayOptions& options) {
   report["mesh_final"] = {{"nodes", state.mesh.num_nodes()}, {"tets", state.mesh.num_tets()}};
   if (comp.cutting) report["cutting"] = cutting_json(comp);
   if (comp.metrics) report["metrics"] = comp.metrics->report();
+  if (auto a = assessment_report(scene, comp.metrics, state.mesh, assembled.group_names());
+      !a.is_null())
+    report["assessment"] = std::move(a);
   if (verify) {
     result.hashes_checked = verify->checked();
     report["verify"] = {{"hashes_recorded", rec.hashes.size()},

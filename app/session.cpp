@@ -15,6 +15,7 @@
 #include <fstream>
 
 #include "app/assemble_state.h"
+#include "app/assessment_report.h"
 #include "app/compose.h"
 #include "app/drawn_surface.h"
 #include "app/frame_pacer.h"
@@ -410,6 +411,10 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
     if (comp.haptics != nullptr) report["haptics"] = comp.haptics->telemetry_json();
     if (writer) report["recording"] = close_recording(*writer, scene, assembled.state.step);
     if (comp.metrics != nullptr) report["metrics"] = comp.metrics->report();
+    if (auto a =
+            assessment_report(scene, comp.metrics, assembled.state.mesh, assembled.group_names());
+        !a.is_null())
+      report["assessment"] = std::move(a);
     report["state_hash"] = hash_hex(state_hash(assembled.state));
     if (so.report) {
       std::ofstream out(*so.report);

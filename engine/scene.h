@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "engine/math.h"
+#include "engine/rubric.h"
 
 namespace serosa {
 
@@ -224,6 +225,10 @@ struct MetricsSettings {
   /// Half-width of the tolerance band around the planned cut line, m; > 0. Tets cut farther
   /// than this from the line count as collateral cut volume.
   double cut_band_m = 0.003;
+  /// A tool pressing on the tissue harder than this counts towards force_over_s, N; > 0.
+  double force_limit_n = 5.0;
+  /// What the session is scored on (engine/rubric.h); none: no assessment is reported.
+  std::optional<Rubric> rubric;
 };
 
 /// A loaded, validated scene. Read-only after load.

@@ -126,6 +126,7 @@ class Loader {
     if (const auto* t = opt_table(root, "headless", "")) read_headless(*t, scene.headless);
     if (const auto* t = opt_table(root, "metrics", "")) read_metrics(*t, scene.metrics);
     check_dependencies(scene, effects_node);
+    check_rubric(scene);
     return scene;
   }
 
@@ -651,9 +652,9 @@ class Loader {
     }
   }
 
-  void read_metrics(const toml::table& t, MetricsSettings& m) const {
+  void read_metrics(const toml::table& t, MetricsSettings& m) {
     const std::string p = "metrics";
-    check_keys(t, p, {"planned_cut", "cut_band"});
+    check_keys(t, p, {"planned_cut", "cut_band", "force_limit", "rubric"});
     if (const auto* n = t.get("planned_cut")) {
       const std::string expected = "a polyline [[x, y, z], [x, y, z], ...] of >= 2 points in m";
       const auto* a = n->as_array();
@@ -666,6 +667,50 @@ class Loader {
       m.cut_band_m = ranged(*n, sub(p, "cut_band"), 0.0, true,
                             std::numeric_limits<double>::infinity(), false, "a distance > 0 in m");
     }
+    if (const auto* n = t.get("force_limit")) {
+      m.force_limit_n = ranged(*n, sub(p, "force_limit"), 0.0, true,
+                               std::numeric_limits<double>::infinity(), false, "a force > 0 in N");
+    }
+    if (const auto* n = t.get("rubric")) {
+      const std::string rel = string(*n, sub(p, "rubric"), "a rubric file's path");
+      m.rubric = load_rubric(resolve(rel));
+      m_rubric_line = line_of(*n);
+    }
+  }
+
+  // The rubric's metrics name tools and groups of this scene, and some need an effect or a key.
+  void check_rubric(const Scene& scene) const {
+    if (!scene.metrics.rubric) return;
+    const std::string p = "metrics.rubric";
+    std::size_t hands = 0;
+    for (const Tool& tool : scene.tools) hands += tool.kind != ToolKind::kEndoscope ? 1 : 0;
+    for (const RubricMetric& m : scene.metrics.rubric->metrics) {
+      std::string family, suffix;
+      (void)known_metric(m.name, family, suffix);
+      const std::string what = "the rubric's metric '" + m.name + "' (" +
+                               scene.metrics.rubric->file.string() + ":" + std::to_string(m.line) +
+                               ")";
+      const bool tool = std::any_of(scene.tools.begin(), scene.tools.end(),
+                                    [&](const Tool& x) { return x.name == suffix; });
+      if ((family == "path_length_m" || family == "force_max_n") && !suffix.empty() && !tool)
+        fail(m_rubric_line, p, what + " names no tool of this scene", "a [[tool]] name");
+      if ((family == "force_max_n" || family == "force_over_s") &&
+          !scene.settings.has(Effect::kContact))
+        fail(m_rubric_line, p, what + " needs effect \"contact\"", "\"contact\" listed");
+      if (family.rfind("cut.", 0) == 0 && scene.metrics.planned_cut_m.empty())
+        fail(m_rubric_line, p, what + " needs a planned cut", "metrics.planned_cut");
+      if (family == "bimanual_fraction" && hands < 2)
+        fail(m_rubric_line, p, what + " needs two hand instruments", "two non-endoscope tools");
+      if (family == "pieces" && !has_group(scene, suffix))
+        fail(m_rubric_line, p, what + " names no group of this scene", "an organ's group name");
+    }
+  }
+
+  static bool has_group(const Scene& scene, const std::string& name) {
+    for (const Organ& o : scene.organs)
+      for (const auto& [id, g] : o.groups)
+        if (g == name) return true;
+    return false;
   }
 
   // ---- [[tool]] ----
@@ -773,6 +818,7 @@ class Loader {
 
   std::string m_file;                                 // scene file as given, for errors
   std::filesystem::path m_dir;                        // folder relative paths resolve against
+  std::int64_t m_rubric_line = 0;                     // where [metrics] rubric is
   std::map<std::filesystem::path, ToolPath> m_paths;  // script files read so far
 };
 

@@ -19,17 +19,22 @@ double distance_to_polyline(const Vec3& p, const std::vector<Vec3>& line) {
 }
 
 MetricsStage::MetricsStage(const Scene& scene, LameTable lame, std::int64_t stress_every)
-    : m_planned(scene.metrics.planned_cut_m),
+    : m_force_limit(scene.metrics.force_limit_n),
+      m_planned(scene.metrics.planned_cut_m),
       m_band(scene.metrics.cut_band_m),
       m_lame(std::move(lame)),
       m_stress_every(std::max<std::int64_t>(stress_every, 1)) {
-  for (const Tool& t : scene.tools) m_names.push_back(t.name);
+  for (const Tool& t : scene.tools) {
+    m_names.push_back(t.name);
+    m_hand.push_back(t.kind != ToolKind::kEndoscope ? 1 : 0);
+  }
   const std::size_t k = m_names.size();
   m_path.assign(k, 0.0);
   m_last_tip.assign(k, Vec3::Zero());
   m_force_max.assign(k, 0.0);
   m_force_sum.assign(k, 0.0);
   m_force_steps.assign(k, 0);
+  m_moved.assign(k, 0.0);
 }
 
 void MetricsStage::step(const StepContext& ctx, SimState& state) {
@@ -37,11 +42,13 @@ void MetricsStage::step(const StepContext& ctx, SimState& state) {
   const std::size_t k = std::min(m_names.size(), state.tools.size());
   for (std::size_t i = 0; i < k; ++i) {
     const Vec3 tip(state.tools[i].tip_m[0], state.tools[i].tip_m[1], state.tools[i].tip_m[2]);
-    if (m_have_last) m_path[i] += (tip - m_last_tip[i]).norm();
+    m_moved[i] = m_have_last ? (tip - m_last_tip[i]).norm() : 0.0;
+    m_path[i] += m_moved[i];
     m_last_tip[i] = tip;
   }
-  m_have_last = true;
   const auto& f = state.handoff.tool_force_n;
+  if (m_have_last) add_use(m_moved, f, ctx.dt_s);
+  m_have_last = true;
   if (!f.empty()) {
     m_forces = true;
     for (std::size_t i = 0; i < k && i < f.size(); ++i) {
@@ -55,6 +62,28 @@ void MetricsStage::step(const StepContext& ctx, SimState& state) {
   for (const CutEvent& cut : state.handoff.cuts) add_cut(cut);
   if (static_cast<std::int64_t>(ctx.step) % m_stress_every == 0)
     m_peak_stress = std::max(m_peak_stress, peak_stress(state.mesh));
+}
+
+void MetricsStage::add_use(const std::vector<double>& moved, const std::vector<Vec3>& force,
+                           double dt_s) {
+  bool any_moving = false, all_at_work = true, over = false;
+  std::size_t hands = 0;
+  for (std::size_t i = 0; i < moved.size(); ++i) {
+    const double f = i < force.size() ? force[i].norm() : 0.0;
+    over = over || f > m_force_limit;
+    if (m_hand[i] == 0) continue;
+    ++hands;
+    const bool moving = moved[i] > kIdleSpeed * dt_s;
+    any_moving = any_moving || moving;
+    all_at_work = all_at_work && (moving || f > 0.0);
+  }
+  if (any_moving) {
+    m_active_s += dt_s;
+    if (hands >= 2 && all_at_work) m_bimanual_s += dt_s;
+  } else {
+    m_idle_s += dt_s;
+  }
+  if (over) m_force_over_s += dt_s;
 }
 
 double MetricsStage::peak_stress(const TetMesh& mesh) {
@@ -92,6 +121,9 @@ nlohmann::json MetricsStage::report() const {
     }
   }
   j["peak_stress_pa"] = m_peak_stress;
+  j["idle_time_s"] = m_idle_s;
+  j["bimanual_fraction"] = bimanual_fraction();
+  if (m_forces) j["force_over_s"] = m_force_over_s;
   j["cut"]["tets"] = m_cut_tets;
   j["cut"]["volume_m3"] = m_cut_volume;
   if (!m_planned.empty()) {
@@ -112,7 +144,8 @@ void MetricsStage::save(StateWriter& out) const {
   out.array(m_force_max);
   out.array(m_force_sum);
   out.array(m_force_steps);
-  for (double v : {m_peak_stress, m_cut_volume, m_collateral, m_dev_weighted, m_dev_max})
+  for (double v : {m_peak_stress, m_cut_volume, m_collateral, m_dev_weighted, m_dev_max, m_idle_s,
+                   m_active_s, m_bimanual_s, m_force_over_s})
     out.f64(v);
   out.u64(static_cast<std::uint64_t>(m_cut_tets));
 }
@@ -131,7 +164,8 @@ void MetricsStage::restore(StateReader& in, SimState& /*state*/) {
   if (m_path.size() != tools || m_last_tip.size() != tools || m_force_max.size() != tools ||
       m_force_sum.size() != tools || m_force_steps.size() != tools)
     in.fail("another number of tools than the scene's");
-  for (double* v : {&m_peak_stress, &m_cut_volume, &m_collateral, &m_dev_weighted, &m_dev_max})
+  for (double* v : {&m_peak_stress, &m_cut_volume, &m_collateral, &m_dev_weighted, &m_dev_max,
+                    &m_idle_s, &m_active_s, &m_bimanual_s, &m_force_over_s})
     *v = in.f64();
   m_cut_tets = static_cast<std::int64_t>(in.u64());
 }

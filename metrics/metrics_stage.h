@@ -11,6 +11,13 @@
 //                           grasp, app/tool_contact_stage.h): largest, and mean over the steps
 //                           in which it touched the tissue, N
 //   peak_stress_pa          largest von Mises stress over tets and steps (engine/tissue_stress.h)
+//   idle_time_s             time in which no hand instrument (grasper, scissors) moved: every
+//                           tip slower than kIdleSpeed, s
+//   bimanual_fraction       of the time some hand instrument moved, the part in which every hand
+//                           instrument was at work: moving or holding tissue (1: both hands
+//                           worked together throughout; 0 with fewer than two)
+//   force_over_s            time in which some tool pressed on the tissue harder than the
+//                           scene's force_limit, s
 // Without a planned cut line the deviation and collateral entries are absent (the volume stays).
 #pragma once
 
@@ -28,6 +35,10 @@
 #include "engine/tissue_stress.h"
 
 namespace serosa::metrics {
+
+/// A tip slower than this is still (idle time, bimanual use), m/s: a hand holding an instrument
+/// drifts by a millimetre or so a second.
+inline constexpr double kIdleSpeed = 5e-3;
 
 /// Distance from p to the polyline (k >= 1 points), m.
 [[nodiscard]] double distance_to_polyline(const Vec3& p, const std::vector<Vec3>& line);
@@ -52,16 +63,26 @@ class MetricsStage final : public Stage {
   [[nodiscard]] double cut_volume_m3() const noexcept { return m_cut_volume; }
   [[nodiscard]] double collateral_m3() const noexcept { return m_collateral; }
   [[nodiscard]] double deviation_max_m() const noexcept { return m_dev_max; }
+  [[nodiscard]] double idle_time_s() const noexcept { return m_idle_s; }
+  [[nodiscard]] double bimanual_fraction() const noexcept {
+    return m_active_s > 0.0 ? m_bimanual_s / m_active_s : 0.0;
+  }
+  [[nodiscard]] double force_over_s() const noexcept { return m_force_over_s; }
   [[nodiscard]] double deviation_mean_m() const noexcept {
     return m_cut_volume > 0.0 ? m_dev_weighted / m_cut_volume : 0.0;
   }
 
  private:
   std::vector<std::string> m_names;
+  std::vector<std::uint8_t> m_hand;  // (tools) 1: a hand instrument (not the endoscope)
+  double m_force_limit;
   std::vector<Vec3> m_planned;
   double m_band;
   /// Accounts one cut: volume, deviation from the planned line, collateral.
   void add_cut(const CutEvent& cut);
+  /// Idle, active and bimanual time and time over the force limit, from this step's moves (m,
+  /// (tools)) and forces.
+  void add_use(const std::vector<double>& moved, const std::vector<Vec3>& force, double dt_s);
   /// The mesh's largest von Mises stress now, Pa.
   [[nodiscard]] double peak_stress(const TetMesh& mesh);
 
@@ -75,6 +96,8 @@ class MetricsStage final : public Stage {
   std::vector<double> m_force_max, m_force_sum;  // (tools)
   std::vector<std::int64_t> m_force_steps;       // (tools)
   double m_peak_stress = 0.0;
+  double m_idle_s = 0.0, m_active_s = 0.0, m_bimanual_s = 0.0, m_force_over_s = 0.0;  // s
+  std::vector<double> m_moved;  // (tools) this step's tip moves, m
   // The rest data of the stress, refilled when the topology changes or a snapshot is restored.
   RestStress m_rest;
   std::uint64_t m_rest_version = 0;

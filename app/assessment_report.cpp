@@ -1,0 +1,45 @@
+#include "app/assessment_report.h"
+
+#include "cutting/validate.h"
+#include "metrics/assessment.h"
+
+namespace serosa::app {
+
+std::map<std::string, double> session_values(const Scene& scene,
+                                             const metrics::MetricsStage& metrics,
+                                             const TetMesh& mesh,
+                                             const std::map<int, std::string>& groups) {
+  const nlohmann::json r = metrics.report();
+  std::map<std::string, double> v;
+  v["time_s"] = r["time_s"].get<double>();
+  v["idle_time_s"] = metrics.idle_time_s();
+  v["bimanual_fraction"] = metrics.bimanual_fraction();
+  v["force_over_s"] = metrics.force_over_s();
+  v["peak_stress_pa"] = metrics.peak_stress_pa();
+  double hands = 0.0;
+  for (std::size_t i = 0; i < scene.tools.size(); ++i) {
+    const std::string& name = scene.tools[i].name;
+    v["path_length_m." + name] = metrics.path_length_m(i);
+    if (scene.tools[i].kind != ToolKind::kEndoscope) hands += metrics.path_length_m(i);
+    if (r.contains("force_max_n")) v["force_max_n." + name] = r["force_max_n"][name].get<double>();
+  }
+  v["path_length_m"] = hands;
+  if (r["cut"].contains("deviation_max_m")) {
+    v["cut.deviation_max_m"] = metrics.deviation_max_m();
+    v["cut.deviation_mean_m"] = metrics.deviation_mean_m();
+    v["cut.collateral_m3"] = metrics.collateral_m3();
+  }
+  for (const auto& [id, name] : groups)
+    v["pieces." + name] = cutting::count_components(mesh, static_cast<std::uint16_t>(id));
+  return v;
+}
+
+nlohmann::json assessment_report(const Scene& scene, const metrics::MetricsStage* metrics,
+                                 const TetMesh& mesh, const std::map<int, std::string>& groups) {
+  if (!scene.metrics.rubric || metrics == nullptr) return nullptr;
+  const metrics::Assessment a =
+      metrics::assess(*scene.metrics.rubric, session_values(scene, *metrics, mesh, groups));
+  return metrics::assessment_json(a, *scene.metrics.rubric);
+}
+
+}  // namespace serosa::app

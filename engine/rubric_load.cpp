@@ -1,0 +1,159 @@
+// load_rubric: a rubric's TOML file -> checked Rubric (docs/assessment.md).
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "engine/input_error.h"
+#include "engine/rubric.h"
+
+namespace serosa {
+
+namespace {
+
+// Values the session reports under a fixed name, and families with a tool's or a group's name.
+constexpr std::array<std::string_view, 9> kFixed = {
+    "time_s",           "idle_time_s",    "bimanual_fraction",   "path_length_m",
+    "force_over_s",     "peak_stress_pa", "cut.deviation_max_m", "cut.deviation_mean_m",
+    "cut.collateral_m3"};
+constexpr std::array<std::string_view, 3> kFamilies = {"path_length_m", "force_max_n", "pieces"};
+
+class RubricReader {
+ public:
+  explicit RubricReader(std::filesystem::path file) : m_file(std::move(file)) {}
+
+  Rubric read() {
+    toml::table root;
+    try {
+      root = toml::parse_file(m_file.string());
+    } catch (const toml::parse_error& e) {
+      throw InputError(m_file.string(), static_cast<std::int64_t>(e.source().begin.line),
+                       "TOML syntax error: " + std::string(e.description()), "a rubric in TOML");
+    }
+    Rubric r;
+    r.file = m_file;
+    check_keys(root, "", {"title", "pass_score", "metric"});
+    if (const auto* n = root.get("title")) r.title = text(*n, "title");
+    if (const auto* n = root.get("pass_score")) {
+      r.pass_score = number(*n, "pass_score");
+      if (!(r.pass_score >= 0.0 && r.pass_score <= 100.0))
+        fail(*n, "pass_score", "out of range", "a score within [0, 100]");
+    }
+    const auto* metrics = root.get("metric");
+    const auto* arr = metrics != nullptr ? metrics->as_array() : nullptr;
+    if (arr == nullptr || arr->empty() || !arr->is_array_of_tables())
+      throw InputError(m_file.string(), 0, "no [[metric]] tables",
+                       "one [[metric]] per value scored");
+    for (std::size_t i = 0; i < arr->size(); ++i)
+      r.metrics.push_back(metric(*(*arr)[i].as_table(), "metric[" + std::to_string(i) + "]"));
+    for (const std::string_view d : kGoalsDomains)
+      if (std::none_of(r.metrics.begin(), r.metrics.end(),
+                       [&](const RubricMetric& m) { return m.domain == d; }))
+        throw InputError(m_file.string(), 0, "the domain '" + std::string(d) + "' has no metric",
+                         "every GOALS domain scored by at least one [[metric]]");
+    return r;
+  }
+
+ private:
+  RubricMetric metric(const toml::table& t, const std::string& p) {
+    check_keys(t, p, {"name", "domain", "unit", "good", "poor", "limit", "weight", "critical"});
+    RubricMetric m;
+    m.line = static_cast<int>(t.source().begin.line);
+    m.name = text(required(t, p, "name"), p + ".name");
+    std::string family, suffix;
+    if (!known_metric(m.name, family, suffix))
+      fail(*t.get("name"), p + ".name", "no metric named '" + m.name + "'",
+           "a metric docs/assessment.md lists");
+    m.domain = text(required(t, p, "domain"), p + ".domain");
+    if (std::find(kGoalsDomains.begin(), kGoalsDomains.end(), m.domain) == kGoalsDomains.end())
+      fail(*t.get("domain"), p + ".domain", "unknown domain '" + m.domain + "'",
+           "depth_perception, bimanual_dexterity, efficiency, tissue_handling or autonomy");
+    if (const auto* n = t.get("unit")) m.unit = text(*n, p + ".unit");
+    m.good = number(required(t, p, "good"), p + ".good");
+    m.poor = number(required(t, p, "poor"), p + ".poor");
+    if (m.good == m.poor)
+      fail(*t.get("poor"), p + ".poor", "equal to good", "a value other than good's");
+    m.limit = 0.5 * (m.good + m.poor);
+    if (const auto* n = t.get("limit")) {
+      m.limit = number(*n, p + ".limit");
+      if (m.limit < std::min(m.good, m.poor) || m.limit > std::max(m.good, m.poor))
+        fail(*n, p + ".limit", "outside [good, poor]", "a value between good and poor");
+    }
+    if (const auto* n = t.get("weight")) {
+      m.weight = number(*n, p + ".weight");
+      if (!(m.weight > 0.0)) fail(*n, p + ".weight", "not positive", "a weight > 0");
+    }
+    if (const auto* n = t.get("critical")) {
+      const auto b = n->value<bool>();
+      if (!b) fail(*n, p + ".critical", "not a boolean", "true or false");
+      m.critical = *b;
+    }
+    return m;
+  }
+
+  void check_keys(const toml::table& t, const std::string& p,
+                  std::initializer_list<std::string_view> keys) const {
+    for (const auto& [k, v] : t)
+      if (std::find(keys.begin(), keys.end(), k.str()) == keys.end()) {
+        std::string list;
+        for (const auto key : keys) list.append(list.empty() ? "" : ", ").append(key);
+        fail(v, p.empty() ? std::string(k.str()) : p + "." + std::string(k.str()), "unknown key",
+             "one of " + list);
+      }
+  }
+
+  const toml::node& required(const toml::table& t, const std::string& p,
+                             std::string_view key) const {
+    const auto* n = t.get(key);
+    if (n == nullptr)
+      throw InputError(m_file.string(), static_cast<std::int64_t>(t.source().begin.line),
+                       p + ": missing key '" + std::string(key) + "'", "the key set");
+    return *n;
+  }
+
+  double number(const toml::node& n, const std::string& p) const {
+    const auto v = n.value<double>();
+    if (!v || !std::isfinite(*v)) fail(n, p, "not a finite number", "a number");
+    return *v;
+  }
+
+  std::string text(const toml::node& n, const std::string& p) const {
+    const auto v = n.value<std::string>();
+    if (!v) fail(n, p, "not a string", "a string");
+    return *v;
+  }
+
+  [[noreturn]] void fail(const toml::node& n, const std::string& p, const std::string& what,
+                         const std::string& expected) const {
+    throw InputError(m_file.string(), static_cast<std::int64_t>(n.source().begin.line),
+                     p + ": " + what, expected);
+  }
+
+  std::filesystem::path m_file;
+};
+
+}  // namespace
+
+bool known_metric(std::string_view name, std::string& family, std::string& suffix) {
+  if (std::find(kFixed.begin(), kFixed.end(), name) != kFixed.end()) {
+    family = std::string(name);
+    suffix.clear();
+    return true;
+  }
+  const std::size_t dot = name.find('.');
+  if (dot == std::string_view::npos || dot + 1 >= name.size()) return false;
+  const std::string_view head = name.substr(0, dot);
+  if (std::find(kFamilies.begin(), kFamilies.end(), head) == kFamilies.end()) return false;
+  family = std::string(head);
+  suffix = std::string(name.substr(dot + 1));
+  return true;
+}
+
+Rubric load_rubric(const std::filesystem::path& file) {
+  if (!std::filesystem::is_regular_file(file))
+    throw InputError(file.string(), 0, "no such rubric file", "a rubric TOML file");
+  return RubricReader(file).read();
+}
+
+}  // namespace serosa
