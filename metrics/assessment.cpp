@@ -20,7 +20,8 @@ bool metric_passed(const RubricMetric& m, double v) {
 
 std::string why_failed(const RubricMetric& m, double v) {
   std::ostringstream s;
-  s << m.name << " = " << v << (m.unit.empty() ? "" : " ") << m.unit
+  const bool unitless = m.unit.empty() || m.unit == "1";  // counts and fractions
+  s << m.name << " = " << v << (unitless ? "" : " ") << (unitless ? "" : m.unit)
     << (m.good < m.poor ? ", above the limit of " : ", below the limit of ") << m.limit
     << (m.critical ? " (critical)" : "");
   return s.str();

@@ -65,6 +65,9 @@ TEST(RecordReplay, ReplayVerifyIsBitIdentical) {
   // The final state is the same bit for bit, and so is what cutting did.
   EXPECT_EQ(r.report["state_hash"], rec.report["state_hash"]);
   EXPECT_EQ(r.report["cutting"], rec.report["cutting"]);
+  // The replay scores the session again, as the run did.
+  ASSERT_TRUE(rec.report.contains("assessment"));
+  EXPECT_EQ(r.report["assessment"], rec.report["assessment"]);
 
   // The CLI agrees: exit 0.
   const CliResult cli = run_serosa("replay '" + rec.file.string() + "' --headless --verify");
