@@ -81,11 +81,13 @@ GoldenComparison compare_golden(const Json& report, const Json& golden) {
   GoldenComparison out;
   for (const char* k : {"/steps", "/steps_taken", "/mesh_final/tets", "/mesh_final/nodes",
                         "/mesh_final/valid", "/cutting/cuts", "/cutting/tets_added",
-                        "/cutting/degenerate_tets", "/fem/rejected", "/contact/held_nodes"})
+                        "/cutting/degenerate_tets", "/fem/rejected", "/contact/held_nodes",
+                        "/assessment/passed", "/assessment/domains"})
     exact(report, golden, k, out);
   near(report, golden, "/mesh_final/rest_volume_m3", 1e-9, 0.0, out);
   near(report, golden, "/simulated_time_s", 1e-12, 1e-12, out);
   near_all(report, golden, "/metrics", out);
+  near(report, golden, "/assessment/score", 0.0, 0.5, out);  // half a point of 0-100
   const Json* h = find(report, "/state_hash");
   const Json* gh = find(golden, "/state_hash");
   if (h && gh && *h != *gh) {

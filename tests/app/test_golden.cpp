@@ -21,8 +21,23 @@ Json sample() {
     "metrics": {"time_s": 0.05, "peak_stress_pa": 1000.0,
                 "path_length_m": {"scissors": 0.02},
                 "cut": {"volume_m3": 1.0e-7, "deviation_max_m": 0.001}},
-    "time_per_stage_ms": {"fem": 3.0}
+    "time_per_stage_ms": {"fem": 3.0},
+    "assessment": {"score": 88.0, "passed": true, "domains": {"efficiency": 4}}
   })");
+}
+
+TEST(Golden, TheAssessmentsPassAndDomainsAreEqualAndItsScoreWithinHalfAPoint) {
+  Json r = sample();
+  r["assessment"]["score"] = 88.4;
+  EXPECT_TRUE(compare_golden(r, sample()).ok());
+  r["assessment"]["score"] = 88.6;
+  EXPECT_FALSE(compare_golden(r, sample()).ok());
+  Json p = sample();
+  p["assessment"]["passed"] = false;
+  EXPECT_FALSE(compare_golden(p, sample()).ok());
+  Json d = sample();
+  d["assessment"]["domains"]["efficiency"] = 3;
+  EXPECT_FALSE(compare_golden(d, sample()).ok());
 }
 
 TEST(Golden, EqualReportsMatch) {
