@@ -18,6 +18,9 @@ void add_run_command(CLI::App& app, Action& action) {
   CLI::App* cmd = app.add_subcommand("run", "The trainee session: a window, the rig or the mouse");
   cmd->add_option("scene", *scene, "Scene TOML file")->required();
   cmd->add_option("--seconds", *seconds, "Close the window after this much wall time (0: never)");
+  auto summary = std::make_shared<double>(0.0);
+  cmd->add_option("--summary-seconds", *summary,
+                  "With --seconds: show the assessment's summary this long after the session");
   cmd->add_option("--snapshot", *snapshot,
                   "Also write the last picture drawn to this PNG (for checks and bug reports)");
   auto record = std::make_shared<std::string>();
@@ -30,8 +33,8 @@ void add_run_command(CLI::App& app, Action& action) {
   cmd->add_option("--path", *path,
                   "Tool path CSV every scripted tool plays (default: the scripted instruments "
                   "follow the rig when it is plugged in, else the mouse)");
-  cmd->callback([&action, scene, seconds, snapshot, record, report, path] {
-    action = [scene, seconds, snapshot, record, report, path] {
+  cmd->callback([&action, scene, seconds, snapshot, record, report, path, summary] {
+    action = [scene, seconds, snapshot, record, report, path, summary] {
       const char* x = std::getenv("DISPLAY");
       const char* wl = std::getenv("WAYLAND_DISPLAY");
       if ((x == nullptr || *x == '\0') && (wl == nullptr || *wl == '\0'))
@@ -41,6 +44,7 @@ void add_run_command(CLI::App& app, Action& action) {
       SessionOptions so;
       so.seconds = *seconds;
       so.snapshot = *snapshot;
+      so.summary_seconds = *summary;
       if (!record->empty()) so.record = *record;
       if (!report->empty()) so.report = *report;
       if (!path->empty()) so.tool_path = *path;

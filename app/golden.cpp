@@ -79,10 +79,10 @@ void near_all(const Json& r, const Json& g, const std::string& prefix, GoldenCom
 
 GoldenComparison compare_golden(const Json& report, const Json& golden) {
   GoldenComparison out;
-  for (const char* k : {"/steps", "/steps_taken", "/mesh_final/tets", "/mesh_final/nodes",
-                        "/mesh_final/valid", "/cutting/cuts", "/cutting/tets_added",
-                        "/cutting/degenerate_tets", "/fem/rejected", "/contact/held_nodes",
-                        "/assessment/passed", "/assessment/domains"})
+  for (const char* k :
+       {"/steps", "/steps_taken", "/mesh_final/tets", "/mesh_final/nodes", "/mesh_final/valid",
+        "/cutting/cuts", "/cutting/tets_added", "/cutting/degenerate_tets", "/fem/rejected",
+        "/contact/held_nodes", "/assessment/passed", "/assessment/domains"})
     exact(report, golden, k, out);
   near(report, golden, "/mesh_final/rest_volume_m3", 1e-9, 0.0, out);
   near(report, golden, "/simulated_time_s", 1e-12, 1e-12, out);

@@ -26,6 +26,8 @@
 #include "app/render_frame_from_surface.h"
 #include "app/replay_controller.h"
 #include "app/scope_control.h"
+#include "app/session_summary.h"
+#include "app/summary_screen.h"
 #include "engine/input_error.h"
 #include "engine/record_stage.h"
 #include "engine/recording_writer.h"
@@ -323,10 +325,15 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
     const auto start = Clock::now();
     auto last = start;
     std::int64_t frames_drawn = 0;
+    bool ended = false;  // by the trainee (Esc): the summary follows, until they leave it
+    bool timed_out = false;
     while (!window.should_close() && !g_interrupted.load() && !control.finished.load()) {
       std::this_thread::sleep_until(pacer.next_frame());  // the solver's core stays its own
       window.poll_events();
-      if (window.pressed(render::Key::kEscape)) window.close();
+      if (window.pressed(render::Key::kEscape)) {
+        ended = true;
+        break;
+      }
       if (window.pressed(render::Key::kSpace)) control.paused.store(!control.paused.load());
       if (window.pressed(render::Key::kV))
         options.view =
@@ -383,7 +390,10 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
                     frame.overlay.paused ? "  [paused]" : "",
                     frame.overlay.slow_motion ? "  [slow motion]" : "");
       window.set_title(title);
-      if (last_frame) break;
+      if (last_frame) {
+        timed_out = true;
+        break;
+      }
     }
     solver.request_stop();
     solver.join();
@@ -422,6 +432,14 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
       if (!out)
         throw InputError(so.report->string(), 0, "cannot write the report", "a writable path");
     }
+    // The assessment's summary: after a session the trainee ended or the procedure finished
+    // (until they leave it), or one that --seconds ended when --summary-seconds asks for it.
+    const bool finished = ended || (control.finished.load() && !loop.error());
+    if (report.contains("assessment") && !window.should_close() && !g_interrupted.load() &&
+        (finished || (timed_out && so.summary_seconds > 0.0)))
+      show_summary(window, renderer, frames.front(), options, overlay,
+                   session_summary(report["assessment"]), timed_out ? so.summary_seconds : 0.0,
+                   snapshot, g_interrupted);
   }
   if (loop.error()) std::rethrow_exception(loop.error());
   return 0;

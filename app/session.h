@@ -19,6 +19,10 @@ struct SessionOptions {
   /// A tool path every scripted tool plays instead of its own; without one the scripted
   /// instruments follow the rig when it is plugged in, else the mouse (app/instrument_devices.h).
   std::optional<std::filesystem::path> tool_path;
+  /// When the scene scores the session: how long the summary screen stays after a session that
+  /// `seconds` ended, s (0: not shown then). A session the trainee ends (Esc, or the procedure
+  /// finished) shows it until they leave it.
+  double summary_seconds = 0.0;
 };
 
 /// Opens a window on the scene and runs it in real time until the window closes, Ctrl-C (SIGINT
@@ -37,7 +41,8 @@ struct SessionOptions {
 /// the haptic loop (motors off), then the recording is closed and the report written.
 ///
 /// Keys: Space pause, V cycle the views (visual, collision, mechanical), Up/Down tessellation
-/// level, O toggle a 0/30 degree scope, H hide/show the overlay, Esc quit. With mouse-driven
+/// level, O toggle a 0/30 degree scope, H hide/show the overlay, Esc end the session (then the
+/// summary of its assessment, when the scene scores it; Esc again to leave). With mouse-driven
 /// instruments: drag with the left button to pivot the active one about its trocar, W/S insert
 /// and retract, Q/E roll, J open/close the jaws, Tab switch the active instrument. The overlay's
 /// view and tessellation controls work with the mouse.

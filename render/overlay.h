@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "render/render_frame.h"
+#include "render/session_summary.h"
 #include "render/snapshot_options.h"
 
 struct ImGuiContext;
@@ -56,6 +57,9 @@ class Overlay {
   /// pixels; the viewport must cover it). Nothing is drawn when data.visible is false.
   OverlayResult draw(const OverlayData& data, const SnapshotOptions& options, int width, int height,
                      const OverlayInput& input);
+  /// Draws the end-of-session summary (render/session_summary.h) centred over the bound
+  /// framebuffer (width x height pixels), in place of the statistics.
+  void draw_summary(const SessionSummary& summary, int width, int height);
 
  private:
   OverlayResult layout(const OverlayData& data, const SnapshotOptions& options, int width,

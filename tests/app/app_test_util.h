@@ -33,9 +33,10 @@ struct CliResult {
   std::string out;  ///< stdout and stderr together
 };
 
-/// Runs `serosa ARGS` (a shell command line tail), capturing stdout and stderr.
-inline CliResult run_serosa(const std::string& args) {
-  std::string cmd = "'";
+/// Runs `serosa ARGS` (a shell command line tail), capturing stdout and stderr; under `wrapper`
+/// (a command line head, as xvfb-run's) when given.
+inline CliResult run_serosa(const std::string& args, const std::string& wrapper = {}) {
+  std::string cmd = wrapper + "'";
   cmd.append(serosa_exe().string()).append("' ").append(args).append(" 2>&1");
   CliResult r;
   FILE* pipe = popen(cmd.c_str(), "r");
@@ -46,6 +47,11 @@ inline CliResult run_serosa(const std::string& args) {
   const int status = pclose(pipe);
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+/// `serosa ARGS` in a virtual display (software GL), as a trainee's window would run.
+inline CliResult run_serosa_under_xvfb(const std::string& args) {
+  return run_serosa(args, "xvfb-run -a -s '-screen 0 1280x720x24' ");
 }
 
 }  // namespace serosa::app::testing

@@ -9,11 +9,13 @@
 #include <sstream>
 #include <string>
 
+#include <stb/stb_image.h>
 #include <nlohmann/json.hpp>
 
 #include "app/headless.h"
 #include "app_test_util.h"
 #include "engine/rubric.h"
+#include "render/session_summary.h"
 
 namespace serosa::app {
 namespace {
@@ -118,6 +120,43 @@ TEST(Assessment, ADegradedRunScoresLower) {
   EXPECT_LE(both, slowed);
   EXPECT_LE(both, off);
 #endif
+}
+
+// Pixels within 12 of `rgb` in every channel in the middle of a PNG.
+std::size_t pixels_of(const fs::path& png, const unsigned char rgb[3]) {
+  int w = 0, h = 0, n = 0;
+  stbi_uc* data = stbi_load(png.c_str(), &w, &h, &n, 3);
+  if (data == nullptr) return 0;
+  std::size_t count = 0;
+  for (int y = h / 4; y < 3 * h / 4; ++y)
+    for (int x = w / 4; x < 3 * w / 4; ++x) {
+      const stbi_uc* p = data + 3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
+                                     static_cast<std::size_t>(x));
+      bool near = true;
+      for (int k = 0; k < 3; ++k) near = near && std::abs(p[k] - static_cast<int>(rgb[k])) <= 12;
+      count += near ? 1 : 0;
+    }
+  stbi_image_free(data);
+  return count;
+}
+
+// The trainee's window under Xvfb: the session ends (here by --seconds, before the transection)
+// and the summary of its assessment stays on the screen, red: not passed, the appendix whole.
+TEST(Assessment, TheTraineeSeesTheSummaryWhenTheSessionEnds) {
+  const fs::path dir = out_dir("assessment_summary");
+  const fs::path png = dir / "summary.png";
+  const CliResult x =
+      run_serosa_under_xvfb("run '" + source("config/appendectomy.toml").string() + "' --path '" +
+                            source("config/paths/appendectomy.csv").string() +
+                            "' --seconds 1.5 --summary-seconds 0.3 --snapshot '" + png.string() +
+                            "' --report '" + (dir / "session.json").string() + "'");
+  ASSERT_EQ(x.code, 0) << x.out;
+  const nlohmann::json a = read_json(dir / "session.json")["assessment"];
+  expect_contract(a);
+  EXPECT_FALSE(a["passed"].get<bool>());
+  EXPECT_NE(a["failed"].dump().find("pieces.appendix"), std::string::npos) << a.dump(1);
+  EXPECT_GT(pixels_of(png, render::kFailedRgb), 5000u);
+  EXPECT_EQ(pixels_of(png, render::kPassedRgb), 0u);
 }
 
 }  // namespace
