@@ -19,5 +19,6 @@ void add_run_command(CLI::App& app, Action& action);
 void add_replay_command(CLI::App& app, Action& action);
 void add_cut_command(CLI::App& app, Action& action);
 void add_bench_command(CLI::App& app, Action& action);
+void add_trainee_command(CLI::App& app, Action& action);
 
 }  // namespace serosa::app

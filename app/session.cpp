@@ -432,11 +432,11 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
       if (!out)
         throw InputError(so.report->string(), 0, "cannot write the report", "a writable path");
     }
-    // The assessment's summary: after a session the trainee ended or the procedure finished
-    // (until they leave it), or one that --seconds ended when --summary-seconds asks for it.
-    const bool finished = ended || (control.finished.load() && !loop.error());
+    // The assessment's summary: after a session the trainee ended (until they leave it), or one
+    // that --seconds ended when --summary-seconds asks for it; never after the window was closed,
+    // Ctrl-C or a solver error.
     if (report.contains("assessment") && !window.should_close() && !g_interrupted.load() &&
-        (finished || (timed_out && so.summary_seconds > 0.0)))
+        !loop.error() && (ended || (timed_out && so.summary_seconds > 0.0)))
       show_summary(window, renderer, frames.front(), options, overlay,
                    session_summary(report["assessment"]), timed_out ? so.summary_seconds : 0.0,
                    snapshot, g_interrupted);

@@ -13,11 +13,14 @@ void show_summary(render::Window& window, render::FrameRenderer& renderer,
                   const std::filesystem::path& snapshot, const std::atomic<bool>& interrupted) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
+  window.set_title("Serosa  session summary");
   for (;;) {
     window.poll_events();
     const bool timed_out =
         seconds > 0.0 && std::chrono::duration<double>(Clock::now() - start).count() > seconds;
-    const bool leave = window.pressed(render::Key::kEscape) || window.should_close() ||
+    // Esc ended the session and may still be held: Space leaves too, at its first press.
+    const bool leave = window.pressed(render::Key::kEscape) ||
+                       window.pressed(render::Key::kSpace) || window.should_close() ||
                        interrupted.load() || timed_out;
     window.bind_framebuffer();
     renderer.draw(frame, options, window.width(), window.height());

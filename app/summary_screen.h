@@ -12,7 +12,8 @@
 
 namespace serosa::app {
 
-/// Draws `frame` with the summary over it until the trainee leaves (Esc, the window closed,
+/// Draws `frame` with the summary over it (the window's title says so) until the trainee leaves
+/// (Esc or Space pressed, the window closed,
 /// `interrupted`) or, when `seconds` > 0, that much wall time passed; writes the last picture to
 /// `snapshot` when it is not empty.
 void show_summary(render::Window& window, render::FrameRenderer& renderer,

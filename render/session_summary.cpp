@@ -24,7 +24,7 @@ std::vector<std::string> summary_text(const SessionSummary& s) {
     out.emplace_back("To work on:");
     for (const std::string& b : more) out.push_back("  " + b);
   }
-  out.emplace_back("Esc or close the window to leave");
+  out.emplace_back("Esc, Space or close the window to leave");
   return out;
 }
 

@@ -1,7 +1,5 @@
 // The runner of `serosa bench` (bench_registry.h): parts in order, then for each its CSV files,
 // gnuplot scripts and PNGs, and its monotonicity checks.
-#include <sys/wait.h>
-
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -15,36 +13,13 @@
 #include <stdexcept>
 
 #include "app/bench/bench_registry.h"
+#include "app/shell_command.h"
 
 namespace serosa::app::bench {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-// 'text' for the POSIX shell.
-std::string shell_quote(const std::string& text) {
-  std::string q = "'";
-  for (char c : text) {
-    if (c == '\'')
-      q.append("'\\''");
-    else
-      q.push_back(c);
-  }
-  q.push_back('\'');
-  return q;
-}
-
-// 'text' for gnuplot (single-quoted: only '' is special).
-std::string gp_quote(const std::string& text) {
-  std::string q = "'";
-  for (char c : text) {
-    if (c == '\'') q.push_back('\'');
-    q.push_back(c);
-  }
-  q.push_back('\'');
-  return q;
-}
 
 const Table* find_table(const std::vector<Table>& tables, const std::string& name) {
   const auto it =
@@ -59,29 +34,6 @@ std::string gp_column(std::size_t csv_column, bool log_axis) {
   std::string s = "(";
   s.append(c).append(" > 0 ? ").append(c).append(" : 1/0)");
   return s;
-}
-
-struct Command {
-  int code = -1;
-  std::string output;  // stdout and stderr together
-};
-
-Command run_command(const std::string& command) {
-  Command r;
-  const std::string full = command + " 2>&1";
-  FILE* pipe = popen(full.c_str(), "r");
-  if (pipe == nullptr) return r;
-  std::array<char, 4096> buf{};
-  std::size_t n = 0;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
-  const int status = pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-std::string first_line(const std::string& text) {
-  const auto nl = text.find('\n');
-  return nl == std::string::npos ? text : text.substr(0, nl);
 }
 
 // Writes, draws and checks what one part returned.

@@ -2,7 +2,8 @@
 # Runs `serosa run SCENE` on the current X display and, with DRAG=1, drags the mouse across its
 # window with the left button held (xdotool): the trainee moving the active instrument; then
 # pushes the endoscope in with two presses of I. Without DRAG it waits as long, counted in the
-# window's frames, and sends nothing; either way it then closes the window with Escape. Each
+# window's frames, and sends nothing; either way it then ends the session with Escape and leaves
+# its summary with Space. Each
 # input is held over two frames, since the window reads the pointer and keys once a frame (a
 # sanitizer build draws about one frame a second). Usage: drag_in_window.sh SEROSA SCENE REPORT DRAG
 set -eu
@@ -46,6 +47,12 @@ while [ $i -lt 2 ]; do
   frames 2
   i=$((i + 1))
 done
-xdotool keydown Escape  # held until the window has closed
-wait $pid
+# Escape ends the session; the scene scores it, so its summary follows (the title says so), and
+# Space leaves it (Escape, still held, would need a release first).
+xdotool keydown Escape
+timeout 60 xdotool search --sync --name 'session summary' >/dev/null ||
+  { echo "drag_in_window.sh: no session summary" >&2; kill $pid; exit 1; }
 xdotool keyup Escape
+xdotool keydown space  # held until the window has closed
+wait $pid
+xdotool keyup space

@@ -52,7 +52,7 @@ TEST(SessionSummary, TheTextSaysTheVerdictTheScoreTheDomainsAndWhy) {
   EXPECT_EQ(no[11], "To work on:");  // only what "Why:" did not say already
   EXPECT_EQ(no[12], "  time_s = 12 s, above the limit of 10");
   EXPECT_EQ(no.size(), 14u);
-  EXPECT_EQ(no.back(), "Esc or close the window to leave");
+  EXPECT_EQ(no.back(), "Esc, Space or close the window to leave");
 }
 
 // Pixels within 12 of `rgb` in every channel, in the central half of the picture.

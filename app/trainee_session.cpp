@@ -1,0 +1,72 @@
+#include "app/trainee_session.h"
+
+#include <algorithm>
+#include <cctype>
+#include <ctime>
+
+#include "app/progress_db.h"
+#include "engine/input_error.h"
+
+namespace serosa::app {
+
+std::string utc_now() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+void check_trainee_name(const std::string& name) {
+  const bool ok = !name.empty() && name.size() <= 64 && name.front() != '.' &&
+                  std::all_of(name.begin(), name.end(), [](char c) {
+                    return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == ' ' ||
+                           c == '-' || c == '_' || c == '.';
+                  });
+  if (!ok)
+    throw InputError("--trainee", 0, "'" + name + "' is not a trainee's name",
+                     "1-64 letters, digits, spaces, '-', '_' or '.', not starting with '.'");
+}
+
+std::filesystem::path trainee_recording(const std::filesystem::path& db, const std::string& trainee,
+                                        const std::string& task, const std::string& started_utc) {
+  std::string stamp = started_utc;
+  std::replace(stamp.begin(), stamp.end(), ':', '-');
+  const std::filesystem::path folder = db.parent_path() / "recordings" / trainee;
+  std::filesystem::path p = folder / (task + "_" + stamp + ".lapr");
+  // Two sessions started in the same second must not share (and overwrite) a recording.
+  for (int k = 2; std::filesystem::exists(p); ++k)
+    p = folder / (task + "_" + stamp + "_" + std::to_string(k) + ".lapr");
+  return p;
+}
+
+void file_session(const std::filesystem::path& db, const std::string& trainee,
+                  const std::filesystem::path& scene, const std::string& started_utc,
+                  const nlohmann::json& report, const std::optional<std::filesystem::path>& recording,
+                  const std::optional<std::filesystem::path>& report_file) {
+  SessionRecord r;
+  r.trainee = trainee;
+  r.task = scene.stem().string();
+  r.scene = std::filesystem::absolute(scene).lexically_normal().string();
+  r.started_utc = started_utc;
+  r.simulated_s = report.value("simulated_time_s", 0.0);
+  if (report.contains("assessment")) {
+    const nlohmann::json& a = report["assessment"];
+    r.score = a["score"].get<double>();
+    r.passed = a["passed"].get<bool>();
+    r.domains_json = a["domains"].dump();
+  }
+  if (recording) r.recording = std::filesystem::absolute(*recording).lexically_normal().string();
+  if (report_file) r.report = std::filesystem::absolute(*report_file).lexically_normal().string();
+  try {
+    ProgressDb(db).add(r);
+  } catch (const InputError& e) {
+    std::string kept = "; the session is not in the progress, and is kept: recording ";
+    kept += r.recording.empty() ? "(none)" : r.recording;
+    kept += ", report " + (r.report.empty() ? std::string("(printed only)") : r.report);
+    throw InputError(e.file(), e.line(), e.message() + kept, e.expected());
+  }
+}
+
+}  // namespace serosa::app
