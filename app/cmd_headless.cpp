@@ -60,55 +60,54 @@ void add_headless_command(CLI::App& app, Action& action) {
   cmd->add_option("--trainee", *trainee,
                   "File the session in this trainee's progress (recorded beside the database "
                   "unless --record is given)");
-  cmd->add_option("--db", *db, "Progress database for --trainee (default: $SEROSA_PROGRESS_DB, "
-                               "else ~/.local/share/serosa/progress.sqlite)");
+  cmd->add_option("--db", *db,
+                  "Progress database for --trainee (default: $SEROSA_PROGRESS_DB, "
+                  "else ~/.local/share/serosa/progress.sqlite)");
   cmd->callback([&action, opts, record, steps, path, final_msh, report, frames, golden,
                  update_golden, trainee, db] {
-        action = [opts, record, steps, path, final_msh, report, frames, golden, update_golden,
-                  trainee, db] {
-          if (*update_golden && golden->empty())
-            throw InputError("--update-golden", 0, "needs --golden FILE", "--golden FILE");
-          run_under_umockdev_if_rig_emulated(load_scene(opts->scene));
-          if (!record->empty()) opts->record = *record;
-          const std::string started = utc_now();
-          const std::filesystem::path db_file =
-              db->empty() ? default_progress_db() : std::filesystem::path(*db);
-          if (!trainee->empty()) {
-            check_trainee_name(*trainee);
-            if (!opts->record) {
-              opts->record = trainee_recording(db_file, *trainee,
-                                               opts->scene.stem().string(), started);
-              std::filesystem::create_directories(opts->record->parent_path());
-            }
-            if (report->empty()) {  // the report beside the recording
-              opts->report = *opts->record;
-              opts->report->replace_extension(".json");
-            }
-          }
-          opts->stop = &g_stop_requested;
-          std::signal(SIGINT, request_stop);
-          std::signal(SIGTERM, request_stop);
-          if (*steps >= 0) opts->steps = *steps;
-          if (!path->empty()) opts->tool_path = *path;
-          if (!final_msh->empty()) opts->export_final = *final_msh;
-          if (!report->empty()) opts->report = *report;
-          if (!frames->empty()) opts->frames = *frames;
-          const auto json = run_headless(*opts);
-          std::printf("%s\n", json.dump(2).c_str());
-          if (!trainee->empty())  // after the recording and the report are written
-            file_session(db_file, *trainee, opts->scene, started, json, opts->record,
-                         opts->report);
-          if (golden->empty()) return 0;
-          const GoldenComparison g = check_golden(json, *golden, *update_golden);
-          for (const std::string& n : g.notes) std::fprintf(stderr, "note: %s\n", n.c_str());
-          for (const std::string& f : g.failures)
-            std::fprintf(stderr, "golden mismatch: %s\n", f.c_str());
-          if (!g.ok()) return 3;
-          std::fprintf(stderr, "%s %s\n",
-                       *update_golden ? "golden written:" : "golden matches:", golden->c_str());
-          return 0;
-        };
-      });
+    action = [opts, record, steps, path, final_msh, report, frames, golden, update_golden, trainee,
+              db] {
+      if (*update_golden && golden->empty())
+        throw InputError("--update-golden", 0, "needs --golden FILE", "--golden FILE");
+      run_under_umockdev_if_rig_emulated(load_scene(opts->scene));
+      if (!record->empty()) opts->record = *record;
+      const std::string started = utc_now();
+      const std::filesystem::path db_file =
+          db->empty() ? default_progress_db() : std::filesystem::path(*db);
+      if (!trainee->empty()) {
+        check_trainee_name(*trainee);
+        if (!opts->record) {
+          opts->record = trainee_recording(db_file, *trainee, opts->scene.stem().string(), started);
+          std::filesystem::create_directories(opts->record->parent_path());
+        }
+        if (report->empty()) {  // the report beside the recording
+          opts->report = *opts->record;
+          opts->report->replace_extension(".json");
+        }
+      }
+      opts->stop = &g_stop_requested;
+      std::signal(SIGINT, request_stop);
+      std::signal(SIGTERM, request_stop);
+      if (*steps >= 0) opts->steps = *steps;
+      if (!path->empty()) opts->tool_path = *path;
+      if (!final_msh->empty()) opts->export_final = *final_msh;
+      if (!report->empty()) opts->report = *report;
+      if (!frames->empty()) opts->frames = *frames;
+      const auto json = run_headless(*opts);
+      std::printf("%s\n", json.dump(2).c_str());
+      if (!trainee->empty())  // after the recording and the report are written
+        file_session(db_file, *trainee, opts->scene, started, json, opts->record, opts->report);
+      if (golden->empty()) return 0;
+      const GoldenComparison g = check_golden(json, *golden, *update_golden);
+      for (const std::string& n : g.notes) std::fprintf(stderr, "note: %s\n", n.c_str());
+      for (const std::string& f : g.failures)
+        std::fprintf(stderr, "golden mismatch: %s\n", f.c_str());
+      if (!g.ok()) return 3;
+      std::fprintf(stderr, "%s %s\n",
+                   *update_golden ? "golden written:" : "golden matches:", golden->c_str());
+      return 0;
+    };
+  });
 }
 
 }  // namespace serosa::app

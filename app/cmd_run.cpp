@@ -39,8 +39,9 @@ void add_run_command(CLI::App& app, Action& action) {
   cmd->add_option("--trainee", *trainee,
                   "File the session in this trainee's progress (recorded, with its report, "
                   "beside the database unless --record and --report are given)");
-  cmd->add_option("--db", *db, "Progress database for --trainee (default: $SEROSA_PROGRESS_DB, "
-                               "else ~/.local/share/serosa/progress.sqlite)");
+  cmd->add_option("--db", *db,
+                  "Progress database for --trainee (default: $SEROSA_PROGRESS_DB, "
+                  "else ~/.local/share/serosa/progress.sqlite)");
   auto path = std::make_shared<std::string>();
   cmd->add_option("--path", *path,
                   "Tool path CSV every scripted tool plays (default: the scripted instruments "
@@ -66,8 +67,8 @@ void add_run_command(CLI::App& app, Action& action) {
       const std::filesystem::path db_file =
           db->empty() ? default_progress_db() : std::filesystem::path(*db);
       if (!so.record) {
-        so.record = trainee_recording(db_file, *trainee, std::filesystem::path(*scene).stem(),
-                                      started);
+        so.record =
+            trainee_recording(db_file, *trainee, std::filesystem::path(*scene).stem(), started);
         std::filesystem::create_directories(so.record->parent_path());
       }
       if (!so.report) {  // the report beside the recording: the progress points at both

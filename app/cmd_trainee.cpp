@@ -19,8 +19,9 @@ void add_trainee_command(CLI::App& app, Action& action) {
   auto plot = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand("trainee", "A trainee's progress and learning curve");
   cmd->add_option("name", *name, "The trainee's name")->required();
-  cmd->add_option("--db", *db, "Progress database (default: $SEROSA_PROGRESS_DB, else "
-                               "~/.local/share/serosa/progress.sqlite)");
+  cmd->add_option("--db", *db,
+                  "Progress database (default: $SEROSA_PROGRESS_DB, else "
+                  "~/.local/share/serosa/progress.sqlite)");
   cmd->add_option("--plot", *plot, "Draw the learning curve into this PNG (gnuplot)");
   cmd->callback([&action, name, db, plot] {
     action = [name, db, plot] {

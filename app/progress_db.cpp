@@ -35,7 +35,9 @@ CREATE INDEX IF NOT EXISTS session_by_trainee ON session(trainee_id, id);
 // A prepared statement, finalized when it goes.
 class Statement {
  public:
-  Statement(sqlite3* db, const char* sql) { ok_ = sqlite3_prepare_v2(db, sql, -1, &s_, nullptr) == SQLITE_OK; }
+  Statement(sqlite3* db, const char* sql) {
+    ok_ = sqlite3_prepare_v2(db, sql, -1, &s_, nullptr) == SQLITE_OK;
+  }
   ~Statement() { sqlite3_finalize(s_); }
   Statement(const Statement&) = delete;
   Statement& operator=(const Statement&) = delete;
@@ -45,8 +47,10 @@ class Statement {
     sqlite3_bind_text(s_, i, v.c_str(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
   }
   void real(int i, std::optional<double> v) {
-    if (v) sqlite3_bind_double(s_, i, *v);
-    else sqlite3_bind_null(s_, i);
+    if (v)
+      sqlite3_bind_double(s_, i, *v);
+    else
+      sqlite3_bind_null(s_, i);
   }
   [[nodiscard]] std::string column_text(int i) {
     const unsigned char* t = sqlite3_column_text(s_, i);
@@ -89,10 +93,10 @@ ProgressDb::ProgressDb(const std::filesystem::path& file) : m_file(file) {
     if (!v.ok() || sqlite3_step(v.get()) != SQLITE_ROW) fail("reading its version");
     const int version = sqlite3_column_int(v.get(), 0);
     if (version != 0 && version != kSchemaVersion)
-      throw InputError(file.string(), 0,
-                       "not a Serosa progress database (user_version " + std::to_string(version) +
-                           ")",
-                       "a progress database of schema version 1");
+      throw InputError(
+          file.string(), 0,
+          "not a Serosa progress database (user_version " + std::to_string(version) + ")",
+          "a progress database of schema version 1");
     exec("BEGIN IMMEDIATE");
     exec(kSchema);
     exec("PRAGMA user_version = 1");
@@ -140,8 +144,10 @@ void ProgressDb::add(const SessionRecord& s) {
     q.text(4, s.started_utc);
     q.real(5, s.simulated_s);
     q.real(6, s.score);
-    if (s.passed) sqlite3_bind_int(q.get(), 7, *s.passed ? 1 : 0);
-    else sqlite3_bind_null(q.get(), 7);
+    if (s.passed)
+      sqlite3_bind_int(q.get(), 7, *s.passed ? 1 : 0);
+    else
+      sqlite3_bind_null(q.get(), 7);
     q.text(8, s.domains_json.empty() ? "{}" : s.domains_json);
     q.text(9, s.recording);
     q.text(10, s.report);
@@ -170,7 +176,8 @@ std::vector<SessionRecord> ProgressDb::sessions(const std::string& trainee) {
     r.started_utc = q.column_text(3);
     r.simulated_s = sqlite3_column_double(q.get(), 4);
     if (sqlite3_column_type(q.get(), 5) != SQLITE_NULL) r.score = sqlite3_column_double(q.get(), 5);
-    if (sqlite3_column_type(q.get(), 6) != SQLITE_NULL) r.passed = sqlite3_column_int(q.get(), 6) != 0;
+    if (sqlite3_column_type(q.get(), 6) != SQLITE_NULL)
+      r.passed = sqlite3_column_int(q.get(), 6) != 0;
     r.domains_json = q.column_text(7);
     r.recording = q.column_text(8);
     r.report = q.column_text(9);

@@ -49,10 +49,10 @@ std::string progress_text(const std::string& trainee, const std::vector<SessionR
   t += "task                  sessions  passed  best  last  first passed\n";
   for (const TaskProgress& p : task_progress(sessions)) {
     char line[256];
-    std::snprintf(line, sizeof line, "%s  %8d  %6d  %4s  %4s  %s\n", padded(p.task, 20).c_str(),
-                  p.sessions, p.passed, score_text(p.best).c_str(), score_text(p.last).c_str(),
-                  p.first_passed ? ("session " + std::to_string(*p.first_passed)).c_str()
-                                 : "not yet");
+    std::snprintf(
+        line, sizeof line, "%s  %8d  %6d  %4s  %4s  %s\n", padded(p.task, 20).c_str(), p.sessions,
+        p.passed, score_text(p.best).c_str(), score_text(p.last).c_str(),
+        p.first_passed ? ("session " + std::to_string(*p.first_passed)).c_str() : "not yet");
     t += line;
   }
   t += "\n  #  started (UTC)         task                  score  passed  recording\n";
@@ -61,8 +61,7 @@ std::string progress_text(const std::string& trainee, const std::vector<SessionR
     char line[1024];
     std::snprintf(line, sizeof line, "%3zu  %s  %s  %5s  %-6s  %s\n", i + 1,
                   padded(s.started_utc, 20).c_str(), padded(s.task, 20).c_str(),
-                  score_text(s.score).c_str(),
-                  s.passed ? (*s.passed ? "yes" : "no") : "-",
+                  score_text(s.score).c_str(), s.passed ? (*s.passed ? "yes" : "no") : "-",
                   s.recording.empty() ? "(not recorded)" : s.recording.c_str());
     t += line;
   }
@@ -81,8 +80,8 @@ void plot_learning_curve(const std::string& trainee, const std::vector<SessionRe
     for (const TaskProgress& p : tasks) {
       for (std::size_t i = 0; i < sessions.size(); ++i)
         if (sessions[i].task == p.task && sessions[i].score)
-          d << i + 1 << ' ' << *sessions[i].score << ' ' << (sessions[i].passed.value_or(false) ? 1 : 0)
-            << '\n';
+          d << i + 1 << ' ' << *sessions[i].score << ' '
+            << (sessions[i].passed.value_or(false) ? 1 : 0) << '\n';
       d << "\n\n";
     }
     if (!d) throw std::runtime_error("cannot write " + dat.string());

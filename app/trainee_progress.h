@@ -17,9 +17,9 @@ struct TaskProgress {
   std::string task;
   int sessions = 0;
   int passed = 0;
-  std::optional<double> best;        ///< the highest score (none: the task scores nothing)
-  std::optional<double> last;        ///< the latest session's score
-  std::optional<int> first_passed;   ///< the task's session number (1-based) that first passed
+  std::optional<double> best;       ///< the highest score (none: the task scores nothing)
+  std::optional<double> last;       ///< the latest session's score
+  std::optional<int> first_passed;  ///< the task's session number (1-based) that first passed
 };
 
 /// Per task, in the order the trainee first practised them.

@@ -43,7 +43,8 @@ std::filesystem::path trainee_recording(const std::filesystem::path& db, const s
 
 void file_session(const std::filesystem::path& db, const std::string& trainee,
                   const std::filesystem::path& scene, const std::string& started_utc,
-                  const nlohmann::json& report, const std::optional<std::filesystem::path>& recording,
+                  const nlohmann::json& report,
+                  const std::optional<std::filesystem::path>& recording,
                   const std::optional<std::filesystem::path>& report_file) {
   SessionRecord r;
   r.trainee = trainee;

@@ -29,7 +29,8 @@ void check_trainee_name(const std::string& name);
 /// where the session's recording and report are kept (they are written before)
 void file_session(const std::filesystem::path& db, const std::string& trainee,
                   const std::filesystem::path& scene, const std::string& started_utc,
-                  const nlohmann::json& report, const std::optional<std::filesystem::path>& recording,
+                  const nlohmann::json& report,
+                  const std::optional<std::filesystem::path>& recording,
                   const std::optional<std::filesystem::path>& report_file);
 
 }  // namespace serosa::app

@@ -143,8 +143,8 @@ TEST(ProgressDb, HeadlessFilesTheSessionAndTraineePrintsAndPlotsIt) {
     EXPECT_TRUE(fs::exists(s.report)) << s.report;
   }
   const fs::path png = dir / "curve.png";
-  const CliResult t = run_serosa("trainee 'Dr. Ann' --db '" + db.string() + "' --plot '" +
-                                 png.string() + "'");
+  const CliResult t =
+      run_serosa("trainee 'Dr. Ann' --db '" + db.string() + "' --plot '" + png.string() + "'");
   ASSERT_EQ(t.code, 0) << t.out;
   EXPECT_NE(t.out.find("trainee Dr. Ann: 2 sessions"), std::string::npos) << t.out;
   EXPECT_NE(t.out.find("appendectomy                 2       0"), std::string::npos) << t.out;
