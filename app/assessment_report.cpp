@@ -9,9 +9,8 @@ std::map<std::string, double> session_values(const Scene& scene,
                                              const metrics::MetricsStage& metrics,
                                              const TetMesh& mesh,
                                              const std::map<int, std::string>& groups) {
-  const nlohmann::json r = metrics.report();
   std::map<std::string, double> v;
-  v["time_s"] = r["time_s"].get<double>();
+  v["time_s"] = metrics.time_s();
   v["idle_time_s"] = metrics.idle_time_s();
   v["bimanual_fraction"] = metrics.bimanual_fraction();
   v["force_over_s"] = metrics.force_over_s();
@@ -21,10 +20,10 @@ std::map<std::string, double> session_values(const Scene& scene,
     const std::string& name = scene.tools[i].name;
     v["path_length_m." + name] = metrics.path_length_m(i);
     if (scene.tools[i].kind != ToolKind::kEndoscope) hands += metrics.path_length_m(i);
-    if (r.contains("force_max_n")) v["force_max_n." + name] = r["force_max_n"][name].get<double>();
+    v["force_max_n." + name] = metrics.force_max_n(i);
   }
   v["path_length_m"] = hands;
-  if (r["cut"].contains("deviation_max_m")) {
+  if (!scene.metrics.planned_cut_m.empty()) {
     v["cut.deviation_max_m"] = metrics.deviation_max_m();
     v["cut.deviation_mean_m"] = metrics.deviation_mean_m();
     v["cut.collateral_m3"] = metrics.collateral_m3();

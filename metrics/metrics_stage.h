@@ -59,7 +59,10 @@ class MetricsStage final : public Stage {
   [[nodiscard]] nlohmann::json report() const;
 
   [[nodiscard]] double path_length_m(std::size_t tool) const { return m_path[tool]; }
+  /// The largest force the tool put on the tissue so far, N (0 before any contact step).
+  [[nodiscard]] double force_max_n(std::size_t tool) const { return m_force_max[tool]; }
   [[nodiscard]] double peak_stress_pa() const noexcept { return m_peak_stress; }
+  [[nodiscard]] double time_s() const noexcept { return m_time; }
   [[nodiscard]] double cut_volume_m3() const noexcept { return m_cut_volume; }
   [[nodiscard]] double collateral_m3() const noexcept { return m_collateral; }
   [[nodiscard]] double deviation_max_m() const noexcept { return m_dev_max; }

@@ -108,6 +108,9 @@ fs::path default_scene_with(const fs::path& dir, const std::string& name, const 
   paths.append(source("config/paths").string()).append("/");
   replace_all(text, "\"../assets/", assets);
   replace_all(text, "script:paths/", paths);
+  std::string rubric = "\"";
+  rubric.append(source("config/assessment").string()).append("/");
+  replace_all(text, "\"assessment/", rubric);
   const fs::path scene = dir / name;
   { std::ofstream(scene) << text; }
   return scene;
