@@ -13,7 +13,6 @@
 #include "app/emulated_rig_process.h"
 #include "app/golden.h"
 #include "app/headless.h"
-#include "app/progress_db.h"
 #include "app/trainee_session.h"
 #include "engine/input_error.h"
 #include "engine/scene.h"
@@ -39,8 +38,7 @@ void add_headless_command(CLI::App& app, Action& action) {
   auto frames = std::make_shared<std::string>();
   auto golden = std::make_shared<std::string>();
   auto update_golden = std::make_shared<bool>(false);
-  auto trainee = std::make_shared<std::string>();
-  auto db = std::make_shared<std::string>();
+  auto trainee = std::make_shared<TraineeOptions>();
   CLI::App* cmd = app.add_subcommand("headless", "Run a scene without window or device");
   cmd->add_option("scene", opts->scene, "Scene TOML file")->required();
   cmd->add_option("--steps", *steps, "Solver steps (default: the scene's headless.steps)");
@@ -57,46 +55,29 @@ void add_headless_command(CLI::App& app, Action& action) {
                 "Check every cut's invariants (slow; the report lists any problem)");
   cmd->add_option("--frame-count", opts->frame_count, "Pictures over the run (with --frames)")
       ->check(CLI::Range(1, 100000));
-  cmd->add_option("--trainee", *trainee,
-                  "File the session in this trainee's progress (recorded beside the database "
-                  "unless --record is given)");
-  cmd->add_option("--db", *db,
-                  "Progress database for --trainee (default: $SEROSA_PROGRESS_DB, "
-                  "else ~/.local/share/serosa/progress.sqlite)");
+  add_trainee_options(*cmd, *trainee);
   cmd->callback([&action, opts, record, steps, path, final_msh, report, frames, golden,
-                 update_golden, trainee, db] {
-    action = [opts, record, steps, path, final_msh, report, frames, golden, update_golden, trainee,
-              db] {
+                 update_golden, trainee] {
+    action = [opts, record, steps, path, final_msh, report, frames, golden, update_golden,
+              trainee] {
       if (*update_golden && golden->empty())
         throw InputError("--update-golden", 0, "needs --golden FILE", "--golden FILE");
       run_under_umockdev_if_rig_emulated(load_scene(opts->scene));
       if (!record->empty()) opts->record = *record;
-      const std::string started = utc_now();
-      const std::filesystem::path db_file =
-          db->empty() ? default_progress_db() : std::filesystem::path(*db);
-      if (!trainee->empty()) {
-        check_trainee_name(*trainee);
-        if (!opts->record) {
-          opts->record = trainee_recording(db_file, *trainee, opts->scene.stem().string(), started);
-          std::filesystem::create_directories(opts->record->parent_path());
-        }
-        if (report->empty()) {  // the report beside the recording
-          opts->report = *opts->record;
-          opts->report->replace_extension(".json");
-        }
-      }
+      if (!report->empty()) opts->report = *report;
+      const std::optional<TraineeSession> kept =
+          begin_trainee_session(*trainee, opts->scene, opts->record, opts->report);
       opts->stop = &g_stop_requested;
       std::signal(SIGINT, request_stop);
       std::signal(SIGTERM, request_stop);
       if (*steps >= 0) opts->steps = *steps;
       if (!path->empty()) opts->tool_path = *path;
       if (!final_msh->empty()) opts->export_final = *final_msh;
-      if (!report->empty()) opts->report = *report;
       if (!frames->empty()) opts->frames = *frames;
       const auto json = run_headless(*opts);
       std::printf("%s\n", json.dump(2).c_str());
-      if (!trainee->empty())  // after the recording and the report are written
-        file_session(db_file, *trainee, opts->scene, started, json, opts->record, opts->report);
+      if (kept)  // after the recording and the report are written
+        file_session(*kept, opts->scene, json, opts->record, opts->report);
       if (golden->empty()) return 0;
       const GoldenComparison g = check_golden(json, *golden, *update_golden);
       for (const std::string& n : g.notes) std::fprintf(stderr, "note: %s\n", n.c_str());

@@ -8,7 +8,6 @@
 
 #include "app/command.h"
 #include "app/emulated_rig_process.h"
-#include "app/progress_db.h"
 #include "app/session.h"
 #include "app/trainee_session.h"
 #include "engine/input_error.h"
@@ -34,20 +33,14 @@ void add_run_command(CLI::App& app, Action& action) {
                   "Record the session (.lapr) here (default: the scene's [record] path)");
   cmd->add_option("--report", *report,
                   "Write a JSON report at the end (frames, steps, haptic telemetry, metrics)");
-  auto trainee = std::make_shared<std::string>();
-  auto db = std::make_shared<std::string>();
-  cmd->add_option("--trainee", *trainee,
-                  "File the session in this trainee's progress (recorded, with its report, "
-                  "beside the database unless --record and --report are given)");
-  cmd->add_option("--db", *db,
-                  "Progress database for --trainee (default: $SEROSA_PROGRESS_DB, "
-                  "else ~/.local/share/serosa/progress.sqlite)");
+  auto trainee = std::make_shared<TraineeOptions>();
+  add_trainee_options(*cmd, *trainee);
   auto path = std::make_shared<std::string>();
   cmd->add_option("--path", *path,
                   "Tool path CSV every scripted tool plays (default: the scripted instruments "
                   "follow the rig when it is plugged in, else the mouse)");
-  cmd->callback([&action, scene, seconds, snapshot, record, report, path, summary, trainee, db] {
-    action = [scene, seconds, snapshot, record, report, path, summary, trainee, db] {
+  cmd->callback([&action, scene, seconds, snapshot, record, report, path, summary, trainee] {
+    action = [scene, seconds, snapshot, record, report, path, summary, trainee] {
       const char* x = std::getenv("DISPLAY");
       const char* wl = std::getenv("WAYLAND_DISPLAY");
       if ((x == nullptr || *x == '\0') && (wl == nullptr || *wl == '\0'))
@@ -61,24 +54,13 @@ void add_run_command(CLI::App& app, Action& action) {
       if (!record->empty()) so.record = *record;
       if (!report->empty()) so.report = *report;
       if (!path->empty()) so.tool_path = *path;
-      if (trainee->empty()) return run_session(*scene, so);
-      check_trainee_name(*trainee);
-      const std::string started = utc_now();
-      const std::filesystem::path db_file =
-          db->empty() ? default_progress_db() : std::filesystem::path(*db);
-      if (!so.record) {
-        so.record =
-            trainee_recording(db_file, *trainee, std::filesystem::path(*scene).stem(), started);
-        std::filesystem::create_directories(so.record->parent_path());
-      }
-      if (!so.report) {  // the report beside the recording: the progress points at both
-        so.report = *so.record;
-        so.report->replace_extension(".json");
-      }
+      const std::optional<TraineeSession> kept =
+          begin_trainee_session(*trainee, *scene, so.record, so.report);
       const int code = run_session(*scene, so);
-      nlohmann::json rep;
+      if (!kept) return code;
+      nlohmann::json rep;  // the session's report, as it was written
       std::ifstream(*so.report) >> rep;
-      file_session(db_file, *trainee, *scene, started, rep, so.record, so.report);
+      file_session(*kept, *scene, rep, so.record, so.report);
       return code;
     };
   });

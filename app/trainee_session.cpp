@@ -41,16 +41,44 @@ std::filesystem::path trainee_recording(const std::filesystem::path& db, const s
   return p;
 }
 
-void file_session(const std::filesystem::path& db, const std::string& trainee,
-                  const std::filesystem::path& scene, const std::string& started_utc,
+void add_trainee_options(CLI::App& cmd, TraineeOptions& options) {
+  cmd.add_option("--trainee", options.name,
+                 "File the session in this trainee's progress (recorded, with its report, beside "
+                 "the database unless --record and --report are given)");
+  cmd.add_option("--db", options.db,
+                 "Progress database for --trainee (default: $SEROSA_PROGRESS_DB, else "
+                 "~/.local/share/serosa/progress.sqlite)");
+}
+
+std::optional<TraineeSession> begin_trainee_session(const TraineeOptions& options,
+                                                    const std::filesystem::path& scene,
+                                                    std::optional<std::filesystem::path>& record,
+                                                    std::optional<std::filesystem::path>& report) {
+  if (options.name.empty()) return std::nullopt;
+  check_trainee_name(options.name);
+  TraineeSession s{options.name,
+                   options.db.empty() ? default_progress_db() : std::filesystem::path(options.db),
+                   utc_now()};
+  if (!record) {
+    record = trainee_recording(s.db, s.trainee, scene.stem().string(), s.started_utc);
+    std::filesystem::create_directories(record->parent_path());
+  }
+  if (!report) {  // beside the recording: the progress points at both
+    report = *record;
+    report->replace_extension(".json");
+  }
+  return s;
+}
+
+void file_session(const TraineeSession& session, const std::filesystem::path& scene,
                   const nlohmann::json& report,
                   const std::optional<std::filesystem::path>& recording,
                   const std::optional<std::filesystem::path>& report_file) {
   SessionRecord r;
-  r.trainee = trainee;
+  r.trainee = session.trainee;
   r.task = scene.stem().string();
   r.scene = std::filesystem::absolute(scene).lexically_normal().string();
-  r.started_utc = started_utc;
+  r.started_utc = session.started_utc;
   r.simulated_s = report.value("simulated_time_s", 0.0);
   if (report.contains("assessment")) {
     const nlohmann::json& a = report["assessment"];
@@ -61,7 +89,7 @@ void file_session(const std::filesystem::path& db, const std::string& trainee,
   if (recording) r.recording = std::filesystem::absolute(*recording).lexically_normal().string();
   if (report_file) r.report = std::filesystem::absolute(*report_file).lexically_normal().string();
   try {
-    ProgressDb(db).add(r);
+    ProgressDb(session.db).add(r);
   } catch (const InputError& e) {
     std::string kept = "; the session is not in the progress, and is kept: recording ";
     kept += r.recording.empty() ? "(none)" : r.recording;

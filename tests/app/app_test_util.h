@@ -1,12 +1,10 @@
 // Helpers shared by the app tests: output folders and running the built `serosa` executable.
 #pragma once
 
-#include <sys/wait.h>
-
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <string>
+
+#include "app/shell_command.h"
 #include "support/test_paths.h"
 
 namespace serosa::app::testing {
@@ -36,17 +34,8 @@ struct CliResult {
 /// Runs `serosa ARGS` (a shell command line tail), capturing stdout and stderr; under `wrapper`
 /// (a command line head, as xvfb-run's) when given.
 inline CliResult run_serosa(const std::string& args, const std::string& wrapper = {}) {
-  std::string cmd = wrapper + "'";
-  cmd.append(serosa_exe().string()).append("' ").append(args).append(" 2>&1");
-  CliResult r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (pipe == nullptr) return r;
-  std::array<char, 4096> buf{};
-  std::size_t n = 0;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  const Command c = run_command(wrapper + shell_quote(serosa_exe().string()) + " " + args);
+  return {c.code, c.output};
 }
 
 /// `serosa ARGS` in a virtual display (software GL), as a trainee's window would run.

@@ -18,25 +18,43 @@
 namespace serosa::fem {
 namespace {
 
-TEST(SystemOperator, MatrixFreeEqualsAssembledAndBlockedSpmv) {
-  std::mt19937 rng(3);
-  TetMesh m = test_meshes::kuhn_bar(5, 3, 2, 0.1, 0.1, 0.1);
-  fixtures::jitter_interior(m, 0, 0.5, 0, 0.3, 0, 0.2, 0.02, 4);
+// A jittered Kuhn bar clamped at x = 0, a third of its tets a million times stiffer than the
+// rest, every tet turned by a random rotation: its elements, system pattern and rotated gradients.
+struct TurnedBar {
+  TetMesh mesh;
+  FemElements el;
+  SystemPattern pat;
+  CsrMatrix a;
+  std::vector<Vec3> rg;  // (4 tets)
+};
+
+TurnedBar turned_bar(std::mt19937& rng, int jitter_seed) {
+  TurnedBar b{test_meshes::kuhn_bar(5, 3, 2, 0.1, 0.1, 0.1), {}, {}, {}, {}};
+  TetMesh& m = b.mesh;
+  fixtures::jitter_interior(m, 0, 0.5, 0, 0.3, 0, 0.2, 0.02, jitter_seed);
   m.fill_node_state();
   for (std::size_t i = 0; i < m.rest.size(); ++i) m.fixed[i] = m.rest[i].x() < 1e-9 ? 1 : 0;
   for (std::size_t t = 0; t < m.tets.size(); ++t) m.group[t] = t % 3 == 0 ? 2 : 1;
   FemConfig cfg;
   cfg.materials[1] = FemMaterial{3000.0, 0.45, 1000.0, 0.1, 0.1};
   cfg.materials[2] = FemMaterial{3e9, 0.3, 2000.0, 0.0, 0.01};
-  FemElements el;
-  build_elements(m, cfg, el);
-  SystemPattern pat;
-  CsrMatrix a;
-  build_pattern(m, pat, a);
+  build_elements(m, cfg, b.el);
+  build_pattern(m, b.pat, b.a);
   std::vector<Mat3> rot(m.tets.size());
   for (Mat3& r : rot) r = fixtures::random_rotation(rng);
-  std::vector<Vec3> rg(4 * m.tets.size());
-  rotated_gradients(el, rot, rg);
+  b.rg.resize(4 * m.tets.size());
+  rotated_gradients(b.el, rot, b.rg);
+  return b;
+}
+
+TEST(SystemOperator, MatrixFreeEqualsAssembledAndBlockedSpmv) {
+  std::mt19937 rng(3);
+  TurnedBar bar = turned_bar(rng, 4);
+  TetMesh& m = bar.mesh;
+  FemElements& el = bar.el;
+  SystemPattern& pat = bar.pat;
+  CsrMatrix& a = bar.a;
+  std::vector<Vec3>& rg = bar.rg;
   const double dt = 0.01;
   fill_system(m, el, pat, rg, dt, a);
   SystemOperator op;
@@ -71,23 +89,12 @@ TEST(SystemOperator, MatrixFreeEqualsAssembledAndBlockedSpmv) {
 // the product within that of the row sums of |A| |x|.
 TEST(BlockSystem, EqualsCsrFillInDoubleAndRoundsOnlyTheEntriesInFloat) {
   std::mt19937 rng(5);
-  TetMesh m = test_meshes::kuhn_bar(5, 3, 2, 0.1, 0.1, 0.1);
-  fixtures::jitter_interior(m, 0, 0.5, 0, 0.3, 0, 0.2, 0.02, 6);
-  m.fill_node_state();
-  for (std::size_t i = 0; i < m.rest.size(); ++i) m.fixed[i] = m.rest[i].x() < 1e-9 ? 1 : 0;
-  for (std::size_t t = 0; t < m.tets.size(); ++t) m.group[t] = t % 3 == 0 ? 2 : 1;
-  FemConfig cfg;
-  cfg.materials[1] = FemMaterial{3000.0, 0.45, 1000.0, 0.1, 0.1};
-  cfg.materials[2] = FemMaterial{3e9, 0.3, 2000.0, 0.0, 0.01};
-  FemElements el;
-  build_elements(m, cfg, el);
-  SystemPattern pat;
-  CsrMatrix a;
-  build_pattern(m, pat, a);
-  std::vector<Mat3> rot(m.tets.size());
-  for (Mat3& r : rot) r = fixtures::random_rotation(rng);
-  std::vector<Vec3> rg(4 * m.tets.size());
-  rotated_gradients(el, rot, rg);
+  TurnedBar bar = turned_bar(rng, 6);
+  TetMesh& m = bar.mesh;
+  FemElements& el = bar.el;
+  SystemPattern& pat = bar.pat;
+  CsrMatrix& a = bar.a;
+  std::vector<Vec3>& rg = bar.rg;
   fill_system(m, el, pat, rg, 0.01, a);
   std::vector<double> bd(block_storage(pat));
   std::vector<float> bf(block_storage(pat));
@@ -144,24 +151,14 @@ TEST(BlockSystem, EqualsCsrFillInDoubleAndRoundsOnlyTheEntriesInFloat) {
 // (blocks and CSR) has the full fill's bits, and every other row keeps what it held before.
 TEST(BlockSystem, AMaskedFillGivesTheMaskedRowsExactlyAndLeavesTheOthers) {
   std::mt19937 rng(11);
-  TetMesh m = test_meshes::kuhn_bar(6, 3, 3, 0.1, 0.1, 0.1);
-  fixtures::jitter_interior(m, 0, 0.6, 0, 0.3, 0, 0.3, 0.02, 3);
-  m.fill_node_state();
-  for (std::size_t i = 0; i < m.rest.size(); ++i) m.fixed[i] = m.rest[i].x() < 1e-9 ? 1 : 0;
-  FemConfig cfg;
-  FemElements el;
-  build_elements(m, cfg, el);
-  SystemPattern pat;
-  CsrMatrix a;
-  build_pattern(m, pat, a);
-  std::vector<Mat3> rot(m.tets.size());
-  for (Mat3& r : rot) r = fixtures::random_rotation(rng);
-  std::vector<Vec3> rg(4 * m.tets.size());
-  rotated_gradients(el, rot, rg);
+  TurnedBar bar = turned_bar(rng, 3);
+  const TetMesh& m = bar.mesh;
+  const SystemPattern& pat = bar.pat;
+  const CsrMatrix& a = bar.a;
   std::vector<TetScale> sc(m.tets.size());
-  for (std::size_t t = 0; t < sc.size(); ++t) sc[t] = tet_scale(el.elements[t], 0.005);
+  for (std::size_t t = 0; t < sc.size(); ++t) sc[t] = tet_scale(bar.el.elements[t], 0.005);
   std::vector<double> full(block_storage(pat)), scratch;
-  fill_blocks<double>(m, el, pat, rg, sc, 0.005, full, scratch);
+  fill_blocks<double>(m, bar.el, pat, bar.rg, sc, 0.005, full, scratch);
   CsrMatrix full_csr = a;
   blocks_to_csr<double>(pat, full, full_csr);
   std::bernoulli_distribution pick(0.2);
@@ -171,7 +168,7 @@ TEST(BlockSystem, AMaskedFillGivesTheMaskedRowsExactlyAndLeavesTheOthers) {
     std::vector<double> blocks(full.size(), -3.0);
     CsrMatrix csr = a;
     std::fill(csr.val.begin(), csr.val.end(), -5.0);
-    fill_blocks<double>(m, el, pat, rg, sc, 0.005, blocks, scratch, rows);
+    fill_blocks<double>(m, bar.el, pat, bar.rg, sc, 0.005, blocks, scratch, rows);
     blocks_to_csr<double>(pat, blocks, csr, rows);
     for (std::size_t i = 0; i < rows.size(); ++i) {
       const auto b0 = static_cast<std::size_t>(9 * pat.nbr.start[i]);
