@@ -39,13 +39,19 @@ void LaggedFactor::install() {
   m_recycled = std::move(m_job);
 }
 
-// A job whose buffers have the capacity of the last one: the copy of a into it touches no new
-// pages (a fresh 2 MB copy cost the step after a cut about half a millisecond).
-std::unique_ptr<LaggedFactor::Job> LaggedFactor::new_job() {
-  if (!m_recycled) return std::make_unique<Job>();
-  std::unique_ptr<Job> job = std::move(m_recycled);
+// A job for `a`, in the buffers of the last one when there is one: the copy of a into them
+// touches no new pages (a fresh 2 MB copy cost the step after a cut about half a millisecond).
+std::unique_ptr<LaggedFactor::Job> LaggedFactor::new_job(const CsrMatrix& a,
+                                                         std::uint64_t structure,
+                                                         std::span<const Quat> node_rot,
+                                                         std::span<const std::uint8_t> free) {
+  std::unique_ptr<Job> job = m_recycled ? std::move(m_recycled) : std::make_unique<Job>();
   job->ok = false;
   job->analyzed = false;
+  copy_packed(a, job->a);
+  job->node_rot.assign(node_rot.begin(), node_rot.end());
+  job->free.assign(free.begin(), free.end());
+  job->structure = structure;
   return job;
 }
 
@@ -139,11 +145,7 @@ void LaggedFactor::begin_step(std::uint64_t step) {
 bool LaggedFactor::factor_now(const CsrMatrix& a, std::uint64_t structure,
                               std::span<const Quat> node_rot, std::span<const std::uint8_t> free) {
   clear();
-  std::unique_ptr<Job> job = new_job();
-  copy_packed(a, job->a);
-  job->node_rot.assign(node_rot.begin(), node_rot.end());
-  job->free.assign(free.begin(), free.end());
-  job->structure = structure;
+  std::unique_ptr<Job> job = new_job(a, structure, node_rot, free);
   job->solver = std::make_unique<CholmodSolver>(CholmodSolver::Layout::simplicial);
   run(*job);
   m_job = std::move(job);
@@ -156,11 +158,7 @@ void LaggedFactor::request(const CsrMatrix& a, std::uint64_t structure, std::uin
                            bool background, std::span<const Quat> node_rot,
                            std::span<const std::uint8_t> free) {
   if (m_job) install();  // one job at a time; callers ask only when none is pending
-  std::unique_ptr<Job> job = new_job();
-  copy_packed(a, job->a);
-  job->node_rot.assign(node_rot.begin(), node_rot.end());
-  job->free.assign(free.begin(), free.end());
-  job->structure = structure;
+  std::unique_ptr<Job> job = new_job(a, structure, node_rot, free);
   job->ready_step = ready_step;
   job->solver = take_spare(structure, job->analyzed);
   Job* j = job.get();

@@ -139,7 +139,8 @@ class LaggedFactor {
   void install();  // joins the job and installs its factor if it succeeded
   std::unique_ptr<CholmodSolver> take_spare(std::uint64_t structure, bool& analyzed);
 
-  std::unique_ptr<Job> new_job();
+  std::unique_ptr<Job> new_job(const CsrMatrix& a, std::uint64_t structure,
+                               std::span<const Quat> node_rot, std::span<const std::uint8_t> free);
 
   std::unique_ptr<Job> m_job;
   std::unique_ptr<Job> m_recycled;  // the last job done, its buffers kept for the next
