@@ -160,16 +160,21 @@ class SolverLoop {
     const auto dt = std::chrono::duration_cast<Clock::duration>(
         std::chrono::duration<double>(m_scene.settings.dt_s));
     m_step_times.reserve(1 << 18);  // 22 min at 200 Hz before the solver thread allocates
-    auto next = Clock::now();
-    auto rate_start = next;
+    // The state at simulated time t is published no earlier than wall time t: each step starts
+    // one dt after the one before (the first one dt after the start, or after a pause), so the
+    // trainee never sees the solver ahead of the clock.
+    auto next = Clock::now() + dt;
+    auto rate_start = Clock::now();
     int rate_steps = 0;
     while (!stop.stop_requested()) {
       if (m_control.paused.load()) {
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
-        next = Clock::now();
+        next = Clock::now() + dt;
         publish();  // the overlay shows the pause; the scope may have turned
         continue;
       }
+      std::this_thread::sleep_until(next);  // returns at once when behind
+      if (stop.stop_requested()) break;
       const auto t0 = Clock::now();
       m_comp.runner->step(m_state);
       const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -184,13 +189,11 @@ class SolverLoop {
         rate_steps = 0;
       }
       publish();
-      // Real-time pacing: sleep to the next step's start; more than 0.1 s behind, drop the debt
-      // (slow motion rather than a catch-up spiral).
+      // More than 0.1 s behind, drop the debt (slow motion rather than a catch-up spiral).
       next += dt;
       const auto after = Clock::now();
       m_slow = after > next;
       if (after > next + std::chrono::milliseconds(100)) next = after;
-      if (!m_slow) std::this_thread::sleep_until(next);
     }
   }
 
@@ -319,10 +322,11 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
       static_cast<float>(window.width()) / static_cast<float>(std::max(window.height(), 1)), frames,
       control);
   {
+    // Before the solver starts, so that the report's wall time covers every step it paced.
+    const auto start = Clock::now();
     // Declared last: stopped and joined first when the scope ends, also on an exception.
     std::jthread solver([&loop](const std::stop_token& stop) { loop.run(stop); });
 
-    const auto start = Clock::now();
     auto last = start;
     std::int64_t frames_drawn = 0;
     bool ended = false;  // by the trainee (Esc): the summary follows, until they leave it
