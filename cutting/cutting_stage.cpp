@@ -70,25 +70,15 @@ void CuttingStage::follow(const StepContext& ctx, SimState& state, Scissors& s,
   if (now.jaw_rad <= kStrokeClosedRad) end_stroke(ctx, state, s, now);  // the blades met
 }
 
-void CuttingStage::extend(const StepContext& ctx, SimState& state, Scissors& s,
+void CuttingStage::extend(const StepContext& ctx, const SimState& state, Scissors& s,
                           const ToolState& before, const ToolState& now) {
   const TetMesh& mesh = state.mesh;
   refresh_bvh(ctx, mesh);
-  const auto begin = [&]() {
+  if (!s.stroke) {
     s.stroke.emplace(before, mesh.topology_version);
     s.first_step = ctx.step;
-  };
-  if (!s.stroke) begin();
-  const std::size_t mark = s.stroke->size();
-  s.stroke->sweep(before, now, mesh, *m_bvh);
-  if (mark > 0 && s.stroke->deviation(mesh) > kStrokePlaneTol) {
-    // The swept surface bends off its plane: cut the stroke so far, go on with a new one.
-    s.stroke->undo_sweep(mark);
-    end_stroke(ctx, state, s, before);
-    refresh_bvh(ctx, state.mesh);
-    begin();
-    s.stroke->sweep(before, now, state.mesh, *m_bvh);
   }
+  s.stroke->sweep(before, now, mesh, *m_bvh);
   if (!s.paused || now.jaw_rad <= s.paused->jaw_rad) s.paused = now;
 }
 

@@ -164,12 +164,6 @@ void ScissorsStroke::sweep(const ToolState& before, const ToolState& now, const 
   ++m_steps;
 }
 
-void ScissorsStroke::undo_sweep(std::size_t size_before) {
-  if (size_before >= m_samples.size()) return;
-  m_samples.resize(size_before);
-  if (m_steps > 0) --m_steps;
-}
-
 void ScissorsStroke::carried(const TetMesh& mesh, std::vector<Vec3>& out) const {
   const bool same_tets = mesh.topology_version == m_topology_version;
   out.clear();
@@ -185,12 +179,6 @@ void ScissorsStroke::carried(const TetMesh& mesh, std::vector<Vec3>& out) const 
            mesh.x[static_cast<std::size_t>(tet[static_cast<std::size_t>(i)])];
     out.push_back(p);
   }
-}
-
-double ScissorsStroke::deviation(const TetMesh& mesh) {
-  carried(mesh, m_carried);  // kept: checked every closing step, in the solver's step
-  const auto fit = fit_plane(m_carried, tool_frame(m_start).pin);
-  return fit ? fit->deviation_m : 0.0;
 }
 
 StrokePolygons ScissorsStroke::polygons(const TetMesh& mesh, const ToolState& end,

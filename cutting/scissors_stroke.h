@@ -56,15 +56,10 @@ class ScissorsStroke {
   /// Samples the blades closing from `before` to `now` (same stroke), pinned to `mesh` (current
   /// positions; `bvh` refitted to them).
   void sweep(const ToolState& before, const ToolState& now, const TetMesh& mesh, const TetBvh& bvh);
-  /// Takes back the last sweep, which found the stroke holding `size_before` samples (a sweep
-  /// that would have bent the stroke too far).
-  void undo_sweep(std::size_t size_before);
 
   /// The samples carried to `mesh`'s current positions (world positions where the mesh changed
   /// topology since the stroke began, or a sample is pinned to no tet).
   void carried(const TetMesh& mesh, std::vector<Vec3>& out) const;
-  /// Largest distance of the carried samples from their best-fit plane, m (0 with no plane yet).
-  [[nodiscard]] double deviation(const TetMesh& mesh);
   /// What to cut when the stroke ends with the jaws at `end` (closed when end.jaw_rad <=
   /// closed_rad).
   [[nodiscard]] StrokePolygons polygons(const TetMesh& mesh, const ToolState& end,
@@ -86,7 +81,6 @@ class ScissorsStroke {
   std::uint64_t m_steps = 0;  // sweeps taken
   std::vector<StrokeSample> m_samples;
   std::vector<std::int32_t> m_candidates;  // scratch
-  std::vector<Vec3> m_carried;             // scratch of deviation()
 };
 
 /// The pose a fraction s in [0, 1] of the way from a to b (tip and jaw linear, turn slerped).

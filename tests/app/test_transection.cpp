@@ -259,6 +259,8 @@ TEST(Transection, MovingScissorsCutTheAppendixInOneStroke) {
       {"sideways", Vec3(2e-3, 0, 0)},
       {"across", Vec3(0, 0, 1e-3)},
       {"roll", Vec3::Zero(), 0.25},
+      {"roll_wide", Vec3::Zero(), 1.2},
+      {"roll_half_turn", Vec3::Zero(), 3.0},
       {"tremor", Vec3::Zero(), 0.0, 0.4e-3},
       {"tremor_sideways", Vec3(2e-3, 1e-3, 0), 0.0, 0.8e-3},
       {"slow", Vec3(1e-3, 1e-3, 0.5e-3), 0.0, 0.0, 0.6},

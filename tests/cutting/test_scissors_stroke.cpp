@@ -269,7 +269,7 @@ Motion random_motion(std::mt19937& rng, int kind) {
       m.drift = Vec3(1e-3 * u(rng), 1e-3 * u(rng), 0.8e-3 * u(rng));
       break;
     case 2:  // rolling about the shaft
-      m.roll = 0.25 * u(rng);
+      m.roll = 1.5 * u(rng);  // up to 86 degrees of wrist roll within one closing
       break;
     case 3:  // tremor, pauses
       m.tremor = 0.3e-3 * f(rng);
