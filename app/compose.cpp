@@ -136,14 +136,17 @@ Composition compose(const Scene& scene, const AssembledScene& assembled, Compose
   }
   // The haptic loop renders the contact stage's planes (not in a replay: no loop runs there).
   const bool haptic_loop = listed(Effect::kHaptics) && !options.tool_input;
-  std::unique_ptr<ToolContactStage> contact_stage;
-  if (listed(Effect::kContact))
-    contact_stage =
-        std::make_unique<ToolContactStage>(scene, lame_table(scene, assembled), haptic_loop);
   // Metrics measure the tools and the cuts: a scene with no tool has nothing to score.
   std::unique_ptr<MetricsStage> metrics_stage;
   if (fem_stage && !scene.tools.empty())
     metrics_stage = std::make_unique<MetricsStage>(scene, lame_table(scene, assembled));
+  std::unique_ptr<ToolContactStage> contact_stage;
+  if (listed(Effect::kContact)) {
+    // The metrics count closing scissors' load on the tissue as their force.
+    const contact::ContactOutputs outputs{haptic_loop, metrics_stage != nullptr};
+    contact_stage =
+        std::make_unique<ToolContactStage>(scene, lame_table(scene, assembled), outputs);
+  }
 
   // take tool states
   if (options.tool_input) {

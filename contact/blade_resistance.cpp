@@ -40,13 +40,13 @@ void BladeResistance::update(const TetMesh& mesh, const LameTable& table) {
   m_version = mesh.topology_version;
 }
 
-double BladeResistance::torque_nm(const TetMesh& mesh, const ToolState& tool,
-                                  double stroke_open_rad) const {
-  if (!(tool.jaw_rad < stroke_open_rad)) return 0.0;
+BladeLoad BladeResistance::load(const TetMesh& mesh, const ToolState& tool,
+                                double stroke_open_rad) const {
+  BladeLoad out;
+  if (!(tool.jaw_rad < stroke_open_rad)) return out;
   const ToolFrame f = tool_frame(tool);
   const double from = 0.5 * std::max(tool.jaw_rad, 0.0);  // blade angles off the shaft axis
   const double to = 0.5 * stroke_open_rad;
-  double torque = 0.0;
   const std::size_t n = std::min(m_volume_m3.size(), mesh.x.size());
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3 d = mesh.x[i] - f.hinge;
@@ -57,9 +57,11 @@ double BladeResistance::torque_nm(const TetMesh& mesh, const ToolState& tool,
     if (r > kJawLength || r <= 0.0) continue;
     const double angle = std::atan2(across, along);  // off the shaft axis, either side
     if (angle < from || angle > to) continue;
-    torque += m_strength_pa[i] * (m_volume_m3[i] / kBladeSlab) * r;
+    const double force = m_strength_pa[i] * (m_volume_m3[i] / kBladeSlab);
+    out.force_n += force;
+    out.torque_nm += force * r;
   }
-  return torque;
+  return out;
 }
 
 }  // namespace serosa::contact

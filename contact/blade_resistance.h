@@ -10,8 +10,10 @@
 // where V_n is the node's share of the tets' rest volume (a quarter of each tet it is in), h the
 // thickness of the slab about the blades' plane the nodes are taken from (so V_n / h is the area
 // a node stands for), s_n the volume-weighted strength of its tets and r_n its distance from the
-// hinge. The torque grows as the blades close on tissue and is gone once the stroke is cut (the
-// caller starts a new stroke then): the drop a surgeon feels when the tissue gives way.
+// hinge; the same sum without r_n is the shear force each blade presses the tissue with (N), what
+// the metrics count as the scissors' force on the tissue. The torque grows as the blades close on
+// tissue and is gone once the stroke is cut (the caller starts a new stroke then): the drop a
+// surgeon feels when the tissue gives way.
 #pragma once
 
 #include <cstdint>
@@ -30,6 +32,14 @@ inline constexpr double kShearStrengthPerYoung = 1.0;
 /// the organ meshes, so that a tissue crossing the plane always has nodes in it).
 inline constexpr double kBladeSlab = 0.003;
 
+/// The tissue closed on and not yet cut, as the jaws feel it.
+struct BladeLoad {
+  double torque_nm = 0.0;  ///< about the hinge, N m, positive opens the jaws
+  /// the shear force each blade presses the tissue with, N (sum of s_n V_n / h: the torque's
+  /// forces without their levers)
+  double force_n = 0.0;
+};
+
 class BladeResistance {
  public:
   /// Node volumes and strengths for the mesh's current topology (call after every topology
@@ -37,11 +47,11 @@ class BladeResistance {
   void update(const TetMesh& mesh, const LameTable& table);
   [[nodiscard]] std::uint64_t topology_version() const noexcept { return m_version; }
 
-  /// Torque the tissue puts on the jaws of scissors posed `tool` (current positions), whose
-  /// stroke began at opening `stroke_open_rad`; 0 when they are not closing (jaw_rad >=
-  /// stroke_open_rad). N m, positive opens the jaws.
-  [[nodiscard]] double torque_nm(const TetMesh& mesh, const ToolState& tool,
-                                 double stroke_open_rad) const;
+  /// What the tissue puts on the jaws of scissors posed `tool` (current positions), whose stroke
+  /// began at opening `stroke_open_rad`; zero when they are not closing (jaw_rad >=
+  /// stroke_open_rad).
+  [[nodiscard]] BladeLoad load(const TetMesh& mesh, const ToolState& tool,
+                               double stroke_open_rad) const;
 
  private:
   std::uint64_t m_version = ~0ull;

@@ -21,8 +21,10 @@ Mat3 frame_matrix(const ToolFrame& f) {
 
 }  // namespace
 
-ToolContactStage::ToolContactStage(const Scene& scene, LameTable lame, bool haptic_planes)
-    : m_lame(std::move(lame)), m_haptic(haptic_planes) {
+ToolContactStage::ToolContactStage(const Scene& scene, LameTable lame, ContactOutputs outputs)
+    : m_lame(std::move(lame)),
+      m_haptic(outputs.haptic_planes),
+      m_blade_load(outputs.blade_load || outputs.haptic_planes) {
   for (const Tool& t : scene.tools) {
     m_kinds.push_back(t.kind);
     m_trocars.push_back(t.trocar_m);
@@ -72,13 +74,15 @@ void ToolContactStage::resist_blades(const SimState& state, std::size_t tool, Gr
   const bool cut = std::any_of(state.handoff.cuts.begin(), state.handoff.cuts.end(),
                                [&](const CutEvent& c) { return c.tool == tool; });
   if (cut || ts.jaw_rad >= g.widest_rad) g.widest_rad = ts.jaw_rad;
-  if (!m_haptic) return;
+  if (!m_blade_load) return;
   if (m_blades.topology_version() != state.mesh.topology_version ||
       m_blade_nodes != state.mesh.num_nodes()) {
     m_blades.update(state.mesh, m_lame);
     m_blade_nodes = state.mesh.num_nodes();
   }
-  m_reactions[tool].jaw_torque_nm = m_blades.torque_nm(state.mesh, ts, g.widest_rad);
+  const BladeLoad load = m_blades.load(state.mesh, ts, g.widest_rad);
+  m_reactions[tool].jaw_torque_nm = load.torque_nm;
+  m_reactions[tool].blade_force_n = load.force_n;
 }
 
 std::vector<std::size_t> ToolContactStage::grasped_counts() const {
@@ -231,10 +235,8 @@ void ToolContactStage::step(const StepContext& ctx, SimState& state) {
     if (shaft_weight > 0.0 && reach > 0.0)
       m_reactions[i].shaft_lever = std::clamp(shaft_at / shaft_weight / reach, 0.0, 1.0);
   }
-  if (m_haptic) {
-    update_planes(state);
-    state.handoff.tool_reactions = m_reactions;
-  }
+  if (m_haptic) update_planes(state);
+  if (m_blade_load) state.handoff.tool_reactions = m_reactions;
   state.handoff.tool_force_n = m_tool_force;
   if (any_force)
     state.handoff.external_force_n = m_force;

@@ -57,11 +57,19 @@ inline constexpr double kGraspHalfWidth = 0.003;     ///< m
 inline constexpr double kHapticRange = 0.01;         ///< tip to surface, m: farther, no plane
 inline constexpr double kHapticStiffness = 500.0;    ///< rendered contact stiffness, N/m
 
+/// What the stage computes besides the forces it applies (nothing it is not asked for).
+struct ContactOutputs {
+  /// The haptic contact planes and the reactions (only when a haptic loop renders them: no BVH,
+  /// no cost otherwise).
+  bool haptic_planes = false;
+  /// The reactions' blade load of closing scissors (the haptic loop's jaw torque, the metrics'
+  /// scissors force); on with haptic_planes.
+  bool blade_load = false;
+};
+
 class ToolContactStage final : public Stage {
  public:
-  /// haptic_planes: compute the haptic contact planes (only when a haptic loop renders them:
-  /// no BVH, no cost otherwise).
-  ToolContactStage(const Scene& scene, LameTable lame, bool haptic_planes = false);
+  ToolContactStage(const Scene& scene, LameTable lame, ContactOutputs outputs = {});
 
   [[nodiscard]] std::string_view name() const noexcept override { return "contact"; }
   void step(const StepContext& ctx, SimState& state) override;
@@ -101,7 +109,8 @@ class ToolContactStage final : public Stage {
   std::vector<std::uint8_t> m_flag;  // (n) scratch
   std::vector<Vec3> m_tool_force;    // (tools)
   std::int64_t m_contacts = 0;
-  bool m_haptic = false;
+  bool m_haptic = false;      // planes and reactions
+  bool m_blade_load = false;  // reactions' blade load (with m_haptic, or for the metrics)
   geometry::SurfaceBvh m_bvh;
   std::uint64_t m_bvh_version = ~0ull;
   std::vector<std::optional<ContactPlane>> m_planes;  // (tools), none: endoscope, out of range

@@ -26,8 +26,9 @@ struct CutEvent {
 
 /// The tissue's pull and torque on one tool, for the haptic loop (contact/tool_contact_stage.h).
 struct ToolReaction {
-  Vec3 held_pull_n = Vec3::Zero();   ///< the grasped tissue's elastic pull on a grasper's jaws, N
-  double jaw_torque_nm = 0.0;        ///< tissue between closing scissor blades, N m (+ opens)
+  Vec3 held_pull_n = Vec3::Zero();  ///< the grasped tissue's elastic pull on a grasper's jaws, N
+  double jaw_torque_nm = 0.0;       ///< tissue between closing scissor blades, N m (+ opens)
+  double blade_force_n = 0.0;  ///< the shear force each closing scissor blade presses it with, N
   Vec3 shaft_push_n = Vec3::Zero();  ///< the tissue's push on the shaft, N
   /// where it acts: distance from the port over the port-to-tip distance (0: at the port, 1: at
   /// the tip)
@@ -43,7 +44,8 @@ struct StepHandoff {
   /// FEM's energy guard must not take for a gain of its solve).
   bool nodes_moved = false;
   /// contact -> metrics: each tool's force on the tissue this step, N; (tools), or empty when no
-  /// contact stage runs.
+  /// contact stage runs. (Closing scissor blades press the tissue from both sides: no net force;
+  /// their load is tool_reactions' blade_force_n.)
   std::vector<Vec3> tool_force_n;
   /// contact -> haptics: each tool's local contact plane; (tools), or empty when no haptic loop
   /// asked for planes.

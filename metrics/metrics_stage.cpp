@@ -35,6 +35,7 @@ MetricsStage::MetricsStage(const Scene& scene, LameTable lame, std::int64_t stre
   m_force_sum.assign(k, 0.0);
   m_force_steps.assign(k, 0);
   m_moved.assign(k, 0.0);
+  m_load.assign(k, 0.0);
 }
 
 void MetricsStage::step(const StepContext& ctx, SimState& state) {
@@ -47,12 +48,16 @@ void MetricsStage::step(const StepContext& ctx, SimState& state) {
     m_last_tip[i] = tip;
   }
   const auto& f = state.handoff.tool_force_n;
-  if (m_have_last) add_use(m_moved, f, ctx.dt_s);
+  const auto& reactions = state.handoff.tool_reactions;
+  for (std::size_t i = 0; i < k; ++i)  // a scissors' blades load the tissue with no net force
+    m_load[i] = (i < f.size() ? f[i].norm() : 0.0) +
+                (i < reactions.size() ? reactions[i].blade_force_n : 0.0);
+  if (m_have_last) add_use(m_moved, m_load, ctx.dt_s);
   m_have_last = true;
   if (!f.empty()) {
     m_forces = true;
-    for (std::size_t i = 0; i < k && i < f.size(); ++i) {
-      const double mag = f[i].norm();
+    for (std::size_t i = 0; i < k; ++i) {
+      const double mag = m_load[i];
       if (!(mag > 0.0)) continue;
       m_force_max[i] = std::max(m_force_max[i], mag);
       m_force_sum[i] += mag;
@@ -64,12 +69,12 @@ void MetricsStage::step(const StepContext& ctx, SimState& state) {
     m_peak_stress = std::max(m_peak_stress, peak_stress(state.mesh));
 }
 
-void MetricsStage::add_use(const std::vector<double>& moved, const std::vector<Vec3>& force,
+void MetricsStage::add_use(const std::vector<double>& moved, const std::vector<double>& load,
                            double dt_s) {
   bool any_moving = false, all_at_work = true, over = false;
   std::size_t hands = 0;
   for (std::size_t i = 0; i < moved.size(); ++i) {
-    const double f = i < force.size() ? force[i].norm() : 0.0;
+    const double f = i < load.size() ? load[i] : 0.0;
     over = over || f > m_force_limit;
     if (m_hand[i] == 0) continue;
     ++hands;

@@ -46,8 +46,9 @@ inline constexpr double kIdleSpeed = 5e-3;
 class MetricsStage final : public Stage {
  public:
   /// stress_every: peak stress is sampled every that many steps (1 = every step). The tools'
-  /// forces come from the contact stage (SimState::handoff.tool_force_n; without one, none are
-  /// reported), the cuts from the cutting stage (SimState::handoff.cuts).
+  /// forces come from the contact stage (SimState::handoff.tool_force_n, plus closing scissors'
+  /// blade load from handoff.tool_reactions; without a contact stage, none are reported), the cuts
+  /// from the cutting stage (SimState::handoff.cuts).
   MetricsStage(const Scene& scene, LameTable lame, std::int64_t stress_every = 1);
 
   [[nodiscard]] std::string_view name() const noexcept override { return "metrics"; }
@@ -85,7 +86,7 @@ class MetricsStage final : public Stage {
   void add_cut(const CutEvent& cut);
   /// Idle, active and bimanual time and time over the force limit, from this step's moves (m,
   /// (tools)) and forces.
-  void add_use(const std::vector<double>& moved, const std::vector<Vec3>& force, double dt_s);
+  void add_use(const std::vector<double>& moved, const std::vector<double>& load, double dt_s);
   /// The mesh's largest von Mises stress now, Pa.
   [[nodiscard]] double peak_stress(const TetMesh& mesh);
 
@@ -101,6 +102,7 @@ class MetricsStage final : public Stage {
   double m_peak_stress = 0.0;
   double m_idle_s = 0.0, m_active_s = 0.0, m_bimanual_s = 0.0, m_force_over_s = 0.0;  // s
   std::vector<double> m_moved;  // (tools) this step's tip moves, m
+  std::vector<double> m_load;   // (tools) this step's force on the tissue, N
   // The rest data of the stress, refilled when the topology changes or a snapshot is restored.
   RestStress m_rest;
   std::uint64_t m_rest_version = 0;

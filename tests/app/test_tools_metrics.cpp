@@ -268,7 +268,7 @@ TEST(Grasper, GrabsLiftsAndLetsGo) {
 std::unique_ptr<contact::ToolContactStage> reacting_copy(const BeamRun& run,
                                                          const contact::ToolContactStage* from) {
   auto probe = std::make_unique<contact::ToolContactStage>(
-      run.scene, lame_table(run.scene, run.assembled), /*haptic_planes=*/true);
+      run.scene, lame_table(run.scene, run.assembled), contact::ContactOutputs{true, false});
   if (from != nullptr) {
     StateWriter out;
     from->save(out);

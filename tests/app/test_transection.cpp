@@ -74,6 +74,12 @@ TEST(Transection, ScissorsCutTheAppendixInTwo) {
   EXPECT_EQ(report["surface"]["failed_updates"].get<int>(), 0);
   EXPECT_EQ(report["surface"]["rebuilds"].get<int>(), 0);  // the assembled state brings the first
   EXPECT_EQ(report["fem"]["rejected"].get<int>(), 0);
+  // The scissors pressed on the tissue they closed on: the blades' shear load, above zero and
+  // below the firmest tissue's strength over the widest wedge a blade can sweep (1 rad,
+  // contact/blade_resistance.h), 3e4 Pa x 0.5 x L^2.
+  const double scissors_n = report["metrics"]["force_max_n"]["scissors"].get<double>();
+  EXPECT_GT(scissors_n, 0.1);
+  EXPECT_LT(scissors_n, 3e4 * 0.5 * kJawLength * kJawLength);
 
   // The appendix (group 1) is in two pieces; before the cut it was one.
   const TetMesh before = read_mesh(source("assets/appendectomy_coarse.msh"));

@@ -46,18 +46,23 @@ TEST(BladeResistance, MatchesTheClosedFormForBladesInsideTissue) {
   // tissue out to the blade length: torque = s * 2 * ((1 - 0.4) / 2) * L^3 / 3, s = k E.
   const double expected =
       kShearStrengthPerYoung * 3e4 * (1.0 - 0.4) * std::pow(kJawLength, 3) / 3.0;
-  EXPECT_NEAR(b.torque_nm(mesh, scissors(0.4), 1.0), expected, 0.2 * expected);
+  EXPECT_NEAR(b.load(mesh, scissors(0.4), 1.0).torque_nm, expected, 0.2 * expected);
+  // Each blade presses with the wedge's strength times its area, s (1 - 0.4) L^2 / 2.
+  const double force = kShearStrengthPerYoung * 3e4 * (1.0 - 0.4) * kJawLength * kJawLength / 2.0;
+  EXPECT_NEAR(b.load(mesh, scissors(0.4), 1.0).force_n, force, 0.2 * force);
 }
 
 TEST(BladeResistance, ZeroUnlessClosingOnTissue) {
   TetMesh mesh = block();
   BladeResistance b;
   b.update(mesh, table(3e4));
-  EXPECT_EQ(b.torque_nm(mesh, scissors(1.0), 1.0), 0.0);  // not closing yet
-  EXPECT_EQ(b.torque_nm(mesh, scissors(1.2), 1.0), 0.0);  // opening
+  EXPECT_EQ(b.load(mesh, scissors(1.0), 1.0).torque_nm, 0.0);  // not closing yet
+  EXPECT_EQ(b.load(mesh, scissors(1.2), 1.0).torque_nm, 0.0);  // opening
   ToolState away = scissors(0.3);
   away.tip_m[2] = 0.05;  // 4.5 cm above the block
-  EXPECT_EQ(b.torque_nm(mesh, away, 1.0), 0.0);
+  EXPECT_EQ(b.load(mesh, away, 1.0).torque_nm, 0.0);
+  EXPECT_EQ(b.load(mesh, away, 1.0).force_n, 0.0);
+  EXPECT_EQ(b.load(mesh, scissors(1.0), 1.0).force_n, 0.0);
 }
 
 TEST(BladeResistance, GrowsAsTheBladesCloseAndScalesWithTheModulus) {
@@ -67,10 +72,10 @@ TEST(BladeResistance, GrowsAsTheBladesCloseAndScalesWithTheModulus) {
   stiff.update(mesh, table(2e4));
   double prev = 0.0;
   for (double jaw = 1.0; jaw >= 0.0; jaw -= 0.01) {
-    const double t = soft.torque_nm(mesh, scissors(jaw), 1.0);
+    const double t = soft.load(mesh, scissors(jaw), 1.0).torque_nm;
     EXPECT_GE(t, prev) << jaw;
     prev = t;
-    EXPECT_NEAR(stiff.torque_nm(mesh, scissors(jaw), 1.0), 2.0 * t, 1e-12 * t) << jaw;
+    EXPECT_NEAR(stiff.load(mesh, scissors(jaw), 1.0).torque_nm, 2.0 * t, 1e-12 * t) << jaw;
   }
   EXPECT_GT(prev, 0.0);
 }
@@ -79,7 +84,7 @@ TEST(BladeResistance, ARigidMotionOfTissueAndScissorsChangesNothing) {
   TetMesh mesh = block();
   BladeResistance b;
   b.update(mesh, table(3e4));
-  const double before = b.torque_nm(mesh, scissors(0.3), 0.9);
+  const double before = b.load(mesh, scissors(0.3), 0.9).torque_nm;
   const Eigen::Quaterniond r(Eigen::AngleAxisd(0.8, Vec3(1, -2, 0.5).normalized()));
   const Vec3 shift(0.1, -0.03, 0.2);
   for (Vec3& x : mesh.x) x = r * x + shift;
@@ -88,7 +93,7 @@ TEST(BladeResistance, ARigidMotionOfTissueAndScissorsChangesNothing) {
   const Eigen::Quaterniond q = r * Eigen::Quaterniond(0.5, 0.5, 0.5, 0.5);
   s.tip_m = {tip.x(), tip.y(), tip.z()};
   s.quat_wxyz = {q.w(), q.x(), q.y(), q.z()};
-  EXPECT_NEAR(b.torque_nm(mesh, s, 0.9), before, 1e-9 * before);
+  EXPECT_NEAR(b.load(mesh, s, 0.9).torque_nm, before, 1e-9 * before);
   EXPECT_GT(before, 0.0);
 }
 
