@@ -25,6 +25,7 @@
 #include "app/overlay_stats.h"
 #include "app/render_frame_from_surface.h"
 #include "app/replay_controller.h"
+#include "app/replay_timeline.h"
 #include "app/scope_control.h"
 #include "app/session_summary.h"
 #include "app/summary_screen.h"
@@ -476,6 +477,23 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
   const Scene& scene = replay.scene();
   const std::map<int, std::string> names = replay.group_names();
   DrawnSurface drawn(replay.state().mesh);
+  // The metric timeline, computed beside the replay; N jumps to a second before the next error.
+  const TimelineBuilder timeline(recording);
+  int current_mark = -1;
+  const auto jump_to_next_error = [&](const std::vector<render::TimelineMark>& marks) {
+    if (marks.empty() || replay.branched()) return;
+    constexpr double kLeadS = 1.0;  // see what led up to it
+    // Still before the error last jumped to (or at it): the one after it; else the next ahead.
+    const auto n = static_cast<int>(marks.size());
+    const bool leading_up = current_mark >= 0 && current_mark < n &&
+                            replay.time_s() <= marks[static_cast<std::size_t>(current_mark)].time_s;
+    const std::optional<std::size_t> k =
+        leading_up ? std::optional<std::size_t>(static_cast<std::size_t>((current_mark + 1) % n))
+                   : next_mark(marks, replay.time_s());
+    if (!k) return;
+    current_mark = static_cast<int>(*k);
+    replay.seek(std::max(marks[*k].time_s - kLeadS, 0.0));
+  };
 
   const InterruptGuard interrupts;
   render::Window window(scene.render.width, scene.render.height, "Serosa replay");
@@ -512,6 +530,8 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
     if (window.pressed(render::Key::kH)) show_overlay = !show_overlay;
     if (window.pressed(render::Key::kB) && !replay.branched()) branch_here();
     if (takeover) takeover->apply(pointer.update(window), replay);
+    const TimelineData known = timeline.data();
+    if (window.pressed(render::Key::kN)) jump_to_next_error(known.marks);
 
     // Play: the steps that became due over the wall time since the last frame (at most 0.1 s of
     // it, so that a slow step plays in slow motion rather than in a catch-up burst).
@@ -561,6 +581,9 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
     }
     frame.overlay = overlay_data(stats);
     frame.overlay.visible = show_overlay;
+    frame.overlay.timeline = {known.force_n, known.marks,
+                              static_cast<double>(known.computed) * replay.dt_s(), known.done,
+                              current_mark};
 
     window.bind_framebuffer();
     renderer.draw(frame, options, w, h);
@@ -579,10 +602,17 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
       render::write_png(window.read_image(), snapshot);
     window.swap_buffers();
 
-    char title[160];
-    std::snprintf(title, sizeof title, "Serosa replay  %.2f / %.2f s  x%.3g%s  %s", replay.time_s(),
-                  replay.duration_s(), replay.speed(), replay.paused() ? "  [paused]" : "",
-                  render::view_name(options.view));
+    // The errors' count once the timeline is known, and the one last jumped to.
+    char errors[64] = "";
+    if (known.done && current_mark >= 0)
+      std::snprintf(errors, sizeof errors, "  errors %zu  error %d/%zu", known.marks.size(),
+                    current_mark + 1, known.marks.size());
+    else if (known.done)
+      std::snprintf(errors, sizeof errors, "  errors %zu", known.marks.size());
+    char title[224];
+    std::snprintf(title, sizeof title, "Serosa replay  %.2f / %.2f s  x%.3g%s  %s%s",
+                  replay.time_s(), replay.duration_s(), replay.speed(),
+                  replay.paused() ? "  [paused]" : "", render::view_name(options.view), errors);
     window.set_title(title);
     if (last_frame) break;
   }

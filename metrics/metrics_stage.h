@@ -62,6 +62,10 @@ class MetricsStage final : public Stage {
   [[nodiscard]] double path_length_m(std::size_t tool) const { return m_path[tool]; }
   /// The largest force the tool put on the tissue so far, N (0 before any contact step).
   [[nodiscard]] double force_max_n(std::size_t tool) const { return m_force_max[tool]; }
+  /// The tool's force on the tissue in the last step, N.
+  [[nodiscard]] double load_n(std::size_t tool) const { return m_load[tool]; }
+  /// Above this a tool's force counts as rough handling (the scene's force_limit), N.
+  [[nodiscard]] double force_limit_n() const noexcept { return m_force_limit; }
   [[nodiscard]] double peak_stress_pa() const noexcept { return m_peak_stress; }
   [[nodiscard]] double time_s() const noexcept { return m_time; }
   [[nodiscard]] double cut_volume_m3() const noexcept { return m_cut_volume; }

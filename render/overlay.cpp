@@ -1,5 +1,6 @@
 // Overlay (see overlay.h): ImGui layout and a minimal OpenGL 3 renderer for ImDrawData.
 #include "render/overlay.h"
+#include "render/overlay_timeline.h"
 
 #include <epoxy/gl.h>
 #include <imgui.h>
@@ -110,6 +111,18 @@ OverlayText overlay_text(const OverlayData& data) {
     std::snprintf(line, sizeof line, "%s / %s  x%.2g%s", now, total, data.replay_speed,
                   data.paused ? "  [paused]" : "");
     t.timeline = line;
+    const OverlayTimeline& tl = data.timeline;
+    const auto n = static_cast<int>(tl.marks.size());
+    t.errors = "errors " + std::to_string(n);
+    if (!tl.done) t.errors += " so far";
+    if (n > 0) t.errors += " (N: next)";
+    if (tl.current >= 0 && tl.current < n) {
+      const TimelineMark& m = tl.marks[static_cast<std::size_t>(tl.current)];
+      format_time(m.time_s, now, sizeof now);
+      std::snprintf(line, sizeof line, "  %d/%d %s ", tl.current + 1, n, now);
+      t.errors += line;
+      t.errors += m.what;
+    }
   }
   return t;
 }
@@ -276,6 +289,7 @@ OverlayResult Overlay::layout(const OverlayData& data, const SnapshotOptions& op
     ImGui::SetNextWindowBgAlpha(0.55f);
     const ImGuiWindowFlags bar = panel & ~ImGuiWindowFlags_AlwaysAutoResize;
     if (ImGui::Begin("Replay", nullptr, bar)) {
+      draw_timeline(data, overlay_text(data).errors);
       if (ImGui::Button(data.paused ? " Play  " : " Pause ")) result.toggle_pause = true;
       result.pause_button = last_item_rect();
       ImGui::SameLine();

@@ -86,6 +86,9 @@ struct OverlayText {
   /// The replay timeline's label, "0:15.0 / 1:00.0  x1.0" (with "  [paused]"); empty outside
   /// replays.
   std::string timeline;
+  /// The errors line under it: "errors 3 (N: next)" ("errors 0", "errors 1 so far" while the
+  /// timeline is being computed), then the mark last jumped to, "  2/3 0:03.2 grasper over 5 N".
+  std::string errors;
 };
 [[nodiscard]] OverlayText overlay_text(const OverlayData& data);
 

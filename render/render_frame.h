@@ -46,6 +46,22 @@ struct OverlayMetric {
 
 /// What the overlay shows (plain data; drawn by Overlay, render/overlay.h). Negative or zero
 /// rates mean "not running" and are shown as such.
+/// An error marked on the replay's timeline.
+struct TimelineMark {
+  double time_s = 0.0;  ///< when it happened, s
+  std::string what;     ///< "grasper over 5 N", ...
+};
+
+/// The replay's metric timeline: the tools' force on the tissue over the recording, pooled into
+/// bins of equal time, and the errors marked where they happened.
+struct OverlayTimeline {
+  std::vector<float> force_n;  ///< (bins) largest tool force in each bin, N; < 0: not known yet
+  std::vector<TimelineMark> marks;  ///< errors found so far, in time order
+  double known_s = 0.0;             ///< the timeline is computed up to here, s
+  bool done = false;                ///< computed to the recording's end
+  int current = -1;                 ///< the mark last jumped to; -1: none
+};
+
 struct OverlayData {
   bool visible = true;
   double sim_time_s = 0.0;       ///< simulated time, s
@@ -71,6 +87,7 @@ struct OverlayData {
   double replay_position_s = 0.0;      ///< position in the recording, s
   double replay_duration_s = 0.0;      ///< length of the recording, s
   double replay_speed = 1.0;           ///< playback speed, x real time (> 0)
+  OverlayTimeline timeline;            ///< the metric timeline and its error marks (replays)
   std::vector<OverlayMetric> metrics;  ///< listed under the statistics, in this order
 };
 

@@ -57,6 +57,8 @@ int glfw_key(Key k) {
       return GLFW_KEY_COMMA;
     case Key::kPeriod:
       return GLFW_KEY_PERIOD;
+    case Key::kN:
+      return GLFW_KEY_N;
     case Key::kCount:
       break;
   }
@@ -86,6 +88,8 @@ Window::Window(int width, int height, const std::string& title) {
                              (msg ? msg : "unknown GLFW error") + ")");
   }
   glfwMakeContextCurrent(m_window);
+  // A key tapped between two frames (a slow frame, a quick finger) still counts as pressed once.
+  glfwSetInputMode(m_window, GLFW_STICKY_KEYS, GLFW_TRUE);
   glfwSwapInterval(1);
 }
 

@@ -36,6 +36,7 @@ enum class Key {
   kK,       ///< retract it
   kComma,   ///< rotate it (the 30 degree optic sweeps the view) counter-clockwise
   kPeriod,  ///< clockwise
+  kN,       ///< replay: jump to the next error on the timeline
   kCount
 };
 
