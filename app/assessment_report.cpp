@@ -1,5 +1,7 @@
 #include "app/assessment_report.h"
 
+#include <algorithm>
+
 #include "cutting/validate.h"
 #include "metrics/assessment.h"
 
@@ -15,14 +17,20 @@ std::map<std::string, double> session_values(const Scene& scene,
   v["bimanual_fraction"] = metrics.bimanual_fraction();
   v["force_over_s"] = metrics.force_over_s();
   v["peak_stress_pa"] = metrics.peak_stress_pa();
-  double hands = 0.0;
+  double hands = 0.0, unseen = 0.0;
+  const bool scope = std::any_of(scene.tools.begin(), scene.tools.end(),
+                                 [](const Tool& t) { return t.kind == ToolKind::kEndoscope; });
   for (std::size_t i = 0; i < scene.tools.size(); ++i) {
     const std::string& name = scene.tools[i].name;
     v["path_length_m." + name] = metrics.path_length_m(i);
-    if (scene.tools[i].kind != ToolKind::kEndoscope) hands += metrics.path_length_m(i);
     v["force_max_n." + name] = metrics.force_max_n(i);
+    if (scene.tools[i].kind == ToolKind::kEndoscope) continue;
+    hands += metrics.path_length_m(i);
+    unseen += metrics.out_of_view_s(i);
+    if (scope) v["out_of_view_s." + name] = metrics.out_of_view_s(i);
   }
   v["path_length_m"] = hands;
+  if (scope) v["out_of_view_s"] = unseen;
   if (!scene.metrics.planned_cut_m.empty()) {
     v["cut.deviation_max_m"] = metrics.deviation_max_m();
     v["cut.deviation_mean_m"] = metrics.deviation_mean_m();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 
+#include "engine/scope_view.h"
 #include "render/camera.h"
 #include "surface/surface_normals.h"
 
@@ -120,17 +121,14 @@ void fill_render_tools(const Scene& scene, const SimState& state, render::Render
   }
 }
 
-std::optional<render::Camera> endoscope_view(const Scene& scene, const SimState& state,
-                                             float scope_angle_deg) {
+std::optional<render::Camera> endoscope_view(const Scene& scene, const SimState& state) {
   for (std::size_t i = 0; i < scene.tools.size() && i < state.tools.size(); ++i) {
     if (scene.tools[i].kind != ToolKind::kEndoscope) continue;
     const ToolState& in = state.tools[i];
-    // An endoscope no device has posed yet (the default state) has no view.
-    if (in.tip_m == std::array<double, 3>{0.0, 0.0, 0.0} &&
-        in.quat_wxyz == std::array<double, 4>{1.0, 0.0, 0.0, 0.0})
-      return std::nullopt;
-    return render::endoscope_camera(to_float(in.tip_m), to_float(in.quat_wxyz), scope_angle_deg,
-                                    70.0f);
+    if (!scope_posed(in)) return std::nullopt;
+    return render::endoscope_camera(to_float(in.tip_m), to_float(in.quat_wxyz),
+                                    static_cast<float>(scope_angle_deg(in)),
+                                    static_cast<float>(kScopeFovDeg));
   }
   return std::nullopt;
 }

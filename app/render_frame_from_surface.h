@@ -32,11 +32,10 @@ void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
 /// default input) is not drawn either.
 void fill_render_tools(const Scene& scene, const SimState& state, render::RenderFrame& frame);
 
-/// The camera of the scene's first endoscope tool, posed by its latest input (a scope of
-/// `scope_angle_deg`, 70 degree field of view), or nullopt when the scene has no endoscope or no
-/// device has posed it yet (its input still the default: tip at the origin, identity rotation).
+/// The camera of the scene's first endoscope tool, posed by its latest input, with the optic its
+/// input chose (engine/scope_view.h), or nullopt when the scene has no endoscope or no device has
+/// posed it yet (its input still the default: tip at the origin, identity rotation).
 [[nodiscard]] std::optional<render::Camera> endoscope_view(const Scene& scene,
-                                                           const SimState& state,
-                                                           float scope_angle_deg = 0.0f);
+                                                           const SimState& state);
 
 }  // namespace serosa::app

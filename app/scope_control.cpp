@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "engine/scope_view.h"
 #include "render/window.h"
 
 namespace serosa::app {
@@ -35,8 +36,14 @@ void ScopeControl::move(double d_pitch, double d_yaw, double d_insertion, double
   const ToolState f = haptics::forward(m_trocar, m_joints);
   s.tip_m = f.tip_m;
   s.quat_wxyz = f.quat_wxyz;
+  s.buttons = m_buttons;
   s.tick = ++m_changes;
   m_pose.store(s);
+}
+
+void ScopeControl::toggle_optic() {
+  m_buttons ^= kScopeAngledButton;
+  move(0.0, 0.0, 0.0, 0.0);
 }
 
 void ScopeControl::update(render::Window& window) {
@@ -45,6 +52,7 @@ void ScopeControl::update(render::Window& window) {
   if (window.pressed(render::Key::kK)) insertion -= m_map.m_per_press;
   if (window.pressed(render::Key::kComma)) roll -= m_map.rad_per_press;
   if (window.pressed(render::Key::kPeriod)) roll += m_map.rad_per_press;
+  if (window.pressed(render::Key::kO)) toggle_optic();
   float x = 0.0f;
   float y = 0.0f;
   window.cursor(x, y);

@@ -121,7 +121,6 @@ class PointerControl {
 // What the window thread tells the solver thread.
 struct Control {
   std::atomic<bool> paused{false};
-  std::atomic<float> scope_angle_deg{0.0f};
   std::atomic<bool> finished{false};  // set by the solver thread when it stops (error or stop)
 };
 
@@ -206,8 +205,7 @@ class SolverLoop {
     render::RenderFrame& f = m_frames.back();
     fill_render_frame(m_state.mesh, m_drawn->of(m_state), m_names, true, f);
     fill_render_tools(m_scene, m_state, f);
-    std::optional<render::Camera> cam =
-        endoscope_view(m_scene, m_state, m_control.scope_angle_deg.load());
+    std::optional<render::Camera> cam = endoscope_view(m_scene, m_state);
     if (!cam) {
       // No endoscope: a fixed camera fitted to the organs at the start.
       if (!m_fitted) m_fitted = render::auto_camera(f, m_aspect);
@@ -349,8 +347,6 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
         asked_tessellation = std::max(asked_tessellation - 1, 1);
       pacer.set_tessellation(asked_tessellation);
       options.tessellation = pacer.tessellation();
-      if (window.pressed(render::Key::kO))
-        control.scope_angle_deg.store(control.scope_angle_deg.load() > 0.0f ? 0.0f : 30.0f);
       if (window.pressed(render::Key::kH)) show_overlay = !show_overlay;
       if (mouse) comp.haptics->feed_pointer(pointer.update(window));
       if (scope) scope->update(window);

@@ -13,11 +13,18 @@ namespace serosa {
 namespace {
 
 // Values the session reports under a fixed name, and families with a tool's or a group's name.
-constexpr std::array<std::string_view, 9> kFixed = {
-    "time_s",           "idle_time_s",    "bimanual_fraction",   "path_length_m",
-    "force_over_s",     "peak_stress_pa", "cut.deviation_max_m", "cut.deviation_mean_m",
-    "cut.collateral_m3"};
-constexpr std::array<std::string_view, 3> kFamilies = {"path_length_m", "force_max_n", "pieces"};
+constexpr std::array<std::string_view, 10> kFixed = {"time_s",
+                                                     "idle_time_s",
+                                                     "bimanual_fraction",
+                                                     "path_length_m",
+                                                     "force_over_s",
+                                                     "peak_stress_pa",
+                                                     "cut.deviation_max_m",
+                                                     "cut.deviation_mean_m",
+                                                     "cut.collateral_m3",
+                                                     "out_of_view_s"};
+constexpr std::array<std::string_view, 4> kFamilies = {"path_length_m", "force_max_n", "pieces",
+                                                       "out_of_view_s"};
 
 class RubricReader {
  public:

@@ -54,7 +54,7 @@ void Runner::step(SimState& state) {
 
 namespace {
 constexpr char kSnapshotMagic[4] = {'S', 'N', 'A', 'P'};
-constexpr std::uint32_t kSnapshotVersion = 4;
+constexpr std::uint32_t kSnapshotVersion = 5;
 }  // namespace
 
 // A snapshot waits for a step with no cut in flight (the FEM stage takes a step's cuts at the

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "engine/scope_view.h"
 #include "engine/sim_state.h"
 #include "engine/state_codec.h"
 #include "engine/tool_geometry.h"
@@ -25,6 +26,7 @@ MetricsStage::MetricsStage(const Scene& scene, LameTable lame, std::int64_t stre
       m_lame(std::move(lame)),
       m_stress_every(std::max<std::int64_t>(stress_every, 1)) {
   for (const Tool& t : scene.tools) {
+    if (t.kind == ToolKind::kEndoscope && !m_scope) m_scope = m_names.size();
     m_names.push_back(t.name);
     m_hand.push_back(t.kind != ToolKind::kEndoscope ? 1 : 0);
   }
@@ -36,6 +38,7 @@ MetricsStage::MetricsStage(const Scene& scene, LameTable lame, std::int64_t stre
   m_force_steps.assign(k, 0);
   m_moved.assign(k, 0.0);
   m_load.assign(k, 0.0);
+  m_out_of_view_s.assign(k, 0.0);
 }
 
 void MetricsStage::step(const StepContext& ctx, SimState& state) {
@@ -64,6 +67,7 @@ void MetricsStage::step(const StepContext& ctx, SimState& state) {
       ++m_force_steps[i];
     }
   }
+  add_view(state.tools, ctx.dt_s);
   for (const CutEvent& cut : state.handoff.cuts) add_cut(cut);
   if (static_cast<std::int64_t>(ctx.step) % m_stress_every == 0)
     m_peak_stress = std::max(m_peak_stress, peak_stress(state.mesh));
@@ -101,6 +105,16 @@ double MetricsStage::peak_stress(const TetMesh& mesh) {
   return peak_von_mises_pa(mesh, m_rest);
 }
 
+void MetricsStage::add_view(const std::vector<ToolState>& tools, double dt_s) {
+  if (!m_scope || *m_scope >= tools.size() || !scope_posed(tools[*m_scope])) return;
+  const ScopeView view = scope_view(tools[*m_scope]);
+  for (std::size_t i = 0; i < tools.size() && i < m_hand.size(); ++i) {
+    const ToolState& t = tools[i];
+    if (m_hand[i] == 0 || !scope_posed(t)) continue;  // not in the scene yet
+    if (!in_view(view, Vec3(t.tip_m[0], t.tip_m[1], t.tip_m[2]))) m_out_of_view_s[i] += dt_s;
+  }
+}
+
 void MetricsStage::add_cut(const CutEvent& cut) {
   for (std::size_t i = 0; i < cut.removed_volumes_m3.size(); ++i) {
     const double v = cut.removed_volumes_m3[i];
@@ -125,6 +139,9 @@ nlohmann::json MetricsStage::report() const {
           m_force_steps[i] > 0 ? m_force_sum[i] / static_cast<double>(m_force_steps[i]) : 0.0;
     }
   }
+  if (m_scope)
+    for (std::size_t i = 0; i < m_names.size(); ++i)
+      if (m_hand[i] != 0) j["out_of_view_s"][m_names[i]] = m_out_of_view_s[i];
   j["peak_stress_pa"] = m_peak_stress;
   j["idle_time_s"] = m_idle_s;
   j["bimanual_fraction"] = bimanual_fraction();
@@ -149,6 +166,7 @@ void MetricsStage::save(StateWriter& out) const {
   out.array(m_force_max);
   out.array(m_force_sum);
   out.array(m_force_steps);
+  out.array(m_out_of_view_s);
   for (double v : {m_peak_stress, m_cut_volume, m_collateral, m_dev_weighted, m_dev_max, m_idle_s,
                    m_active_s, m_bimanual_s, m_force_over_s})
     out.f64(v);
@@ -166,8 +184,10 @@ void MetricsStage::restore(StateReader& in, SimState& /*state*/) {
   in.array(m_force_max);
   in.array(m_force_sum);
   in.array(m_force_steps);
+  in.array(m_out_of_view_s);
   if (m_path.size() != tools || m_last_tip.size() != tools || m_force_max.size() != tools ||
-      m_force_sum.size() != tools || m_force_steps.size() != tools)
+      m_force_sum.size() != tools || m_force_steps.size() != tools ||
+      m_out_of_view_s.size() != tools)
     in.fail("another number of tools than the scene's");
   for (double* v : {&m_peak_stress, &m_cut_volume, &m_collateral, &m_dev_weighted, &m_dev_max,
                     &m_idle_s, &m_active_s, &m_bimanual_s, &m_force_over_s})

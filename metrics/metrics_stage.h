@@ -7,9 +7,9 @@
 //   cut.deviation_max_m     their largest distance, m
 //   cut.volume_m3           rest volume of every tet a blade cut, m^3
 //   cut.collateral_m3       the part of it farther than cut_band from the planned line, m^3
-//   force_max_n / force_mean_n [tool]  magnitude of the tool's force on the tissue (contact and
-//                           grasp, app/tool_contact_stage.h): largest, and mean over the steps
-//                           in which it touched the tissue, N
+//   force_max_n / force_mean_n [tool]  magnitude of the tool's force on the tissue (contact,
+//                           grasp, and closing scissor blades' shear load, contact/): largest,
+//                           and mean over the steps in which it touched the tissue, N
 //   peak_stress_pa          largest von Mises stress over tets and steps (engine/tissue_stress.h)
 //   idle_time_s             time in which no hand instrument (grasper, scissors) moved: every
 //                           tip slower than kIdleSpeed, s
@@ -18,10 +18,14 @@
 //                           worked together throughout; 0 with fewer than two)
 //   force_over_s            time in which some tool pressed on the tissue harder than the
 //                           scene's force_limit, s
+//   out_of_view_s[tool]     time the instrument's tip (grasper, scissors) was out of the
+//                           endoscope's view while the endoscope was posed (engine/scope_view.h);
+//                           only in scenes with an endoscope, s
 // Without a planned cut line the deviation and collateral entries are absent (the volume stays).
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -76,6 +80,8 @@ class MetricsStage final : public Stage {
     return m_active_s > 0.0 ? m_bimanual_s / m_active_s : 0.0;
   }
   [[nodiscard]] double force_over_s() const noexcept { return m_force_over_s; }
+  /// Time the tool's tip was out of the endoscope's view, s (0 without an endoscope).
+  [[nodiscard]] double out_of_view_s(std::size_t tool) const { return m_out_of_view_s[tool]; }
   [[nodiscard]] double deviation_mean_m() const noexcept {
     return m_cut_volume > 0.0 ? m_dev_weighted / m_cut_volume : 0.0;
   }
@@ -86,6 +92,8 @@ class MetricsStage final : public Stage {
   double m_force_limit;
   std::vector<Vec3> m_planned;
   double m_band;
+  /// Accounts the step's time to each instrument whose tip the endoscope does not see.
+  void add_view(const std::vector<ToolState>& tools, double dt_s);
   /// Accounts one cut: volume, deviation from the planned line, collateral.
   void add_cut(const CutEvent& cut);
   /// Idle, active and bimanual time and time over the force limit, from this step's moves (m,
@@ -105,8 +113,10 @@ class MetricsStage final : public Stage {
   std::vector<std::int64_t> m_force_steps;       // (tools)
   double m_peak_stress = 0.0;
   double m_idle_s = 0.0, m_active_s = 0.0, m_bimanual_s = 0.0, m_force_over_s = 0.0;  // s
-  std::vector<double> m_moved;  // (tools) this step's tip moves, m
-  std::vector<double> m_load;   // (tools) this step's force on the tissue, N
+  std::vector<double> m_moved;          // (tools) this step's tip moves, m
+  std::vector<double> m_load;           // (tools) this step's force on the tissue, N
+  std::vector<double> m_out_of_view_s;  // (tools) time each tip spent out of the scope's view, s
+  std::optional<std::size_t> m_scope;   // the scene's first endoscope
   // The rest data of the stress, refilled when the topology changes or a snapshot is restored.
   RestStress m_rest;
   std::uint64_t m_rest_version = 0;

@@ -9,6 +9,7 @@
 #include "app/scope_control.h"
 #include "app_test_util.h"
 #include "engine/live_pose_stage.h"
+#include "engine/scope_view.h"
 #include "engine/sim_state.h"
 #include "engine/tool_path.h"
 #include "render/camera.h"
@@ -88,6 +89,24 @@ TEST(ScopeControl, PivotsAboutItsPortInsertsAlongItsShaftAndRotatesAboutIt) {
   const Vec3 before = view_of(p0, 30.0f), after = view_of(p2, 30.0f);
   EXPECT_GT((after - before).norm(), 0.2);  // 1 rad round a 30 degree cone: 0.48
   EXPECT_NEAR(after.dot(shaft_of(p0)), std::cos(M_PI / 6), 1e-5);  // still 30 degrees off
+}
+
+// O swaps the optic: the published pose carries it, and the metrics' view of that pose
+// (engine/scope_view.h) looks where the window's camera does, for either optic, wherever the
+// scope is turned.
+TEST(ScopeControl, TheOpticIsPartOfThePoseAndTheMetricsSeeWhatTheWindowShows) {
+  const Scope s = default_scope();
+  ScopeControl scope(s.tool, s.start);
+  EXPECT_EQ(scope.pose().load().buttons & kScopeAngledButton, 0u);
+  for (int k = 0; k < 200; ++k) {
+    if (k % 3 == 0) scope.toggle_optic();
+    scope.move(0.02 * std::sin(k), 0.03 * std::cos(0.7 * k), 0.0, 0.3);
+    const ToolState p = scope.pose().load();
+    const bool angled = (p.buttons & kScopeAngledButton) != 0;
+    EXPECT_EQ(scope_angle_deg(p), angled ? kScopeAngleDeg : 0.0);
+    const Vec3 window = view_of(p, static_cast<float>(scope_angle_deg(p)));
+    EXPECT_LT((scope_view(p).dir - window).norm(), 1e-5) << k;
+  }
 }
 
 TEST(LivePoseStage, TheSolverTakesTheNewestPoseAtTheStepBoundary) {

@@ -268,7 +268,7 @@ Motion random_motion(std::mt19937& rng, int kind) {
     case 1:  // drifting across the blade plane
       m.drift = Vec3(1e-3 * u(rng), 1e-3 * u(rng), 0.8e-3 * u(rng));
       break;
-    case 2:  // rolling about the shaft
+    case 2:                   // rolling about the shaft
       m.roll = 1.5 * u(rng);  // up to 86 degrees of wrist roll within one closing
       break;
     case 3:  // tremor, pauses
