@@ -1,5 +1,4 @@
 // load_rubric: a rubric's TOML file -> checked Rubric (docs/assessment.md).
-#include <toml++/toml.h>
 
 #include <algorithm>
 #include <cmath>
@@ -7,6 +6,7 @@
 
 #include "engine/input_error.h"
 #include "engine/rubric.h"
+#include "engine/toml_reader.h"
 
 namespace serosa {
 
@@ -28,116 +28,70 @@ constexpr std::array<std::string_view, 4> kFamilies = {"path_length_m", "force_m
 
 class RubricReader {
  public:
-  explicit RubricReader(std::filesystem::path file) : m_file(std::move(file)) {}
+  explicit RubricReader(std::filesystem::path file) : m_in(std::move(file)) {}
 
   Rubric read() {
-    toml::table root;
-    try {
-      root = toml::parse_file(m_file.string());
-    } catch (const toml::parse_error& e) {
-      throw InputError(m_file.string(), static_cast<std::int64_t>(e.source().begin.line),
-                       "TOML syntax error: " + std::string(e.description()), "a rubric in TOML");
-    }
+    const toml::table root = m_in.parse("a rubric in TOML");
     Rubric r;
-    r.file = m_file;
-    check_keys(root, "", {"title", "pass_score", "metric"});
-    if (const auto* n = root.get("title")) r.title = text(*n, "title");
+    r.file = m_in.file();
+    m_in.check_keys(root, "", {"title", "pass_score", "metric"});
+    if (const auto* n = root.get("title")) r.title = m_in.text(*n, "title");
     if (const auto* n = root.get("pass_score")) {
-      r.pass_score = number(*n, "pass_score");
+      r.pass_score = m_in.number(*n, "pass_score");
       if (!(r.pass_score >= 0.0 && r.pass_score <= 100.0))
-        fail(*n, "pass_score", "out of range", "a score within [0, 100]");
+        m_in.fail(*n, "pass_score", "out of range", "a score within [0, 100]");
     }
     const auto* metrics = root.get("metric");
     const auto* arr = metrics != nullptr ? metrics->as_array() : nullptr;
     if (arr == nullptr || arr->empty() || !arr->is_array_of_tables())
-      throw InputError(m_file.string(), 0, "no [[metric]] tables",
+      throw InputError(m_in.file().string(), 0, "no [[metric]] tables",
                        "one [[metric]] per value scored");
     for (std::size_t i = 0; i < arr->size(); ++i)
       r.metrics.push_back(metric(*(*arr)[i].as_table(), "metric[" + std::to_string(i) + "]"));
     for (const std::string_view d : kGoalsDomains)
       if (std::none_of(r.metrics.begin(), r.metrics.end(),
                        [&](const RubricMetric& m) { return m.domain == d; }))
-        throw InputError(m_file.string(), 0, "the domain '" + std::string(d) + "' has no metric",
+        throw InputError(m_in.file().string(), 0,
+                         "the domain '" + std::string(d) + "' has no metric",
                          "every GOALS domain scored by at least one [[metric]]");
     return r;
   }
 
  private:
   RubricMetric metric(const toml::table& t, const std::string& p) {
-    check_keys(t, p, {"name", "domain", "unit", "good", "poor", "limit", "weight", "critical"});
+    m_in.check_keys(t, p,
+                    {"name", "domain", "unit", "good", "poor", "limit", "weight", "critical"});
     RubricMetric m;
     m.line = static_cast<int>(t.source().begin.line);
-    m.name = text(required(t, p, "name"), p + ".name");
+    m.name = m_in.text(m_in.required(t, p, "name"), p + ".name");
     std::string family, suffix;
     if (!known_metric(m.name, family, suffix))
-      fail(*t.get("name"), p + ".name", "no metric named '" + m.name + "'",
-           "a metric docs/assessment.md lists");
-    m.domain = text(required(t, p, "domain"), p + ".domain");
+      m_in.fail(*t.get("name"), p + ".name", "no metric named '" + m.name + "'",
+                "a metric docs/assessment.md lists");
+    m.domain = m_in.text(m_in.required(t, p, "domain"), p + ".domain");
     if (std::find(kGoalsDomains.begin(), kGoalsDomains.end(), m.domain) == kGoalsDomains.end())
-      fail(*t.get("domain"), p + ".domain", "unknown domain '" + m.domain + "'",
-           "depth_perception, bimanual_dexterity, efficiency, tissue_handling or autonomy");
-    if (const auto* n = t.get("unit")) m.unit = text(*n, p + ".unit");
-    m.good = number(required(t, p, "good"), p + ".good");
-    m.poor = number(required(t, p, "poor"), p + ".poor");
+      m_in.fail(*t.get("domain"), p + ".domain", "unknown domain '" + m.domain + "'",
+                "depth_perception, bimanual_dexterity, efficiency, tissue_handling or autonomy");
+    if (const auto* n = t.get("unit")) m.unit = m_in.text(*n, p + ".unit");
+    m.good = m_in.number(m_in.required(t, p, "good"), p + ".good");
+    m.poor = m_in.number(m_in.required(t, p, "poor"), p + ".poor");
     if (m.good == m.poor)
-      fail(*t.get("poor"), p + ".poor", "equal to good", "a value other than good's");
+      m_in.fail(*t.get("poor"), p + ".poor", "equal to good", "a value other than good's");
     m.limit = 0.5 * (m.good + m.poor);
     if (const auto* n = t.get("limit")) {
-      m.limit = number(*n, p + ".limit");
+      m.limit = m_in.number(*n, p + ".limit");
       if (m.limit < std::min(m.good, m.poor) || m.limit > std::max(m.good, m.poor))
-        fail(*n, p + ".limit", "outside [good, poor]", "a value between good and poor");
+        m_in.fail(*n, p + ".limit", "outside [good, poor]", "a value between good and poor");
     }
     if (const auto* n = t.get("weight")) {
-      m.weight = number(*n, p + ".weight");
-      if (!(m.weight > 0.0)) fail(*n, p + ".weight", "not positive", "a weight > 0");
+      m.weight = m_in.number(*n, p + ".weight");
+      if (!(m.weight > 0.0)) m_in.fail(*n, p + ".weight", "not positive", "a weight > 0");
     }
-    if (const auto* n = t.get("critical")) {
-      const auto b = n->value<bool>();
-      if (!b) fail(*n, p + ".critical", "not a boolean", "true or false");
-      m.critical = *b;
-    }
+    if (const auto* n = t.get("critical")) m.critical = m_in.boolean(*n, p + ".critical");
     return m;
   }
 
-  void check_keys(const toml::table& t, const std::string& p,
-                  std::initializer_list<std::string_view> keys) const {
-    for (const auto& [k, v] : t)
-      if (std::find(keys.begin(), keys.end(), k.str()) == keys.end()) {
-        std::string list;
-        for (const auto key : keys) list.append(list.empty() ? "" : ", ").append(key);
-        fail(v, p.empty() ? std::string(k.str()) : p + "." + std::string(k.str()), "unknown key",
-             "one of " + list);
-      }
-  }
-
-  const toml::node& required(const toml::table& t, const std::string& p,
-                             std::string_view key) const {
-    const auto* n = t.get(key);
-    if (n == nullptr)
-      throw InputError(m_file.string(), static_cast<std::int64_t>(t.source().begin.line),
-                       p + ": missing key '" + std::string(key) + "'", "the key set");
-    return *n;
-  }
-
-  double number(const toml::node& n, const std::string& p) const {
-    const auto v = n.value<double>();
-    if (!v || !std::isfinite(*v)) fail(n, p, "not a finite number", "a number");
-    return *v;
-  }
-
-  std::string text(const toml::node& n, const std::string& p) const {
-    const auto v = n.value<std::string>();
-    if (!v) fail(n, p, "not a string", "a string");
-    return *v;
-  }
-
-  [[noreturn]] void fail(const toml::node& n, const std::string& p, const std::string& what,
-                         const std::string& expected) const {
-    throw InputError(m_file.string(), static_cast<std::int64_t>(n.source().begin.line),
-                     p + ": " + what, expected);
-  }
-
-  std::filesystem::path m_file;
+  TomlReader m_in;
 };
 
 }  // namespace
