@@ -1,4 +1,4 @@
-// serosa headless SCENE [--steps N] [--path TOOLPATH.csv] [--record OUT.lapr]
+// serosa headless SCENE|--task NAME [--steps N] [--path TOOLPATH.csv] [--record OUT.lapr]
 //                       [--export-final OUT.msh] [--report OUT.json] [--frames DIR]
 //                       [--golden GOLDEN.json [--update-golden]] [--validate-cuts]
 //                       [--trainee NAME [--db FILE]]
@@ -13,6 +13,7 @@
 #include "app/emulated_rig_process.h"
 #include "app/golden.h"
 #include "app/headless.h"
+#include "app/task_option.h"
 #include "app/trainee_session.h"
 #include "engine/input_error.h"
 #include "engine/scene.h"
@@ -40,7 +41,10 @@ void add_headless_command(CLI::App& app, Action& action) {
   auto update_golden = std::make_shared<bool>(false);
   auto trainee = std::make_shared<TraineeOptions>();
   CLI::App* cmd = app.add_subcommand("headless", "Run a scene without window or device");
-  cmd->add_option("scene", opts->scene, "Scene TOML file")->required();
+  auto scene = std::make_shared<std::string>();
+  auto task = std::make_shared<TaskOption>();
+  cmd->add_option("scene", *scene, "Scene TOML file (or --task NAME)");
+  add_task_options(*cmd, *task);
   cmd->add_option("--steps", *steps, "Solver steps (default: the scene's headless.steps)");
   cmd->add_option("--path", *path, "Tool path CSV replacing every scripted tool's path");
   cmd->add_option("--record", *record, "Record the run to a .lapr file");
@@ -57,9 +61,10 @@ void add_headless_command(CLI::App& app, Action& action) {
       ->check(CLI::Range(1, 100000));
   add_trainee_options(*cmd, *trainee);
   cmd->callback([&action, opts, record, steps, path, final_msh, report, frames, golden,
-                 update_golden, trainee] {
-    action = [opts, record, steps, path, final_msh, report, frames, golden, update_golden,
-              trainee] {
+                 update_golden, trainee, scene, task] {
+    action = [opts, record, steps, path, final_msh, report, frames, golden, update_golden, trainee,
+              scene, task] {
+      opts->scene = scene_to_run(*scene, *task);
       if (*update_golden && golden->empty())
         throw InputError("--update-golden", 0, "needs --golden FILE", "--golden FILE");
       run_under_umockdev_if_rig_emulated(load_scene(opts->scene));

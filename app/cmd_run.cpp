@@ -1,4 +1,4 @@
-// serosa run SCENE: the trainee session in a window.
+// serosa run SCENE|--task NAME: the trainee session in a window.
 #include <cstdlib>
 #include <fstream>
 #include <memory>
@@ -9,6 +9,7 @@
 #include "app/command.h"
 #include "app/emulated_rig_process.h"
 #include "app/session.h"
+#include "app/task_option.h"
 #include "app/trainee_session.h"
 #include "engine/input_error.h"
 #include "engine/scene.h"
@@ -20,7 +21,9 @@ void add_run_command(CLI::App& app, Action& action) {
   auto seconds = std::make_shared<double>(0.0);
   auto snapshot = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand("run", "The trainee session: a window, the rig or the mouse");
-  cmd->add_option("scene", *scene, "Scene TOML file")->required();
+  auto task = std::make_shared<TaskOption>();
+  cmd->add_option("scene", *scene, "Scene TOML file (or --task NAME)");
+  add_task_options(*cmd, *task);
   cmd->add_option("--seconds", *seconds, "Close the window after this much wall time (0: never)");
   auto summary = std::make_shared<double>(0.0);
   cmd->add_option("--summary-seconds", *summary,
@@ -39,8 +42,9 @@ void add_run_command(CLI::App& app, Action& action) {
   cmd->add_option("--path", *path,
                   "Tool path CSV every scripted tool plays (default: the scripted instruments "
                   "follow the rig when it is plugged in, else the mouse)");
-  cmd->callback([&action, scene, seconds, snapshot, record, report, path, summary, trainee] {
-    action = [scene, seconds, snapshot, record, report, path, summary, trainee] {
+  cmd->callback([&action, scene, seconds, snapshot, record, report, path, summary, trainee, task] {
+    action = [scene, seconds, snapshot, record, report, path, summary, trainee, task] {
+      *scene = scene_to_run(*scene, *task).string();
       const char* x = std::getenv("DISPLAY");
       const char* wl = std::getenv("WAYLAND_DISPLAY");
       if ((x == nullptr || *x == '\0') && (wl == nullptr || *wl == '\0'))

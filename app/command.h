@@ -20,5 +20,6 @@ void add_replay_command(CLI::App& app, Action& action);
 void add_cut_command(CLI::App& app, Action& action);
 void add_bench_command(CLI::App& app, Action& action);
 void add_trainee_command(CLI::App& app, Action& action);
+void add_tasks_command(CLI::App& app, Action& action);
 
 }  // namespace serosa::app

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   serosa::app::add_cut_command(cli, action);
   serosa::app::add_bench_command(cli, action);
   serosa::app::add_trainee_command(cli, action);
+  serosa::app::add_tasks_command(cli, action);
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
