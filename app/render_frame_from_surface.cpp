@@ -98,6 +98,10 @@ void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
 
 void fill_render_tools(const Scene& scene, const SimState& state, render::RenderFrame& frame) {
   frame.tools.clear();
+  frame.guide.clear();
+  for (const Vec3& p : scene.metrics.planned_cut_m)
+    frame.guide.push_back({static_cast<float>(p.x()), static_cast<float>(p.y()),
+                           static_cast<float>(p.z())});
   for (std::size_t i = 0; i < scene.tools.size() && i < state.tools.size(); ++i) {
     const Tool& tool = scene.tools[i];
     if (tool.kind == ToolKind::kEndoscope) continue;

@@ -26,6 +26,7 @@ void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
                        const std::map<int, std::string>& group_names, bool with_edges,
                        render::RenderFrame& frame);
 
+/// frame.guide: the scene's planned cut ([metrics] planned_cut), drawn as a marker.
 /// frame.tools: one RenderTool per scene tool of kind scissors or grasper, posed by its latest
 /// consumed input (state.tools, scene order), with the scene's trocar when given. Endoscopes are
 /// cameras, not drawn; a tool no device has posed yet (tip at the origin, identity rotation: the

@@ -44,8 +44,6 @@ struct OverlayMetric {
   std::string unit;  ///< SI unit symbol, may be empty
 };
 
-/// What the overlay shows (plain data; drawn by Overlay, render/overlay.h). Negative or zero
-/// rates mean "not running" and are shown as such.
 /// An error marked on the replay's timeline.
 struct TimelineMark {
   double time_s = 0.0;  ///< when it happened, s
@@ -62,6 +60,8 @@ struct OverlayTimeline {
   int current = -1;                 ///< the mark last jumped to; -1: none
 };
 
+/// What the overlay shows (plain data; drawn by Overlay, render/overlay.h). Negative or zero
+/// rates mean "not running" and are shown as such.
 struct OverlayData {
   bool visible = true;
   double sim_time_s = 0.0;       ///< simulated time, s
@@ -115,6 +115,9 @@ struct RenderFrame {
   Camera camera;
   /// Instruments, drawn in every view (their meshes are generated each frame: render/tool_mesh.h).
   std::vector<RenderTool> tools;
+  /// (k) a polyline drawn as a thin violet marker in every view (the planned cut: where the
+  /// trainee should cut), m; empty: none.
+  std::vector<std::array<float, 3>> guide;
   OverlayData overlay;
 
   [[nodiscard]] std::size_t num_vertices() const { return pos.size() / 3; }

@@ -16,6 +16,7 @@ std::array<float, 3> arr(const V3& v) { return {v.x(), v.y(), v.z()}; }
 
 constexpr std::array<float, 4> kShaftMaterial{0.10f, 0.10f, 0.11f, 0.55f};  // black coating
 constexpr std::array<float, 4> kSteelMaterial{0.66f, 0.68f, 0.72f, 0.95f};  // polished steel
+constexpr std::array<float, 4> kGuideMaterial{0.45f, 0.18f, 0.78f, 0.2f};   // marker violet
 
 std::uint32_t add_vertex(ToolMesh& m, const V3& p, const V3& n, const std::array<float, 4>& mat) {
   const auto id = static_cast<std::uint32_t>(m.num_vertices());
@@ -70,14 +71,14 @@ void add_jaw(ToolMesh& m, const V3& base, const V3& dir, const V3& wdir, const V
 }
 
 void add_shaft(ToolMesh& m, const V3& a, const V3& b, const V3& side, const V3& up, float r,
-               int segments) {
+               int segments, const std::array<float, 4>& material = kShaftMaterial) {
   segments = std::max(segments, 3);
   const auto base = static_cast<std::uint32_t>(m.num_vertices());
   for (int i = 0; i < segments; ++i) {
     const float phi = 2.0f * 3.14159265f * static_cast<float>(i) / static_cast<float>(segments);
     const V3 n = std::cos(phi) * side + std::sin(phi) * up;
-    add_vertex(m, a + r * n, n, kShaftMaterial);
-    add_vertex(m, b + r * n, n, kShaftMaterial);
+    add_vertex(m, a + r * n, n, material);
+    add_vertex(m, b + r * n, n, material);
   }
   const V3 axis = (b - a).normalized();
   const auto seg = static_cast<std::uint32_t>(segments);
@@ -91,11 +92,11 @@ void add_shaft(ToolMesh& m, const V3& a, const V3& b, const V3& side, const V3& 
   for (int end = 0; end < 2; ++end) {
     const V3 c = end == 0 ? a : b;
     const V3 n = end == 0 ? V3(-axis) : axis;
-    const std::uint32_t centre = add_vertex(m, c, n, kShaftMaterial);
+    const std::uint32_t centre = add_vertex(m, c, n, material);
     const auto first = static_cast<std::uint32_t>(m.num_vertices());
     for (int i = 0; i < segments; ++i) {
       const float phi = 2.0f * 3.14159265f * static_cast<float>(i) / static_cast<float>(segments);
-      add_vertex(m, c + r * (std::cos(phi) * side + std::sin(phi) * up), n, kShaftMaterial);
+      add_vertex(m, c + r * (std::cos(phi) * side + std::sin(phi) * up), n, material);
     }
     for (std::uint32_t i = 0; i < seg; ++i) {
       const std::uint32_t p = first + i, q = first + (i + 1) % seg;
@@ -109,6 +110,16 @@ void add_shaft(ToolMesh& m, const V3& a, const V3& b, const V3& side, const V3& 
 }
 
 }  // namespace
+
+void append_guide_mesh(const std::vector<std::array<float, 3>>& line, ToolMesh& out) {
+  for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+    const V3 a = vec(line[i]), b = vec(line[i + 1]);
+    if ((b - a).norm() < 1e-9f) continue;
+    const V3 axis = (b - a).normalized();
+    const V3 side = axis.unitOrthogonal();
+    add_shaft(out, a, b, side, axis.cross(side), kGuideRadius, 12, kGuideMaterial);
+  }
+}
 
 void ToolMesh::clear() {
   pos.clear();

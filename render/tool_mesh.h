@@ -51,4 +51,9 @@ struct ToolFrame {
 /// other; grasper jaws are wider and meet on the axis when closed.
 void append_tool_mesh(const RenderTool& tool, ToolMesh& out, const ToolDimensions& dims = {});
 
+/// Radius of the guide's marker tube, m.
+inline constexpr float kGuideRadius = 4e-4f;
+/// Appends the guide polyline (m) as a tube of kGuideRadius, violet like a surgical skin marker.
+void append_guide_mesh(const std::vector<std::array<float, 3>>& line, ToolMesh& out);
+
 }  // namespace serosa::render

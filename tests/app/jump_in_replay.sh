@@ -27,8 +27,9 @@ press() {
   title_matches "$2" 60
 }
 
-xdotool windowfocus --sync "$window"
+# Focused once it draws (a window not yet mapped cannot take the focus).
 title_matches 'errors [0-9]+' 300
+xdotool windowfocus --sync "$window"
 title_matches ' ([0-9.]+) / \1 s ' 300
 press n 'error 1/'
 xdotool getwindowname "$window"

@@ -282,6 +282,24 @@ TEST_F(ToolPictures, ScissorsOpenAndClose) {
             fixtures::count_pixels(closed, is_instrument));
 }
 
+// The guide (the planned cut) is a violet marker across the organ: where it runs outside the
+// tissue it shows, blue above red; inside it is hidden; without a guide there is no violet.
+TEST_F(ToolPictures, TheGuideMarksThePlannedCutWhereItLeavesTheTissue) {
+  RenderFrame f = organ_with_tools(0.6f);
+  f.tools.clear();
+  SnapshotOptions o;
+  o.width = 320;
+  o.height = 240;
+  const auto violet = [](int r, int g, int b) { return b > r + 10 && b > g + 40; };
+  EXPECT_EQ(fixtures::count_pixels(shoot(f, o, "guide_none"), violet), 0u);
+  f.guide = {{-0.035f, 0.0f, 0.0f}, {0.035f, 0.0f, 0.0f}};  // through the 2 cm organ, along x
+  const Image across = shoot(f, o, "guide_across");
+  const std::size_t seen = fixtures::count_pixels(across, violet);
+  EXPECT_GT(seen, 20u);
+  f.guide = {{-0.005f, 0.0f, 0.0f}, {0.005f, 0.0f, 0.0f}};  // all inside the organ
+  EXPECT_EQ(fixtures::count_pixels(shoot(f, o, "guide_inside"), violet), 0u);
+}
+
 // The light sits at the scope's tip: the same organ seen from twice as far (with the field of
 // view narrowed to keep its size) is darker; an angled scope sees it elsewhere in the picture.
 TEST_F(ToolPictures, EndoscopeLightFallsOffAndAngledScopeShiftsTheView) {
