@@ -31,6 +31,10 @@ std::map<std::string, double> session_values(const Scene& scene,
   }
   v["path_length_m"] = hands;
   if (scope) v["out_of_view_s"] = unseen;
+  if (!scene.metrics.view_targets_m.empty()) {
+    v["targets_missed"] = static_cast<double>(metrics.targets_missed());
+    v["targets_time_s"] = metrics.targets_time_s();
+  }
   if (!scene.metrics.planned_cut_m.empty()) {
     v["cut.deviation_max_m"] = metrics.deviation_max_m();
     v["cut.deviation_mean_m"] = metrics.deviation_mean_m();

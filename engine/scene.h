@@ -227,6 +227,9 @@ struct MetricsSettings {
   double cut_band_m = 0.003;
   /// A tool pressing on the tissue harder than this counts towards force_over_s, N; > 0.
   double force_limit_n = 5.0;
+  /// Points the endoscope should be brought to look at, in any order (a camera drill), m; (k).
+  /// Empty: no target metrics.
+  std::vector<Vec3> view_targets_m;
   /// What the session is scored on (engine/rubric.h); none: no assessment is reported.
   std::optional<Rubric> rubric;
 };

@@ -654,7 +654,7 @@ class Loader {
 
   void read_metrics(const toml::table& t, MetricsSettings& m) {
     const std::string p = "metrics";
-    check_keys(t, p, {"planned_cut", "cut_band", "force_limit", "rubric"});
+    check_keys(t, p, {"planned_cut", "cut_band", "force_limit", "view_targets", "rubric"});
     if (const auto* n = t.get("planned_cut")) {
       const std::string expected = "a polyline [[x, y, z], [x, y, z], ...] of >= 2 points in m";
       const auto* a = n->as_array();
@@ -662,6 +662,13 @@ class Loader {
         fail(*n, sub(p, "planned_cut"), "not a polyline", expected);
       for (std::size_t i = 0; i < a->size(); ++i)
         m.planned_cut_m.push_back(vec3((*a)[i], at(sub(p, "planned_cut"), i), expected));
+    }
+    if (const auto* n = t.get("view_targets")) {
+      const std::string expected = "a list of points [[x, y, z], ...] (at least one) in m";
+      const auto* a = n->as_array();
+      if (a == nullptr || a->empty()) fail(*n, sub(p, "view_targets"), "not a list", expected);
+      for (std::size_t i = 0; i < a->size(); ++i)
+        m.view_targets_m.push_back(vec3((*a)[i], at(sub(p, "view_targets"), i), expected));
     }
     if (const auto* n = t.get("cut_band")) {
       m.cut_band_m = ranged(*n, sub(p, "cut_band"), 0.0, true,
@@ -703,6 +710,14 @@ class Loader {
         fail(m_rubric_line, p, what + " needs two hand instruments", "two non-endoscope tools");
       if (family == "pieces" && !has_group(scene, suffix))
         fail(m_rubric_line, p, what + " names no group of this scene", "an organ's group name");
+      const bool scope = std::any_of(scene.tools.begin(), scene.tools.end(),
+                                     [](const Tool& x) { return x.kind == ToolKind::kEndoscope; });
+      if ((family == "out_of_view_s" || family.rfind("targets_", 0) == 0) && !scope)
+        fail(m_rubric_line, p, what + " needs an endoscope", "a [[tool]] of kind endoscope");
+      if (family == "out_of_view_s" && !suffix.empty() && !tool)
+        fail(m_rubric_line, p, what + " names no tool of this scene", "a [[tool]] name");
+      if (family.rfind("targets_", 0) == 0 && scene.metrics.view_targets_m.empty())
+        fail(m_rubric_line, p, what + " needs targets to look at", "metrics.view_targets");
     }
   }
 

@@ -1,7 +1,9 @@
 #include "metrics/metrics_stage.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "engine/scope_view.h"
 #include "engine/sim_state.h"
@@ -39,6 +41,8 @@ MetricsStage::MetricsStage(const Scene& scene, LameTable lame, std::int64_t stre
   m_moved.assign(k, 0.0);
   m_load.assign(k, 0.0);
   m_out_of_view_s.assign(k, 0.0);
+  m_targets = scene.metrics.view_targets_m;
+  m_target_first_s.assign(m_targets.size(), -1.0);
 }
 
 void MetricsStage::step(const StepContext& ctx, SimState& state) {
@@ -108,11 +112,28 @@ double MetricsStage::peak_stress(const TetMesh& mesh) {
 void MetricsStage::add_view(const std::vector<ToolState>& tools, double dt_s) {
   if (!m_scope || *m_scope >= tools.size() || !scope_posed(tools[*m_scope])) return;
   const ScopeView view = scope_view(tools[*m_scope]);
+  const double cone = std::cos(kTargetConeDeg * std::numbers::pi / 180.0);
+  for (std::size_t k = 0; k < m_targets.size(); ++k) {
+    const Vec3 d = m_targets[k] - view.eye;
+    const double n = d.norm();
+    if (m_target_first_s[k] < 0.0 && n > 0.0 && n <= kTargetRange && d.dot(view.dir) >= n * cone)
+      m_target_first_s[k] = m_time;
+  }
   for (std::size_t i = 0; i < tools.size() && i < m_hand.size(); ++i) {
     const ToolState& t = tools[i];
     if (m_hand[i] == 0 || !scope_posed(t)) continue;  // not in the scene yet
     if (!in_view(view, Vec3(t.tip_m[0], t.tip_m[1], t.tip_m[2]))) m_out_of_view_s[i] += dt_s;
   }
+}
+
+std::size_t MetricsStage::targets_missed() const {
+  return static_cast<std::size_t>(std::count_if(m_target_first_s.begin(), m_target_first_s.end(),
+                                                [](double t) { return t < 0.0; }));
+}
+
+double MetricsStage::targets_time_s() const {
+  if (targets_missed() > 0 || m_target_first_s.empty()) return m_time;
+  return *std::max_element(m_target_first_s.begin(), m_target_first_s.end());
 }
 
 void MetricsStage::add_cut(const CutEvent& cut) {
@@ -142,6 +163,11 @@ nlohmann::json MetricsStage::report() const {
   if (m_scope)
     for (std::size_t i = 0; i < m_names.size(); ++i)
       if (m_hand[i] != 0) j["out_of_view_s"][m_names[i]] = m_out_of_view_s[i];
+  if (!m_targets.empty()) {
+    j["view_targets"]["centred"] = m_targets.size() - targets_missed();
+    j["view_targets"]["missed"] = targets_missed();
+    j["view_targets"]["time_s"] = targets_time_s();
+  }
   j["peak_stress_pa"] = m_peak_stress;
   j["idle_time_s"] = m_idle_s;
   j["bimanual_fraction"] = bimanual_fraction();
@@ -167,6 +193,7 @@ void MetricsStage::save(StateWriter& out) const {
   out.array(m_force_sum);
   out.array(m_force_steps);
   out.array(m_out_of_view_s);
+  out.array(m_target_first_s);
   for (double v : {m_peak_stress, m_cut_volume, m_collateral, m_dev_weighted, m_dev_max, m_idle_s,
                    m_active_s, m_bimanual_s, m_force_over_s})
     out.f64(v);
@@ -185,6 +212,8 @@ void MetricsStage::restore(StateReader& in, SimState& /*state*/) {
   in.array(m_force_sum);
   in.array(m_force_steps);
   in.array(m_out_of_view_s);
+  in.array(m_target_first_s);
+  if (m_target_first_s.size() != m_targets.size()) in.fail("another number of view targets");
   if (m_path.size() != tools || m_last_tip.size() != tools || m_force_max.size() != tools ||
       m_force_sum.size() != tools || m_force_steps.size() != tools ||
       m_out_of_view_s.size() != tools)

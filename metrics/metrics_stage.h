@@ -18,6 +18,10 @@
 //                           worked together throughout; 0 with fewer than two)
 //   force_over_s            time in which some tool pressed on the tissue harder than the
 //                           scene's force_limit, s
+//   view_targets            with [metrics] view_targets: how many the endoscope centred (each
+//                           within kTargetConeDeg of its view's axis, kTargetRange away at most,
+//                           at some step), how many it missed, and when it had centred the last
+//                           (time_s: the run's time while any is missed), s
 //   out_of_view_s[tool]     time the instrument's tip (grasper, scissors) was out of the
 //                           endoscope's view while the endoscope was posed (engine/scope_view.h);
 //                           only in scenes with an endoscope, s
@@ -46,6 +50,11 @@ inline constexpr double kIdleSpeed = 5e-3;
 
 /// Distance from p to the polyline (k >= 1 points), m.
 [[nodiscard]] double distance_to_polyline(const Vec3& p, const std::vector<Vec3>& line);
+
+/// A view target is centred when it lies within this angle of the view's axis, degrees ...
+inline constexpr double kTargetConeDeg = 10.0;
+/// ... and no farther from the scope's tip than this, m (a close enough look).
+inline constexpr double kTargetRange = 0.12;
 
 class MetricsStage final : public Stage {
  public:
@@ -82,6 +91,10 @@ class MetricsStage final : public Stage {
   [[nodiscard]] double force_over_s() const noexcept { return m_force_over_s; }
   /// Time the tool's tip was out of the endoscope's view, s (0 without an endoscope).
   [[nodiscard]] double out_of_view_s(std::size_t tool) const { return m_out_of_view_s[tool]; }
+  /// The scene's view targets the endoscope has not centred yet.
+  [[nodiscard]] std::size_t targets_missed() const;
+  /// When the endoscope had centred every view target, s; the run's time while any is missed.
+  [[nodiscard]] double targets_time_s() const;
   [[nodiscard]] double deviation_mean_m() const noexcept {
     return m_cut_volume > 0.0 ? m_dev_weighted / m_cut_volume : 0.0;
   }
@@ -113,10 +126,12 @@ class MetricsStage final : public Stage {
   std::vector<std::int64_t> m_force_steps;       // (tools)
   double m_peak_stress = 0.0;
   double m_idle_s = 0.0, m_active_s = 0.0, m_bimanual_s = 0.0, m_force_over_s = 0.0;  // s
-  std::vector<double> m_moved;          // (tools) this step's tip moves, m
-  std::vector<double> m_load;           // (tools) this step's force on the tissue, N
-  std::vector<double> m_out_of_view_s;  // (tools) time each tip spent out of the scope's view, s
-  std::optional<std::size_t> m_scope;   // the scene's first endoscope
+  std::vector<double> m_moved;           // (tools) this step's tip moves, m
+  std::vector<double> m_load;            // (tools) this step's force on the tissue, N
+  std::vector<double> m_out_of_view_s;   // (tools) time each tip spent out of the scope's view, s
+  std::optional<std::size_t> m_scope;    // the scene's first endoscope
+  std::vector<Vec3> m_targets;           // (k) the scene's view targets, m
+  std::vector<double> m_target_first_s;  // (k) when each was first centred, s; -1: not yet
   // The rest data of the stress, refilled when the topology changes or a snapshot is restored.
   RestStress m_rest;
   std::uint64_t m_rest_version = 0;

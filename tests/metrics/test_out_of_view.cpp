@@ -134,5 +134,38 @@ TEST(OutOfView, ARestoredStageGoesOnAsTheUninterruptedOne) {
   EXPECT_EQ(restored.out_of_view_s(1), whole.out_of_view_s(1));
 }
 
+// View targets: a target within kTargetConeDeg of the view's axis and kTargetRange of the scope
+// counts as centred at the end of that step; off the cone or too far it does not; the time is
+// when the last one was first centred, and the run's time while any is missed.
+TEST(ViewTargets, CentredWithinTheConeAndRangeAtTheStepTheyWere) {
+  const LameTable table;
+  const ToolState scope = pose(Vec3(0, 0, 0.1), Quat(0, 1, 0, 0));  // looking down -z from 10 cm
+  const ScopeView v = scope_view(scope);
+  const double cone = kTargetConeDeg * std::numbers::pi / 180.0;
+  Scene scene = scope_and_grasper();
+  scene.metrics.view_targets_m = {at_angle(v, 0.9 * cone, 0.3),  // inside the cone, 5 cm away
+                                  at_angle(v, 1.1 * cone, 1.0),  // just outside it
+                                  Vec3(0, 0, 0.1 - 1.1 * kTargetRange)};  // on axis, too far
+  MetricsStage m(scene, table);
+  SimState s;
+  s.tools = {ToolState{}, ToolState{}};
+  m.step({0, 0.0, kDt}, s);  // the scope not posed yet: nothing is centred
+  EXPECT_EQ(m.targets_missed(), 3u);
+  s.tools[0] = scope;
+  m.step({1, kDt, kDt}, s);
+  EXPECT_EQ(m.targets_missed(), 2u);
+  EXPECT_EQ(m.targets_time_s(), 2 * kDt);  // the run's time: two are missed
+  // Turned onto the second: centred now; then closer in, the third too.
+  const Vec3 second = scene.metrics.view_targets_m[1] - Vec3(0, 0, 0.1);
+  s.tools[0] = pose(Vec3(0, 0, 0.1), Quat::FromTwoVectors(Vec3::UnitZ(), second));
+  m.step({2, 2 * kDt, kDt}, s);
+  EXPECT_EQ(m.targets_missed(), 1u);
+  s.tools[0] = pose(Vec3(0, 0, 0.1 - 0.5 * kTargetRange), Quat(0, 1, 0, 0));
+  m.step({3, 3 * kDt, kDt}, s);
+  EXPECT_EQ(m.targets_missed(), 0u) << m.report().dump();
+  EXPECT_EQ(m.targets_time_s(), 4 * kDt);
+  EXPECT_EQ(m.report()["view_targets"]["centred"], 3);
+}
+
 }  // namespace
 }  // namespace serosa::metrics
