@@ -100,8 +100,8 @@ void fill_render_tools(const Scene& scene, const SimState& state, render::Render
   frame.tools.clear();
   frame.guide.clear();
   for (const Vec3& p : scene.metrics.planned_cut_m)
-    frame.guide.push_back({static_cast<float>(p.x()), static_cast<float>(p.y()),
-                           static_cast<float>(p.z())});
+    frame.guide.push_back(
+        {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())});
   for (std::size_t i = 0; i < scene.tools.size() && i < state.tools.size(); ++i) {
     const Tool& tool = scene.tools[i];
     if (tool.kind == ToolKind::kEndoscope) continue;
