@@ -98,6 +98,14 @@ std::optional<std::size_t> next_mark(const std::vector<render::TimelineMark>& ma
   return 0;
 }
 
+std::optional<std::size_t> mark_to_jump_to(const std::vector<render::TimelineMark>& marks,
+                                           int current, double time_s) {
+  const auto n = static_cast<int>(marks.size());
+  if (current >= 0 && current < n && time_s <= marks[static_cast<std::size_t>(current)].time_s)
+    return static_cast<std::size_t>((current + 1) % n);
+  return next_mark(marks, time_s);
+}
+
 TimelineBuilder::TimelineBuilder(std::filesystem::path recording)
     : m_thread([this, file = std::move(recording)](const std::stop_token& stop) {
         try {

@@ -47,6 +47,15 @@ TimelineData compute_timeline(const std::filesystem::path& recording, std::size_
 [[nodiscard]] std::optional<std::size_t> next_mark(const std::vector<render::TimelineMark>& marks,
                                                    double after_s);
 
+/// The mark N jumps to from the replay's position `time_s`: while the replay is still before (or
+/// at) the mark last jumped to, `current` (-1: none), the one after it; else the first later than
+/// `time_s`, wrapping round; nullopt with no mark.
+[[nodiscard]] std::optional<std::size_t> mark_to_jump_to(
+    const std::vector<render::TimelineMark>& marks, int current, double time_s);
+
+/// A jump lands this long before its mark, so that the instructor sees what led up to it, s.
+inline constexpr double kJumpLeadS = 1.0;
+
 /// compute_timeline on a thread of its own; stopped and joined when destroyed.
 class TimelineBuilder {
  public:

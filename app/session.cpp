@@ -477,18 +477,11 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
   const TimelineBuilder timeline(recording);
   int current_mark = -1;
   const auto jump_to_next_error = [&](const std::vector<render::TimelineMark>& marks) {
-    if (marks.empty() || replay.branched()) return;
-    constexpr double kLeadS = 1.0;  // see what led up to it
-    // Still before the error last jumped to (or at it): the one after it; else the next ahead.
-    const auto n = static_cast<int>(marks.size());
-    const bool leading_up = current_mark >= 0 && current_mark < n &&
-                            replay.time_s() <= marks[static_cast<std::size_t>(current_mark)].time_s;
-    const std::optional<std::size_t> k =
-        leading_up ? std::optional<std::size_t>(static_cast<std::size_t>((current_mark + 1) % n))
-                   : next_mark(marks, replay.time_s());
+    if (replay.branched()) return;  // a branch plays on: no seeking
+    const std::optional<std::size_t> k = mark_to_jump_to(marks, current_mark, replay.time_s());
     if (!k) return;
     current_mark = static_cast<int>(*k);
-    replay.seek(std::max(marks[*k].time_s - kLeadS, 0.0));
+    replay.seek(std::max(marks[*k].time_s - kJumpLeadS, 0.0));
   };
 
   const InterruptGuard interrupts;

@@ -92,6 +92,14 @@ TEST(ReplayTimeline, NextMarkIsTheFirstLaterOneAndWrapsRound) {
   EXPECT_EQ(next_mark(marks, 3.0), 2u);
   EXPECT_EQ(next_mark(marks, 4.0), 0u);
   EXPECT_EQ(next_mark({}, 0.0), std::nullopt);
+  // Jumping: after a jump to mark 1 (the replay a second before it, or at it), the next is 2;
+  // played on past it, the next is the first later one; with no jump yet, the first ahead.
+  EXPECT_EQ(mark_to_jump_to(marks, -1, 0.0), 0u);
+  EXPECT_EQ(mark_to_jump_to(marks, 1, 1.5), 2u);
+  EXPECT_EQ(mark_to_jump_to(marks, 1, 2.5), 2u);
+  EXPECT_EQ(mark_to_jump_to(marks, 2, 3.0), 0u);  // wraps round
+  EXPECT_EQ(mark_to_jump_to(marks, 0, 3.0), 2u);  // played on past mark 0 and mark 1
+  EXPECT_EQ(mark_to_jump_to({}, -1, 0.0), std::nullopt);
 }
 
 }  // namespace
