@@ -65,45 +65,6 @@ fs::path changed_path(const fs::path& dir, const std::string& name, const std::s
   return p;
 }
 
-// Every time stretched by `slow`.
-void slower(std::vector<Row>& rows, double slow) {
-  for (Row& r : rows) r[0] = str(num(r[0]) * slow);
-}
-
-// The grasper's approach (0 to 0.6 s) bent `up_m` upwards half way: a longer way to the tissue.
-void detour(std::vector<Row>& rows, double up_m) {
-  const Row* from = nullptr;
-  const Row* to = nullptr;
-  for (const Row& r : rows)
-    if (r[1] == "grasper" && num(r[0]) == 0.0)
-      from = &r;
-    else if (r[1] == "grasper" && num(r[0]) == 0.6)
-      to = &r;
-  ASSERT_TRUE(from != nullptr && to != nullptr) << "the default path changed: update this test";
-  Row mid = *from;
-  mid[0] = "0.3";
-  for (int i = 2; i <= 4; ++i)
-    mid[static_cast<std::size_t>(i)] =
-        str(0.5 * (num((*from)[i]) + num((*to)[i])) + (i == 4 ? up_m : 0.0));
-  rows.push_back(mid);
-  std::stable_sort(rows.begin(), rows.end(),
-                   [](const Row& a, const Row& b) { return num(a[0]) < num(b[0]); });
-}
-
-// The grasper's lift after the transection (from 3.5 s) made `more` times longer: it pulls the
-// tissue it holds harder.
-void pull_harder(std::vector<Row>& rows, double more) {
-  const Row* held = nullptr;
-  for (const Row& r : rows)
-    if (r[1] == "grasper" && num(r[0]) == 3.5) held = &r;
-  ASSERT_TRUE(held != nullptr) << "the default path changed: update this test";
-  const Row h = *held;
-  for (Row& r : rows)
-    if (r[1] == "grasper" && num(r[0]) > 3.5)
-      for (std::size_t i = 2; i <= 4; ++i)
-        r[i] = str(num(h[i]) + (1.0 + more) * (num(r[i]) - num(h[i])));
-}
-
 // The scissors moved `off_m` along the appendix towards its base, off the planned line.
 void off_line(std::vector<Row>& rows, double off_m) {
   const double d = off_m / std::sqrt(2.0);  // the base lies along (-1, 1, 0) from the cut
@@ -150,8 +111,6 @@ void expect_worse_step_by_step(const std::vector<double>& levels, const std::vec
   EXPECT_LT(got.back().score, got.front().score);  // and the worst is scored worse
 }
 
-const auto kThousand = [](double) -> std::uint64_t { return 1000; };
-
 // Off the line, on the short transection (scissors alone: the grasper's pull on the rest of the
 // procedure depends on where the cut falls, which would mix another metric in).
 TEST(AssessmentDegrade, ScissorsFurtherOffThePlannedLine) {
@@ -162,12 +121,53 @@ TEST(AssessmentDegrade, ScissorsFurtherOffThePlannedLine) {
 }
 
 #if !defined(__SANITIZE_ADDRESS__)  // ASan+UBSan is ~15x slower: 13,000 steps are too many there
+// Every time stretched by `slow`.
+void slower(std::vector<Row>& rows, double slow) {
+  for (Row& r : rows) r[0] = str(num(r[0]) * slow);
+}
+
+// The grasper's approach (0 to 0.6 s) bent `up_m` upwards half way: a longer way to the tissue.
+void detour(std::vector<Row>& rows, double up_m) {
+  const Row* from = nullptr;
+  const Row* to = nullptr;
+  for (const Row& r : rows)
+    if (r[1] == "grasper" && num(r[0]) == 0.0)
+      from = &r;
+    else if (r[1] == "grasper" && num(r[0]) == 0.6)
+      to = &r;
+  ASSERT_TRUE(from != nullptr && to != nullptr) << "the default path changed: update this test";
+  Row mid = *from;
+  mid[0] = "0.3";
+  for (int i = 2; i <= 4; ++i)
+    mid[static_cast<std::size_t>(i)] =
+        str(0.5 * (num((*from)[i]) + num((*to)[i])) + (i == 4 ? up_m : 0.0));
+  rows.push_back(mid);
+  std::stable_sort(rows.begin(), rows.end(),
+                   [](const Row& a, const Row& b) { return num(a[0]) < num(b[0]); });
+}
+
+// The grasper's lift after the transection (from 3.5 s) made `more` times longer: it pulls the
+// tissue it holds harder.
+void pull_harder(std::vector<Row>& rows, double more) {
+  const Row* held = nullptr;
+  for (const Row& r : rows)
+    if (r[1] == "grasper" && num(r[0]) == 3.5) held = &r;
+  ASSERT_TRUE(held != nullptr) << "the default path changed: update this test";
+  const Row h = *held;
+  for (Row& r : rows)
+    if (r[1] == "grasper" && num(r[0]) > 3.5)
+      for (std::size_t i = 2; i <= 4; ++i)
+        r[i] = str(num(h[i]) + (1.0 + more) * (num(r[i]) - num(h[i])));
+}
+
 TEST(AssessmentDegrade, Slower) {
   const std::vector<double> levels = {1.0, 1.25, 1.5, 2.0};
   expect_worse_step_by_step(
       levels, run_levels("slower", "config/paths/appendectomy.csv", levels, "/metrics/time_s",
                          slower, [](double s) { return static_cast<std::uint64_t>(1000 * s); }));
 }
+
+const auto kThousand = [](double) -> std::uint64_t { return 1000; };
 
 TEST(AssessmentDegrade, ALongerPath) {
   const std::vector<double> levels = {0.0, 0.01, 0.02, 0.04};
