@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <fstream>
-#include <regex>
 #include <sstream>
 #include <string>
 
@@ -45,9 +44,10 @@ fs::path strict_scene(const fs::path& dir) {
 
 // The position the replay window's title shows, s ("Serosa replay  2.53 / 5.00 s ...").
 double title_position(const std::string& title) {
-  std::smatch m;
-  if (!std::regex_search(title, m, std::regex(R"(Serosa replay  ([0-9.]+) /)"))) return -1.0;
-  return std::stod(m[1].str());
+  // (No std::regex: under ASan GCC 12 warns inside it, maybe-uninitialized, a false positive.)
+  const std::string head = "Serosa replay  ";
+  if (title.rfind(head, 0) != 0 || title.find(" /", head.size()) == std::string::npos) return -1.0;
+  return std::stod(title.substr(head.size()));
 }
 
 // In the replay window, once the timeline is known and the replay has played to its end, N jumps
