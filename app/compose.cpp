@@ -176,11 +176,17 @@ Composition compose(const Scene& scene, const AssembledScene& assembled, Compose
     c.runner->add(Slot::haptics, std::move(haptics_stage));
     c.built.push_back(Effect::kHaptics);
   }
-  // contact
+  // contact, then the clips (they hold what they clamp over whatever touched it)
   if (contact_stage) {
     c.contact = contact_stage.get();
     c.runner->add(Slot::contact, std::move(contact_stage));
     c.built.push_back(Effect::kContact);
+  }
+  if (listed(Effect::kClips)) {
+    auto clip_stage = std::make_unique<ClipStage>(scene);
+    c.clips = clip_stage.get();
+    c.runner->add(Slot::contact, std::move(clip_stage));
+    c.built.push_back(Effect::kClips);
   }
   // FEM (gravity is one of its terms)
   if (fem_stage) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/assemble_state.h"
+#include "contact/clip_stage.h"
 #include "contact/tool_contact_stage.h"
 #include "cutting/cutting_stage.h"
 #include "engine/live_pose_stage.h"
@@ -27,6 +28,7 @@
 namespace serosa::app {
 
 // The stages, each in the folder of its domain; the composition root names them all.
+using contact::ClipStage;
 using contact::ToolContactStage;
 using cutting::CuttingStage;
 using cutting::CuttingStageOptions;
@@ -77,6 +79,7 @@ struct Composition {
   CuttingStage* cutting = nullptr;      ///< null unless "cutting" is listed
   SurfaceStage* surface = nullptr;      ///< null unless "surface" is listed
   ToolContactStage* contact = nullptr;  ///< null unless "contact" is listed
+  ClipStage* clips = nullptr;           ///< null unless "clips" is listed
   MetricsStage* metrics = nullptr;      ///< built with "fem" (stress needs it)
   Stage* tool_input = nullptr;          ///< ComposeOptions::tool_input once handed to the runner
 };

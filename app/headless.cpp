@@ -106,6 +106,31 @@ recording::Header recording_header(const Scene& scene, std::int64_t steps) {
   return h;
 }
 
+// Each placed clip (when, by which applier, what it clamps, where it is now) and the clips each
+// applier closed on no tissue.
+Json clips_json(const Scene& scene, const SimState& state, const Composition& comp,
+                const std::map<int, std::string>& group_names) {
+  Json placed = Json::array();
+  for (const Clip& c : state.handoff.clips) {
+    Json groups = Json::array();
+    for (int g : c.groups) {
+      const auto it = group_names.find(g);
+      groups.push_back(it != group_names.end() ? it->second : std::to_string(g));
+    }
+    const Vec3 mid = 0.5 * (c.end(0) + c.end(1));
+    placed.push_back({{"tool", scene.tools[c.tool].name},
+                      {"time_s", c.placed_s},
+                      {"nodes", c.nodes},
+                      {"groups", std::move(groups)},
+                      {"centre_m", {mid.x(), mid.y(), mid.z()}}});
+  }
+  Json dropped = Json::object();
+  for (std::size_t i = 0; i < scene.tools.size(); ++i)
+    if (scene.tools[i].kind == ToolKind::kClipApplier)
+      dropped[scene.tools[i].name] = comp.clips->dropped()[i];
+  return {{"placed", std::move(placed)}, {"dropped", std::move(dropped)}};
+}
+
 Json cutting_json(const Composition& comp) {
   Json j = Json::object();
   if (comp.cutting) {
@@ -116,7 +141,8 @@ Json cutting_json(const Composition& comp) {
          {"tets_removed", c.tets_removed},
          {"tets_added", c.tets_added},
          {"nodes_added", c.nodes_added},
-         {"degenerate_tets", c.degenerate_tets}};
+         {"degenerate_tets", c.degenerate_tets},
+         {"strokes_on_clip", c.strokes_on_clip}};
     Json strokes = Json::array();
     for (const cutting::StrokeReport& r : c.stroke_reports)
       strokes.push_back({{"first_step", r.first_step},
@@ -130,7 +156,8 @@ Json cutting_json(const Composition& comp) {
                          {"swept_area_m2", r.swept_area_m2},
                          {"crack_area_m2", r.crack_area_m2},
                          {"deviation_m", r.deviation_m},
-                         {"min_quality", r.min_quality}});
+                         {"min_quality", r.min_quality},
+                         {"on_clip", r.on_clip}});
     j["per_stroke"] = std::move(strokes);
     if (c.validated > 0) {
       j["validated"] = c.validated;
@@ -301,6 +328,7 @@ Json run_headless(const HeadlessOptions& options) {
       if (scene.tools[i].kind == ToolKind::kGrasper)
         report["contact"]["held_nodes"][scene.tools[i].name] = held[i];
   }
+  if (comp.clips) report["clips"] = clips_json(scene, state, comp, assembled.group_names());
   if (comp.surface) {
     const auto& ss = comp.surface->stats();
     report["surface"] = {

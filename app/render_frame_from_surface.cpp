@@ -14,6 +14,10 @@ std::array<float, 3> to_float(const std::array<double, 3>& a) {
   return {static_cast<float>(a[0]), static_cast<float>(a[1]), static_cast<float>(a[2])};
 }
 
+std::array<float, 3> to_float(const Vec3& v) {
+  return {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())};
+}
+
 std::array<float, 4> to_float(const std::array<double, 4>& a) {
   return {static_cast<float>(a[0]), static_cast<float>(a[1]), static_cast<float>(a[2]),
           static_cast<float>(a[3])};
@@ -99,6 +103,14 @@ void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
 void fill_render_tools(const Scene& scene, const SimState& state, render::RenderFrame& frame) {
   frame.tools.clear();
   frame.guide.clear();
+  frame.clips.clear();
+  for (const Clip& c : state.handoff.clips) {
+    render::RenderClip rc;
+    rc.start = to_float(c.end(0));
+    rc.end = to_float(c.end(1));
+    rc.across = to_float(Vec3(c.frame.col(0)));
+    frame.clips.push_back(rc);
+  }
   for (const Vec3& p : scene.metrics.planned_cut_m)
     frame.guide.push_back(
         {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())});
@@ -111,8 +123,9 @@ void fill_render_tools(const Scene& scene, const SimState& state, render::Render
         in.quat_wxyz == std::array<double, 4>{1.0, 0.0, 0.0, 0.0})
       continue;
     render::RenderTool t;
-    t.kind = tool.kind == ToolKind::kScissors ? render::RenderTool::Kind::kScissors
-                                              : render::RenderTool::Kind::kGrasper;
+    t.kind = tool.kind == ToolKind::kScissors      ? render::RenderTool::Kind::kScissors
+             : tool.kind == ToolKind::kClipApplier ? render::RenderTool::Kind::kClipApplier
+                                                   : render::RenderTool::Kind::kGrasper;
     t.tip = to_float(in.tip_m);
     t.quat_wxyz = to_float(in.quat_wxyz);
     t.jaw_rad = std::clamp(static_cast<float>(in.jaw_rad), 0.0f, 3.14159265f);

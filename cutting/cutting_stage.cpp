@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cutting/clip_guard.h"
 #include "cutting/cut_areas.h"
 #include "cutting/cut_method.h"
 #include "cutting/tet_bvh.h"
@@ -95,6 +96,15 @@ void CuttingStage::end_stroke(const StepContext& ctx, SimState& state, Scissors&
   s.paused.reset();
   ++m_stats.strokes;
   if (cut_with_these.polygons.empty()) ++m_stats.degenerate_sweeps;
+  // Blades that closed on a clip met titanium: the tissue they hold is not divided.
+  report.on_clip = std::any_of(
+      cut_with_these.polygons.begin(), cut_with_these.polygons.end(),
+      [&](const ConvexPolygon& p) { return polygon_meets_clips(p, state.handoff.clips); });
+  if (report.on_clip) {
+    ++m_stats.strokes_on_clip;
+    if (m_stats.stroke_reports.size() < kMaxStrokeReports) m_stats.stroke_reports.push_back(report);
+    return;
+  }
   for (std::size_t k = 0; k < cut_with_these.polygons.size(); ++k) {
     ++m_stats.sweeps;
     cut(ctx, state, s.tool, cut_with_these.blades[k], cut_with_these.polygons[k], report);

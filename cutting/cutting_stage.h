@@ -88,6 +88,8 @@ struct StrokeReport {
   double crack_area_m2 = 0.0;     ///< one side of the crack opened, m²
   double deviation_m = 0.0;       ///< farthest swept sample from the polygons' plane, m
   double min_quality = 1.0;       ///< smallest mean-ratio quality of the created tets (rest)
+  /// The blades closed on a clip (cutting/clip_guard.h): the stroke cut nothing.
+  bool on_clip = false;
 };
 
 /// Totals over the stage's life.
@@ -95,6 +97,7 @@ struct CuttingStageStats {
   std::uint64_t strokes = 0;            ///< closing strokes cut (each as one or two polygons)
   std::uint64_t sweeps = 0;             ///< polygons swept (closing jaws)
   std::uint64_t degenerate_sweeps = 0;  ///< strokes that gave no polygon (no motion, NaN)
+  std::uint64_t strokes_on_clip = 0;    ///< strokes left uncut: their blades closed on a clip
   std::uint64_t cuts = 0;               ///< polygons that changed the mesh
   std::int64_t tets_removed = 0;
   std::int64_t tets_added = 0;

@@ -29,18 +29,19 @@ enum class Effect : std::uint8_t {
   kGravity,     ///< "gravity": body force density * gravity (needs fem)
   kPlasticity,  ///< "plasticity": Müller-Gross plastic strain (needs fem)
   kCutting,     ///< "cutting": scissors cut tets along the swept blade
+  kClips,       ///< "clips": clip appliers place clips that clamp tissue (needs contact)
   kContact,     ///< "contact": tool-organ contact forces (needs fem and surface)
   kSurface,     ///< "surface": boundary surface extraction, normals, collision BVH
   kHaptics,     ///< "haptics": the 1 kHz force loop (needs a tool driven by a device)
   kRender,      ///< "render": endoscope view (needs surface)
   kRecord,      ///< "record": record inputs and state hashes to a .lapr file
 };
-inline constexpr std::size_t kNumEffects = 9;
+inline constexpr std::size_t kNumEffects = 10;
 
 /// Every effect in enum order.
 inline constexpr Effect kAllEffects[kNumEffects] = {
-    Effect::kFem,     Effect::kGravity, Effect::kPlasticity, Effect::kCutting, Effect::kContact,
-    Effect::kSurface, Effect::kHaptics, Effect::kRender,     Effect::kRecord};
+    Effect::kFem,     Effect::kGravity, Effect::kPlasticity, Effect::kCutting, Effect::kClips,
+    Effect::kContact, Effect::kSurface, Effect::kHaptics,    Effect::kRender,  Effect::kRecord};
 
 /// The scene-file name of an effect ("fem", "gravity", ...).
 [[nodiscard]] std::string_view effect_name(Effect e) noexcept;
@@ -52,14 +53,15 @@ inline constexpr Effect kAllEffects[kNumEffects] = {
 
 enum class Quality : std::uint8_t { kFast, kBalanced, kAccurate };
 enum class SolverKind : std::uint8_t { kPcg, kCholmod, kPcgCholmod, kPcgLagged };
-enum class ToolKind : std::uint8_t { kScissors, kGrasper, kEndoscope };
+enum class ToolKind : std::uint8_t { kScissors, kGrasper, kEndoscope, kClipApplier };
 enum class DeviceKind : std::uint8_t { kRig, kRigEmulated, kMouse, kScript };
 enum class Hand : std::uint8_t { kLeft, kRight };
 enum class CutMethod : std::uint8_t { kPattern, kRemove, kSnap };
 
 [[nodiscard]] std::string_view quality_name(Quality q) noexcept;         ///< fast|balanced|accurate
 [[nodiscard]] std::string_view solver_kind_name(SolverKind k) noexcept;  ///< pcg|cholmod|...
-[[nodiscard]] std::string_view tool_kind_name(ToolKind k) noexcept;      ///< scissors|grasper|...
+[[nodiscard]] std::string_view tool_kind_name(
+    ToolKind k) noexcept;  ///< scissors|grasper|endoscope|clip-applier
 [[nodiscard]] std::string_view device_kind_name(DeviceKind k) noexcept;  ///< rig|...|script
 [[nodiscard]] std::string_view hand_name(Hand h) noexcept;               ///< left|right
 [[nodiscard]] std::string_view cut_method_name(CutMethod m) noexcept;    ///< pattern|remove|snap

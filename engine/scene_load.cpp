@@ -761,9 +761,10 @@ class Loader {
              "duplicate tool name \"" + tool.name + "\" (also tool[" + std::to_string(*j) + "])",
              "unique tool names");
       }
-      tool.kind =
-          enum_value<ToolKind>(required(t, "kind", p, "scissors, grasper, endoscope"),
-                               sub(p, "kind"), tool_kind_from_name, "scissors, grasper, endoscope");
+      const std::string kinds = "scissors, grasper, endoscope, clip-applier";
+      tool.kind = enum_value<ToolKind>(required(t, "kind", p, kinds), sub(p, "kind"),
+                                       tool_kind_from_name, kinds);
+      m_kind_lines.push_back(line_of(*t.get("kind")));
 
       // device = "rig" | "rig-emulated[:FILE]" | "mouse" | "script:FILE"
       const std::string dev_expected = "rig, rig-emulated[:FILE], mouse or script:FILE";
@@ -820,6 +821,15 @@ class Loader {
     need(Effect::kContact, Effect::kFem);
     need(Effect::kContact, Effect::kSurface);
     need(Effect::kRender, Effect::kSurface);
+    need(Effect::kClips, Effect::kContact);
+    // A clip applier only places clips where they are simulated: say so rather than close empty.
+    for (std::size_t i = 0; i < scene.tools.size(); ++i) {
+      if (scene.tools[i].kind == ToolKind::kClipApplier && !s.has(Effect::kClips)) {
+        fail(m_kind_lines[i], at("tool", i) + ".kind",
+             "a clip-applier places clips, but effect \"clips\" is not listed",
+             "\"clips\" in scene.effects (with \"contact\", \"surface\" and \"fem\")");
+      }
+    }
     if (s.has(Effect::kHaptics)) {
       bool device = false;
       for (const Tool& tool : scene.tools)
@@ -834,6 +844,7 @@ class Loader {
   std::string m_file;                                 // scene file as given, for errors
   std::filesystem::path m_dir;                        // folder relative paths resolve against
   std::int64_t m_rubric_line = 0;                     // where [metrics] rubric is
+  std::vector<std::int64_t> m_kind_lines;             // (tools) where each tool's kind is
   std::map<std::filesystem::path, ToolPath> m_paths;  // script files read so far
 };
 

@@ -5,6 +5,7 @@
 #include <optional>
 #include <vector>
 
+#include "engine/clip.h"
 #include "engine/contact_plane.h"
 #include "engine/surface_mesh.h"
 #include "engine/tet_mesh.h"
@@ -56,6 +57,9 @@ struct StepHandoff {
   /// cutting -> surface and metrics (this step) and FEM (the next step's): the cuts of this step,
   /// in order; cleared by the cutting stage before it cuts.
   std::vector<CutEvent> cuts;
+  /// clips -> cutting, render, metrics: every clip placed so far, where the tissue carries it now
+  /// (contact/clip_stage.h); empty when no clips stage runs.
+  std::vector<Clip> clips;
   /// surface -> contact, render, pictures: the boundary surface, kept up to date by the surface
   /// stage (empty when no surface stage runs).
   SurfaceMesh surface;

@@ -174,9 +174,10 @@ void FrameRenderer::upload_topology(const RenderFrame& frame) {
 
 void FrameRenderer::draw_tools(const RenderFrame& frame, const float* view_proj, const float* eye,
                                float ref_dist) {
-  if (frame.tools.empty() && frame.guide.empty()) return;
+  if (frame.tools.empty() && frame.guide.empty() && frame.clips.empty()) return;
   tool_mesh_.clear();
   for (const RenderTool& t : frame.tools) append_tool_mesh(t, tool_mesh_);
+  for (const RenderClip& c : frame.clips) append_clip_mesh(c, tool_mesh_);
   append_guide_mesh(frame.guide, tool_mesh_);
   glBindBuffer(GL_ARRAY_BUFFER, tool_pos_buf_);
   glBufferData(GL_ARRAY_BUFFER, bytes(tool_mesh_.pos.size(), sizeof(float)), tool_mesh_.pos.data(),

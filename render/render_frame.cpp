@@ -58,6 +58,13 @@ std::vector<std::string> validate(const RenderFrame& frame) {
       if (qn < 1e-12f) errors.push_back(what + " quaternion is zero");
     }
   }
+  for (std::size_t i = 0; i < frame.clips.size(); ++i) {
+    const RenderClip& c = frame.clips[i];
+    bool finite = true;
+    for (const auto* a : {&c.start, &c.end, &c.across})
+      for (const float v : *a) finite = finite && std::isfinite(v);
+    if (!finite) errors.push_back("clips[" + std::to_string(i) + "] has a non-finite value");
+  }
   return errors;
 }
 

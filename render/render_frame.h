@@ -23,8 +23,9 @@ struct Camera {
 /// the jaws open in the local x-z plane, hinged about local y.
 struct RenderTool {
   enum class Kind : std::uint8_t {
-    kScissors,  ///< two blades that shear past each other (Metzenbaum-like, slightly curved)
-    kGrasper,   ///< two flat jaws that close on each other
+    kScissors,     ///< two blades that shear past each other (Metzenbaum-like, slightly curved)
+    kGrasper,      ///< two flat jaws that close on each other
+    kClipApplier,  ///< a grasper's jaws, with a clip loaded between them while open
   };
   Kind kind = Kind::kGrasper;
   std::array<float, 3> tip{0.0f, 0.0f, 0.0f};              ///< tip of the closed jaws, m
@@ -34,6 +35,14 @@ struct RenderTool {
   /// through this point to the jaws' hinge, and the tool's axis is the line trocar -> tip.
   std::array<float, 3> trocar{0.0f, 0.0f, 0.0f};
   float jaw_rad = 0.0f;  ///< jaw opening angle between the two jaws, rad, [0, pi]
+};
+
+/// A placed ligation clip (plain data, world coordinates, m): two legs along its centre line,
+/// pressed together across it.
+struct RenderClip {
+  std::array<float, 3> start{0.0f, 0.0f, 0.0f};   ///< centre line, hinge end, m
+  std::array<float, 3> end{0.0f, 0.0f, 1.0f};     ///< centre line, far end, m
+  std::array<float, 3> across{1.0f, 0.0f, 0.0f};  ///< unit: the direction the legs pressed
 };
 
 /// One named number the overlay lists (instructor metrics: cut length, time in contact, force
@@ -115,6 +124,8 @@ struct RenderFrame {
   Camera camera;
   /// Instruments, drawn in every view (their meshes are generated each frame: render/tool_mesh.h).
   std::vector<RenderTool> tools;
+  /// Placed clips, drawn in every view (render/tool_mesh.h append_clip_mesh).
+  std::vector<RenderClip> clips;
   /// (k) a polyline drawn as a thin violet marker in every view (the planned cut: where the
   /// trainee should cut), m; empty: none.
   std::vector<std::array<float, 3>> guide;

@@ -5,6 +5,9 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <tuple>
+
+#include "engine/clip.h"
 
 namespace serosa::render {
 namespace {
@@ -16,6 +19,7 @@ std::array<float, 3> arr(const V3& v) { return {v.x(), v.y(), v.z()}; }
 
 constexpr std::array<float, 4> kShaftMaterial{0.10f, 0.10f, 0.11f, 0.55f};  // black coating
 constexpr std::array<float, 4> kSteelMaterial{0.66f, 0.68f, 0.72f, 0.95f};  // polished steel
+constexpr std::array<float, 4> kClipMaterial{0.78f, 0.76f, 0.70f, 0.9f};    // titanium
 constexpr std::array<float, 4> kGuideMaterial{0.45f, 0.18f, 0.78f, 0.2f};   // marker violet
 
 std::uint32_t add_vertex(ToolMesh& m, const V3& p, const V3& n, const std::array<float, 4>& mat) {
@@ -109,6 +113,23 @@ void add_shaft(ToolMesh& m, const V3& a, const V3& b, const V3& side, const V3& 
   }
 }
 
+// A box: centre c, half extents along the orthonormal axes a, b, d.
+void add_box(ToolMesh& m, const V3& c, const V3& a, const V3& b, const V3& d, float ha, float hb,
+             float hd, const std::array<float, 4>& mat) {
+  for (int s = -1; s <= 1; s += 2) {
+    const float f = static_cast<float>(s);
+    for (const auto& [n, u, v, hn, hu, hv] :
+         {std::tuple{a, b, d, ha, hb, hd}, std::tuple{b, d, a, hb, hd, ha},
+          std::tuple{d, a, b, hd, ha, hb}}) {
+      const V3 fc = c + f * hn * n;
+      add_quad(
+          m,
+          {fc - hu * u - hv * v, fc + hu * u - hv * v, fc + hu * u + hv * v, fc - hu * u + hv * v},
+          c, mat);
+    }
+  }
+}
+
 }  // namespace
 
 void append_guide_mesh(const std::vector<std::array<float, 3>>& line, ToolMesh& out) {
@@ -119,6 +140,25 @@ void append_guide_mesh(const std::vector<std::array<float, 3>>& line, ToolMesh& 
     const V3 side = axis.unitOrthogonal();
     add_shaft(out, a, b, side, axis.cross(side), kGuideRadius, 12, kGuideMaterial);
   }
+}
+
+void append_clip_mesh(const RenderClip& clip, ToolMesh& out) {
+  const V3 a = vec(clip.start), b = vec(clip.end);
+  if (!((b - a).norm() > 1e-9f)) return;
+  const V3 along = (b - a).normalized();
+  V3 across = vec(clip.across) - vec(clip.across).dot(along) * along;
+  if (!(across.norm() > 1e-6f)) across = along.unitOrthogonal();
+  across.normalize();
+  const V3 pin = along.cross(across);
+  const float half_len = 0.5f * (b - a).norm();
+  const float hw = static_cast<float>(kClipHalfWidth);
+  const float ht = 0.5f * kClipLegThickness;
+  const float leg = static_cast<float>(0.5 * kClipGap) + ht;  // legs' centres off the line
+  const V3 mid = 0.5f * (a + b);
+  for (int s = -1; s <= 1; s += 2)
+    add_box(out, mid + static_cast<float>(s) * leg * across, along, pin, across, half_len, hw, ht,
+            kClipMaterial);
+  add_box(out, b + ht * along, along, pin, across, ht, hw, leg + ht, kClipMaterial);  // the crown
 }
 
 void ToolMesh::clear() {

@@ -51,6 +51,12 @@ struct ToolFrame {
 /// other; grasper jaws are wider and meet on the axis when closed.
 void append_tool_mesh(const RenderTool& tool, ToolMesh& out, const ToolDimensions& dims = {});
 
+/// Thickness of a clip's legs across the clip, m.
+inline constexpr float kClipLegThickness = 3e-4f;
+/// Appends a placed clip: two titanium legs along its centre line, one each side of the pressed
+/// tissue (kClipGap apart, engine/clip.h), joined at the far end.
+void append_clip_mesh(const RenderClip& clip, ToolMesh& out);
+
 /// Radius of the guide's marker tube, m.
 inline constexpr float kGuideRadius = 4e-4f;
 /// Appends the guide polyline (m) as a tube of kGuideRadius, violet like a surgical skin marker.

@@ -95,7 +95,8 @@ TEST(SceneNames, EnumsRoundTrip) {
   for (const auto k : {SolverKind::kPcg, SolverKind::kCholmod, SolverKind::kPcgCholmod}) {
     EXPECT_EQ(solver_kind_from_name(solver_kind_name(k)), k);
   }
-  for (const auto k : {ToolKind::kScissors, ToolKind::kGrasper, ToolKind::kEndoscope}) {
+  for (const auto k :
+       {ToolKind::kScissors, ToolKind::kGrasper, ToolKind::kEndoscope, ToolKind::kClipApplier}) {
     EXPECT_EQ(tool_kind_from_name(tool_kind_name(k)), k);
   }
   for (const auto k : {DeviceKind::kRig, DeviceKind::kRigEmulated, DeviceKind::kMouse}) {
@@ -155,7 +156,7 @@ TEST_F(SceneTest, ReadsEveryKey) {
 [scene]
 dt = 0.002
 gravity = [0, 0, -9.81]
-effects = ["record", "fem", "gravity", "plasticity", "cutting", "surface", "contact", "render", "haptics"]
+effects = ["record", "fem", "gravity", "plasticity", "cutting", "clips", "surface", "contact", "render", "haptics"]
 
 [[organ]]
 name = "appendix"
@@ -581,6 +582,22 @@ TEST_F(SceneTest, EffectDependencies) {
                "\"contact\" needs effect \"fem\"");
   expect_error("[scene]\neffects = [\"render\"]\n" + kOrgan, 2, "scene.effects",
                "\"render\" needs effect \"surface\"");
+  expect_error("[scene]\neffects = [\"fem\", \"surface\", \"clips\"]\n" + kOrgan, 2,
+               "scene.effects", "\"clips\" needs effect \"contact\"");
+}
+
+TEST_F(SceneTest, AClipApplierNeedsTheClipsEffect) {
+  const std::string applier =
+      "[[tool]]\nname = \"clipper\"\nkind = \"clip-applier\"\ndevice = \"mouse\"\n";
+  expect_error("[scene]\neffects = [\"fem\", \"surface\", \"contact\"]\n" + kOrgan + applier, 8,
+               "tool[0].kind", "effect \"clips\" is not listed");
+  const Scene s = parse("[scene]\neffects = [\"fem\", \"surface\", \"contact\", \"clips\"]\n" +
+                        kOrgan + applier);
+  ASSERT_EQ(s.tools.size(), 1u);
+  EXPECT_EQ(s.tools[0].kind, ToolKind::kClipApplier);
+  EXPECT_TRUE(s.settings.has(Effect::kClips));
+  expect_error(kOrgan + "[[tool]]\nname = \"c\"\nkind = \"clipper\"\ndevice = \"mouse\"\n", 6,
+               "tool[0].kind", "clip-applier");
 }
 
 TEST_F(SceneTest, HapticsNeedsADeviceTool) {

@@ -1,0 +1,223 @@
+#include "contact/clip_stage.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/geometry/rigid_fit.h"
+#include "engine/sim_state.h"
+#include "engine/state_codec.h"
+#include "engine/tool_geometry.h"
+
+namespace serosa::contact {
+namespace {
+
+void write_vec3(StateWriter& out, const Vec3& v) {
+  for (int k = 0; k < 3; ++k) out.f64(v(k));
+}
+Vec3 read_vec3(StateReader& in) {
+  Vec3 v;
+  for (int k = 0; k < 3; ++k) v(k) = in.f64();
+  return v;
+}
+
+}  // namespace
+
+ClipStage::ClipStage(const Scene& scene) {
+  for (const Tool& t : scene.tools) m_applier.push_back(t.kind == ToolKind::kClipApplier);
+  m_widest.assign(scene.tools.size(), 0.0);
+  m_dropped.assign(scene.tools.size(), 0);
+}
+
+void ClipStage::step(const StepContext& ctx, SimState& state) {
+  clamp_clones(state);
+  for (std::size_t i = 0; i < m_applier.size() && i < state.tools.size(); ++i) {
+    if (!m_applier[i]) continue;
+    const ToolState& ts = state.tools[i];
+    m_widest[i] = std::max(m_widest[i], ts.jaw_rad);
+    if (ts.jaw_rad <= kClipCloseRad && m_widest[i] >= kClipArmRad) {
+      place(ctx, state, i, ts);
+      m_widest[i] = ts.jaw_rad;  // the next clip needs the jaws opened again
+    }
+  }
+  for (Placed& p : m_clips) {
+    const double age = ctx.time_s - p.clip.placed_s;
+    carry(p, state, age);
+    hold(p, state, age);
+  }
+  if (!m_clips.empty()) state.handoff.nodes_moved = true;  // the clips' work, not the solve's
+  publish(state);
+}
+
+void ClipStage::place(const StepContext& ctx, SimState& state, std::size_t tool,
+                      const ToolState& ts) {
+  const ToolFrame f = tool_frame(ts);
+  Placed p;
+  p.clip.hinge_m = f.hinge;
+  p.clip.frame.col(0) = f.side;
+  p.clip.frame.col(1) = f.pin;
+  p.clip.frame.col(2) = f.forward;
+  p.clip.tool = tool;
+  p.clip.placed_s = ctx.time_s;
+  const Mat3 rt = p.clip.frame.transpose();
+  const double tan_half = std::tan(0.5 * std::min(m_widest[tool], 3.0));
+  TetMesh& mesh = state.mesh;
+  double widest = 0.0;  // the clamped tissue's half thickness across the clip, m
+  for (std::int32_t n = 0; n < mesh.num_nodes(); ++n) {
+    const auto un = static_cast<std::size_t>(n);
+    if (mesh.fixed[un] != 0) continue;           // the scene's, a grasper's or another clip's
+    const Vec3 l = rt * (mesh.x[un] - f.hinge);  // (across, pin, along)
+    if (l.z() < kClipStart || l.z() > kClipStart + kClipLength) continue;
+    if (std::abs(l.y()) > kClipHalfWidth) continue;
+    if (std::abs(l.x()) > l.z() * tan_half) continue;
+    p.nodes.push_back(n);
+    p.local.push_back(l);
+    widest = std::max(widest, std::abs(l.x()));
+  }
+  if (p.nodes.empty()) {
+    ++m_dropped[tool];
+    return;
+  }
+  p.press = widest > 0.5 * kClipGap ? 0.5 * kClipGap / widest : 1.0;
+  std::vector<std::uint8_t> role(static_cast<std::size_t>(mesh.num_nodes()), 0);  // 1 clamped
+  for (std::int32_t n : p.nodes) role[static_cast<std::size_t>(n)] = 1;
+  std::vector<int> groups;
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    const Tet& tet = mesh.tets[t];
+    if (std::none_of(tet.begin(), tet.end(),
+                     [&](std::int32_t n) { return role[static_cast<std::size_t>(n)] == 1; }))
+      continue;
+    groups.push_back(mesh.group[t]);
+    for (std::int32_t n : tet) {
+      const auto un = static_cast<std::size_t>(n);
+      if (role[un] != 0 || mesh.fixed[un] != 0) continue;
+      role[un] = 2;
+      p.anchors.push_back(n);
+    }
+  }
+  std::sort(groups.begin(), groups.end());
+  groups.erase(std::unique(groups.begin(), groups.end()), groups.end());
+  std::sort(p.anchors.begin(), p.anchors.end());
+  p.clip.groups = std::move(groups);
+  p.clip.nodes = p.nodes.size();
+  m_clips.push_back(std::move(p));
+}
+
+// A cut of the last step may have cloned a clamped node (the clone takes the tets on one side):
+// it is held where its original is.
+void ClipStage::clamp_clones(const SimState& state) {
+  if (state.handoff.cuts.empty() || m_clips.empty()) return;
+  std::int64_t added = 0;
+  for (const CutEvent& c : state.handoff.cuts)
+    added += static_cast<std::int64_t>(c.delta.added_nodes.size());
+  std::int64_t first_new = state.mesh.num_nodes() - added;  // id of the first cut's first node
+  for (const CutEvent& c : state.handoff.cuts) {
+    for (std::size_t k = 0; k < c.delta.added_nodes.size(); ++k) {
+      const NodeParent& parent = c.delta.added_nodes[k];
+      if (parent.count != 1) continue;
+      for (Placed& p : m_clips) {
+        const auto it = std::find(p.nodes.begin(), p.nodes.end(), parent.nodes[0]);
+        if (it == p.nodes.end()) continue;
+        const Vec3 l = p.local[static_cast<std::size_t>(it - p.nodes.begin())];
+        p.nodes.push_back(static_cast<std::int32_t>(first_new + static_cast<std::int64_t>(k)));
+        p.local.push_back(l);
+        p.clip.nodes = p.nodes.size();
+        break;
+      }
+    }
+    first_new += static_cast<std::int64_t>(c.delta.added_nodes.size());
+  }
+}
+
+void ClipStage::carry(Placed& p, const SimState& state, double age_s) {
+  const std::vector<Vec3>& x = state.mesh.x;
+  if (age_s < kClipSettleS) return;  // held where it closed while the legs press
+  if (!p.settled) {                  // from now on the anchors carry it
+    p.anchor_ref.clear();
+    for (std::int32_t n : p.anchors) p.anchor_ref.push_back(x[static_cast<std::size_t>(n)]);
+    p.ref_hinge = p.clip.hinge_m;
+    p.ref_frame = p.clip.frame;
+    p.settled = true;
+    return;
+  }
+  if (p.anchors.empty()) return;
+  m_to.clear();
+  for (std::int32_t n : p.anchors) m_to.push_back(x[static_cast<std::size_t>(n)]);
+  const geometry::RigidMotion m = geometry::fit_rigid_motion(p.anchor_ref, m_to);
+  p.clip.frame = m.rotation * p.ref_frame;
+  p.clip.hinge_m = m.rotation * p.ref_hinge + m.translation;
+}
+
+void ClipStage::hold(Placed& p, SimState& state, double age_s) const {
+  TetMesh& mesh = state.mesh;
+  const double scale = 1.0 + (p.press - 1.0) * std::clamp(age_s / kClipSqueezeS, 0.0, 1.0);
+  for (std::size_t k = 0; k < p.nodes.size(); ++k) {
+    const auto un = static_cast<std::size_t>(p.nodes[k]);
+    if (un >= mesh.x.size()) continue;
+    const Vec3 l(p.local[k].x() * scale, p.local[k].y(), p.local[k].z());
+    mesh.x[un] = p.clip.hinge_m + p.clip.frame * l;
+    mesh.v[un].setZero();  // at rest in the step, as a grasper's held nodes
+    mesh.fixed[un] = 1;
+  }
+}
+
+void ClipStage::publish(SimState& state) const {
+  state.handoff.clips.resize(m_clips.size());
+  for (std::size_t i = 0; i < m_clips.size(); ++i) state.handoff.clips[i] = m_clips[i].clip;
+}
+
+void ClipStage::save(StateWriter& out) const {
+  out.array(m_widest);
+  out.array(m_dropped);
+  out.u32(static_cast<std::uint32_t>(m_clips.size()));
+  for (const Placed& p : m_clips) {
+    write_vec3(out, p.clip.hinge_m);
+    for (int c = 0; c < 3; ++c) write_vec3(out, p.clip.frame.col(c));
+    out.u64(p.clip.tool);
+    out.f64(p.clip.placed_s);
+    out.array(p.clip.groups);
+    out.array(p.nodes);
+    out.array(p.local);
+    out.f64(p.press);
+    out.array(p.anchors);
+    out.array(p.anchor_ref);
+    write_vec3(out, p.ref_hinge);
+    for (int c = 0; c < 3; ++c) write_vec3(out, p.ref_frame.col(c));
+    out.u8(p.settled ? 1 : 0);
+  }
+}
+
+void ClipStage::restore(StateReader& in, SimState& state) {
+  in.array(m_widest);
+  in.array(m_dropped);
+  if (m_widest.size() != m_applier.size() || m_dropped.size() != m_applier.size())
+    in.fail("another number of tools than the scene's");
+  const std::uint32_t count = in.u32();
+  m_clips.clear();
+  for (std::uint32_t i = 0; i < count; ++i) {
+    Placed p;
+    p.clip.hinge_m = read_vec3(in);
+    for (int c = 0; c < 3; ++c) p.clip.frame.col(c) = read_vec3(in);
+    p.clip.tool = static_cast<std::size_t>(in.u64());
+    p.clip.placed_s = in.f64();
+    in.array(p.clip.groups);
+    in.array(p.nodes);
+    in.array(p.local);
+    p.press = in.f64();
+    in.array(p.anchors);
+    in.array(p.anchor_ref);
+    p.ref_hinge = read_vec3(in);
+    for (int c = 0; c < 3; ++c) p.ref_frame.col(c) = read_vec3(in);
+    p.settled = in.u8() != 0;
+    if (p.local.size() != p.nodes.size() ||
+        (p.settled && p.anchor_ref.size() != p.anchors.size()) || p.clip.tool >= m_applier.size())
+      in.fail("a clip's arrays disagree in size");
+    for (const std::vector<std::int32_t>* ids : {&p.nodes, &p.anchors})
+      for (std::int32_t n : *ids)
+        if (n < 0 || n >= state.mesh.num_nodes()) in.fail("a clip holds a node out of range");
+    p.clip.nodes = p.nodes.size();
+    m_clips.push_back(std::move(p));
+  }
+  publish(state);
+}
+
+}  // namespace serosa::contact

@@ -1,0 +1,78 @@
+// The "clips" stage (contact slot, after the tools touched): clip appliers place ligation clips
+// (engine/clip.h), which then hold the tissue they close on wherever that tissue goes.
+//
+// - Placing: an applier that opened past kClipArmRad and closes to kClipCloseRad places a clip
+//   in its jaws, over [kClipStart, kClipStart + kClipLength] beyond the hinge. It clamps every
+//   node (surface and interior: a vessel is closed through) within kClipHalfWidth of the jaw
+//   plane and inside the wedge of the opening it closed from. A clip that closes on no tissue
+//   falls away: it is counted, not placed.
+// - Clamping: each clamped node is held (a Dirichlet node, like a grasper's) at its place in the
+//   clip's frame, pressed across the clip over kClipSqueezeS until the tissue between the legs
+//   is kClipGap thick.
+// - Carried by the tissue: from kClipSettleS on, the clip's frame follows the rigid motion that
+//   best carries its anchors (the free nodes sharing a tet with a clamped node) from where they
+//   were then to where they are now (engine/geometry/rigid_fit.h). A rigid motion of the tissue
+//   moves the clip with it exactly; traction on the tissue drags it along.
+// - A cut's clone of a clamped node is clamped too (closing scissors never cut through a clip:
+//   the cutting stage reads the clips in the hand-off).
+// Every placed clip is handed on each step (SimState::handoff.clips) for the cutting stage, the
+// renderer and the metrics.
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "engine/clip.h"
+#include "engine/math.h"
+#include "engine/scene.h"
+#include "engine/stage.h"
+#include "engine/tool_state.h"
+
+namespace serosa::contact {
+
+inline constexpr double kClipArmRad = 0.3;     ///< the jaws must open this wide first, rad
+inline constexpr double kClipCloseRad = 0.05;  ///< closed this far, the clip is placed, rad
+inline constexpr double kClipSqueezeS = 0.05;  ///< time the legs take to press the tissue, s
+inline constexpr double kClipSettleS = 0.1;    ///< after this the tissue carries the clip, s
+
+class ClipStage final : public Stage {
+ public:
+  explicit ClipStage(const Scene& scene);
+
+  [[nodiscard]] std::string_view name() const noexcept override { return "clips"; }
+  void step(const StepContext& ctx, SimState& state) override;
+  /// The appliers' openings, the clips and what each clamps (the hand-off's clips are rebuilt).
+  void save(StateWriter& out) const override;
+  void restore(StateReader& in, SimState& state) override;
+
+  /// Clips closed on no tissue, per applier (scene tool order; 0 for other tools).
+  [[nodiscard]] const std::vector<std::int64_t>& dropped() const noexcept { return m_dropped; }
+
+ private:
+  struct Placed {
+    Clip clip;                          // as handed on
+    std::vector<std::int32_t> nodes;    // (c) clamped node ids
+    std::vector<Vec3> local;            // (c) where each was in the clip's frame at placing, m
+    double press = 1.0;                 // the across-coordinate's final scale, (0, 1]
+    std::vector<std::int32_t> anchors;  // (a) free nodes sharing a tet with a clamped node
+    std::vector<Vec3> anchor_ref;       // (a) their positions when the clip settled, m
+    Vec3 ref_hinge = Vec3::Zero();      // the clip's hinge then, m
+    Mat3 ref_frame = Mat3::Identity();  // and its frame
+    bool settled = false;
+  };
+
+  void place(const StepContext& ctx, SimState& state, std::size_t tool, const ToolState& ts);
+  void clamp_clones(const SimState& state);
+  void carry(Placed& p, const SimState& state, double age_s);
+  void hold(Placed& p, SimState& state, double age_s) const;
+  void publish(SimState& state) const;
+
+  std::vector<bool> m_applier;          // (tools) a clip applier
+  std::vector<double> m_widest;         // (tools) widest opening since its last clip, rad
+  std::vector<std::int64_t> m_dropped;  // (tools)
+  std::vector<Placed> m_clips;          // in the order placed
+  std::vector<Vec3> m_from, m_to;       // scratch for the fit
+};
+
+}  // namespace serosa::contact
