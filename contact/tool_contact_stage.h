@@ -5,7 +5,8 @@
 //   tips, radius kJawRadius) are capsules; a surface node inside one is pushed out along the
 //   shortest way by a penalty force k * depth, capped at beta * m / dt^2 * depth so that the
 //   explicit force cannot overshoot the implicit step. Forces go to FEM as external forces.
-//   Scissor blades do not push: closing, they cut (cutting stage).
+//   Scissor blades do not push: closing, they cut (cutting stage); nor do a clip applier's jaws:
+//   its clip takes what lies between them (contact/clip_stage.h).
 // - Grasping: when a grasper's jaws close past kGraspCloseRad, the surface nodes between its jaws
 //   (inside the wedge of its widest opening since it last let go, within kGraspHalfWidth of the
 //   jaw plane) are grabbed: held to the jaws through an infinitely stiff spring (Dirichlet nodes
