@@ -129,8 +129,10 @@ Composition compose(const Scene& scene, const AssembledScene& assembled, Compose
   if (listed(Effect::kSurface) || listed(Effect::kContact))
     surface_stage = std::make_unique<SurfaceStage>(assembled.state.mesh);
   std::unique_ptr<CuttingStage> cutting_stage;
-  if (listed(Effect::kCutting)) {
+  if (listed(Effect::kCutting) || listed(Effect::kCautery)) {  // scissors and hooks divide
     CuttingStageOptions co;
+    co.scissors = listed(Effect::kCutting);
+    co.hooks = listed(Effect::kCautery);
     co.validate = options.validate_cuts || kCheckEveryCutByDefault;  // always in debug builds
     cutting_stage = std::make_unique<CuttingStage>(scene, co);
   }
@@ -201,7 +203,8 @@ Composition compose(const Scene& scene, const AssembledScene& assembled, Compose
   if (cutting_stage) {
     c.cutting = cutting_stage.get();
     c.runner->add(Slot::cutting, std::move(cutting_stage));
-    c.built.push_back(Effect::kCutting);
+    if (listed(Effect::kCutting)) c.built.push_back(Effect::kCutting);
+    if (listed(Effect::kCautery)) c.built.push_back(Effect::kCautery);
   }
   if (surface_stage) {
     c.surface = surface_stage.get();

@@ -30,7 +30,8 @@ FramePictures::FramePictures(std::filesystem::path dir, const Scene& scene, cons
 FramePictures::~FramePictures() = default;
 
 const render::RenderFrame& FramePictures::frame(const SimState& state) {
-  fill_render_frame(state.mesh, m_drawn.of(state), m_names, /*with_edges=*/true, m_frame);
+  fill_render_frame(state.mesh, m_drawn.of(state), m_names, /*with_edges=*/true, m_frame,
+                    &state.handoff.coagulated, state.handoff.coagulated_version);
   fill_render_tools(m_scene, state, m_frame);
   if (auto scope = m_endoscope ? endoscope_view(m_scene, state) : std::nullopt) {
     m_frame.camera = *scope;

@@ -142,7 +142,9 @@ Json cutting_json(const Composition& comp) {
          {"tets_added", c.tets_added},
          {"nodes_added", c.nodes_added},
          {"degenerate_tets", c.degenerate_tets},
-         {"strokes_on_clip", c.strokes_on_clip}};
+         {"strokes_on_clip", c.strokes_on_clip},
+         {"hook_strokes", c.hook_strokes},
+         {"coagulated_nodes", c.coagulated_nodes}};
     Json strokes = Json::array();
     for (const cutting::StrokeReport& r : c.stroke_reports)
       strokes.push_back({{"first_step", r.first_step},

@@ -47,11 +47,23 @@ void tet_edges(const TetMesh& mesh, std::vector<std::uint32_t>& out) {
 
 void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
                        const std::map<int, std::string>& group_names, bool with_edges,
-                       render::RenderFrame& frame) {
+                       render::RenderFrame& frame, const std::vector<std::uint8_t>* coagulated,
+                       std::uint64_t coagulated_version) {
   const std::size_t f = surface.faces.size();
   // Wound flags: from the surface when it has them (sized like its faces).
   std::vector<std::uint8_t> cut = surface.face_cut;
   if (cut.size() != f) cut.assign(f, 0);
+  std::vector<std::uint8_t> marks = cut;  // the wound, and where a hook coagulated
+  if (coagulated != nullptr && !coagulated->empty()) {
+    const auto marked = [&](std::int32_t n) {
+      return n >= 0 && static_cast<std::size_t>(n) < coagulated->size() &&
+             (*coagulated)[static_cast<std::size_t>(n)] != 0;
+    };
+    for (std::size_t i = 0; i < f; ++i)
+      if (marked(surface.faces[i][0]) && marked(surface.faces[i][1]) && marked(surface.faces[i][2]))
+        marks[i] = 2;
+  }
+  frame.material_version = coagulated_version;
 
   // Render vertices with split normals (the surface module's rule needs sized flags).
   surface::SurfaceMesh flagged;
@@ -83,7 +95,7 @@ void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
       frame.tri[3 * i + k] =
           static_cast<std::uint32_t>(n + static_cast<std::size_t>(rv.tris[i][k]));
   frame.tri_group = surface.face_group;
-  frame.tri_cut = std::move(cut);
+  frame.tri_cut = std::move(marks);
 
   // Tet edges change only with the topology: keep them across frames otherwise.
   const bool edges_stale =
@@ -125,6 +137,7 @@ void fill_render_tools(const Scene& scene, const SimState& state, render::Render
     render::RenderTool t;
     t.kind = tool.kind == ToolKind::kScissors      ? render::RenderTool::Kind::kScissors
              : tool.kind == ToolKind::kClipApplier ? render::RenderTool::Kind::kClipApplier
+             : tool.kind == ToolKind::kHook        ? render::RenderTool::Kind::kHook
                                                    : render::RenderTool::Kind::kGrasper;
     t.tip = to_float(in.tip_m);
     t.quat_wxyz = to_float(in.quat_wxyz);

@@ -203,7 +203,8 @@ class SolverLoop {
       ++m_cuts;
     }
     render::RenderFrame& f = m_frames.back();
-    fill_render_frame(m_state.mesh, m_drawn->of(m_state), m_names, true, f);
+    fill_render_frame(m_state.mesh, m_drawn->of(m_state), m_names, true, f,
+                      &m_state.handoff.coagulated, m_state.handoff.coagulated_version);
     fill_render_tools(m_scene, m_state, f);
     std::optional<render::Camera> cam = endoscope_view(m_scene, m_state);
     if (!cam) {
@@ -540,7 +541,8 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
     }
 
     const SimState& state = replay.state();
-    fill_render_frame(state.mesh, drawn.of(state), names, true, frame);
+    fill_render_frame(state.mesh, drawn.of(state), names, true, frame, &state.handoff.coagulated,
+                      state.handoff.coagulated_version);
     fill_render_tools(scene, state, frame);
     const int w = window.width();
     const int h = window.height();

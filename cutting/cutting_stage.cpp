@@ -8,6 +8,7 @@
 #include "cutting/cut_method.h"
 #include "cutting/tet_bvh.h"
 #include "cutting/validate.h"
+#include "engine/hook.h"
 #include "engine/sim_state.h"
 #include "engine/state_codec.h"
 #include "engine/tool_geometry.h"
@@ -15,9 +16,12 @@
 namespace serosa::cutting {
 
 CuttingStage::CuttingStage(const Scene& scene, CuttingStageOptions options) : m_options(options) {
-  for (std::size_t i = 0; i < scene.tools.size(); ++i)
-    if (scene.tools[i].kind == ToolKind::kScissors)
+  for (std::size_t i = 0; i < scene.tools.size(); ++i) {
+    if (options.scissors && scene.tools[i].kind == ToolKind::kScissors)
       m_scissors.push_back(Scissors{i, std::nullopt, std::nullopt, std::nullopt, 0});
+    if (options.hooks && scene.tools[i].kind == ToolKind::kHook)
+      m_hooks.push_back(Hook{i, std::nullopt, std::nullopt, 0});
+  }
   m_cut_options.classify_rel = scene.cutting.tolerance;
   switch (scene.cutting.method) {
     case serosa::CutMethod::kPattern:
@@ -44,7 +48,8 @@ double hinge_distance(const ToolState& a, const ToolState& b) {
 
 void CuttingStage::step(const StepContext& ctx, SimState& state) {
   state.handoff.cuts.clear();  // the FEM stage of this step has taken the last step's
-  if (!m_scissors.empty()) cutting::reserve_for_cuts(state.mesh);  // no realloc in the first cut
+  if (!m_scissors.empty() || !m_hooks.empty())
+    cutting::reserve_for_cuts(state.mesh);  // no realloc in the first cut
   for (Scissors& s : m_scissors) {
     if (s.tool >= state.tools.size()) continue;
     const ToolState now = state.tools[s.tool];
@@ -52,6 +57,117 @@ void CuttingStage::step(const StepContext& ctx, SimState& state) {
     s.before = now;
     if (before) follow(ctx, state, s, *before, now);
   }
+  if (m_hooks.empty()) return;
+  m_coagulated.resize(static_cast<std::size_t>(state.mesh.num_nodes()), 0);
+  for (Hook& h : m_hooks)
+    if (h.tool < state.tools.size()) follow_hook(ctx, state, h, state.tools[h.tool]);
+  inherit_coagulation(state, 0);
+  state.handoff.coagulated = m_coagulated;  // (no allocation once it has its size)
+  state.handoff.coagulated_version = m_coagulated_version;
+}
+
+void CuttingStage::follow_hook(const StepContext& ctx, SimState& state, Hook& h,
+                               const ToolState& now) {
+  const std::optional<ToolState> before = h.before;
+  h.before = now;
+  if (!pedal_down(now)) {  // the current is off: the path it burnt through opens
+    if (!h.stroke) return;
+    ToolState end = now;
+    end.jaw_rad = 0.0;  // one region over every sample
+    const StrokePolygons polys = h.stroke->polygons(state.mesh, end, kStrokeClosedRad);
+    StrokeReport report;
+    report.first_step = h.first_step;
+    report.last_step = ctx.step;
+    report.steps = h.stroke->steps();
+    report.polygons = polys.polygons.size();
+    report.deviation_m = polys.deviation_m;
+    h.stroke.reset();
+    ++m_stats.strokes;
+    ++m_stats.hook_strokes;
+    if (polys.polygons.empty()) ++m_stats.degenerate_sweeps;
+    const std::size_t first_cut = state.handoff.cuts.size();
+    cut_stroke(ctx, state, h.tool, polys, report);
+    coagulate_cut(state, first_cut);  // what the current divided it also dried
+    return;
+  }
+  const HookSegment seg = hook_segment(now);
+  coagulate(ctx, state, seg.a, seg.b);
+  if (!before || !pedal_down(*before)) return;  // the stroke starts with the next step
+  refresh_bvh(ctx, state.mesh);
+  if (!h.stroke) {
+    h.stroke.emplace(*before, state.mesh.topology_version);
+    h.first_step = ctx.step;
+    const HookSegment s0 = hook_segment(*before);
+    h.stroke->add_segment(s0.a, s0.b, state.mesh, *m_bvh);
+  }
+  // Samples along the way, close enough that their hull is the path the crook swept.
+  const HookSegment s0 = hook_segment(*before);
+  const double travel = std::max((seg.a - s0.a).norm(), (seg.b - s0.b).norm());
+  const double steps = std::ceil(travel / kHookSampleStep);
+  const int n = std::isfinite(steps) ? std::clamp(static_cast<int>(steps), 1, 64) : 1;
+  for (int j = 1; j <= n; ++j) {
+    const HookSegment sj =
+        hook_segment(interpolate(*before, now, static_cast<double>(j) / static_cast<double>(n)));
+    h.stroke->add_segment(sj.a, sj.b, state.mesh, *m_bvh);
+  }
+  h.stroke->count_step();
+}
+
+void CuttingStage::coagulate(const StepContext& ctx, const SimState& state, const Vec3& a,
+                             const Vec3& b) {
+  refresh_bvh(ctx, state.mesh);
+  const Vec3 r = Vec3::Constant(kCoagulationRadius);
+  m_near.clear();
+  m_bvh->query(a.cwiseMin(b) - r, a.cwiseMax(b) + r, m_near);
+  std::vector<std::uint8_t>& marks = m_coagulated;
+  marks.resize(static_cast<std::size_t>(state.mesh.num_nodes()), 0);  // after a cut this step
+  bool added = false;
+  for (std::int32_t t : m_near)
+    for (std::int32_t n : state.mesh.tets[static_cast<std::size_t>(t)]) {
+      const auto un = static_cast<std::size_t>(n);
+      if (marks[un] != 0 || distance_to_segment(state.mesh.x[un], a, b) > kCoagulationRadius)
+        continue;
+      marks[un] = 1;
+      ++m_stats.coagulated_nodes;
+      added = true;
+    }
+  if (added) ++m_coagulated_version;
+}
+
+void CuttingStage::coagulate_cut(const SimState& state, std::size_t first_cut) {
+  m_coagulated.resize(static_cast<std::size_t>(state.mesh.num_nodes()), 0);
+  std::size_t added = 0;
+  for (std::size_t c = first_cut; c < state.handoff.cuts.size(); ++c)
+    added += state.handoff.cuts[c].delta.added_nodes.size();
+  for (std::size_t n = m_coagulated.size() - added; n < m_coagulated.size(); ++n)
+    if (m_coagulated[n] == 0) {
+      m_coagulated[n] = 1;
+      ++m_stats.coagulated_nodes;
+    }
+  if (added > 0) ++m_coagulated_version;
+}
+
+// New nodes are numbered after the old ones, cut by cut: each takes a mark if a parent has one.
+void CuttingStage::inherit_coagulation(const SimState& state, std::size_t first_cut) {
+  std::vector<std::uint8_t>& marks = m_coagulated;
+  marks.resize(static_cast<std::size_t>(state.mesh.num_nodes()), 0);
+  std::size_t added = 0;
+  for (std::size_t c = first_cut; c < state.handoff.cuts.size(); ++c)
+    added += state.handoff.cuts[c].delta.added_nodes.size();
+  std::size_t next = marks.size() - added;
+  bool changed = false;
+  for (std::size_t c = first_cut; c < state.handoff.cuts.size(); ++c)
+    for (const NodeParent& p : state.handoff.cuts[c].delta.added_nodes) {
+      for (int k = 0; k < p.count && marks[next] == 0; ++k)
+        if (marks[static_cast<std::size_t>(p.nodes[static_cast<std::size_t>(k)])] != 0) {
+          marks[next] = 1;
+          ++m_stats.coagulated_nodes;
+          changed = true;
+          break;
+        }
+      ++next;
+    }
+  if (changed) ++m_coagulated_version;
 }
 
 void CuttingStage::follow(const StepContext& ctx, SimState& state, Scissors& s,
@@ -96,18 +212,22 @@ void CuttingStage::end_stroke(const StepContext& ctx, SimState& state, Scissors&
   s.paused.reset();
   ++m_stats.strokes;
   if (cut_with_these.polygons.empty()) ++m_stats.degenerate_sweeps;
+  cut_stroke(ctx, state, s.tool, cut_with_these, report);
+}
+
+void CuttingStage::cut_stroke(const StepContext& ctx, SimState& state, std::size_t tool,
+                              const StrokePolygons& polygons, StrokeReport& report) {
   // Blades that closed on a clip met titanium: the tissue they hold is not divided.
   report.on_clip = std::any_of(
-      cut_with_these.polygons.begin(), cut_with_these.polygons.end(),
+      polygons.polygons.begin(), polygons.polygons.end(),
       [&](const ConvexPolygon& p) { return polygon_meets_clips(p, state.handoff.clips); });
   if (report.on_clip) {
     ++m_stats.strokes_on_clip;
-    if (m_stats.stroke_reports.size() < kMaxStrokeReports) m_stats.stroke_reports.push_back(report);
-    return;
-  }
-  for (std::size_t k = 0; k < cut_with_these.polygons.size(); ++k) {
-    ++m_stats.sweeps;
-    cut(ctx, state, s.tool, cut_with_these.blades[k], cut_with_these.polygons[k], report);
+  } else {
+    for (std::size_t k = 0; k < polygons.polygons.size(); ++k) {
+      ++m_stats.sweeps;
+      cut(ctx, state, tool, polygons.blades[k], polygons.polygons[k], report);
+    }
   }
   if (m_stats.stroke_reports.size() < kMaxStrokeReports) m_stats.stroke_reports.push_back(report);
 }
@@ -211,9 +331,18 @@ void CuttingStage::save(StateWriter& out) const {
     out.u8(s.stroke ? 1 : 0);
     if (s.stroke) s.stroke->save(out);
   }
+  if (m_hooks.empty()) return;  // (a scene without hooks keeps the block it always had)
+  for (const Hook& h : m_hooks) {
+    write_pose(out, h.before);
+    out.u64(h.first_step);
+    out.u8(h.stroke ? 1 : 0);
+    if (h.stroke) h.stroke->save(out);
+  }
+  out.array(m_coagulated);
+  out.u64(m_coagulated_version);
 }
 
-void CuttingStage::restore(StateReader& in, SimState& /*state*/) {
+void CuttingStage::restore(StateReader& in, SimState& state) {
   if (in.u32() != m_scissors.size()) in.fail("another number of scissors than the scene's");
   for (Scissors& s : m_scissors) {
     s.before = read_pose(in);
@@ -221,6 +350,20 @@ void CuttingStage::restore(StateReader& in, SimState& /*state*/) {
     s.first_step = in.u64();
     s.stroke.reset();
     if (in.u8() != 0) s.stroke = ScissorsStroke::load(in);
+  }
+  if (!m_hooks.empty()) {
+    for (Hook& h : m_hooks) {
+      h.before = read_pose(in);
+      h.first_step = in.u64();
+      h.stroke.reset();
+      if (in.u8() != 0) h.stroke = ScissorsStroke::load(in);
+    }
+    in.array(m_coagulated);
+    m_coagulated_version = in.u64();
+    if (m_coagulated.size() > static_cast<std::size_t>(state.mesh.num_nodes()))
+      in.fail("coagulation marks for more nodes than the mesh has");
+    state.handoff.coagulated = m_coagulated;
+    state.handoff.coagulated_version = m_coagulated_version;
   }
   m_bvh.reset();  // candidates are sorted: a fresh tree finds the same ones
 }

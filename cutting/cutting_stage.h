@@ -68,7 +68,16 @@ inline constexpr bool kCheckEveryCutByDefault = false;
 inline constexpr bool kCheckEveryCutByDefault = true;  ///< debug builds check every cut
 #endif
 
+/// A hook's stroke samples its crook at least this often along its path, m.
+inline constexpr double kHookSampleStep = 5e-4;
+
 struct CuttingStageOptions {
+  /// Follow the scissors (the scene lists "cutting").
+  bool scissors = true;
+  /// Follow the hooks (the scene lists "cautery"): while a hook's pedal is down, its crook's
+  /// path is one stroke, cut when the pedal comes up, and the nodes within kCoagulationRadius of
+  /// the live crook are coagulated (SimState::handoff.coagulated).
+  bool hooks = false;
   /// Check every cut with cutting::check_cut (costly: copies the mesh). On in debug builds; tests
   /// and `serosa headless --validate-cuts` turn it on in the others.
   bool validate = kCheckEveryCutByDefault;
@@ -98,6 +107,8 @@ struct CuttingStageStats {
   std::uint64_t sweeps = 0;             ///< polygons swept (closing jaws)
   std::uint64_t degenerate_sweeps = 0;  ///< strokes that gave no polygon (no motion, NaN)
   std::uint64_t strokes_on_clip = 0;    ///< strokes left uncut: their blades closed on a clip
+  std::uint64_t hook_strokes = 0;       ///< of the strokes, a hook's (pedal down to pedal up)
+  std::int64_t coagulated_nodes = 0;    ///< nodes a live hook coagulated (clones included)
   std::uint64_t cuts = 0;               ///< polygons that changed the mesh
   std::int64_t tets_removed = 0;
   std::int64_t tets_added = 0;
@@ -135,6 +146,25 @@ class CuttingStage final : public Stage {
     std::uint64_t first_step = 0;          // step of the stroke's first sweep
   };
 
+  struct Hook {
+    std::size_t tool = 0;                  // index into Scene::tools / SimState::tools
+    std::optional<ToolState> before;       // pose consumed at the previous step
+    std::optional<ScissorsStroke> stroke;  // the crook's path since the pedal went down
+    std::uint64_t first_step = 0;
+  };
+
+  /// Follows one hook: coagulates around its live crook, extends its stroke, cuts it when the
+  /// pedal comes up.
+  void follow_hook(const StepContext& ctx, SimState& state, Hook& h, const ToolState& now);
+  /// Marks the nodes within kCoagulationRadius of [a, b] coagulated.
+  void coagulate(const StepContext& ctx, const SimState& state, const Vec3& a, const Vec3& b);
+  /// Marks the nodes the cuts from `first_cut` on created (a hook's: its wound is coagulated).
+  void coagulate_cut(const SimState& state, std::size_t first_cut);
+  /// Gives the new nodes of this step's cuts the marks of their parents.
+  void inherit_coagulation(const SimState& state, std::size_t first_cut);
+  /// Cuts a finished stroke's polygons, unless they meet a clip; reports it.
+  void cut_stroke(const StepContext& ctx, SimState& state, std::size_t tool,
+                  const StrokePolygons& polygons, StrokeReport& report);
   /// Follows one scissors from `before` to `now`: begins, extends or ends its stroke.
   void follow(const StepContext& ctx, SimState& state, Scissors& s, const ToolState& before,
               const ToolState& now);
@@ -148,6 +178,10 @@ class CuttingStage final : public Stage {
            const cutting::ConvexPolygon& polygon, StrokeReport& report);
   void refresh_bvh(const StepContext& ctx, const TetMesh& mesh);
   std::vector<Scissors> m_scissors;
+  std::vector<Hook> m_hooks;
+  std::vector<std::int32_t> m_near;        // scratch: tets near a live crook
+  std::vector<std::uint8_t> m_coagulated;  // (n) 1: coagulated by a live hook (hooks only)
+  std::uint64_t m_coagulated_version = 0;  // bumped with every mark added
   cutting::CutOptions m_cut_options;
   CutMethod m_method = CutMethod::kPattern;  // the scene's [cutting] method
   CuttingStageOptions m_options;

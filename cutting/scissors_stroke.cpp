@@ -164,6 +164,13 @@ void ScissorsStroke::sweep(const ToolState& before, const ToolState& now, const 
   ++m_steps;
 }
 
+void ScissorsStroke::add_segment(const Vec3& a, const Vec3& b, const TetMesh& mesh,
+                                 const TetBvh& bvh) {
+  add(a, -1, mesh, bvh);
+  add(0.5 * (a + b), -1, mesh, bvh);
+  add(b, -1, mesh, bvh);
+}
+
 void ScissorsStroke::carried(const TetMesh& mesh, std::vector<Vec3>& out) const {
   const bool same_tets = mesh.topology_version == m_topology_version;
   out.clear();

@@ -57,6 +57,12 @@ class ScissorsStroke {
   /// positions; `bvh` refitted to them).
   void sweep(const ToolState& before, const ToolState& now, const TetMesh& mesh, const TetBvh& bvh);
 
+  /// A hook's stroke (the same pinning and cut, cutting/cutting_stage.h): samples the live
+  /// segment [a, b] (both ends and its middle), pinned to `mesh` as sweep() pins its samples.
+  void add_segment(const Vec3& a, const Vec3& b, const TetMesh& mesh, const TetBvh& bvh);
+  /// Counts one step of a hook's stroke (sweep() counts its own).
+  void count_step() noexcept { ++m_steps; }
+
   /// The samples carried to `mesh`'s current positions (world positions where the mesh changed
   /// topology since the stroke began, or a sample is pinned to no tet).
   void carried(const TetMesh& mesh, std::vector<Vec3>& out) const;

@@ -30,18 +30,20 @@ enum class Effect : std::uint8_t {
   kPlasticity,  ///< "plasticity": Müller-Gross plastic strain (needs fem)
   kCutting,     ///< "cutting": scissors cut tets along the swept blade
   kClips,       ///< "clips": clip appliers place clips that clamp tissue (needs contact)
+  kCautery,     ///< "cautery": a hook divides and coagulates tissue while its pedal is pressed
   kContact,     ///< "contact": tool-organ contact forces (needs fem and surface)
   kSurface,     ///< "surface": boundary surface extraction, normals, collision BVH
   kHaptics,     ///< "haptics": the 1 kHz force loop (needs a tool driven by a device)
   kRender,      ///< "render": endoscope view (needs surface)
   kRecord,      ///< "record": record inputs and state hashes to a .lapr file
 };
-inline constexpr std::size_t kNumEffects = 10;
+inline constexpr std::size_t kNumEffects = 11;
 
 /// Every effect in enum order.
 inline constexpr Effect kAllEffects[kNumEffects] = {
-    Effect::kFem,     Effect::kGravity, Effect::kPlasticity, Effect::kCutting, Effect::kClips,
-    Effect::kContact, Effect::kSurface, Effect::kHaptics,    Effect::kRender,  Effect::kRecord};
+    Effect::kFem,     Effect::kGravity, Effect::kPlasticity, Effect::kCutting,
+    Effect::kClips,   Effect::kCautery, Effect::kContact,    Effect::kSurface,
+    Effect::kHaptics, Effect::kRender,  Effect::kRecord};
 
 /// The scene-file name of an effect ("fem", "gravity", ...).
 [[nodiscard]] std::string_view effect_name(Effect e) noexcept;
@@ -53,7 +55,7 @@ inline constexpr Effect kAllEffects[kNumEffects] = {
 
 enum class Quality : std::uint8_t { kFast, kBalanced, kAccurate };
 enum class SolverKind : std::uint8_t { kPcg, kCholmod, kPcgCholmod, kPcgLagged };
-enum class ToolKind : std::uint8_t { kScissors, kGrasper, kEndoscope, kClipApplier };
+enum class ToolKind : std::uint8_t { kScissors, kGrasper, kEndoscope, kClipApplier, kHook };
 enum class DeviceKind : std::uint8_t { kRig, kRigEmulated, kMouse, kScript };
 enum class Hand : std::uint8_t { kLeft, kRight };
 enum class CutMethod : std::uint8_t { kPattern, kRemove, kSnap };
@@ -61,7 +63,7 @@ enum class CutMethod : std::uint8_t { kPattern, kRemove, kSnap };
 [[nodiscard]] std::string_view quality_name(Quality q) noexcept;         ///< fast|balanced|accurate
 [[nodiscard]] std::string_view solver_kind_name(SolverKind k) noexcept;  ///< pcg|cholmod|...
 [[nodiscard]] std::string_view tool_kind_name(
-    ToolKind k) noexcept;  ///< scissors|grasper|endoscope|clip-applier
+    ToolKind k) noexcept;  ///< scissors|...|clip-applier|hook
 [[nodiscard]] std::string_view device_kind_name(DeviceKind k) noexcept;  ///< rig|...|script
 [[nodiscard]] std::string_view hand_name(Hand h) noexcept;               ///< left|right
 [[nodiscard]] std::string_view cut_method_name(CutMethod m) noexcept;    ///< pattern|remove|snap

@@ -761,7 +761,7 @@ class Loader {
              "duplicate tool name \"" + tool.name + "\" (also tool[" + std::to_string(*j) + "])",
              "unique tool names");
       }
-      const std::string kinds = "scissors, grasper, endoscope, clip-applier";
+      const std::string kinds = "scissors, grasper, endoscope, clip-applier, hook";
       tool.kind = enum_value<ToolKind>(required(t, "kind", p, kinds), sub(p, "kind"),
                                        tool_kind_from_name, kinds);
       m_kind_lines.push_back(line_of(*t.get("kind")));
@@ -822,12 +822,18 @@ class Loader {
     need(Effect::kContact, Effect::kSurface);
     need(Effect::kRender, Effect::kSurface);
     need(Effect::kClips, Effect::kContact);
-    // A clip applier only places clips where they are simulated: say so rather than close empty.
+    // A clip applier or a hook acts only where its effect is simulated: say so rather than let
+    // the instrument do nothing.
     for (std::size_t i = 0; i < scene.tools.size(); ++i) {
       if (scene.tools[i].kind == ToolKind::kClipApplier && !s.has(Effect::kClips)) {
         fail(m_kind_lines[i], at("tool", i) + ".kind",
              "a clip-applier places clips, but effect \"clips\" is not listed",
              "\"clips\" in scene.effects (with \"contact\", \"surface\" and \"fem\")");
+      }
+      if (scene.tools[i].kind == ToolKind::kHook && !s.has(Effect::kCautery)) {
+        fail(m_kind_lines[i], at("tool", i) + ".kind",
+             "a hook divides and coagulates tissue, but effect \"cautery\" is not listed",
+             "\"cautery\" in scene.effects");
       }
     }
     if (s.has(Effect::kHaptics)) {

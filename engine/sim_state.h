@@ -60,6 +60,10 @@ struct StepHandoff {
   /// clips -> cutting, render, metrics: every clip placed so far, where the tissue carries it now
   /// (contact/clip_stage.h); empty when no clips stage runs.
   std::vector<Clip> clips;
+  /// cutting (cautery) -> render, metrics: 1 for each node a live hook coagulated, else 0; (n), or
+  /// empty when no hook is simulated. coagulated_version changes whenever a mark is added.
+  std::vector<std::uint8_t> coagulated;
+  std::uint64_t coagulated_version = 0;
   /// surface -> contact, render, pictures: the boundary surface, kept up to date by the surface
   /// stage (empty when no surface stage runs).
   SurfaceMesh surface;

@@ -125,6 +125,26 @@ FrameRenderer::~FrameRenderer() {
   glDeleteVertexArrays(static_cast<GLsizei>(vaos.size()), vaos.data());
 }
 
+// Per-triangle material (t x RGBA8): rgb the sRGB colour, a the specular strength. Wound faces
+// take the wound material whatever their group, coagulated ones the coagulated material.
+void FrameRenderer::upload_materials(const RenderFrame& frame) {
+  const std::size_t t = frame.num_triangles();
+  std::vector<std::uint8_t> mat(4 * std::max<std::size_t>(t, 1), 0);
+  const Material wound = wound_material();
+  const Material coagulated = coagulated_material();
+  for (std::size_t f = 0; f < t; ++f) {
+    const std::uint8_t mark = frame.tri_cut.empty() ? 0 : frame.tri_cut[f];
+    const std::uint16_t g = frame.tri_group.empty() ? 0 : frame.tri_group[f];
+    const Material m = mark == 1 ? wound : mark == 2 ? coagulated : group_material(frame, g);
+    for (std::size_t k = 0; k < 3; ++k) mat[4 * f + k] = to_byte(m.color[k]);
+    mat[4 * f + 3] = to_byte(m.specular);
+  }
+  glBindBuffer(GL_TEXTURE_BUFFER, material_buf_);
+  glBufferData(GL_TEXTURE_BUFFER, bytes(mat.size(), 1), mat.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  material_version_ = frame.material_version;
+}
+
 void FrameRenderer::upload_topology(const RenderFrame& frame) {
   const std::size_t t = frame.num_triangles();
   // The visual view reads 3t indices and n vertices through buffer textures.
@@ -149,20 +169,7 @@ void FrameRenderer::upload_topology(const RenderFrame& frame) {
                GL_STATIC_DRAW);
   glBindVertexArray(0);
 
-  // Per-triangle material (t x RGBA8): rgb the sRGB colour, a the specular strength. Wound faces
-  // take the wound material whatever their group.
-  std::vector<std::uint8_t> mat(4 * std::max<std::size_t>(t, 1), 0);
-  const Material wound = wound_material();
-  for (std::size_t f = 0; f < t; ++f) {
-    const bool cut = !frame.tri_cut.empty() && frame.tri_cut[f] != 0;
-    const std::uint16_t g = frame.tri_group.empty() ? 0 : frame.tri_group[f];
-    const Material m = cut ? wound : group_material(frame, g);
-    for (std::size_t k = 0; k < 3; ++k) mat[4 * f + k] = to_byte(m.color[k]);
-    mat[4 * f + 3] = to_byte(m.specular);
-  }
-  glBindBuffer(GL_TEXTURE_BUFFER, material_buf_);
-  glBufferData(GL_TEXTURE_BUFFER, bytes(mat.size(), 1), mat.data(), GL_STATIC_DRAW);
-  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  upload_materials(frame);
 
   uploaded_ = true;
   ++topology_uploads_;
@@ -338,6 +345,8 @@ void FrameRenderer::draw(const RenderFrame& frame, const SnapshotOptions& option
   if (!uploaded_ || frame.topology_version != topology_version_ ||
       frame.num_triangles() != tri_count_ || frame.edges.size() != edge_source_) {
     upload_topology(frame);
+  } else if (frame.material_version != material_version_) {
+    upload_materials(frame);
   }
   upload_vertices(frame);
   const View v = view_of(frame, options, width, height);

@@ -48,6 +48,7 @@ class FrameRenderer {
     float ref_dist = 1.0f;
   };
   void upload_topology(const RenderFrame& frame);
+  void upload_materials(const RenderFrame& frame);
   void upload_vertices(const RenderFrame& frame);
   [[nodiscard]] View view_of(const RenderFrame& frame, const SnapshotOptions& options, int width,
                              int height) const;
@@ -87,6 +88,7 @@ class FrameRenderer {
   bool uploaded_ = false;
   std::uint64_t topology_uploads_ = 0;
   std::uint64_t topology_version_ = 0;
+  std::uint64_t material_version_ = 0;
   std::size_t tri_count_ = 0;    // triangles
   std::size_t line_count_ = 0;   // line segments (tet edges, or triangle edges when none)
   std::size_t edge_source_ = 0;  // frame.edges.size() at upload

@@ -59,5 +59,6 @@ Material group_material(const RenderFrame& frame, std::uint16_t group) {
 }
 
 Material wound_material() { return {{0.45f, 0.04f, 0.06f}, 0.75f}; }
+Material coagulated_material() { return {{0.62f, 0.52f, 0.40f}, 0.1f}; }
 
 }  // namespace serosa::render

@@ -26,5 +26,7 @@ bool named_material(std::string_view name, Material& out);
 
 /// The wound: faces made by a cut, a dark, glossy red distinct from every tissue colour.
 [[nodiscard]] Material wound_material();
+/// Tissue a hook coagulated: a dry, pale tan, matt.
+[[nodiscard]] Material coagulated_material();
 
 }  // namespace serosa::render

@@ -26,6 +26,7 @@ struct RenderTool {
     kScissors,     ///< two blades that shear past each other (Metzenbaum-like, slightly curved)
     kGrasper,      ///< two flat jaws that close on each other
     kClipApplier,  ///< a grasper's jaws, with a clip loaded between them while open
+    kHook,         ///< an L-hook electrode: a thin wire beyond the shaft, its crook along +side
   };
   Kind kind = Kind::kGrasper;
   std::array<float, 3> tip{0.0f, 0.0f, 0.0f};              ///< tip of the closed jaws, m
@@ -110,7 +111,8 @@ struct RenderFrame {
   std::vector<float> nrm;          ///< (n x 3) unit normals; empty: computed when drawn
   std::vector<std::uint32_t> tri;  ///< (t x 3) vertex ids, counter-clockwise seen from outside
   std::vector<std::uint16_t> tri_group;  ///< (t) visual group (Gmsh physical tag) of each triangle
-  std::vector<std::uint8_t> tri_cut;     ///< (t) 1 = face made by a cut (wound), else 0
+  /// (t) 1 = face made by a cut (wound), 2 = coagulated by a hook (charred), else 0
+  std::vector<std::uint8_t> tri_cut;
   /// (e x 2) vertex ids of the tet edges, for the mechanical view. Optional: when empty, the
   /// mechanical view draws the triangles' edges instead.
   std::vector<std::uint32_t> edges;
@@ -121,6 +123,9 @@ struct RenderFrame {
   /// only when it (or the triangle or edge count) changes; bump it whenever tri, tri_group,
   /// tri_cut, edges or group_names change.
   std::uint64_t topology_version = 0;
+  /// Bump it when tri_cut changes without a topology change (a hook coagulating): the renderer
+  /// then re-uploads the per-triangle materials.
+  std::uint64_t material_version = 0;
   Camera camera;
   /// Instruments, drawn in every view (their meshes are generated each frame: render/tool_mesh.h).
   std::vector<RenderTool> tools;

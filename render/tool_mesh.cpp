@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "engine/clip.h"
+#include "engine/hook.h"
 
 namespace serosa::render {
 namespace {
@@ -204,6 +205,13 @@ void append_tool_mesh(const RenderTool& tool, ToolMesh& out, const ToolDimension
   // The shaft stops where the jaws begin (the hinge sits just inside its end).
   add_shaft(out, vec(f.shaft_start), hinge + 0.3f * r * axis, side, up, r, dims.shaft_segments);
 
+  if (tool.kind == RenderTool::Kind::kHook) {  // a bare steel stem, bent at the tip
+    const V3 tip = vec(tool.tip);
+    add_shaft(out, hinge, tip, side, up, 0.5e-3f, 10, kSteelMaterial);
+    add_shaft(out, tip - 0.5e-3f * side, tip + static_cast<float>(kHookCrook) * side, axis,
+              side.cross(axis), 0.35e-3f, 10, kSteelMaterial);
+    return;
+  }
   const float a = 0.5f * std::clamp(tool.jaw_rad, 0.0f, 3.14159265f);
   const float ca = std::cos(a), sa = std::sin(a);
   // Jaw A opens towards +side, jaw B towards -side; wdir points away from the other jaw.

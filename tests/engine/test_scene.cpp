@@ -95,8 +95,8 @@ TEST(SceneNames, EnumsRoundTrip) {
   for (const auto k : {SolverKind::kPcg, SolverKind::kCholmod, SolverKind::kPcgCholmod}) {
     EXPECT_EQ(solver_kind_from_name(solver_kind_name(k)), k);
   }
-  for (const auto k :
-       {ToolKind::kScissors, ToolKind::kGrasper, ToolKind::kEndoscope, ToolKind::kClipApplier}) {
+  for (const auto k : {ToolKind::kScissors, ToolKind::kGrasper, ToolKind::kEndoscope,
+                       ToolKind::kClipApplier, ToolKind::kHook}) {
     EXPECT_EQ(tool_kind_from_name(tool_kind_name(k)), k);
   }
   for (const auto k : {DeviceKind::kRig, DeviceKind::kRigEmulated, DeviceKind::kMouse}) {
@@ -156,7 +156,7 @@ TEST_F(SceneTest, ReadsEveryKey) {
 [scene]
 dt = 0.002
 gravity = [0, 0, -9.81]
-effects = ["record", "fem", "gravity", "plasticity", "cutting", "clips", "surface", "contact", "render", "haptics"]
+effects = ["record", "fem", "gravity", "plasticity", "cutting", "clips", "cautery", "surface", "contact", "render", "haptics"]
 
 [[organ]]
 name = "appendix"
@@ -598,6 +598,15 @@ TEST_F(SceneTest, AClipApplierNeedsTheClipsEffect) {
   EXPECT_TRUE(s.settings.has(Effect::kClips));
   expect_error(kOrgan + "[[tool]]\nname = \"c\"\nkind = \"clipper\"\ndevice = \"mouse\"\n", 6,
                "tool[0].kind", "clip-applier");
+}
+
+TEST_F(SceneTest, AHookNeedsTheCauteryEffect) {
+  const std::string hook = "[[tool]]\nname = \"hook\"\nkind = \"hook\"\ndevice = \"mouse\"\n";
+  expect_error("[scene]\neffects = [\"fem\", \"cutting\"]\n" + kOrgan + hook, 8, "tool[0].kind",
+               "effect \"cautery\" is not listed");
+  const Scene s = parse("[scene]\neffects = [\"fem\", \"cautery\"]\n" + kOrgan + hook);
+  ASSERT_EQ(s.tools.size(), 1u);
+  EXPECT_EQ(s.tools[0].kind, ToolKind::kHook);
 }
 
 TEST_F(SceneTest, HapticsNeedsADeviceTool) {
