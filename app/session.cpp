@@ -29,6 +29,7 @@
 #include "app/scope_control.h"
 #include "app/session_summary.h"
 #include "app/summary_screen.h"
+#include "engine/hook.h"
 #include "engine/input_error.h"
 #include "engine/record_stage.h"
 #include "engine/recording_writer.h"
@@ -84,7 +85,8 @@ class InterruptGuard {
 
 // The window's pointer and keys as the mouse device's cumulative input (window thread only):
 // drag with the left button pivots the active instrument, W/S insert/retract, Q/E roll, J toggles
-// the jaws, Tab switches the active instrument.
+// the jaws, P presses or releases its cautery pedal (a hook's current), Tab switches the active
+// instrument.
 class PointerControl {
  public:
   explicit PointerControl(const haptics::PointerInput& start = {}) : m_input(start) {}
@@ -96,6 +98,7 @@ class PointerControl {
     if (w.pressed(render::Key::kQ)) m_input.roll_steps[m_active] -= 1.0;
     if (w.pressed(render::Key::kE)) m_input.roll_steps[m_active] += 1.0;
     if (w.pressed(render::Key::kJ)) m_input.jaw_open[m_active] ^= 1u;
+    if (w.pressed(render::Key::kP)) m_input.buttons[m_active] ^= kPedalButton;
     float x = 0.0f;
     float y = 0.0f;
     w.cursor(x, y);

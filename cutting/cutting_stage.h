@@ -27,6 +27,13 @@
 // a 0.25 rad roll, 2 mm for 1.2 rad). It opens when the stroke ends rather than while the jaws
 // close, and where the swept region is not convex (a blade drawn back while it closes), its
 // hull is cut.
+//
+// A hook (effect "cautery", engine/hook.h) divides the same way: while its pedal is down, its
+// crook's path is one stroke (the same pinned samples), cut as one polygon when the pedal comes
+// up. The nodes within kCoagulationRadius of the live crook and the nodes its cut creates are
+// marked coagulated, and clones and cut points take their parents' marks
+// (SimState::handoff.coagulated, for the renderer). Neither tool cuts through a clip
+// (cutting/clip_guard.h).
 #pragma once
 
 #include <cstdint>

@@ -17,6 +17,7 @@
 #include <system_error>
 #include <utility>
 
+#include "engine/hook.h"
 #include "engine/input_error.h"
 #include "engine/presets.h"
 #include "engine/scene.h"
@@ -783,6 +784,19 @@ class Loader {
                "script " + tool.device.script.string() + " has no rows for tool \"" + tool.name +
                    "\"",
                "a tool path CSV with rows whose tool column is \"" + tool.name + "\"");
+        }
+        // A script drives only what the tool has: a cautery pedal for a hook alone (a rig's
+        // pedal is a pedal under the trainee's foot, whatever instrument the hand holds).
+        const auto& rows = path.samples[*path.index_of(tool.name)];
+        const auto pressed = std::find_if(rows.begin(), rows.end(), [](const ToolState& r) {
+          return (r.buttons & kPedalButton) != 0;
+        });
+        if (script && tool.kind != ToolKind::kHook && pressed != rows.end()) {
+          fail(dev_node, dp,
+               "script " + tool.device.script.string() +
+                   " presses the cautery pedal (buttons bit " + "1) for tool \"" + tool.name +
+                   "\", a " + std::string(tool_kind_name(tool.kind)) + ", which has none",
+               "the pedal only on a tool of kind hook");
         }
       } else {
         const auto k = device_kind_from_name(dev);

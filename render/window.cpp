@@ -59,6 +59,8 @@ int glfw_key(Key k) {
       return GLFW_KEY_PERIOD;
     case Key::kN:
       return GLFW_KEY_N;
+    case Key::kP:
+      return GLFW_KEY_P;
     case Key::kCount:
       break;
   }

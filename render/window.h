@@ -37,6 +37,7 @@ enum class Key {
   kComma,   ///< rotate it (the 30 degree optic sweeps the view) counter-clockwise
   kPeriod,  ///< clockwise
   kN,       ///< replay: jump to the next error on the timeline
+  kP,       ///< press/release the active instrument's cautery pedal
   kCount
 };
 

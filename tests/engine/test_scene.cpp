@@ -600,6 +600,23 @@ TEST_F(SceneTest, AClipApplierNeedsTheClipsEffect) {
                "tool[0].kind", "clip-applier");
 }
 
+TEST_F(SceneTest, OnlyAHooksScriptMayPressTheCauteryPedal) {
+  write("paths/pedal.csv", kCsvHeader.substr(0, kCsvHeader.size() - 1) + ",buttons\n" +
+                               "0,hook,0,0,0,1,0,0,0,0,0\n"
+                               "1,hook,0,0,0,1,0,0,0,0,2\n"
+                               "0,scissors,0,0,0,1,0,0,0,0,1\n"
+                               "1,scissors,0,0,0,1,0,0,0,0,2\n");
+  const std::string head = "[scene]\neffects = [\"fem\", \"cautery\", \"cutting\"]\n" + kOrgan;
+  const Scene s = parse(
+      head + "[[tool]]\nname = \"hook\"\nkind = \"hook\"\ndevice = \"script:paths/pedal.csv\"\n");
+  EXPECT_EQ(s.tools[0].kind, ToolKind::kHook);
+  expect_error(head +
+                   "[[tool]]\nname = \"scissors\"\nkind = \"scissors\"\n"
+                   "device = \"script:paths/pedal.csv\"\n",
+               9, "tool[0].device",
+               "presses the cautery pedal (buttons bit 1) for tool \"scissors\"");
+}
+
 TEST_F(SceneTest, AHookNeedsTheCauteryEffect) {
   const std::string hook = "[[tool]]\nname = \"hook\"\nkind = \"hook\"\ndevice = \"mouse\"\n";
   expect_error("[scene]\neffects = [\"fem\", \"cutting\"]\n" + kOrgan + hook, 8, "tool[0].kind",
