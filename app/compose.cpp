@@ -141,7 +141,8 @@ Composition compose(const Scene& scene, const AssembledScene& assembled, Compose
   // Metrics measure the tools and the cuts: a scene with no tool has nothing to score.
   std::unique_ptr<MetricsStage> metrics_stage;
   if (fem_stage && !scene.tools.empty())
-    metrics_stage = std::make_unique<MetricsStage>(scene, lame_table(scene, assembled));
+    metrics_stage = std::make_unique<MetricsStage>(scene, lame_table(scene, assembled), 1,
+                                                   assembled.group_names());
   std::unique_ptr<ToolContactStage> contact_stage;
   if (listed(Effect::kContact)) {
     // The metrics count closing scissors' load on the tissue as their force.

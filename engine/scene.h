@@ -234,6 +234,11 @@ struct MetricsSettings {
   /// Points the endoscope should be brought to look at, in any order (a camera drill), m; (k).
   /// Empty: no target metrics.
   std::vector<Vec3> view_targets_m;
+  /// The group that bleeds when a cut goes through it while no clip clamps it (the appendicular
+  /// artery); none: no bleeding is watched for. A group name of one of the organs.
+  std::optional<std::string> artery;
+  /// Groups a live hook must not touch (the cecum wall): coagulating them is a thermal injury.
+  std::vector<std::string> protected_groups;
   /// What the session is scored on (engine/rubric.h); none: no assessment is reported.
   std::optional<Rubric> rubric;
 };

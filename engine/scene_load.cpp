@@ -127,6 +127,7 @@ class Loader {
     if (const auto* t = opt_table(root, "headless", "")) read_headless(*t, scene.headless);
     if (const auto* t = opt_table(root, "metrics", "")) read_metrics(*t, scene.metrics);
     check_dependencies(scene, effects_node);
+    check_group_refs(scene);
     check_rubric(scene);
     return scene;
   }
@@ -655,7 +656,22 @@ class Loader {
 
   void read_metrics(const toml::table& t, MetricsSettings& m) {
     const std::string p = "metrics";
-    check_keys(t, p, {"planned_cut", "cut_band", "force_limit", "view_targets", "rubric"});
+    check_keys(t, p,
+               {"planned_cut", "cut_band", "force_limit", "view_targets", "artery", "protected",
+                "rubric"});
+    if (const auto* n = t.get("artery")) {
+      m.artery = string(*n, sub(p, "artery"), "a group name");
+      m_group_refs.push_back({line_of(*n), sub(p, "artery"), *m.artery});
+    }
+    if (const auto* n = t.get("protected")) {
+      const std::string expected = "a list of group names";
+      const toml::array& a = array(*n, sub(p, "protected"), expected);
+      for (std::size_t i = 0; i < a.size(); ++i) {
+        m.protected_groups.push_back(string(a[i], at(sub(p, "protected"), i), expected));
+        m_group_refs.push_back(
+            {line_of(a[i]), at(sub(p, "protected"), i), m.protected_groups.back()});
+      }
+    }
     if (const auto* n = t.get("planned_cut")) {
       const std::string expected = "a polyline [[x, y, z], [x, y, z], ...] of >= 2 points in m";
       const auto* a = n->as_array();
@@ -816,6 +832,22 @@ class Loader {
     }
   }
 
+  // [metrics] names groups of the scene's organs.
+  void check_group_refs(const Scene& scene) const {
+    std::string names;
+    for (const Organ& o : scene.organs)
+      for (const auto& [id, name] : o.groups) names += (names.empty() ? "" : ", ") + name;
+    for (const GroupRef& r : m_group_refs) {
+      const bool known = std::any_of(scene.organs.begin(), scene.organs.end(), [&](const Organ& o) {
+        return o.group_id(r.name).has_value();
+      });
+      if (!known)
+        fail(r.line, r.path, "unknown group \"" + r.name + "\"",
+             names.empty() ? std::string("a group the organs name (they name none)")
+                           : "one of: " + names);
+    }
+  }
+
   // ---- effects ----
 
   void check_dependencies(const Scene& scene, const toml::node* effects_node) const {
@@ -861,10 +893,15 @@ class Loader {
     }
   }
 
-  std::string m_file;                                 // scene file as given, for errors
-  std::filesystem::path m_dir;                        // folder relative paths resolve against
-  std::int64_t m_rubric_line = 0;                     // where [metrics] rubric is
-  std::vector<std::int64_t> m_kind_lines;             // (tools) where each tool's kind is
+  std::string m_file;                      // scene file as given, for errors
+  std::filesystem::path m_dir;             // folder relative paths resolve against
+  std::int64_t m_rubric_line = 0;          // where [metrics] rubric is
+  std::vector<std::int64_t> m_kind_lines;  // (tools) where each tool's kind is
+  struct GroupRef {
+    std::int64_t line = 0;
+    std::string path, name;
+  };
+  std::vector<GroupRef> m_group_refs;  // group names [metrics] gives, checked once all are read
   std::map<std::filesystem::path, ToolPath> m_paths;  // script files read so far
 };
 

@@ -21,7 +21,27 @@ double distance_to_polyline(const Vec3& p, const std::vector<Vec3>& line) {
   return d;
 }
 
-MetricsStage::MetricsStage(const Scene& scene, LameTable lame, std::int64_t stress_every)
+namespace {
+
+std::optional<int> id_of(const std::map<int, std::string>& names, const std::string& name) {
+  for (const auto& [id, n] : names)
+    if (n == name) return id;
+  return std::nullopt;
+}
+
+ProcedureErrors watch(const MetricsSettings& m, const std::map<int, std::string>& names) {
+  std::optional<int> artery;
+  if (m.artery) artery = id_of(names, *m.artery);
+  std::vector<int> prot;
+  for (const std::string& g : m.protected_groups)
+    if (const auto id = id_of(names, g)) prot.push_back(*id);
+  return {artery, prot};
+}
+
+}  // namespace
+
+MetricsStage::MetricsStage(const Scene& scene, LameTable lame, std::int64_t stress_every,
+                           const std::map<int, std::string>& group_names)
     : m_force_limit(scene.metrics.force_limit_n),
       m_planned(scene.metrics.planned_cut_m),
       m_band(scene.metrics.cut_band_m),
@@ -43,6 +63,7 @@ MetricsStage::MetricsStage(const Scene& scene, LameTable lame, std::int64_t stre
   m_out_of_view_s.assign(k, 0.0);
   m_targets = scene.metrics.view_targets_m;
   m_target_first_s.assign(m_targets.size(), -1.0);
+  m_errors = watch(scene.metrics, group_names);
 }
 
 void MetricsStage::step(const StepContext& ctx, SimState& state) {
@@ -73,6 +94,7 @@ void MetricsStage::step(const StepContext& ctx, SimState& state) {
   }
   add_view(state.tools, ctx.dt_s);
   for (const CutEvent& cut : state.handoff.cuts) add_cut(cut);
+  if (m_errors.active()) m_errors.step(m_time, state);
   if (static_cast<std::int64_t>(ctx.step) % m_stress_every == 0)
     m_peak_stress = std::max(m_peak_stress, peak_stress(state.mesh));
 }
@@ -180,6 +202,7 @@ nlohmann::json MetricsStage::report() const {
     j["cut"]["collateral_m3"] = m_collateral;
     j["cut"]["band_m"] = m_band;
   }
+  m_errors.report(j);
   return j;
 }
 
@@ -198,6 +221,7 @@ void MetricsStage::save(StateWriter& out) const {
                    m_active_s, m_bimanual_s, m_force_over_s})
     out.f64(v);
   out.u64(static_cast<std::uint64_t>(m_cut_tets));
+  m_errors.save(out);  // (nothing when no errors are watched for)
 }
 
 void MetricsStage::restore(StateReader& in, SimState& /*state*/) {
@@ -222,6 +246,7 @@ void MetricsStage::restore(StateReader& in, SimState& /*state*/) {
                     &m_idle_s, &m_active_s, &m_bimanual_s, &m_force_over_s})
     *v = in.f64();
   m_cut_tets = static_cast<std::int64_t>(in.u64());
+  m_errors.restore(in);
 }
 
 }  // namespace serosa::metrics

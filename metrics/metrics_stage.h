@@ -25,10 +25,13 @@
 //   out_of_view_s[tool]     time the instrument's tip (grasper, scissors) was out of the
 //                           endoscope's view while the endoscope was posed (engine/scope_view.h);
 //                           only in scenes with an endoscope, s
+//   bleeding_events, thermal_injuries, errors   with [metrics] artery or protected: the
+//                           procedure's errors (metrics/procedure_errors.h)
 // Without a planned cut line the deviation and collateral entries are absent (the volume stays).
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -41,6 +44,7 @@
 #include "engine/sim_state.h"
 #include "engine/stage.h"
 #include "engine/tissue_stress.h"
+#include "metrics/procedure_errors.h"
 
 namespace serosa::metrics {
 
@@ -62,7 +66,10 @@ class MetricsStage final : public Stage {
   /// forces come from the contact stage (SimState::handoff.tool_force_n, plus closing scissors'
   /// blade load from handoff.tool_reactions; without a contact stage, none are reported), the cuts
   /// from the cutting stage (SimState::handoff.cuts).
-  MetricsStage(const Scene& scene, LameTable lame, std::int64_t stress_every = 1);
+  /// group_names: the mesh's group ids by name (app::AssembledScene::group_names), which the
+  /// procedure's errors need ([metrics] artery and protected name groups).
+  MetricsStage(const Scene& scene, LameTable lame, std::int64_t stress_every = 1,
+               const std::map<int, std::string>& group_names = {});
 
   [[nodiscard]] std::string_view name() const noexcept override { return "metrics"; }
   void step(const StepContext& ctx, SimState& state) override;
@@ -95,6 +102,7 @@ class MetricsStage final : public Stage {
   [[nodiscard]] std::size_t targets_missed() const;
   /// When the endoscope had centred every view target, s; the run's time while any is missed.
   [[nodiscard]] double targets_time_s() const;
+  [[nodiscard]] const ProcedureErrors& procedure_errors() const noexcept { return m_errors; }
   [[nodiscard]] double deviation_mean_m() const noexcept {
     return m_cut_volume > 0.0 ? m_dev_weighted / m_cut_volume : 0.0;
   }
@@ -138,6 +146,7 @@ class MetricsStage final : public Stage {
   bool m_rest_valid = false;
   double m_cut_volume = 0.0, m_collateral = 0.0, m_dev_weighted = 0.0, m_dev_max = 0.0;
   std::int64_t m_cut_tets = 0;
+  ProcedureErrors m_errors;
 };
 
 }  // namespace serosa::metrics

@@ -15,6 +15,7 @@
 #include "app/compose.h"
 #include "app/headless.h"
 #include "app_test_util.h"
+#include "beam_scene.h"
 #include "engine/clip.h"
 #include "engine/sim_state.h"
 
@@ -23,38 +24,17 @@ namespace {
 
 using namespace serosa::app::testing;
 
-// Pointing down (-y) with the jaws opening across the beam (along z), the pin along -x.
-const std::string kAcross = "0.5,0.5,-0.5,0.5";
-// Pointing down with the jaws opening along the beam (x), the pin along z.
-const std::string kDown = "0.7071067811865476,0.7071067811865476,0,0";
+const std::string kAcross = kBeamAcross;
+const std::string kDown = kBeamDown;
 
-struct BeamRun {
-  Scene scene;
-  AssembledScene assembled;
-  Composition comp;
-};
-
-// The 10 cm beam fixed at x = 0 (1 cm square, 5 mm tets), with a clip applier and `extra`.
+// The beam with a clip applier and `extra_tools`.
 std::unique_ptr<BeamRun> beam(const fs::path& dir, const std::string& csv,
                               const std::string& extra_tools = "",
                               const std::string& effects =
                                   "\"fem\", \"surface\", \"contact\", "
                                   "\"clips\"") {
-  std::ofstream(dir / "path.csv") << "t,tool,px,py,pz,qw,qx,qy,qz,jaw\n" << csv;
-  std::string toml = "[scene]\ndt = 0.005\neffects = [" + effects + "]\n";
-  toml.append("[[organ]]\nname = \"beam\"\ngroups = { 1 = \"artery\" }\nmesh = \"")
-      .append(source("assets/beam_coarse.msh").string())
-      .append("\"\nyoung = 2e4\npoisson = 0.3\ndensity = 1000\n")
-      .append("fixed = { box = [[-0.001, -1, -1], [0.0001, 1, 1]] }\n[solver]\nkind = ")
-      .append("\"cholmod\"\n[[tool]]\nname = \"clipper\"\nkind = \"clip-applier\"\n")
-      .append("device = \"script:path.csv\"\n")
-      .append(extra_tools);
-  std::ofstream(dir / "scene.toml") << toml;
-  auto run = std::make_unique<BeamRun>();
-  run->scene = load_scene(dir / "scene.toml");
-  run->assembled = assemble_state(run->scene);
-  run->comp = compose(run->scene, run->assembled);
-  return run;
+  return beam_scene(dir, "t,tool,px,py,pz,qw,qx,qy,qz,jaw\n" + csv, effects,
+                    scripted_tool("clipper", "clip-applier") + extra_tools);
 }
 
 // The applier over the beam at x = 7 cm, jaw tips 9 mm into it: open, then closed by t = 0.10.
@@ -113,8 +93,7 @@ TEST(Clip, HoldsUnderTractionCarriedByTheTissue) {
                           ",0.0\n0.30," + g + "0.002,0," + kDown + ",0.0\n0.50," + g + "0.012,0," +
                           kDown + ",0.0\n1.00," + g + "0.012,0," + kDown + ",0.0\n";
   const fs::path dir = out_dir("clip_traction");
-  auto run = beam(
-      dir, csv, "[[tool]]\nname = \"grasper\"\nkind = \"grasper\"\ndevice = \"script:path.csv\"\n");
+  auto run = beam(dir, csv, scripted_tool("grasper", "grasper"));
   SimState& s = run->assembled.state;
   run->comp.runner->run(s, 50);  // t = 0.25: settled
   ASSERT_EQ(s.handoff.clips.size(), 1u);
@@ -213,10 +192,8 @@ TEST(Clip, ScissorsClosingOnAClipCutNothingAndBesideItDivide) {
                           ",0.0\n0.35" + sc + at(0.03) + ",0.9\n0.45" + sc + at(0.03) +
                           ",0.0\n0.60" + sc + at(0.03) + ",0.0\n";
   const fs::path dir = out_dir("clip_scissors");
-  auto run =
-      beam(dir, csv,
-           "[[tool]]\nname = \"scissors\"\nkind = \"scissors\"\ndevice = \"script:path.csv\"\n",
-           "\"fem\", \"surface\", \"contact\", \"clips\", \"cutting\"");
+  auto run = beam(dir, csv, scripted_tool("scissors", "scissors"),
+                  "\"fem\", \"surface\", \"contact\", \"clips\", \"cutting\"");
   SimState& s = run->assembled.state;
   const std::int32_t tets0 = s.mesh.num_tets();
   run->comp.runner->run(s, 56);  // t = 0.28: the first stroke ended on the clip

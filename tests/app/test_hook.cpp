@@ -11,6 +11,7 @@
 #include "app/compose.h"
 #include "app/render_frame_from_surface.h"
 #include "app_test_util.h"
+#include "beam_scene.h"
 #include "engine/hook.h"
 #include "engine/sim_state.h"
 
@@ -19,30 +20,11 @@ namespace {
 
 using namespace serosa::app::testing;
 
-// Pointing down (-y), the crook along +z (across the beam).
-const std::string kAcross = "0.5,0.5,-0.5,0.5";
-
-struct BeamRun {
-  Scene scene;
-  AssembledScene assembled;
-  Composition comp;
-};
+const std::string kAcross = kBeamAcross;
 
 std::unique_ptr<BeamRun> beam(const fs::path& dir, const std::string& csv) {
-  std::ofstream(dir / "path.csv") << "t,tool,px,py,pz,qw,qx,qy,qz,jaw,buttons\n" << csv;
-  std::string toml = "[scene]\ndt = 0.005\neffects = [\"fem\", \"surface\", \"cautery\"]\n";
-  toml.append("[[organ]]\nname = \"beam\"\nmesh = \"")
-      .append(source("assets/beam_coarse.msh").string())
-      .append("\"\nyoung = 2e4\npoisson = 0.3\ndensity = 1000\n")
-      .append("fixed = { box = [[-0.001, -1, -1], [0.0001, 1, 1]] }\n[solver]\nkind = ")
-      .append("\"cholmod\"\n[[tool]]\nname = \"hook\"\nkind = \"hook\"\n")
-      .append("device = \"script:path.csv\"\n");
-  std::ofstream(dir / "scene.toml") << toml;
-  auto run = std::make_unique<BeamRun>();
-  run->scene = load_scene(dir / "scene.toml");
-  run->assembled = assemble_state(run->scene);
-  run->comp = compose(run->scene, run->assembled);
-  return run;
+  return beam_scene(dir, "t,tool,px,py,pz,qw,qx,qy,qz,jaw,buttons\n" + csv,
+                    "\"fem\", \"surface\", \"cautery\"", scripted_tool("hook", "hook"));
 }
 
 // The hook comes down to 1 mm above the beam at x = 5 cm (crook z in [-1.5, 1.5] mm), then is

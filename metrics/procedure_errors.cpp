@@ -1,0 +1,120 @@
+#include "metrics/procedure_errors.h"
+
+#include <algorithm>
+
+#include "engine/hook.h"
+#include "engine/state_codec.h"
+
+namespace serosa::metrics {
+
+ProcedureErrors::ProcedureErrors(std::optional<int> artery, std::vector<int> protected_groups)
+    : m_artery(artery), m_protected(std::move(protected_groups)) {
+  std::sort(m_protected.begin(), m_protected.end());
+}
+
+void ProcedureErrors::step(double time_s, const SimState& state) {
+  if (m_artery) check_cuts(time_s, state);
+  if (!m_protected.empty()) check_burns(time_s, state);
+}
+
+// A cut's added tets keep the groups of the tets they divide: one of the artery's means the cut
+// went through it.
+void ProcedureErrors::check_cuts(double time_s, const SimState& state) {
+  const bool secured =
+      std::any_of(state.handoff.clips.begin(), state.handoff.clips.end(), [&](const Clip& c) {
+        return std::find(c.groups.begin(), c.groups.end(), *m_artery) != c.groups.end();
+      });
+  for (const CutEvent& cut : state.handoff.cuts) {
+    const auto& g = cut.delta.added_groups;
+    if (secured || std::find(g.begin(), g.end(), *m_artery) == g.end()) continue;
+    Vec3 where = Vec3::Zero();
+    for (const Vec3& c : cut.removed_centroids_m) where += c;
+    if (!cut.removed_centroids_m.empty())
+      where /= static_cast<double>(cut.removed_centroids_m.size());
+    m_errors.push_back({ProcedureError::Kind::kBleeding, time_s, where});
+  }
+}
+
+void ProcedureErrors::check_burns(double time_s, const SimState& state) {
+  const TetMesh& mesh = state.mesh;
+  const auto n = static_cast<std::size_t>(mesh.num_nodes());
+  if (m_prot_version != mesh.topology_version || m_node_prot.size() != n) {
+    m_node_prot.assign(n, 0);
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t)
+      if (std::binary_search(m_protected.begin(), m_protected.end(), mesh.group[t]))
+        for (std::int32_t v : mesh.tets[t]) m_node_prot[static_cast<std::size_t>(v)] = 1;
+    m_prot_version = mesh.topology_version;
+  }
+  // One injury per press of the pedal, however long the hook stays on the wall.
+  const bool pedal = std::any_of(state.tools.begin(), state.tools.end(),
+                                 [](const ToolState& t) { return pedal_down(t); });
+  if (!pedal) m_counted = false;
+  const std::vector<std::uint8_t>& coag = state.handoff.coagulated;
+  if (state.handoff.coagulated_version == m_seen_coag) return;
+  m_seen_coag = state.handoff.coagulated_version;
+  m_burnt.resize(n, 0);
+  std::optional<Vec3> first;
+  for (std::size_t v = 0; v < n && v < coag.size(); ++v) {
+    if (coag[v] == 0 || m_node_prot[v] == 0 || m_burnt[v] != 0) continue;
+    m_burnt[v] = 1;
+    if (!first) first = mesh.x[v];
+  }
+  // Marks that appear with the pedal up are the wound of a press already counted (its cut's
+  // nodes, their clones), not a burn of their own.
+  if (first && pedal && !m_counted) {
+    m_errors.push_back({ProcedureError::Kind::kThermalInjury, time_s, *first});
+    m_counted = true;
+  }
+}
+
+std::int64_t ProcedureErrors::count(ProcedureError::Kind kind) const {
+  return std::count_if(m_errors.begin(), m_errors.end(),
+                       [&](const ProcedureError& e) { return e.kind == kind; });
+}
+
+void ProcedureErrors::report(nlohmann::json& metrics) const {
+  if (!active()) return;
+  metrics["bleeding_events"] = count(ProcedureError::Kind::kBleeding);
+  metrics["thermal_injuries"] = count(ProcedureError::Kind::kThermalInjury);
+  nlohmann::json list = nlohmann::json::array();
+  for (const ProcedureError& e : m_errors)
+    list.push_back(
+        {{"kind", e.kind == ProcedureError::Kind::kBleeding ? "bleeding" : "thermal_injury"},
+         {"time_s", e.time_s},
+         {"where_m", {e.where_m.x(), e.where_m.y(), e.where_m.z()}}});
+  metrics["errors"] = std::move(list);
+}
+
+void ProcedureErrors::save(StateWriter& out) const {
+  if (!active()) return;
+  out.array(m_burnt);
+  out.u64(m_seen_coag);
+  out.u8(m_counted ? 1 : 0);
+  out.u32(static_cast<std::uint32_t>(m_errors.size()));
+  for (const ProcedureError& e : m_errors) {
+    out.u8(static_cast<std::uint8_t>(e.kind));
+    out.f64(e.time_s);
+    for (int k = 0; k < 3; ++k) out.f64(e.where_m(k));
+  }
+}
+
+void ProcedureErrors::restore(StateReader& in) {
+  if (!active()) return;
+  in.array(m_burnt);
+  m_seen_coag = in.u64();
+  m_counted = in.u8() != 0;
+  const std::uint32_t k = in.u32();
+  m_errors.clear();
+  for (std::uint32_t i = 0; i < k; ++i) {
+    ProcedureError e;
+    const std::uint8_t kind = in.u8();
+    if (kind > 1) in.fail("an unknown kind of procedure error");
+    e.kind = static_cast<ProcedureError::Kind>(kind);
+    e.time_s = in.f64();
+    for (int c = 0; c < 3; ++c) e.where_m(c) = in.f64();
+    m_errors.push_back(e);
+  }
+  m_prot_version = ~0ull;
+}
+
+}  // namespace serosa::metrics

@@ -1,0 +1,65 @@
+// Errors the scene detects in a procedure (the metrics stage keeps them):
+// - bleeding: a cut (scissors or hook) through the artery's group while no clip clamps that
+//   group (a clipped artery counts as secured);
+// - thermal injury: a live hook coagulating tissue of a protected group (the cecum wall): one
+//   per press of the pedal in which it does.
+// Each is counted and kept with its time, for the report, the assessment and the replay.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/math.h"
+#include "engine/sim_state.h"
+
+namespace serosa {
+class StateWriter;
+class StateReader;
+}  // namespace serosa
+
+namespace serosa::metrics {
+
+struct ProcedureError {
+  enum class Kind : std::uint8_t { kBleeding, kThermalInjury } kind = Kind::kBleeding;
+  double time_s = 0.0;          ///< simulated time of the step it happened in, s
+  Vec3 where_m = Vec3::Zero();  ///< where: the cut tets' mean centroid, the first burnt node, m
+};
+
+class ProcedureErrors {
+ public:
+  ProcedureErrors() = default;
+  /// artery: the group id that bleeds; protected_groups: the ids a live hook must not burn.
+  ProcedureErrors(std::optional<int> artery, std::vector<int> protected_groups);
+
+  /// True when the scene names an artery or protected groups (else nothing is watched).
+  [[nodiscard]] bool active() const noexcept { return m_artery || !m_protected.empty(); }
+  /// Looks at this step's cuts, clips and coagulation marks (end of the step, time_s).
+  void step(double time_s, const SimState& state);
+
+  [[nodiscard]] const std::vector<ProcedureError>& errors() const noexcept { return m_errors; }
+  [[nodiscard]] std::int64_t count(ProcedureError::Kind kind) const;
+  /// {"bleeding_events", "thermal_injuries", "errors": [{"kind", "time_s", "where_m"}]}.
+  void report(nlohmann::json& metrics) const;
+
+  void save(StateWriter& out) const;
+  void restore(StateReader& in);
+
+ private:
+  void check_cuts(double time_s, const SimState& state);
+  void check_burns(double time_s, const SimState& state);
+
+  std::optional<int> m_artery;
+  std::vector<int> m_protected;           // sorted
+  std::vector<std::uint8_t> m_node_prot;  // (n) 1: a node of a protected group's tet
+  std::uint64_t m_prot_version = ~0ull;   // topology the above was taken from
+  std::vector<std::uint8_t> m_burnt;      // (n) protected nodes found coagulated so far
+  std::uint64_t m_seen_coag = 0;          // the coagulation version looked at last
+  bool m_counted = false;                 // an injury counted since the pedal last went down
+  std::vector<ProcedureError> m_errors;
+};
+
+}  // namespace serosa::metrics
