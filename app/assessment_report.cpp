@@ -40,6 +40,13 @@ std::map<std::string, double> session_values(const Scene& scene,
     v["cut.deviation_mean_m"] = metrics.deviation_mean_m();
     v["cut.collateral_m3"] = metrics.collateral_m3();
   }
+  const metrics::ProcedureErrors& errors = metrics.procedure_errors();
+  if (scene.metrics.artery)
+    v["bleeding_events"] =
+        static_cast<double>(errors.count(metrics::ProcedureError::Kind::kBleeding));
+  if (!scene.metrics.protected_groups.empty())
+    v["thermal_injuries"] =
+        static_cast<double>(errors.count(metrics::ProcedureError::Kind::kThermalInjury));
   for (const auto& [id, name] : groups)
     v["pieces." + name] = cutting::count_components(mesh, static_cast<std::uint16_t>(id));
   return v;

@@ -735,6 +735,10 @@ class Loader {
         fail(m_rubric_line, p, what + " names no tool of this scene", "a [[tool]] name");
       if (family.rfind("targets_", 0) == 0 && scene.metrics.view_targets_m.empty())
         fail(m_rubric_line, p, what + " needs targets to look at", "metrics.view_targets");
+      if (family == "bleeding_events" && !scene.metrics.artery)
+        fail(m_rubric_line, p, what + " needs an artery to watch", "metrics.artery");
+      if (family == "thermal_injuries" && scene.metrics.protected_groups.empty())
+        fail(m_rubric_line, p, what + " needs protected tissue to watch", "metrics.protected");
     }
   }
 

@@ -5,6 +5,9 @@
 // organs do not have is an error at its key.
 #include <gtest/gtest.h>
 
+#include <fstream>
+
+#include "app/headless.h"
 #include "app_test_util.h"
 #include "beam_scene.h"
 #include "engine/hook.h"
@@ -80,6 +83,42 @@ TEST(ProcedureErrors, AHookOnProtectedTissueIsOneThermalInjuryPerPress) {
     EXPECT_EQ(m["thermal_injuries"], presses);
     // The hook's own cut through the artery bleeds too: nothing clamps it.
     EXPECT_EQ(m["bleeding_events"], presses);
+  }
+}
+
+TEST(ProcedureErrors, ARubricScoresThemAndAnUnsecuredArteryFailsTheSession) {
+  const std::string effects = "\"fem\", \"surface\", \"contact\", \"clips\", \"cutting\"";
+  const std::string tools =
+      scripted_tool("clipper", "clip-applier") + scripted_tool("scissors", "scissors");
+  for (const bool clipped : {false, true}) {
+    SCOPED_TRACE(clipped ? "clipped" : "not clipped");
+    const fs::path dir = out_dir(clipped ? "errors_rubric_clipped" : "errors_rubric_unclipped");
+    std::ofstream(dir / "rubric.toml")
+        << "title = \"Secure, then divide\"\npass_score = 50\n[[metric]]\nname = "
+           "\"bleeding_events\"\ndomain = \"tissue_handling\"\nunit = \"1\"\ngood = 0.0\n"
+           "poor = 1.0\nlimit = 0.0\ncritical = true\n";
+    auto run = beam_scene(dir, kHeader + applier_rows(clipped) + scissors_rows(), effects, tools,
+                          kWatch + "rubric = \"rubric.toml\"\n");
+    HeadlessOptions ho;
+    ho.scene = dir / "scene.toml";
+    ho.steps = 110;
+    ho.progress = false;
+    const nlohmann::json report = run_headless(ho);
+    EXPECT_EQ(report["assessment"]["passed"], clipped);
+    EXPECT_EQ(report["assessment"]["metrics"]["bleeding_events"]["value"], clipped ? 0.0 : 1.0);
+  }
+  // Scored without an artery to watch: an error naming the rubric's metric.
+  const fs::path dir = out_dir("errors_rubric_no_artery");
+  std::ofstream(dir / "rubric.toml")
+      << "title = \"t\"\npass_score = 50\n[[metric]]\nname = \"thermal_injuries\"\ndomain = "
+         "\"tissue_handling\"\ngood = 0.0\npoor = 1.0\n";
+  try {
+    (void)beam_scene(dir, kHeader + hook_rows(0), "\"fem\", \"surface\", \"cautery\"",
+                     scripted_tool("hook", "hook"), "[metrics]\nrubric = \"rubric.toml\"\n");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("needs protected tissue to watch"), std::string::npos)
+        << e.what();
   }
 }
 
