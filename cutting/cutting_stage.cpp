@@ -40,6 +40,18 @@ CuttingStage::~CuttingStage() = default;
 
 namespace {
 
+// What a stroke's report says before it is cut.
+StrokeReport stroke_report(std::uint64_t first_step, std::uint64_t last_step,
+                           const ScissorsStroke& stroke, const StrokePolygons& polygons) {
+  StrokeReport r;
+  r.first_step = first_step;
+  r.last_step = last_step;
+  r.steps = stroke.steps();
+  r.polygons = polygons.polygons.size();
+  r.deviation_m = polygons.deviation_m;
+  return r;
+}
+
 double hinge_distance(const ToolState& a, const ToolState& b) {
   return (tool_frame(a).hinge - tool_frame(b).hinge).norm();
 }
@@ -75,12 +87,7 @@ void CuttingStage::follow_hook(const StepContext& ctx, SimState& state, Hook& h,
     ToolState end = now;
     end.jaw_rad = 0.0;  // one region over every sample
     const StrokePolygons polys = h.stroke->polygons(state.mesh, end, kStrokeClosedRad);
-    StrokeReport report;
-    report.first_step = h.first_step;
-    report.last_step = ctx.step;
-    report.steps = h.stroke->steps();
-    report.polygons = polys.polygons.size();
-    report.deviation_m = polys.deviation_m;
+    StrokeReport report = stroke_report(h.first_step, ctx.step, *h.stroke, polys);
     h.stroke.reset();
     ++m_stats.strokes;
     ++m_stats.hook_strokes;
@@ -202,12 +209,7 @@ void CuttingStage::extend(const StepContext& ctx, const SimState& state, Scissor
 void CuttingStage::end_stroke(const StepContext& ctx, SimState& state, Scissors& s, ToolState end) {
   if (!s.stroke) return;
   const StrokePolygons cut_with_these = s.stroke->polygons(state.mesh, end, kStrokeClosedRad);
-  StrokeReport report;
-  report.first_step = s.first_step;
-  report.last_step = ctx.step;
-  report.steps = s.stroke->steps();
-  report.polygons = cut_with_these.polygons.size();
-  report.deviation_m = cut_with_these.deviation_m;
+  StrokeReport report = stroke_report(s.first_step, ctx.step, *s.stroke, cut_with_these);
   s.stroke.reset();
   s.paused.reset();
   ++m_stats.strokes;

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "app/assemble_state.h"
 #include "app/compose.h"
@@ -43,6 +44,18 @@ inline std::unique_ptr<BeamRun> beam_scene(const fs::path& dir, const std::strin
   run->assembled = assemble_state(run->scene);
   run->comp = compose(run->scene, run->assembled);
   return run;
+}
+
+/// A fresh pipeline for `run`'s scene with `snapshot` restored into it.
+inline std::unique_ptr<BeamRun> restored(const BeamRun& run,
+                                         const std::vector<std::uint8_t>& snapshot,
+                                         const std::string& what) {
+  auto other = std::make_unique<BeamRun>();
+  other->scene = run.scene;
+  other->assembled = assemble_state(other->scene);
+  other->comp = compose(other->scene, other->assembled);
+  other->comp.runner->restore(snapshot, other->assembled.state, what);
+  return other;
 }
 
 /// A [[tool]] table of that name and kind, scripted by path.csv.

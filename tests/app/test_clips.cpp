@@ -218,12 +218,8 @@ TEST(Clip, ARestoredSnapshotWithAClipContinuesBitForBit) {
   SimState& s = run->assembled.state;
   run->comp.runner->run(s, 30);  // pressing
   const std::vector<std::uint8_t> bytes = run->comp.runner->snapshot(s);
-  auto other = std::make_unique<BeamRun>();
-  other->scene = run->scene;
-  other->assembled = assemble_state(other->scene);
-  other->comp = compose(other->scene, other->assembled);
+  auto other = restored(*run, bytes, "clip snapshot");
   SimState& o = other->assembled.state;
-  other->comp.runner->restore(bytes, o, "clip snapshot");
   ASSERT_EQ(o.handoff.clips.size(), 1u);
   for (int k = 0; k < 40; ++k) {  // through the settling and on
     run->comp.runner->step(s);

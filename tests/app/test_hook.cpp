@@ -108,12 +108,8 @@ TEST(Hook, ARestoredSnapshotMidStrokeContinuesBitForBit) {
   SimState& s = run->assembled.state;
   run->comp.runner->run(s, 25);  // pedal down, the stroke half drawn
   const std::vector<std::uint8_t> bytes = run->comp.runner->snapshot(s);
-  auto other = std::make_unique<BeamRun>();
-  other->scene = run->scene;
-  other->assembled = assemble_state(other->scene);
-  other->comp = compose(other->scene, other->assembled);
+  auto other = restored(*run, bytes, "hook snapshot");
   SimState& o = other->assembled.state;
-  other->comp.runner->restore(bytes, o, "hook snapshot");
   EXPECT_EQ(o.handoff.coagulated, s.handoff.coagulated);
   for (int k = 0; k < 30; ++k) {  // through the release and the cut
     run->comp.runner->step(s);

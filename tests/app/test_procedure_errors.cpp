@@ -129,9 +129,7 @@ TEST(ProcedureErrors, ARestoredRunReportsTheSameErrors) {
   SimState& s = run->assembled.state;
   run->comp.runner->run(s, 20);  // after the first press
   const std::vector<std::uint8_t> bytes = run->comp.runner->snapshot(s);
-  auto other = beam_scene(dir, kHeader + hook_rows(2), "\"fem\", \"surface\", \"cautery\"",
-                          scripted_tool("hook", "hook"), kWatch);
-  other->comp.runner->restore(bytes, other->assembled.state, "errors snapshot");
+  auto other = restored(*run, bytes, "errors snapshot");
   run->comp.runner->run(s, 30);
   other->comp.runner->run(other->assembled.state, 30);
   EXPECT_EQ(other->comp.metrics->report(), run->comp.metrics->report());
