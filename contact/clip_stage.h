@@ -72,7 +72,7 @@ class ClipStage final : public Stage {
   std::vector<double> m_widest;         // (tools) widest opening since its last clip, rad
   std::vector<std::int64_t> m_dropped;  // (tools)
   std::vector<Placed> m_clips;          // in the order placed
-  std::vector<Vec3> m_from, m_to;       // scratch for the fit
+  std::vector<Vec3> m_to;               // scratch: the anchors now, for the fit
 };
 
 }  // namespace serosa::contact

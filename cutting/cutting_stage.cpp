@@ -267,6 +267,7 @@ void CuttingStage::cut(const StepContext& ctx, SimState& state, std::size_t tool
     for (std::int32_t n : tet) c += mesh.x[static_cast<std::size_t>(n)];
     applied.removed_centroids_m.push_back(0.25 * c);
     applied.removed_volumes_m3.push_back(mesh.rest_volume(t));
+    applied.removed_groups.push_back(mesh.group[static_cast<std::size_t>(t)]);
   }
   std::optional<TetMesh> before;
   // The invariants hold for the paper's method; removal loses volume and snapping moves nodes.

@@ -16,13 +16,14 @@ namespace serosa {
 
 /// One cut applied to the mesh during a step, as the cutting stage hands it on.
 struct CutEvent {
-  std::uint64_t step = 0;                  ///< solver step during which it happened
-  std::size_t tool = 0;                    ///< index into Scene::tools
-  int blade = 0;                           ///< 0 or 1 (engine/tool_geometry.h)
-  std::vector<Vec3> polygon_m;             ///< (k) the swept blade polygon, m
-  TopologyDelta delta;                     ///< as applied (its filled-in fields set)
-  std::vector<Vec3> removed_centroids_m;   ///< (r) current centroid of each removed tet, m
-  std::vector<double> removed_volumes_m3;  ///< (r) rest volume of each removed tet, m^3
+  std::uint64_t step = 0;                     ///< solver step during which it happened
+  std::size_t tool = 0;                       ///< index into Scene::tools
+  int blade = 0;                              ///< 0 or 1 (engine/tool_geometry.h)
+  std::vector<Vec3> polygon_m;                ///< (k) the swept blade polygon, m
+  TopologyDelta delta;                        ///< as applied (its filled-in fields set)
+  std::vector<Vec3> removed_centroids_m;      ///< (r) current centroid of each removed tet, m
+  std::vector<double> removed_volumes_m3;     ///< (r) rest volume of each removed tet, m^3
+  std::vector<std::uint16_t> removed_groups;  ///< (r) group of each removed tet
 };
 
 /// The tissue's pull and torque on one tool, for the haptic loop (contact/tool_contact_stage.h).

@@ -17,15 +17,15 @@ void ProcedureErrors::step(double time_s, const SimState& state) {
   if (!m_protected.empty()) check_burns(time_s, state);
 }
 
-// A cut's added tets keep the groups of the tets they divide: one of the artery's means the cut
-// went through it.
+// A cut that removed one of the artery's tets went through it (whatever the method: removal adds
+// none).
 void ProcedureErrors::check_cuts(double time_s, const SimState& state) {
   const bool secured =
       std::any_of(state.handoff.clips.begin(), state.handoff.clips.end(), [&](const Clip& c) {
         return std::find(c.groups.begin(), c.groups.end(), *m_artery) != c.groups.end();
       });
   for (const CutEvent& cut : state.handoff.cuts) {
-    const auto& g = cut.delta.added_groups;
+    const auto& g = cut.removed_groups;
     if (secured || std::find(g.begin(), g.end(), *m_artery) == g.end()) continue;
     Vec3 where = Vec3::Zero();
     for (const Vec3& c : cut.removed_centroids_m) where += c;

@@ -25,7 +25,7 @@ struct RenderTool {
   enum class Kind : std::uint8_t {
     kScissors,     ///< two blades that shear past each other (Metzenbaum-like, slightly curved)
     kGrasper,      ///< two flat jaws that close on each other
-    kClipApplier,  ///< a grasper's jaws, with a clip loaded between them while open
+    kClipApplier,  ///< drawn with a grasper's jaws (the clip it places is a RenderClip)
     kHook,         ///< an L-hook electrode: a thin wire beyond the shaft, its crook along +side
   };
   Kind kind = Kind::kGrasper;

@@ -35,8 +35,8 @@ std::string applier_rows(bool on_tissue) {
 }
 
 nlohmann::json run_metrics(const fs::path& dir, const std::string& csv, const std::string& effects,
-                           const std::string& tools, int steps) {
-  auto run = beam_scene(dir, kHeader + csv, effects, tools, kWatch);
+                           const std::string& tools, int steps, const std::string& extra = "") {
+  auto run = beam_scene(dir, kHeader + csv, effects, tools, kWatch + extra);
   run->comp.runner->run(run->assembled.state, static_cast<std::uint64_t>(steps));
   return run->comp.metrics->report();
 }
@@ -60,6 +60,17 @@ TEST(ProcedureErrors, DividingTheArteryBleedsUnlessAClipSecuredIt) {
       EXPECT_NEAR(m["errors"][0]["where_m"][0].get<double>(), 0.03, 0.003);
     }
   }
+}
+
+TEST(ProcedureErrors, RemovingTheArterysTetsBleedsToo) {
+  // The "remove" method adds no tets: the cut is known by the tets it took out.
+  const nlohmann::json m =
+      run_metrics(out_dir("errors_removal"), applier_rows(false) + scissors_rows(),
+                  "\"fem\", \"surface\", \"contact\", \"clips\", \"cutting\"",
+                  scripted_tool("clipper", "clip-applier") + scripted_tool("scissors", "scissors"),
+                  110, "[cutting]\nmethod = \"remove\"\n");
+  ASSERT_GT(m["cut"]["tets"].get<int>(), 0);
+  EXPECT_EQ(m["bleeding_events"], 1);
 }
 
 // A hook at 5 cm, 1 mm above the beam, drawn 10 mm down into it; the pedal held `presses` times
