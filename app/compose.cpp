@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "contact/support_stage.h"
 #include "cutting/cutting_stage.h"
 #include "engine/input_error.h"
 #include "engine/script_tool_stage.h"
@@ -185,11 +186,18 @@ Composition compose(const Scene& scene, const AssembledScene& assembled, Compose
     c.runner->add(Slot::contact, std::move(contact_stage));
     c.built.push_back(Effect::kContact);
   }
-  if (listed(Effect::kClips)) {
+  if (listed(Effect::kClips) || listed(Effect::kLoops)) {  // ligatures: clips and loops
     auto clip_stage = std::make_unique<ClipStage>(scene);
     c.clips = clip_stage.get();
     c.runner->add(Slot::contact, std::move(clip_stage));
-    c.built.push_back(Effect::kClips);
+    if (listed(Effect::kClips)) c.built.push_back(Effect::kClips);
+    if (listed(Effect::kLoops)) c.built.push_back(Effect::kLoops);
+  }
+  // the supports the organs rest on (their forces join the contact stage's)
+  if (listed(Effect::kSupports) && fem_stage) {
+    c.runner->add(Slot::contact,
+                  std::make_unique<contact::SupportStage>(scene, c.contact == nullptr));
+    c.built.push_back(Effect::kSupports);
   }
   // FEM (gravity is one of its terms)
   if (fem_stage) {

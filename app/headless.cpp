@@ -106,8 +106,8 @@ recording::Header recording_header(const Scene& scene, std::int64_t steps) {
   return h;
 }
 
-// Each placed clip (when, by which applier, what it clamps, where it is now) and the clips each
-// applier closed on no tissue.
+// Each placed ligature (clip or loop: when, by which tool, what it clamps, where it is now) and
+// the clips each applier closed on no tissue and the loops cinched round none.
 Json clips_json(const Scene& scene, const SimState& state, const Composition& comp,
                 const std::map<int, std::string>& group_names) {
   Json placed = Json::array();
@@ -119,6 +119,7 @@ Json clips_json(const Scene& scene, const SimState& state, const Composition& co
     }
     const Vec3 mid = 0.5 * (c.end(0) + c.end(1));
     placed.push_back({{"tool", scene.tools[c.tool].name},
+                      {"kind", c.kind == Clip::Kind::kLoop ? "loop" : "clip"},
                       {"time_s", c.placed_s},
                       {"nodes", c.nodes},
                       {"groups", std::move(groups)},
@@ -126,7 +127,7 @@ Json clips_json(const Scene& scene, const SimState& state, const Composition& co
   }
   Json dropped = Json::object();
   for (std::size_t i = 0; i < scene.tools.size(); ++i)
-    if (scene.tools[i].kind == ToolKind::kClipApplier)
+    if (scene.tools[i].kind == ToolKind::kClipApplier || scene.tools[i].kind == ToolKind::kEndoloop)
       dropped[scene.tools[i].name] = comp.clips->dropped()[i];
   return {{"placed", std::move(placed)}, {"dropped", std::move(dropped)}};
 }

@@ -121,6 +121,8 @@ void fill_render_tools(const Scene& scene, const SimState& state, render::Render
     rc.start = to_float(c.end(0));
     rc.end = to_float(c.end(1));
     rc.across = to_float(Vec3(c.frame.col(0)));
+    rc.loop = c.kind == Clip::Kind::kLoop;
+    rc.radius = static_cast<float>(c.reach_m());
     frame.clips.push_back(rc);
   }
   for (const Vec3& p : scene.metrics.planned_cut_m)
@@ -138,6 +140,7 @@ void fill_render_tools(const Scene& scene, const SimState& state, render::Render
     t.kind = tool.kind == ToolKind::kScissors      ? render::RenderTool::Kind::kScissors
              : tool.kind == ToolKind::kClipApplier ? render::RenderTool::Kind::kClipApplier
              : tool.kind == ToolKind::kHook        ? render::RenderTool::Kind::kHook
+             : tool.kind == ToolKind::kEndoloop    ? render::RenderTool::Kind::kEndoloop
                                                    : render::RenderTool::Kind::kGrasper;
     t.tip = to_float(in.tip_m);
     t.quat_wxyz = to_float(in.quat_wxyz);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/endoloop.h"
 #include "engine/geometry/rigid_fit.h"
 #include "engine/sim_state.h"
 #include "engine/state_codec.h"
@@ -23,20 +24,27 @@ Vec3 read_vec3(StateReader& in) {
 }  // namespace
 
 ClipStage::ClipStage(const Scene& scene) {
-  for (const Tool& t : scene.tools) m_applier.push_back(t.kind == ToolKind::kClipApplier);
+  const bool clips = scene.settings.has(Effect::kClips);
+  const bool loops = scene.settings.has(Effect::kLoops);
+  for (const Tool& t : scene.tools)
+    m_role.push_back(clips && t.kind == ToolKind::kClipApplier ? Role::kApplier
+                     : loops && t.kind == ToolKind::kEndoloop  ? Role::kLoop
+                                                               : Role::kNone);
   m_widest.assign(scene.tools.size(), 0.0);
   m_dropped.assign(scene.tools.size(), 0);
 }
 
 void ClipStage::step(const StepContext& ctx, SimState& state) {
   clamp_clones(state);
-  for (std::size_t i = 0; i < m_applier.size() && i < state.tools.size(); ++i) {
-    if (!m_applier[i]) continue;
+  for (std::size_t i = 0; i < m_role.size() && i < state.tools.size(); ++i) {
+    if (m_role[i] == Role::kNone) continue;
     const ToolState& ts = state.tools[i];
+    const bool loop = m_role[i] == Role::kLoop;
     m_widest[i] = std::max(m_widest[i], ts.jaw_rad);
-    if (ts.jaw_rad <= kClipCloseRad && m_widest[i] >= kClipArmRad) {
+    if (ts.jaw_rad <= (loop ? kLoopCloseRad : kClipCloseRad) &&
+        m_widest[i] >= (loop ? kLoopArmRad : kClipArmRad)) {
       place(ctx, state, i, ts);
-      m_widest[i] = ts.jaw_rad;  // the next clip needs the jaws opened again
+      m_widest[i] = ts.jaw_rad;  // the next one needs the jaws (the loop) opened again
     }
   }
   for (Placed& p : m_clips) {
@@ -50,17 +58,32 @@ void ClipStage::step(const StepContext& ctx, SimState& state) {
 
 void ClipStage::place(const StepContext& ctx, SimState& state, std::size_t tool,
                       const ToolState& ts) {
-  const ToolFrame f = tool_frame(ts);
   Placed p;
+  p.clip.tool = tool;
+  p.clip.placed_s = ctx.time_s;
+  if (m_role[tool] == Role::kLoop)
+    cinch(state, tool, ts, p);
+  else
+    clamp_between_jaws(state, tool, ts, p);
+  if (p.nodes.empty()) {
+    ++m_dropped[tool];
+    return;
+  }
+  find_anchors(state.mesh, p);
+  m_clips.push_back(std::move(p));
+}
+
+void ClipStage::clamp_between_jaws(const SimState& state, std::size_t tool, const ToolState& ts,
+                                   Placed& p) const {
+  const ToolFrame f = tool_frame(ts);
+  p.clip.kind = Clip::Kind::kClip;
   p.clip.hinge_m = f.hinge;
   p.clip.frame.col(0) = f.side;
   p.clip.frame.col(1) = f.pin;
   p.clip.frame.col(2) = f.forward;
-  p.clip.tool = tool;
-  p.clip.placed_s = ctx.time_s;
   const Mat3 rt = p.clip.frame.transpose();
   const double tan_half = std::tan(0.5 * std::min(m_widest[tool], 3.0));
-  TetMesh& mesh = state.mesh;
+  const TetMesh& mesh = state.mesh;
   double widest = 0.0;  // the clamped tissue's half thickness across the clip, m
   for (std::int32_t n = 0; n < mesh.num_nodes(); ++n) {
     const auto un = static_cast<std::size_t>(n);
@@ -73,11 +96,46 @@ void ClipStage::place(const StepContext& ctx, SimState& state, std::size_t tool,
     p.local.push_back(l);
     widest = std::max(widest, std::abs(l.x()));
   }
-  if (p.nodes.empty()) {
-    ++m_dropped[tool];
-    return;
-  }
   p.press = widest > 0.5 * kClipGap ? 0.5 * kClipGap / widest : 1.0;
+}
+
+void ClipStage::cinch(const SimState& state, std::size_t tool, const ToolState& ts,
+                      Placed& p) const {
+  ToolState open = ts;
+  open.jaw_rad = m_widest[tool];  // the ring as it went round the tissue
+  const LoopRing ring = loop_ring(open);
+  const TetMesh& mesh = state.mesh;
+  Vec3 sum = Vec3::Zero();
+  for (std::int32_t n = 0; n < mesh.num_nodes(); ++n) {
+    const auto un = static_cast<std::size_t>(n);
+    if (mesh.fixed[un] != 0) continue;
+    const Vec3 d = mesh.x[un] - ring.centre;
+    const double axial = d.dot(ring.axis);
+    if (std::abs(axial) > kLoopHalfWidth) continue;
+    if ((d - axial * ring.axis).norm() > ring.radius_m) continue;
+    p.nodes.push_back(n);
+    sum += mesh.x[un];
+  }
+  if (p.nodes.empty()) return;
+  // The suture closes round what it holds: centred on it, in the ring's plane.
+  const Vec3 mean = sum / static_cast<double>(p.nodes.size());
+  const Vec3 u = ring.to_knot.normalized();
+  p.clip.kind = Clip::Kind::kLoop;
+  p.clip.hinge_m = mean - (mean - ring.centre).dot(ring.axis) * ring.axis;
+  p.clip.frame.col(0) = u;
+  p.clip.frame.col(1) = ring.axis.cross(u);
+  p.clip.frame.col(2) = ring.axis;
+  const Mat3 rt = p.clip.frame.transpose();
+  double widest = 0.0;  // the farthest ligated node from the axis, m
+  for (std::int32_t n : p.nodes) {
+    const Vec3 l = rt * (mesh.x[static_cast<std::size_t>(n)] - p.clip.hinge_m);
+    p.local.push_back(l);
+    widest = std::max(widest, std::hypot(l.x(), l.y()));
+  }
+  p.press = widest > kLoopTightRadius ? kLoopTightRadius / widest : 1.0;
+}
+
+void ClipStage::find_anchors(const TetMesh& mesh, Placed& p) {
   std::vector<std::uint8_t> role(static_cast<std::size_t>(mesh.num_nodes()), 0);  // 1 clamped
   for (std::int32_t n : p.nodes) role[static_cast<std::size_t>(n)] = 1;
   std::vector<int> groups;
@@ -99,7 +157,10 @@ void ClipStage::place(const StepContext& ctx, SimState& state, std::size_t tool,
   std::sort(p.anchors.begin(), p.anchors.end());
   p.clip.groups = std::move(groups);
   p.clip.nodes = p.nodes.size();
-  m_clips.push_back(std::move(p));
+  p.clip.node = p.nodes.front();
+  Vec3 rest = Vec3::Zero();
+  for (std::int32_t n : p.nodes) rest += mesh.rest[static_cast<std::size_t>(n)];
+  p.clip.rest_centre_m = rest / static_cast<double>(p.nodes.size());
 }
 
 // A cut of the last step may have cloned a clamped node (the clone takes the tets on one side):
@@ -153,7 +214,8 @@ void ClipStage::hold(Placed& p, SimState& state, double age_s) const {
   for (std::size_t k = 0; k < p.nodes.size(); ++k) {
     const auto un = static_cast<std::size_t>(p.nodes[k]);
     if (un >= mesh.x.size()) continue;
-    const Vec3 l(p.local[k].x() * scale, p.local[k].y(), p.local[k].z());
+    const bool loop = p.clip.kind == Clip::Kind::kLoop;  // a loop presses radially
+    const Vec3 l(p.local[k].x() * scale, p.local[k].y() * (loop ? scale : 1.0), p.local[k].z());
     mesh.x[un] = p.clip.hinge_m + p.clip.frame * l;
     mesh.v[un].setZero();  // at rest in the step, as a grasper's held nodes
     mesh.fixed[un] = 1;
@@ -170,11 +232,13 @@ void ClipStage::save(StateWriter& out) const {
   out.array(m_dropped);
   out.u32(static_cast<std::uint32_t>(m_clips.size()));
   for (const Placed& p : m_clips) {
+    out.u8(static_cast<std::uint8_t>(p.clip.kind));
     write_vec3(out, p.clip.hinge_m);
     for (int c = 0; c < 3; ++c) write_vec3(out, p.clip.frame.col(c));
     out.u64(p.clip.tool);
     out.f64(p.clip.placed_s);
     out.array(p.clip.groups);
+    write_vec3(out, p.clip.rest_centre_m);
     out.array(p.nodes);
     out.array(p.local);
     out.f64(p.press);
@@ -189,17 +253,21 @@ void ClipStage::save(StateWriter& out) const {
 void ClipStage::restore(StateReader& in, SimState& state) {
   in.array(m_widest);
   in.array(m_dropped);
-  if (m_widest.size() != m_applier.size() || m_dropped.size() != m_applier.size())
+  if (m_widest.size() != m_role.size() || m_dropped.size() != m_role.size())
     in.fail("another number of tools than the scene's");
   const std::uint32_t count = in.u32();
   m_clips.clear();
   for (std::uint32_t i = 0; i < count; ++i) {
     Placed p;
+    const std::uint8_t kind = in.u8();
+    if (kind > 1) in.fail("an unknown kind of ligature");
+    p.clip.kind = static_cast<Clip::Kind>(kind);
     p.clip.hinge_m = read_vec3(in);
     for (int c = 0; c < 3; ++c) p.clip.frame.col(c) = read_vec3(in);
     p.clip.tool = static_cast<std::size_t>(in.u64());
     p.clip.placed_s = in.f64();
     in.array(p.clip.groups);
+    p.clip.rest_centre_m = read_vec3(in);
     in.array(p.nodes);
     in.array(p.local);
     p.press = in.f64();
@@ -209,12 +277,14 @@ void ClipStage::restore(StateReader& in, SimState& state) {
     for (int c = 0; c < 3; ++c) p.ref_frame.col(c) = read_vec3(in);
     p.settled = in.u8() != 0;
     if (p.local.size() != p.nodes.size() ||
-        (p.settled && p.anchor_ref.size() != p.anchors.size()) || p.clip.tool >= m_applier.size())
+        (p.settled && p.anchor_ref.size() != p.anchors.size()) || p.clip.tool >= m_role.size())
       in.fail("a clip's arrays disagree in size");
     for (const std::vector<std::int32_t>* ids : {&p.nodes, &p.anchors})
       for (std::int32_t n : *ids)
         if (n < 0 || n >= state.mesh.num_nodes()) in.fail("a clip holds a node out of range");
+    if (p.nodes.empty()) in.fail("a clip clamps no node");
     p.clip.nodes = p.nodes.size();
+    p.clip.node = p.nodes.front();
     m_clips.push_back(std::move(p));
   }
   publish(state);

@@ -1,11 +1,17 @@
 // The "clips" stage (contact slot, after the tools touched): clip appliers place ligation clips
-// (engine/clip.h), which then hold the tissue they close on wherever that tissue goes.
+// and endoloops cinch suture loops (engine/clip.h, engine/endoloop.h: ligatures), which then hold
+// the tissue they close on wherever that tissue goes. Appliers act when "clips" is listed,
+// endoloops when "loops" is.
 //
 // - Placing: an applier that opened past kClipArmRad and closes to kClipCloseRad places a clip
 //   in its jaws, over [kClipStart, kClipStart + kClipLength] beyond the hinge. It clamps every
 //   node (surface and interior: a vessel is closed through) within kClipHalfWidth of the jaw
 //   plane and inside the wedge of the opening it closed from. A clip that closes on no tissue
 //   falls away: it is counted, not placed.
+// - Cinching: an endoloop that opened past kLoopArmRad and closes to kLoopCloseRad ligates every
+//   node within kLoopHalfWidth of its ring's plane and inside the ring as it was open. The loop
+//   closes round them: its centre is theirs (in the plane), and they are pressed towards its axis
+//   until they lie within kLoopTightRadius. A loop round no tissue slips off: counted, not placed.
 // - Clamping: each clamped node is held (a Dirichlet node, like a grasper's) at its place in the
 //   clip's frame, pressed across the clip over kClipSqueezeS until the tissue between the legs
 //   is kClipGap thick.
@@ -27,6 +33,7 @@
 #include "engine/math.h"
 #include "engine/scene.h"
 #include "engine/stage.h"
+#include "engine/tet_mesh.h"
 #include "engine/tool_state.h"
 
 namespace serosa::contact {
@@ -46,15 +53,16 @@ class ClipStage final : public Stage {
   void save(StateWriter& out) const override;
   void restore(StateReader& in, SimState& state) override;
 
-  /// Clips closed on no tissue, per applier (scene tool order; 0 for other tools).
+  /// Clips closed on no tissue and loops cinched round none, per tool (scene tool order; 0 for
+  /// other tools).
   [[nodiscard]] const std::vector<std::int64_t>& dropped() const noexcept { return m_dropped; }
 
  private:
   struct Placed {
-    Clip clip;                          // as handed on
-    std::vector<std::int32_t> nodes;    // (c) clamped node ids
-    std::vector<Vec3> local;            // (c) where each was in the clip's frame at placing, m
-    double press = 1.0;                 // the across-coordinate's final scale, (0, 1]
+    Clip clip;                        // as handed on
+    std::vector<std::int32_t> nodes;  // (c) clamped node ids
+    std::vector<Vec3> local;          // (c) where each was in the clip's frame at placing, m
+    double press = 1.0;  // the across-coordinate's (a loop's: radial) final scale, (0, 1]
     std::vector<std::int32_t> anchors;  // (a) free nodes sharing a tet with a clamped node
     std::vector<Vec3> anchor_ref;       // (a) their positions when the clip settled, m
     Vec3 ref_hinge = Vec3::Zero();      // the clip's hinge then, m
@@ -62,13 +70,22 @@ class ClipStage final : public Stage {
     bool settled = false;
   };
 
+  enum class Role : std::uint8_t { kNone, kApplier, kLoop };
+
   void place(const StepContext& ctx, SimState& state, std::size_t tool, const ToolState& ts);
+  /// The free nodes a loop cinched now ligates, in p.nodes and p.local (its frame set).
+  void cinch(const SimState& state, std::size_t tool, const ToolState& ts, Placed& p) const;
+  /// The free nodes between a closing applier's jaws, in p.nodes and p.local.
+  void clamp_between_jaws(const SimState& state, std::size_t tool, const ToolState& ts,
+                          Placed& p) const;
+  /// The anchors and the groups around p's nodes.
+  static void find_anchors(const TetMesh& mesh, Placed& p);
   void clamp_clones(const SimState& state);
   void carry(Placed& p, const SimState& state, double age_s);
   void hold(Placed& p, SimState& state, double age_s) const;
   void publish(SimState& state) const;
 
-  std::vector<bool> m_applier;          // (tools) a clip applier
+  std::vector<Role> m_role;             // (tools) what it places, if anything
   std::vector<double> m_widest;         // (tools) widest opening since its last clip, rad
   std::vector<std::int64_t> m_dropped;  // (tools)
   std::vector<Placed> m_clips;          // in the order placed

@@ -162,10 +162,14 @@ void ToolContactStage::step(const StepContext& ctx, SimState& state) {
     if (m_kinds[i] == ToolKind::kGrasper) {
       if (!g.holding) {
         g.widest_rad = std::max(g.widest_rad, ts.jaw_rad);
-        if (ts.jaw_rad < kGraspCloseRad && g.widest_rad >= kGraspCloseRad) grab(state, i, g);
+        if (ts.jaw_rad < kGraspCloseRad && g.widest_rad >= kGraspCloseRad) {
+          grab(state, i, g);
+          publish_grasps(state);
+        }
       } else if (ts.jaw_rad > kGraspCloseRad + kGraspHysteresisRad) {
         release(state, g);
         g.widest_rad = ts.jaw_rad;
+        publish_grasps(state);
       }
       if (g.holding && !g.nodes.empty()) {
         // The tissue's pull on the held nodes, measured before they move with the jaws.
@@ -271,6 +275,12 @@ void ToolContactStage::restore(StateReader& in, SimState& state) {
   m_boundary_version = ~0ull;
   m_bvh_version = ~0ull;
   m_blade_nodes = -1;
+  publish_grasps(state);
+}
+
+void ToolContactStage::publish_grasps(SimState& state) const {
+  state.handoff.grasped.resize(m_grasps.size());
+  for (std::size_t i = 0; i < m_grasps.size(); ++i) state.handoff.grasped[i] = m_grasps[i].nodes;
 }
 
 }  // namespace serosa::contact

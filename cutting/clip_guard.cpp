@@ -5,10 +5,11 @@
 
 namespace serosa::cutting {
 
-// The part of the clip's centre line within r of the polygon's plane, then whether any of it
+// A loop is its axis across the suture, reaching its cinched radius round it. The part of the
+// clip's centre line within r of the polygon's plane, then whether any of it
 // lies over the polygon grown by r.
 bool polygon_meets_clip(const ConvexPolygon& polygon, const Clip& clip) {
-  const double r = kClipHalfWidth + kClipClearance;
+  const double r = clip.reach_m() + kClipClearance;
   const Vec3 a = clip.end(0), b = clip.end(1);
   const double da = polygon.signed_distance(a), db = polygon.signed_distance(b);
   double t0 = 0.0, t1 = 1.0;

@@ -1,5 +1,6 @@
-// Scissors never cut through a clip: closing on one, the blades meet titanium and stop. The
-// cutting stage leaves a stroke uncut when its polygon meets a placed clip (engine/clip.h).
+// Scissors never cut through a ligature: closing on a clip, the blades meet titanium and stop;
+// on a loop's knot, they would cut the suture the base depends on. The cutting stage leaves a
+// stroke uncut when its polygon meets a placed clip or loop (engine/clip.h).
 #pragma once
 
 #include <vector>
@@ -13,7 +14,8 @@ namespace serosa::cutting {
 /// (beyond its legs' half width) meets it.
 inline constexpr double kClipClearance = 5e-4;
 
-/// True when `polygon` passes within kClipHalfWidth + kClipClearance of `clip`'s centre line.
+/// True when `polygon` passes within clip.reach_m() + kClipClearance of `clip`'s centre line
+/// (a loop's: its axis across the suture).
 [[nodiscard]] bool polygon_meets_clip(const ConvexPolygon& polygon, const Clip& clip);
 
 /// True when `polygon` meets any of `clips`.

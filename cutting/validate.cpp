@@ -10,6 +10,7 @@
 #include "engine/boundary.h"
 #include "engine/geometry/point_triangle.h"
 #include "engine/mesh_check.h"
+#include "engine/node_components.h"
 
 namespace serosa::cutting {
 namespace {
@@ -201,23 +202,10 @@ CutCheckReport check_cut(const TetMesh& before, const TetMesh& after, const Conv
 }
 
 std::vector<std::int32_t> tet_components(const TetMesh& mesh) {
-  std::vector<std::int32_t> parent(static_cast<std::size_t>(mesh.num_nodes()));
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](std::int32_t a) {
-    while (parent[a] != a) a = parent[a] = parent[parent[a]];
-    return a;
-  };
-  for (const Tet& t : mesh.tets)
-    for (int k = 1; k < 4; ++k) parent[find(t[k])] = find(t[0]);
-  std::vector<std::int32_t> label(parent.size(), -1);
+  const std::vector<std::int32_t> node = node_components(mesh);
   std::vector<std::int32_t> out;
   out.reserve(mesh.tets.size());
-  std::int32_t next = 0;
-  for (const Tet& t : mesh.tets) {
-    std::int32_t& l = label[static_cast<std::size_t>(find(t[0]))];
-    if (l < 0) l = next++;
-    out.push_back(l);
-  }
+  for (const Tet& t : mesh.tets) out.push_back(node[static_cast<std::size_t>(t[0])]);
   return out;
 }
 

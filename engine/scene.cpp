@@ -15,9 +15,11 @@ using NameTable = std::array<std::pair<E, std::string_view>, N>;
 
 constexpr NameTable<Effect, kNumEffects> kEffectNames{{{Effect::kFem, "fem"},
                                                        {Effect::kGravity, "gravity"},
+                                                       {Effect::kSupports, "supports"},
                                                        {Effect::kPlasticity, "plasticity"},
                                                        {Effect::kCutting, "cutting"},
                                                        {Effect::kClips, "clips"},
+                                                       {Effect::kLoops, "loops"},
                                                        {Effect::kCautery, "cautery"},
                                                        {Effect::kContact, "contact"},
                                                        {Effect::kSurface, "surface"},
@@ -30,11 +32,12 @@ constexpr NameTable<SolverKind, 4> kSolverNames{{{SolverKind::kPcg, "pcg"},
                                                  {SolverKind::kCholmod, "cholmod"},
                                                  {SolverKind::kPcgCholmod, "pcg-cholmod"},
                                                  {SolverKind::kPcgLagged, "pcg-lagged"}}};
-constexpr NameTable<ToolKind, 5> kToolKindNames{{{ToolKind::kScissors, "scissors"},
+constexpr NameTable<ToolKind, 6> kToolKindNames{{{ToolKind::kScissors, "scissors"},
                                                  {ToolKind::kGrasper, "grasper"},
                                                  {ToolKind::kEndoscope, "endoscope"},
                                                  {ToolKind::kClipApplier, "clip-applier"},
-                                                 {ToolKind::kHook, "hook"}}};
+                                                 {ToolKind::kHook, "hook"},
+                                                 {ToolKind::kEndoloop, "endoloop"}}};
 constexpr NameTable<DeviceKind, 4> kDeviceNames{{{DeviceKind::kRig, "rig"},
                                                  {DeviceKind::kRigEmulated, "rig-emulated"},
                                                  {DeviceKind::kMouse, "mouse"},
@@ -42,6 +45,9 @@ constexpr NameTable<DeviceKind, 4> kDeviceNames{{{DeviceKind::kRig, "rig"},
 constexpr NameTable<Hand, 2> kHandNames{{{Hand::kLeft, "left"}, {Hand::kRight, "right"}}};
 constexpr NameTable<CutMethod, 3> kCutMethodNames{
     {{CutMethod::kPattern, "pattern"}, {CutMethod::kRemove, "remove"}, {CutMethod::kSnap, "snap"}}};
+
+constexpr NameTable<Surroundings, 2> kSurroundingsNames{
+    {{Surroundings::kNone, "none"}, {Surroundings::kAbdomen, "abdomen"}}};
 
 template <class E, std::size_t N>
 std::string_view name_of(const NameTable<E, N>& table, E e) noexcept {
@@ -86,6 +92,12 @@ std::optional<Hand> hand_from_name(std::string_view s) noexcept { return value_o
 std::string_view cut_method_name(CutMethod m) noexcept { return name_of(kCutMethodNames, m); }
 std::optional<CutMethod> cut_method_from_name(std::string_view s) noexcept {
   return value_of(kCutMethodNames, s);
+}
+std::string_view surroundings_name(Surroundings s) noexcept {
+  return name_of(kSurroundingsNames, s);
+}
+std::optional<Surroundings> surroundings_from_name(std::string_view s) noexcept {
+  return value_of(kSurroundingsNames, s);
 }
 
 bool Box::contains(const Vec3& p) const {

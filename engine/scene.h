@@ -27,9 +27,11 @@ namespace serosa {
 enum class Effect : std::uint8_t {
   kFem,         ///< "fem": corotational linear FEM of every organ
   kGravity,     ///< "gravity": body force density * gravity (needs fem)
+  kSupports,    ///< "supports": the [[support]] planes the organs rest on (needs fem)
   kPlasticity,  ///< "plasticity": Müller-Gross plastic strain (needs fem)
   kCutting,     ///< "cutting": scissors cut tets along the swept blade
   kClips,       ///< "clips": clip appliers place clips that clamp tissue (needs contact)
+  kLoops,       ///< "loops": endoloops ligate the tissue they are cinched around (needs contact)
   kCautery,     ///< "cautery": a hook divides and coagulates tissue while its pedal is pressed
   kContact,     ///< "contact": tool-organ contact forces (needs fem and surface)
   kSurface,     ///< "surface": boundary surface extraction, normals, collision BVH
@@ -37,12 +39,12 @@ enum class Effect : std::uint8_t {
   kRender,      ///< "render": endoscope view (needs surface)
   kRecord,      ///< "record": record inputs and state hashes to a .lapr file
 };
-inline constexpr std::size_t kNumEffects = 11;
+inline constexpr std::size_t kNumEffects = 13;
 
 /// Every effect in enum order.
 inline constexpr Effect kAllEffects[kNumEffects] = {
-    Effect::kFem,     Effect::kGravity, Effect::kPlasticity, Effect::kCutting,
-    Effect::kClips,   Effect::kCautery, Effect::kContact,    Effect::kSurface,
+    Effect::kFem,     Effect::kGravity, Effect::kSupports, Effect::kPlasticity, Effect::kCutting,
+    Effect::kClips,   Effect::kLoops,   Effect::kCautery,  Effect::kContact,    Effect::kSurface,
     Effect::kHaptics, Effect::kRender,  Effect::kRecord};
 
 /// The scene-file name of an effect ("fem", "gravity", ...).
@@ -55,18 +57,28 @@ inline constexpr Effect kAllEffects[kNumEffects] = {
 
 enum class Quality : std::uint8_t { kFast, kBalanced, kAccurate };
 enum class SolverKind : std::uint8_t { kPcg, kCholmod, kPcgCholmod, kPcgLagged };
-enum class ToolKind : std::uint8_t { kScissors, kGrasper, kEndoscope, kClipApplier, kHook };
+enum class ToolKind : std::uint8_t {
+  kScissors,
+  kGrasper,
+  kEndoscope,
+  kClipApplier,
+  kHook,
+  kEndoloop
+};
 enum class DeviceKind : std::uint8_t { kRig, kRigEmulated, kMouse, kScript };
 enum class Hand : std::uint8_t { kLeft, kRight };
 enum class CutMethod : std::uint8_t { kPattern, kRemove, kSnap };
+/// What the endoscope sees around the organs: nothing (a black void) or an abdomen.
+enum class Surroundings : std::uint8_t { kNone, kAbdomen };
 
 [[nodiscard]] std::string_view quality_name(Quality q) noexcept;         ///< fast|balanced|accurate
 [[nodiscard]] std::string_view solver_kind_name(SolverKind k) noexcept;  ///< pcg|cholmod|...
 [[nodiscard]] std::string_view tool_kind_name(
-    ToolKind k) noexcept;  ///< scissors|...|clip-applier|hook
-[[nodiscard]] std::string_view device_kind_name(DeviceKind k) noexcept;  ///< rig|...|script
-[[nodiscard]] std::string_view hand_name(Hand h) noexcept;               ///< left|right
-[[nodiscard]] std::string_view cut_method_name(CutMethod m) noexcept;    ///< pattern|remove|snap
+    ToolKind k) noexcept;  ///< scissors|...|clip-applier|hook|endoloop
+[[nodiscard]] std::string_view device_kind_name(DeviceKind k) noexcept;     ///< rig|...|script
+[[nodiscard]] std::string_view hand_name(Hand h) noexcept;                  ///< left|right
+[[nodiscard]] std::string_view cut_method_name(CutMethod m) noexcept;       ///< pattern|remove|snap
+[[nodiscard]] std::string_view surroundings_name(Surroundings s) noexcept;  ///< none|abdomen
 
 [[nodiscard]] std::optional<Quality> quality_from_name(std::string_view s) noexcept;
 [[nodiscard]] std::optional<SolverKind> solver_kind_from_name(std::string_view s) noexcept;
@@ -76,6 +88,7 @@ enum class CutMethod : std::uint8_t { kPattern, kRemove, kSnap };
 [[nodiscard]] std::optional<DeviceKind> device_kind_from_name(std::string_view s) noexcept;
 [[nodiscard]] std::optional<Hand> hand_from_name(std::string_view s) noexcept;
 [[nodiscard]] std::optional<CutMethod> cut_method_from_name(std::string_view s) noexcept;
+[[nodiscard]] std::optional<Surroundings> surroundings_from_name(std::string_view s) noexcept;
 
 // ---------------------------------------------------------------------------------------------
 // [scene]
@@ -152,13 +165,25 @@ struct Organ {
   std::map<int, std::string> groups;        ///< group id (Gmsh physical tag) -> name; may be empty
   Material material;                        ///< material of every group without an override
   std::map<int, Material> group_materials;  ///< complete materials of overridden group ids
-  FixedSpec fixed;                          ///< Dirichlet nodes
+  FixedSpec fixed;                          ///< Dirichlet nodes (attachments to the body wall)
   OrganTransform transform;                 ///< mesh -> scene frame
 
   /// The material of the tets of group `group` (its override, else the organ's material).
   [[nodiscard]] const Material& material_for(int group) const;
   /// The id of the group named `name`, or nullopt.
   [[nodiscard]] std::optional<int> group_id(std::string_view name) const;
+};
+
+// ---------------------------------------------------------------------------------------------
+// [[support]]
+
+/// A support the organs rest on under gravity (the posterior abdominal wall, a bowel loop's
+/// side): a rigid plane that pushes back on tissue below it. The organs lie on the side the
+/// normal points to.
+struct Support {
+  std::string name;             ///< unique among supports (reports and errors name it)
+  Vec3 point_m = Vec3::Zero();  ///< a point of the plane, m
+  Vec3 normal = Vec3::UnitZ();  ///< unit normal, towards the organs (normalised by the loader)
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -185,6 +210,8 @@ struct RenderSettings {
   double shape_factor = 0.75;  ///< Phong tessellation alpha; 0 = flat, 0..1
   int width = 1280;            ///< window or offscreen frame width, pixels; 1..16384
   int height = 720;            ///< window or offscreen frame height, pixels; 1..16384
+  /// Drawn around the organs: an abdomen needs a [[support]] (drawn as the posterior wall).
+  Surroundings surroundings = Surroundings::kNone;
 };
 
 struct ToolDevice {
@@ -221,6 +248,13 @@ struct HeadlessSettings {
   std::int64_t steps = 1000;  ///< steps of `serosa headless` without --steps; >= 1
 };
 
+/// The groups an appendectomy's steps are judged on (metrics/procedure_steps.h).
+struct ProcedureGroups {
+  std::string specimen;   ///< what is taken out (the appendix)
+  std::string base;       ///< what it is taken off, the stump's side (the cecum)
+  std::string mesentery;  ///< the fold that carries its artery (the mesoappendix)
+};
+
 /// What trainee metrics compare against (app's metrics stage).
 struct MetricsSettings {
   /// The planned cut line, a polyline in the scene frame, m ((k) points, k = 0 or k >= 2).
@@ -239,6 +273,9 @@ struct MetricsSettings {
   std::optional<std::string> artery;
   /// Groups a live hook must not touch (the cecum wall): coagulating them is a thermal injury.
   std::vector<std::string> protected_groups;
+  /// The procedure's steps are followed (expose, divide the mesentery, secure the base,
+  /// transect, extract); needs `artery`. None: no steps are reported.
+  std::optional<ProcedureGroups> procedure;
   /// What the session is scored on (engine/rubric.h); none: no assessment is reported.
   std::optional<Rubric> rubric;
 };
@@ -247,7 +284,8 @@ struct MetricsSettings {
 struct Scene {
   std::filesystem::path file;  ///< the scene file as given (errors name it)
   SceneSettings settings;
-  std::vector<Organ> organs;  ///< at least one
+  std::vector<Organ> organs;      ///< at least one
+  std::vector<Support> supports;  ///< planes the organs rest on (effect "supports")
   SolverSettings solver;
   RenderSettings render;
   std::vector<Tool> tools;  ///< scene order = SimState::tools order

@@ -103,9 +103,9 @@ class Loader {
 
     Scene scene;
     scene.file = m_file;
-    check_keys(
-        root, "",
-        {"scene", "organ", "solver", "render", "tool", "record", "cutting", "headless", "metrics"});
+    check_keys(root, "",
+               {"scene", "organ", "support", "solver", "render", "tool", "record", "cutting",
+                "headless", "metrics"});
 
     const toml::node* effects_node = nullptr;
     if (const auto* t = opt_table(root, "scene", "")) {
@@ -119,6 +119,7 @@ class Loader {
       apply_preset(*choice, scene.solver, scene.render);
     }
     read_organs(root, scene);
+    read_supports(root, scene);
     if (const auto* t = opt_table(root, "solver", "")) read_solver(*t, scene.solver);
     if (const auto* t = opt_table(root, "render", "")) read_render(*t, scene.render);
     read_tools(root, scene);
@@ -593,9 +594,14 @@ class Loader {
     }
   }
 
-  void read_render(const toml::table& t, RenderSettings& r) const {
+  void read_render(const toml::table& t, RenderSettings& r) {
     const std::string p = "render";
-    check_keys(t, p, {"tessellation", "shape_factor", "width", "height"});
+    check_keys(t, p, {"tessellation", "shape_factor", "width", "height", "surroundings"});
+    if (const auto* n = t.get("surroundings")) {
+      r.surroundings = enum_value<Surroundings>(*n, sub(p, "surroundings"), surroundings_from_name,
+                                                "none, abdomen");
+      m_surroundings_line = line_of(*n);
+    }
     if (const auto* n = t.get("tessellation")) {
       r.tessellation = static_cast<int>(
           ranged_int(*n, sub(p, "tessellation"), 1, 16, "a tessellation level within [1, 16]"));
@@ -658,7 +664,8 @@ class Loader {
     const std::string p = "metrics";
     check_keys(t, p,
                {"planned_cut", "cut_band", "force_limit", "view_targets", "artery", "protected",
-                "rubric"});
+                "procedure", "rubric"});
+    if (const auto* n = t.get("procedure")) read_procedure(*n, sub(p, "procedure"), m);
     if (const auto* n = t.get("artery")) {
       m.artery = string(*n, sub(p, "artery"), "a group name");
       m_group_refs.push_back({line_of(*n), sub(p, "artery"), *m.artery});
@@ -700,6 +707,23 @@ class Loader {
       m.rubric = load_rubric(resolve(rel));
       m_rubric_line = line_of(*n);
     }
+  }
+
+  void read_procedure(const toml::node& n, const std::string& p, MetricsSettings& m) {
+    const std::string expected = "{ specimen = GROUP, base = GROUP, mesentery = GROUP }";
+    const auto* t = n.as_table();
+    if (t == nullptr) fail(n, p, "expected a table, got " + std::string(type_name(n)), expected);
+    check_keys(*t, p, {"specimen", "base", "mesentery"});
+    ProcedureGroups g;
+    for (auto [key, out] : {std::pair<const char*, std::string*>{"specimen", &g.specimen},
+                            {"base", &g.base},
+                            {"mesentery", &g.mesentery}}) {
+      const toml::node& v = required(*t, key, p, "a group name");
+      *out = string(v, sub(p, key), "a group name");
+      m_group_refs.push_back({line_of(v), sub(p, key), *out});
+    }
+    m.procedure = g;
+    m_procedure_line = line_of(n);
   }
 
   // The rubric's metrics name tools and groups of this scene, and some need an effect or a key.
@@ -749,6 +773,39 @@ class Loader {
     return false;
   }
 
+  // ---- [[support]] ----
+
+  void read_supports(const toml::table& root, Scene& scene) {
+    const toml::node* n = root.get("support");
+    if (n == nullptr) return;
+    const auto* arr = n->as_array();
+    if (arr == nullptr || !arr->is_array_of_tables() || arr->empty()) {
+      fail(*n, "support", "expected an array of tables, got " + std::string(type_name(*n)),
+           "[[support]] tables");
+    }
+    m_support_line = line_of(*n);
+    for (std::size_t i = 0; i < arr->size(); ++i) {
+      const toml::table& t = *(*arr)[i].as_table();
+      const std::string p = at("support", i);
+      check_keys(t, p, {"name", "point", "normal"});
+      Support s;
+      const toml::node& name_node = required(t, "name", p, "a support name (string)");
+      s.name = string(name_node, sub(p, "name"), "a support name (string)");
+      for (const Support& other : scene.supports)
+        if (other.name == s.name)
+          fail(name_node, sub(p, "name"), "duplicate support name \"" + s.name + "\"",
+               "unique support names");
+      s.point_m =
+          vec3(required(t, "point", p, "[x, y, z] in m"), sub(p, "point"), "[x, y, z] in m");
+      const toml::node& nn = required(t, "normal", p, "a direction [x, y, z]");
+      const Vec3 normal = vec3(nn, sub(p, "normal"), "a direction [x, y, z]");
+      if (!(normal.norm() > 1e-12))
+        fail(nn, sub(p, "normal"), "zero normal", "a non-zero direction [x, y, z]");
+      s.normal = normal.normalized();
+      scene.supports.push_back(std::move(s));
+    }
+  }
+
   // ---- [[tool]] ----
 
   const ToolPath& tool_path(const std::filesystem::path& file) {
@@ -782,7 +839,7 @@ class Loader {
              "duplicate tool name \"" + tool.name + "\" (also tool[" + std::to_string(*j) + "])",
              "unique tool names");
       }
-      const std::string kinds = "scissors, grasper, endoscope, clip-applier, hook";
+      const std::string kinds = "scissors, grasper, endoscope, clip-applier, hook, endoloop";
       tool.kind = enum_value<ToolKind>(required(t, "kind", p, kinds), sub(p, "kind"),
                                        tool_kind_from_name, kinds);
       m_kind_lines.push_back(line_of(*t.get("kind")));
@@ -872,6 +929,23 @@ class Loader {
     need(Effect::kContact, Effect::kSurface);
     need(Effect::kRender, Effect::kSurface);
     need(Effect::kClips, Effect::kContact);
+    need(Effect::kLoops, Effect::kContact);
+    need(Effect::kSupports, Effect::kFem);
+    // Supports and their effect come together: a plane nothing simulates would be a false promise.
+    if (s.has(Effect::kSupports) && scene.supports.empty())
+      fail(line, p, "effect \"supports\" is listed but the scene has no [[support]]",
+           "a [[support]] plane, or \"supports\" not listed");
+    if (!s.has(Effect::kSupports) && !scene.supports.empty())
+      fail(m_support_line, "support", "a [[support]] plane, but effect \"supports\" is not listed",
+           "\"supports\" in scene.effects");
+    if (scene.metrics.procedure && !scene.metrics.artery)
+      fail(m_procedure_line, "metrics.procedure",
+           "the procedure's steps include securing the artery, but no artery is named",
+           "metrics.artery");
+    if (scene.render.surroundings == Surroundings::kAbdomen && scene.supports.empty())
+      fail(m_surroundings_line, "render.surroundings",
+           "an abdomen is drawn on the organs' support, but the scene has no [[support]]",
+           "a [[support]] plane (the posterior abdominal wall)");
     // A clip applier or a hook acts only where its effect is simulated: say so rather than let
     // the instrument do nothing.
     for (std::size_t i = 0; i < scene.tools.size(); ++i) {
@@ -879,6 +953,11 @@ class Loader {
         fail(m_kind_lines[i], at("tool", i) + ".kind",
              "a clip-applier places clips, but effect \"clips\" is not listed",
              "\"clips\" in scene.effects (with \"contact\", \"surface\" and \"fem\")");
+      }
+      if (scene.tools[i].kind == ToolKind::kEndoloop && !s.has(Effect::kLoops)) {
+        fail(m_kind_lines[i], at("tool", i) + ".kind",
+             "an endoloop ligates tissue, but effect \"loops\" is not listed",
+             "\"loops\" in scene.effects (with \"contact\", \"surface\" and \"fem\")");
       }
       if (scene.tools[i].kind == ToolKind::kHook && !s.has(Effect::kCautery)) {
         fail(m_kind_lines[i], at("tool", i) + ".kind",
@@ -900,6 +979,9 @@ class Loader {
   std::string m_file;                      // scene file as given, for errors
   std::filesystem::path m_dir;             // folder relative paths resolve against
   std::int64_t m_rubric_line = 0;          // where [metrics] rubric is
+  std::int64_t m_support_line = 0;         // where [[support]] begins
+  std::int64_t m_procedure_line = 0;       // where [metrics] procedure is
+  std::int64_t m_surroundings_line = 0;    // where [render] surroundings is
   std::vector<std::int64_t> m_kind_lines;  // (tools) where each tool's kind is
   struct GroupRef {
     std::int64_t line = 0;

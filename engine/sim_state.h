@@ -42,6 +42,9 @@ struct ToolReaction {
 struct StepHandoff {
   /// contact -> FEM: external node forces for this step's solve, N; (n), or empty for none.
   std::vector<Vec3> external_force_n;
+  /// contact -> metrics: the nodes each grasper holds now, ids; (tools), empty for a tool that
+  /// holds nothing (written when a grasp begins or ends).
+  std::vector<std::vector<std::int32_t>> grasped;
   /// contact -> FEM: held nodes were moved with the jaws this step (the jaws' work, which the
   /// FEM's energy guard must not take for a gain of its solve).
   bool nodes_moved = false;

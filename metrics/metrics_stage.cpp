@@ -38,6 +38,18 @@ ProcedureErrors watch(const MetricsSettings& m, const std::map<int, std::string>
   return {artery, prot};
 }
 
+ProcedureSteps follow(const MetricsSettings& m, const std::map<int, std::string>& names,
+                      const std::vector<std::string>& tools) {
+  if (!m.procedure) return {};
+  ProcedureGroupIds ids;
+  ids.specimen = id_of(names, m.procedure->specimen).value_or(-1);
+  ids.base = id_of(names, m.procedure->base).value_or(-1);
+  if (const auto g = id_of(names, m.procedure->mesentery)) ids.mesentery.push_back(*g);
+  if (m.artery)
+    if (const auto g = id_of(names, *m.artery)) ids.mesentery.push_back(*g);
+  return {ids, tools};
+}
+
 }  // namespace
 
 MetricsStage::MetricsStage(const Scene& scene, LameTable lame, std::int64_t stress_every,
@@ -64,6 +76,7 @@ MetricsStage::MetricsStage(const Scene& scene, LameTable lame, std::int64_t stre
   m_targets = scene.metrics.view_targets_m;
   m_target_first_s.assign(m_targets.size(), -1.0);
   m_errors = watch(scene.metrics, group_names);
+  m_steps = follow(scene.metrics, group_names, m_names);
 }
 
 void MetricsStage::step(const StepContext& ctx, SimState& state) {
@@ -95,6 +108,7 @@ void MetricsStage::step(const StepContext& ctx, SimState& state) {
   add_view(state.tools, ctx.dt_s);
   for (const CutEvent& cut : state.handoff.cuts) add_cut(cut);
   if (m_errors.active()) m_errors.step(m_time, state);
+  m_steps.step(m_time, state, m_errors);
   if (static_cast<std::int64_t>(ctx.step) % m_stress_every == 0)
     m_peak_stress = std::max(m_peak_stress, peak_stress(state.mesh));
 }
@@ -202,7 +216,8 @@ nlohmann::json MetricsStage::report() const {
     j["cut"]["collateral_m3"] = m_collateral;
     j["cut"]["band_m"] = m_band;
   }
-  m_errors.report(j);
+  m_errors.report(j, m_steps.active());
+  m_steps.report(j);
   return j;
 }
 
@@ -222,6 +237,7 @@ void MetricsStage::save(StateWriter& out) const {
     out.f64(v);
   out.u64(static_cast<std::uint64_t>(m_cut_tets));
   m_errors.save(out);  // (nothing when no errors are watched for)
+  m_steps.save(out);   // (nothing when no procedure is followed)
 }
 
 void MetricsStage::restore(StateReader& in, SimState& /*state*/) {
@@ -247,6 +263,7 @@ void MetricsStage::restore(StateReader& in, SimState& /*state*/) {
     *v = in.f64();
   m_cut_tets = static_cast<std::int64_t>(in.u64());
   m_errors.restore(in);
+  m_steps.restore(in);
 }
 
 }  // namespace serosa::metrics

@@ -27,6 +27,8 @@
 //                           only in scenes with an endoscope, s
 //   bleeding_events, thermal_injuries, errors   with [metrics] artery or protected: the
 //                           procedure's errors (metrics/procedure_errors.h)
+//   procedure               with [metrics] procedure: its steps, whether all are done, and the
+//                           freed specimen's share of its volume (metrics/procedure_steps.h)
 // Without a planned cut line the deviation and collateral entries are absent (the volume stays).
 #pragma once
 
@@ -45,6 +47,7 @@
 #include "engine/stage.h"
 #include "engine/tissue_stress.h"
 #include "metrics/procedure_errors.h"
+#include "metrics/procedure_steps.h"
 
 namespace serosa::metrics {
 
@@ -103,6 +106,7 @@ class MetricsStage final : public Stage {
   /// When the endoscope had centred every view target, s; the run's time while any is missed.
   [[nodiscard]] double targets_time_s() const;
   [[nodiscard]] const ProcedureErrors& procedure_errors() const noexcept { return m_errors; }
+  [[nodiscard]] const ProcedureSteps& procedure_steps() const noexcept { return m_steps; }
   [[nodiscard]] double deviation_mean_m() const noexcept {
     return m_cut_volume > 0.0 ? m_dev_weighted / m_cut_volume : 0.0;
   }
@@ -147,6 +151,7 @@ class MetricsStage final : public Stage {
   double m_cut_volume = 0.0, m_collateral = 0.0, m_dev_weighted = 0.0, m_dev_max = 0.0;
   std::int64_t m_cut_tets = 0;
   ProcedureErrors m_errors;
+  ProcedureSteps m_steps;
 };
 
 }  // namespace serosa::metrics

@@ -72,16 +72,33 @@ std::int64_t ProcedureErrors::count(ProcedureError::Kind kind) const {
                        [&](const ProcedureError& e) { return e.kind == kind; });
 }
 
-void ProcedureErrors::report(nlohmann::json& metrics) const {
+const char* ProcedureErrors::kind_name(ProcedureError::Kind kind) {
+  switch (kind) {
+    case ProcedureError::Kind::kBleeding:
+      return "bleeding";
+    case ProcedureError::Kind::kThermalInjury:
+      return "thermal_injury";
+    case ProcedureError::Kind::kTransectionAboveSecuring:
+      return "transection_above_securing";
+    case ProcedureError::Kind::kSpecimenDropped:
+      return "specimen_dropped";
+  }
+  return "?";
+}
+
+void ProcedureErrors::report(nlohmann::json& metrics, bool steps) const {
   if (!active()) return;
   metrics["bleeding_events"] = count(ProcedureError::Kind::kBleeding);
   metrics["thermal_injuries"] = count(ProcedureError::Kind::kThermalInjury);
+  if (steps) {
+    metrics["transections_above_securing"] = count(ProcedureError::Kind::kTransectionAboveSecuring);
+    metrics["specimens_dropped"] = count(ProcedureError::Kind::kSpecimenDropped);
+  }
   nlohmann::json list = nlohmann::json::array();
   for (const ProcedureError& e : m_errors)
-    list.push_back(
-        {{"kind", e.kind == ProcedureError::Kind::kBleeding ? "bleeding" : "thermal_injury"},
-         {"time_s", e.time_s},
-         {"where_m", {e.where_m.x(), e.where_m.y(), e.where_m.z()}}});
+    list.push_back({{"kind", kind_name(e.kind)},
+                    {"time_s", e.time_s},
+                    {"where_m", {e.where_m.x(), e.where_m.y(), e.where_m.z()}}});
   metrics["errors"] = std::move(list);
 }
 
@@ -108,7 +125,8 @@ void ProcedureErrors::restore(StateReader& in) {
   for (std::uint32_t i = 0; i < k; ++i) {
     ProcedureError e;
     const std::uint8_t kind = in.u8();
-    if (kind > 1) in.fail("an unknown kind of procedure error");
+    if (kind > static_cast<std::uint8_t>(ProcedureError::Kind::kSpecimenDropped))
+      in.fail("an unknown kind of procedure error");
     e.kind = static_cast<ProcedureError::Kind>(kind);
     e.time_s = in.f64();
     for (int c = 0; c < 3; ++c) e.where_m(c) = in.f64();

@@ -24,7 +24,13 @@ class StateReader;
 namespace serosa::metrics {
 
 struct ProcedureError {
-  enum class Kind : std::uint8_t { kBleeding, kThermalInjury } kind = Kind::kBleeding;
+  enum class Kind : std::uint8_t {
+    kBleeding,
+    kThermalInjury,
+    kTransectionAboveSecuring,  ///< metrics/procedure_steps.h
+    kSpecimenDropped,           ///< metrics/procedure_steps.h
+  };
+  Kind kind = Kind::kBleeding;
   double time_s = 0.0;          ///< simulated time of the step it happened in, s
   Vec3 where_m = Vec3::Zero();  ///< where: the cut tets' mean centroid, the first burnt node, m
 };
@@ -42,7 +48,15 @@ class ProcedureErrors {
 
   [[nodiscard]] const std::vector<ProcedureError>& errors() const noexcept { return m_errors; }
   [[nodiscard]] std::int64_t count(ProcedureError::Kind kind) const;
-  /// {"bleeding_events", "thermal_injuries", "errors": [{"kind", "time_s", "where_m"}]}.
+  /// An error another watcher found (the procedure's steps).
+  void add(const ProcedureError& e) { m_errors.push_back(e); }
+  /// The report's name of a kind: "bleeding", "thermal_injury", "transection_above_securing",
+  /// "specimen_dropped".
+  [[nodiscard]] static const char* kind_name(ProcedureError::Kind kind);
+  /// {"bleeding_events", "thermal_injuries", "errors": [{"kind", "time_s", "where_m"}]}, and
+  /// with the procedure's steps followed (`steps`), "transections_above_securing" and
+  /// "specimens_dropped".
+  void report(nlohmann::json& metrics, bool steps = false) const;
   void report(nlohmann::json& metrics) const;
 
   void save(StateWriter& out) const;

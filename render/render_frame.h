@@ -27,6 +27,9 @@ struct RenderTool {
     kGrasper,      ///< two flat jaws that close on each other
     kClipApplier,  ///< drawn with a grasper's jaws (the clip it places is a RenderClip)
     kHook,         ///< an L-hook electrode: a thin wire beyond the shaft, its crook along +side
+    /// a knot pusher with its suture loop: a ring normal to the shaft through the tip, centred
+    /// along +side, its radius engine/endoloop.h's open radius scaled by the jaw channel
+    kEndoloop,
   };
   Kind kind = Kind::kGrasper;
   std::array<float, 3> tip{0.0f, 0.0f, 0.0f};              ///< tip of the closed jaws, m
@@ -38,12 +41,15 @@ struct RenderTool {
   float jaw_rad = 0.0f;  ///< jaw opening angle between the two jaws, rad, [0, pi]
 };
 
-/// A placed ligation clip (plain data, world coordinates, m): two legs along its centre line,
-/// pressed together across it.
+/// A placed ligature (plain data, world coordinates, m): a clip's two legs along its centre
+/// line, pressed together across it; or a cinched loop, a suture ring round the middle of its
+/// axis.
 struct RenderClip {
-  std::array<float, 3> start{0.0f, 0.0f, 0.0f};   ///< centre line, hinge end, m
-  std::array<float, 3> end{0.0f, 0.0f, 1.0f};     ///< centre line, far end, m
+  std::array<float, 3> start{0.0f, 0.0f, 0.0f};   ///< clip: centre line, hinge end; loop: axis, m
+  std::array<float, 3> end{0.0f, 0.0f, 1.0f};     ///< clip: centre line, far end; loop: axis, m
   std::array<float, 3> across{1.0f, 0.0f, 0.0f};  ///< unit: the direction the legs pressed
+  bool loop = false;                              ///< a cinched endoloop
+  float radius = 0.0f;                            ///< a loop's ring radius, m
 };
 
 /// One named number the overlay lists (instructor metrics: cut length, time in contact, force
@@ -101,6 +107,30 @@ struct OverlayData {
   std::vector<OverlayMetric> metrics;  ///< listed under the statistics, in this order
 };
 
+/// What a triangle of the scenery is made of (its colour: render/materials.h scenery_material).
+enum class SceneryMaterial : std::uint8_t {
+  kPeritoneum,  ///< the posterior abdominal wall's wet peritoneum
+  kBowel,       ///< small bowel loops
+  kFat,         ///< mesenteric fat
+};
+
+/// The static surroundings of the organs (an abdomen: render/scenery.h), drawn around them in the
+/// visual view only. Plain data, world coordinates. Shapes: n vertices, t triangles.
+struct Scenery {
+  std::vector<float> pos;                 ///< (n x 3) vertex positions, m
+  std::vector<float> nrm;                 ///< (n x 3) unit normals
+  std::vector<std::uint32_t> tri;         ///< (t x 3) vertex ids, counter-clockwise from outside
+  std::vector<SceneryMaterial> material;  ///< (t) what each triangle is made of
+  /// Identifies the contents: a FrameRenderer uploads the scenery only when it (or the triangle
+  /// count) differs from its last upload, so change it whenever the arrays change. 0 with empty
+  /// arrays: no scenery.
+  std::uint64_t version = 0;
+
+  [[nodiscard]] std::size_t num_vertices() const { return pos.size() / 3; }
+  [[nodiscard]] std::size_t num_triangles() const { return tri.size() / 3; }
+  [[nodiscard]] bool empty() const { return tri.empty(); }
+};
+
 /// One frame to draw: the organs' boundary surface (and optionally the tet edges), the camera.
 ///
 /// Shapes: n vertices, t triangles, e edges. `pos` may hold more vertices than the triangles use
@@ -134,6 +164,9 @@ struct RenderFrame {
   /// (k) a polyline drawn as a thin violet marker in every view (the planned cut: where the
   /// trainee should cut), m; empty: none.
   std::vector<std::array<float, 3>> guide;
+  /// The organs' surroundings (the abdomen around them), drawn in the visual view only; set once
+  /// per scene, not per frame (it is uploaded only when its version changes). Empty: a black void.
+  Scenery scenery;
   OverlayData overlay;
 
   [[nodiscard]] std::size_t num_vertices() const { return pos.size() / 3; }
@@ -142,8 +175,9 @@ struct RenderFrame {
 
 /// Checks shapes and ids: pos a multiple of 3; nrm empty or as long as pos; tri a multiple of 3
 /// with ids < n; tri_group and tri_cut empty or one per triangle; edges a multiple of 2 with ids
-/// < n; tools with finite poses and jaw_rad in [0, pi]. Returns one message per problem; empty ==
-/// valid.
+/// < n; tools with finite poses and jaw_rad in [0, pi]; the scenery's pos a multiple of 3, nrm as
+/// long as pos, tri a multiple of 3 with ids below its vertex count, one material per triangle,
+/// finite positions and normals. Returns one message per problem; empty == valid.
 [[nodiscard]] std::vector<std::string> validate(const RenderFrame& frame);
 
 }  // namespace serosa::render

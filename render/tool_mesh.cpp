@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "engine/clip.h"
+#include "engine/endoloop.h"
 #include "engine/hook.h"
 
 namespace serosa::render {
@@ -21,7 +22,9 @@ std::array<float, 3> arr(const V3& v) { return {v.x(), v.y(), v.z()}; }
 constexpr std::array<float, 4> kShaftMaterial{0.10f, 0.10f, 0.11f, 0.55f};  // black coating
 constexpr std::array<float, 4> kSteelMaterial{0.66f, 0.68f, 0.72f, 0.95f};  // polished steel
 constexpr std::array<float, 4> kClipMaterial{0.78f, 0.76f, 0.70f, 0.9f};    // titanium
-constexpr std::array<float, 4> kGuideMaterial{0.45f, 0.18f, 0.78f, 0.2f};   // marker violet
+constexpr std::array<float, 4> kSutureMaterial{0.55f, 0.42f, 0.75f, 0.5f};  // violet polydioxanone
+constexpr float kSutureRadius = 3e-4f;  // a 2-0 suture with some slack, m
+constexpr std::array<float, 4> kGuideMaterial{0.45f, 0.18f, 0.78f, 0.2f};  // marker violet
 
 std::uint32_t add_vertex(ToolMesh& m, const V3& p, const V3& n, const std::array<float, 4>& mat) {
   const auto id = static_cast<std::uint32_t>(m.num_vertices());
@@ -143,9 +146,37 @@ void append_guide_mesh(const std::vector<std::array<float, 3>>& line, ToolMesh& 
   }
 }
 
+namespace {
+
+// A suture ring: a chain of thin cylinders round `centre` in the plane normal to `axis`.
+void add_ring(ToolMesh& m, const V3& centre, const V3& axis, const V3& u, float radius,
+              const std::array<float, 4>& mat) {
+  const V3 w = axis.cross(u);
+  constexpr int kSegments = 24;
+  constexpr float kTwoPi = 6.28318531f;
+  for (int k = 0; k < kSegments; ++k) {
+    const float a0 = kTwoPi * static_cast<float>(k) / kSegments;
+    const float a1 = kTwoPi * static_cast<float>(k + 1) / kSegments;
+    const V3 p0 = centre + radius * (std::cos(a0) * u + std::sin(a0) * w);
+    const V3 p1 = centre + radius * (std::cos(a1) * u + std::sin(a1) * w);
+    const V3 t = (p1 - p0).normalized();
+    add_shaft(m, p0, p1, axis, t.cross(axis), kSutureRadius, 6, mat);
+  }
+}
+
+}  // namespace
+
 void append_clip_mesh(const RenderClip& clip, ToolMesh& out) {
   const V3 a = vec(clip.start), b = vec(clip.end);
   if (!((b - a).norm() > 1e-9f)) return;
+  if (clip.loop) {
+    const V3 axis = (b - a).normalized();
+    V3 u = vec(clip.across) - vec(clip.across).dot(axis) * axis;
+    if (!(u.norm() > 1e-6f)) u = axis.unitOrthogonal();
+    add_ring(out, 0.5f * (a + b), axis, u.normalized(), clip.radius + kSutureRadius,
+             kSutureMaterial);
+    return;
+  }
   const V3 along = (b - a).normalized();
   V3 across = vec(clip.across) - vec(clip.across).dot(along) * along;
   if (!(across.norm() > 1e-6f)) across = along.unitOrthogonal();
@@ -205,6 +236,14 @@ void append_tool_mesh(const RenderTool& tool, ToolMesh& out, const ToolDimension
   // The shaft stops where the jaws begin (the hinge sits just inside its end).
   add_shaft(out, vec(f.shaft_start), hinge + 0.3f * r * axis, side, up, r, dims.shaft_segments);
 
+  if (tool.kind == RenderTool::Kind::kEndoloop) {  // the pusher's end, the knot, the open loop
+    const V3 tip = vec(tool.tip);
+    add_shaft(out, hinge, tip, side, up, 0.9e-3f, 10, kSteelMaterial);
+    const float ring = static_cast<float>(kLoopRadius) *
+                       std::clamp(tool.jaw_rad / static_cast<float>(kLoopArmRad), 0.1f, 1.0f);
+    add_ring(out, tip + ring * side, axis, -side, ring, kSutureMaterial);
+    return;
+  }
   if (tool.kind == RenderTool::Kind::kHook) {  // a bare steel stem, bent at the tip
     const V3 tip = vec(tool.tip);
     add_shaft(out, hinge, tip, side, up, 0.5e-3f, 10, kSteelMaterial);
