@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "app/render_frame_from_surface.h"
+#include "app/scenery_from_scene.h"
 #include "render/camera.h"
 #include "render/gl_context.h"
 #include "render/overlay.h"
@@ -25,6 +26,7 @@ FramePictures::FramePictures(std::filesystem::path dir, const Scene& scene, cons
   m_options.tessellation = scene.render.tessellation;
   m_options.shape_factor = static_cast<float>(scene.render.shape_factor);
   m_context = std::make_unique<render::OffscreenContext>(m_options.width, m_options.height);
+  m_frame.scenery = scenery_from_scene(scene, initial);  // once: frame() leaves it as it is
 }
 
 FramePictures::~FramePictures() = default;

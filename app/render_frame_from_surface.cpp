@@ -112,6 +112,11 @@ void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
   }
 }
 
+namespace {
+constexpr double kBleedRadius = 0.005;  ///< m: the pool a cut artery makes ...
+constexpr double kBleedGrowS = 2.0;     ///< s: ... in this long
+}  // namespace
+
 void fill_render_tools(const Scene& scene, const SimState& state, render::RenderFrame& frame) {
   frame.tools.clear();
   frame.guide.clear();
@@ -124,6 +129,13 @@ void fill_render_tools(const Scene& scene, const SimState& state, render::Render
     rc.loop = c.kind == Clip::Kind::kLoop;
     rc.radius = static_cast<float>(c.reach_m());
     frame.clips.push_back(rc);
+  }
+  frame.bleeds.clear();
+  for (const auto& [where, since] : state.handoff.bleeds) {
+    // A pool that wells up over kBleedGrowS to kBleedRadius.
+    const double grown = std::clamp((state.time_s - since) / kBleedGrowS, 0.0, 1.0);
+    frame.bleeds.push_back(
+        {to_float(where), static_cast<float>(kBleedRadius * (0.2 + 0.8 * grown))});
   }
   for (const Vec3& p : scene.metrics.planned_cut_m)
     frame.guide.push_back(

@@ -26,6 +26,7 @@
 #include "app/render_frame_from_surface.h"
 #include "app/replay_controller.h"
 #include "app/replay_timeline.h"
+#include "app/scenery_from_scene.h"
 #include "app/scope_control.h"
 #include "app/session_summary.h"
 #include "app/summary_screen.h"
@@ -157,6 +158,7 @@ class SolverLoop {
  private:
   void loop(const std::stop_token& stop) {
     m_drawn.emplace(m_state.mesh);  // the uncut mesh: the wound reference
+    m_scenery = scenery_from_scene(m_scene, m_state.mesh);
     m_version = m_state.mesh.topology_version;
     m_comp.runner->prepare(m_state);  // before the clock starts
     publish();
@@ -209,6 +211,8 @@ class SolverLoop {
     fill_render_frame(m_state.mesh, m_drawn->of(m_state), m_names, true, f,
                       &m_state.handoff.coagulated, m_state.handoff.coagulated_version);
     fill_render_tools(m_scene, m_state, f);
+    // Each of the triple buffer's slots takes the scenery once; it never changes afterwards.
+    if (f.scenery.version != m_scenery.version) f.scenery = m_scenery;
     std::optional<render::Camera> cam = endoscope_view(m_scene, m_state);
     if (!cam) {
       // No endoscope: a fixed camera fitted to the organs at the start.
@@ -259,6 +263,7 @@ class SolverLoop {
   TripleBuffer<render::RenderFrame>& m_frames;
   Control& m_control;
   std::optional<DrawnSurface> m_drawn;  // built on the solver thread, which draws from it
+  render::Scenery m_scenery;            // the organs' surroundings, built with m_drawn
   std::uint64_t m_version = 0;          // topology the last frame showed (counts cuts)
   std::optional<render::Camera> m_fitted;
   double m_step_ms = 0.0;
@@ -497,6 +502,7 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
   options.shape_factor = static_cast<float>(scene.render.shape_factor);
   bool show_overlay = true;
   render::RenderFrame frame;
+  frame.scenery = scenery_from_scene(scene, replay.state().mesh);  // once: it never changes
   std::optional<render::Camera> fitted;
   // Every cut bumps the topology version, which snapshots keep: cuts survive seeks.
   const std::uint64_t version0 = replay.state().mesh.topology_version;

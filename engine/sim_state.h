@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "engine/clip.h"
@@ -64,6 +65,9 @@ struct StepHandoff {
   /// clips -> cutting, render, metrics: every clip placed so far, where the tissue carries it now
   /// (contact/clip_stage.h); empty when no clips stage runs.
   std::vector<Clip> clips;
+  /// metrics -> render: where the artery bleeds (each cut through it while unsecured) and since
+  /// when: (k) {where, m; time, s}, in the order they began (metrics/procedure_errors.h).
+  std::vector<std::pair<Vec3, double>> bleeds;
   /// cutting (cautery) -> render, metrics: 1 for each node a live hook coagulated, else 0; (n), or
   /// empty when no hook is simulated. coagulated_version changes whenever a mark is added.
   std::vector<std::uint8_t> coagulated;

@@ -109,6 +109,7 @@ void MetricsStage::step(const StepContext& ctx, SimState& state) {
   for (const CutEvent& cut : state.handoff.cuts) add_cut(cut);
   if (m_errors.active()) m_errors.step(m_time, state);
   m_steps.step(m_time, state, m_errors);
+  publish_bleeds(state);
   if (static_cast<std::int64_t>(ctx.step) % m_stress_every == 0)
     m_peak_stress = std::max(m_peak_stress, peak_stress(state.mesh));
 }
@@ -240,7 +241,7 @@ void MetricsStage::save(StateWriter& out) const {
   m_steps.save(out);   // (nothing when no procedure is followed)
 }
 
-void MetricsStage::restore(StateReader& in, SimState& /*state*/) {
+void MetricsStage::restore(StateReader& in, SimState& state) {
   m_rest_valid = false;
   const std::size_t tools = m_path.size();
   m_forces = in.u8() != 0;
@@ -264,6 +265,18 @@ void MetricsStage::restore(StateReader& in, SimState& /*state*/) {
   m_cut_tets = static_cast<std::int64_t>(in.u64());
   m_errors.restore(in);
   m_steps.restore(in);
+  state.handoff.bleeds.clear();
+  publish_bleeds(state);
+}
+
+// The bleeding the view shows: appended when one begins (the list only grows).
+void MetricsStage::publish_bleeds(SimState& state) const {
+  const std::int64_t k = m_errors.count(ProcedureError::Kind::kBleeding);
+  if (static_cast<std::int64_t>(state.handoff.bleeds.size()) == k) return;
+  state.handoff.bleeds.clear();
+  for (const ProcedureError& e : m_errors.errors())
+    if (e.kind == ProcedureError::Kind::kBleeding)
+      state.handoff.bleeds.emplace_back(e.where_m, e.time_s);
 }
 
 }  // namespace serosa::metrics

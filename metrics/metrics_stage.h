@@ -150,6 +150,8 @@ class MetricsStage final : public Stage {
   bool m_rest_valid = false;
   double m_cut_volume = 0.0, m_collateral = 0.0, m_dev_weighted = 0.0, m_dev_max = 0.0;
   std::int64_t m_cut_tets = 0;
+  void publish_bleeds(SimState& state) const;
+
   ProcedureErrors m_errors;
   ProcedureSteps m_steps;
 };

@@ -63,7 +63,10 @@ FrameRenderer::FrameRenderer()
           {GL_FRAGMENT_SHADER, shaders::kFlatFragment, "flat fragment"}})),
       tool_(std::make_unique<GlProgram>(std::vector<ShaderSource>{
           {GL_VERTEX_SHADER, shaders::kToolVertex, "tool vertex"},
-          {GL_FRAGMENT_SHADER, shaders::kToolFragment, "tool fragment"}})) {
+          {GL_FRAGMENT_SHADER, shaders::kToolFragment, "tool fragment"}})),
+      scenery_(std::make_unique<GlProgram>(std::vector<ShaderSource>{
+          {GL_VERTEX_SHADER, shaders::kSceneryVertex, "scenery vertex"},
+          {GL_FRAGMENT_SHADER, shaders::kVisualFragment, "visual fragment"}})) {
   glGetIntegerv(GL_MAX_TESS_GEN_LEVEL, &max_tess_level_);
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texture_buffer_);
   glGenVertexArrays(1, &vao_);
@@ -112,14 +115,33 @@ FrameRenderer::FrameRenderer()
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, tool_idx_buf_);
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
+
+  // Scenery: attribute 0 position, 1 normal (3 floats each), 2 material (4 normalised bytes).
+  std::array<GLuint, 3> sbufs{};
+  glGenBuffers(static_cast<GLsizei>(sbufs.size()), sbufs.data());
+  scenery_pos_buf_ = sbufs[0];
+  scenery_nrm_buf_ = sbufs[1];
+  scenery_mat_buf_ = sbufs[2];
+  glGenVertexArrays(1, &scenery_vao_);
+  glBindVertexArray(scenery_vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, scenery_pos_buf_);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glBindBuffer(GL_ARRAY_BUFFER, scenery_nrm_buf_);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glBindBuffer(GL_ARRAY_BUFFER, scenery_mat_buf_);
+  glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, 0, nullptr);
+  for (GLuint a = 0; a < 3; ++a) glEnableVertexAttribArray(a);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
 FrameRenderer::~FrameRenderer() {
-  const std::array<GLuint, 9> bufs{pos_buf_,      nrm_buf_,      tri_buf_,
-                                   line_buf_,     material_buf_, tool_pos_buf_,
-                                   tool_nrm_buf_, tool_mat_buf_, tool_idx_buf_};
+  const std::array<GLuint, 12> bufs{pos_buf_,         nrm_buf_,         tri_buf_,
+                                    line_buf_,        material_buf_,    tool_pos_buf_,
+                                    tool_nrm_buf_,    tool_mat_buf_,    tool_idx_buf_,
+                                    scenery_pos_buf_, scenery_nrm_buf_, scenery_mat_buf_};
   const std::array<GLuint, 4> texs{pos_tex_, nrm_tex_, tri_tex_, material_tex_};
-  const std::array<GLuint, 3> vaos{vao_, pull_vao_, tool_vao_};
+  const std::array<GLuint, 4> vaos{vao_, pull_vao_, tool_vao_, scenery_vao_};
   glDeleteTextures(static_cast<GLsizei>(texs.size()), texs.data());
   glDeleteBuffers(static_cast<GLsizei>(bufs.size()), bufs.data());
   glDeleteVertexArrays(static_cast<GLsizei>(vaos.size()), vaos.data());
@@ -181,10 +203,12 @@ void FrameRenderer::upload_topology(const RenderFrame& frame) {
 
 void FrameRenderer::draw_tools(const RenderFrame& frame, const float* view_proj, const float* eye,
                                float ref_dist) {
-  if (frame.tools.empty() && frame.guide.empty() && frame.clips.empty()) return;
+  if (frame.tools.empty() && frame.guide.empty() && frame.clips.empty() && frame.bleeds.empty())
+    return;
   tool_mesh_.clear();
   for (const RenderTool& t : frame.tools) append_tool_mesh(t, tool_mesh_);
   for (const RenderClip& c : frame.clips) append_clip_mesh(c, tool_mesh_);
+  for (const RenderBleed& b : frame.bleeds) append_bleed_mesh(b, tool_mesh_);
   append_guide_mesh(frame.guide, tool_mesh_);
   glBindBuffer(GL_ARRAY_BUFFER, tool_pos_buf_);
   glBufferData(GL_ARRAY_BUFFER, bytes(tool_mesh_.pos.size(), sizeof(float)), tool_mesh_.pos.data(),
@@ -207,6 +231,43 @@ void FrameRenderer::draw_tools(const RenderFrame& frame, const float* view_proj,
   glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(tool_mesh_.tri.size()), GL_UNSIGNED_INT,
                  nullptr);
   glBindVertexArray(0);
+}
+
+// The scenery, once per version: every triangle's three corners with their own position, normal
+// and the triangle's material (RGBA8: sRGB colour, specular strength), drawn as plain triangles.
+void FrameRenderer::upload_scenery(const Scenery& scenery) {
+  const std::size_t corners = scenery.tri.size();
+  std::vector<float> pos(3 * corners), nrm(3 * corners);
+  std::vector<std::uint8_t> mat(4 * corners);
+  scenery_lo_ = Eigen::Vector3f::Constant(1.0f);
+  scenery_hi_ = Eigen::Vector3f::Zero();
+  for (std::size_t c = 0; c < corners; ++c) {
+    const std::size_t v = scenery.tri[c];
+    for (std::size_t k = 0; k < 3; ++k) {
+      pos[3 * c + k] = scenery.pos[3 * v + k];
+      nrm[3 * c + k] = scenery.nrm[3 * v + k];
+    }
+    const Material m = scenery_material(scenery.material[c / 3]);
+    for (std::size_t k = 0; k < 3; ++k) mat[4 * c + k] = to_byte(m.color[k]);
+    mat[4 * c + 3] = to_byte(m.specular);
+    const Eigen::Vector3f p(pos[3 * c], pos[3 * c + 1], pos[3 * c + 2]);
+    const bool first = c == 0;
+    scenery_lo_ = first ? p : Eigen::Vector3f(scenery_lo_.cwiseMin(p));
+    scenery_hi_ = first ? p : Eigen::Vector3f(scenery_hi_.cwiseMax(p));
+  }
+  const std::array<std::pair<GLuint, std::pair<const void*, std::size_t>>, 3> data{{
+      {scenery_pos_buf_, {pos.data(), pos.size() * sizeof(float)}},
+      {scenery_nrm_buf_, {nrm.data(), nrm.size() * sizeof(float)}},
+      {scenery_mat_buf_, {mat.data(), mat.size()}},
+  }};
+  for (const auto& [buf, d] : data) {
+    glBindBuffer(GL_ARRAY_BUFFER, buf);
+    glBufferData(GL_ARRAY_BUFFER, bytes(d.second, 1), d.first, GL_STATIC_DRAW);
+  }
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  scenery_version_ = scenery.version;
+  scenery_corners_ = corners;
+  ++scenery_uploads_;
 }
 
 // Vertex data, every frame: positions, and normals (computed when the frame has none).
@@ -256,6 +317,13 @@ FrameRenderer::View FrameRenderer::view_of(const RenderFrame& frame, const Snaps
       bounds.hi = bounds.hi.cwiseMax(v);
     }
   }
+  // The scenery reaches far beyond the organs: without it in the depth range the far plane
+  // would cut the wall off around them.
+  if (options.view == SnapshotOptions::View::kVisual && scenery_corners_ > 0) {
+    bounds.lo = bounds.empty ? scenery_lo_ : Eigen::Vector3f(bounds.lo.cwiseMin(scenery_lo_));
+    bounds.hi = bounds.empty ? scenery_hi_ : Eigen::Vector3f(bounds.hi.cwiseMax(scenery_hi_));
+    bounds.empty = false;
+  }
   const CameraMatrices m = camera_matrices(cam, aspect, bounds);
   const Eigen::Matrix4f view_proj = m.projection * m.view;
   const Eigen::Vector3f eye(cam.eye[0], cam.eye[1], cam.eye[2]);
@@ -296,6 +364,18 @@ void FrameRenderer::draw_visual(const View& v, const SnapshotOptions& options) {
     glBindTexture(GL_TEXTURE_BUFFER, 0);
   }
   glActiveTexture(GL_TEXTURE0);
+}
+
+// The scenery with the visual view's lighting (kVisualFragment), untessellated.
+void FrameRenderer::draw_scenery(const View& v) {
+  if (scenery_corners_ == 0) return;
+  glUseProgram(scenery_->id());
+  glUniformMatrix4fv(scenery_->uniform("u_view_proj"), 1, GL_FALSE, v.view_proj.data());
+  glUniform3f(scenery_->uniform("u_eye"), v.eye.x(), v.eye.y(), v.eye.z());
+  glUniform1f(scenery_->uniform("u_ref_dist"), v.ref_dist);
+  glBindVertexArray(scenery_vao_);
+  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(scenery_corners_));
+  glBindVertexArray(0);
 }
 
 void FrameRenderer::draw_collision(const View& v) {
@@ -348,6 +428,9 @@ void FrameRenderer::draw(const RenderFrame& frame, const SnapshotOptions& option
   } else if (frame.material_version != material_version_) {
     upload_materials(frame);
   }
+  if (frame.scenery.version != scenery_version_ || frame.scenery.tri.size() != scenery_corners_) {
+    upload_scenery(frame.scenery);
+  }
   upload_vertices(frame);
   const View v = view_of(frame, options, width, height);
   const auto& bg = options.background;
@@ -364,6 +447,7 @@ void FrameRenderer::draw(const RenderFrame& frame, const SnapshotOptions& option
   switch (options.view) {
     case SnapshotOptions::View::kVisual:
       draw_visual(v, options);
+      draw_scenery(v);
       break;
     case SnapshotOptions::View::kCollision:
       draw_collision(v);

@@ -20,7 +20,9 @@ class GlProgram;
 /// The frame's tools are drawn in every view (meshes from render/tool_mesh.h, regenerated every
 /// draw). Vertex positions and normals are uploaded on every draw; triangle and edge indices and
 /// the per-triangle materials only when the frame's topology_version (or its triangle or edge
-/// count) differs from the last upload.
+/// count) differs from the last upload. The frame's scenery (the organs' surroundings) is drawn in
+/// the visual view only, lit like the organs, and uploaded only when its version (or triangle
+/// count) changes; while it is there, the depth range covers it too.
 class FrameRenderer {
  public:
   /// Compiles the programs. @throws std::runtime_error with the driver's log on a GLSL error
@@ -39,6 +41,8 @@ class FrameRenderer {
 
   /// How many times indices and materials were uploaded so far (statistics and tests).
   [[nodiscard]] std::uint64_t topology_uploads() const { return topology_uploads_; }
+  /// How many times the scenery was uploaded so far (statistics and tests).
+  [[nodiscard]] std::uint64_t scenery_uploads() const { return scenery_uploads_; }
 
  private:
   /// The camera of a draw: view-projection, eye (the light), the light's reference distance.
@@ -50,17 +54,20 @@ class FrameRenderer {
   void upload_topology(const RenderFrame& frame);
   void upload_materials(const RenderFrame& frame);
   void upload_vertices(const RenderFrame& frame);
+  void upload_scenery(const Scenery& scenery);
   [[nodiscard]] View view_of(const RenderFrame& frame, const SnapshotOptions& options, int width,
                              int height) const;
   void draw_visual(const View& v, const SnapshotOptions& options);
   void draw_collision(const View& v);
   void draw_mechanical(const View& v);
+  void draw_scenery(const View& v);
   void draw_tools(const RenderFrame& frame, const float* view_proj, const float* eye,
                   float ref_dist);
 
   std::unique_ptr<GlProgram> visual_;
   std::unique_ptr<GlProgram> flat_;
   std::unique_ptr<GlProgram> tool_;
+  std::unique_ptr<GlProgram> scenery_;
   // GL object names: vertex arrays (attributes for the flat views, none for the visual view's
   // vertex pulling), position and normal buffers, triangle and line index buffers, the
   // per-triangle material buffer, and the buffer textures the visual view reads them through.
@@ -82,6 +89,17 @@ class FrameRenderer {
   unsigned int tool_mat_buf_ = 0;
   unsigned int tool_idx_buf_ = 0;
   ToolMesh tool_mesh_;  // scratch, regenerated every draw
+  // Scenery: its vertex array and per-corner position, normal and material (RGBA8) buffers, what
+  // they hold (the version, 3 x triangles corners) and its bounds (m; lo > hi: none).
+  unsigned int scenery_vao_ = 0;
+  unsigned int scenery_pos_buf_ = 0;
+  unsigned int scenery_nrm_buf_ = 0;
+  unsigned int scenery_mat_buf_ = 0;
+  std::uint64_t scenery_version_ = 0;
+  std::size_t scenery_corners_ = 0;
+  std::uint64_t scenery_uploads_ = 0;
+  Eigen::Vector3f scenery_lo_{1.0f, 1.0f, 1.0f};
+  Eigen::Vector3f scenery_hi_{0.0f, 0.0f, 0.0f};
   int max_tess_level_ = 64;
   int max_texture_buffer_ = 65536;  // texels
   // What the index buffers hold now.

@@ -58,6 +58,18 @@ Material group_material(const RenderFrame& frame, std::uint16_t group) {
   return m;
 }
 
+Material scenery_material(SceneryMaterial m) {
+  switch (m) {
+    case SceneryMaterial::kPeritoneum:
+      return {{0.80f, 0.42f, 0.40f}, 0.50f};
+    case SceneryMaterial::kBowel:
+      return {{0.93f, 0.64f, 0.62f}, 0.55f};
+    case SceneryMaterial::kFat:
+      return {{0.96f, 0.83f, 0.46f}, 0.35f};
+  }
+  return {};
+}
+
 Material wound_material() { return {{0.45f, 0.04f, 0.06f}, 0.75f}; }
 Material coagulated_material() { return {{0.62f, 0.52f, 0.40f}, 0.1f}; }
 

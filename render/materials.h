@@ -24,6 +24,10 @@ bool named_material(std::string_view name, Material& out);
 /// is known, else a fixed palette colour chosen by the group id (tissue-like, never the wound's).
 [[nodiscard]] Material group_material(const RenderFrame& frame, std::uint16_t group);
 
+/// The material of the scenery around the organs (render/scenery.h): the posterior wall's wet
+/// peritoneum a pinkish red, small bowel pinker and paler, mesenteric fat yellow.
+[[nodiscard]] Material scenery_material(SceneryMaterial m);
+
 /// The wound: faces made by a cut, a dark, glossy red distinct from every tissue colour.
 [[nodiscard]] Material wound_material();
 /// Tissue a hook coagulated: a dry, pale tan, matt.

@@ -18,6 +18,23 @@ void check_ids(const std::vector<std::uint32_t>& ids, std::size_t n, const char*
   }
 }
 
+// Appends the scenery's shape and id problems (see validate).
+void check_scenery(const Scenery& s, std::vector<std::string>& errors) {
+  if (s.pos.size() % 3 != 0) errors.emplace_back("scenery pos is not n x 3");
+  if (s.nrm.size() != s.pos.size()) errors.emplace_back("scenery nrm is not n x 3");
+  if (s.tri.size() % 3 != 0) errors.emplace_back("scenery tri is not t x 3");
+  if (s.material.size() != s.num_triangles())
+    errors.emplace_back("scenery material is not one per triangle");
+  check_ids(s.tri, s.num_vertices(), "scenery tri", errors);
+  const auto finite = [](const std::vector<float>& a) {
+    return std::all_of(a.begin(), a.end(), [](float v) { return std::isfinite(v); });
+  };
+  if (!finite(s.pos) || !finite(s.nrm)) errors.emplace_back("scenery has a non-finite value");
+  const auto bad = std::find_if(s.material.begin(), s.material.end(),
+                                [](SceneryMaterial m) { return m > SceneryMaterial::kFat; });
+  if (bad != s.material.end()) errors.emplace_back("scenery has an unknown material");
+}
+
 }  // namespace
 
 std::vector<std::string> validate(const RenderFrame& frame) {
@@ -65,6 +82,7 @@ std::vector<std::string> validate(const RenderFrame& frame) {
       for (const float v : *a) finite = finite && std::isfinite(v);
     if (!finite) errors.push_back("clips[" + std::to_string(i) + "] has a non-finite value");
   }
+  check_scenery(frame.scenery, errors);
   return errors;
 }
 

@@ -52,6 +52,13 @@ struct RenderClip {
   float radius = 0.0f;                            ///< a loop's ring radius, m
 };
 
+/// Blood welling where an unsecured artery was cut (plain data, world coordinates, m): a dark red
+/// pool that grows as it bleeds.
+struct RenderBleed {
+  std::array<float, 3> at{0.0f, 0.0f, 0.0f};  ///< where, m
+  float radius = 0.0f;                        ///< m
+};
+
 /// One named number the overlay lists (instructor metrics: cut length, time in contact, force
 /// peaks ...), e.g. {"max force", 1.8, "N"}.
 struct OverlayMetric {
@@ -161,6 +168,8 @@ struct RenderFrame {
   std::vector<RenderTool> tools;
   /// Placed clips, drawn in every view (render/tool_mesh.h append_clip_mesh).
   std::vector<RenderClip> clips;
+  /// Bleeding, drawn in every view (render/tool_mesh.h append_bleed_mesh).
+  std::vector<RenderBleed> bleeds;
   /// (k) a polyline drawn as a thin violet marker in every view (the planned cut: where the
   /// trainee should cut), m; empty: none.
   std::vector<std::array<float, 3>> guide;

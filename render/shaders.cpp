@@ -111,6 +111,24 @@ void main() {
 }
 )";
 
+// The scenery: per-corner attributes (the renderer repeats each triangle's material at its three
+// corners), handed to kVisualFragment under the names the tessellation evaluation stage uses.
+const char* const kSceneryVertex = R"(#version 410 core
+layout(location = 0) in vec3 a_pos;       // world position, m
+layout(location = 1) in vec3 a_nrm;       // unit normal
+layout(location = 2) in vec4 a_material;  // rgb: sRGB colour, a: specular strength
+out vec3 e_pos;
+out vec3 e_nrm;
+flat out vec4 e_material;
+uniform mat4 u_view_proj;
+void main() {
+  e_pos = a_pos;
+  e_nrm = a_nrm;
+  e_material = a_material;
+  gl_Position = u_view_proj * vec4(a_pos, 1.0);
+}
+)";
+
 const char* const kFlatVertex = R"(#version 410 core
 layout(location = 0) in vec3 a_pos;  // world position, m
 out vec3 v_pos;

@@ -9,6 +9,9 @@ extern const char* const kVisualVertex;
 extern const char* const kVisualTessControl;
 extern const char* const kVisualTessEval;
 extern const char* const kVisualFragment;
+/// The scenery around the organs (render/scenery.h): untessellated triangles with per-corner
+/// normal and material, linked with kVisualFragment so it is lit exactly like the organs.
+extern const char* const kSceneryVertex;
 
 // Collision and mechanical views: untessellated triangles or lines, flat shaded or one colour.
 extern const char* const kFlatVertex;

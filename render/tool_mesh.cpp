@@ -10,6 +10,7 @@
 #include "engine/clip.h"
 #include "engine/endoloop.h"
 #include "engine/hook.h"
+#include "render/icosphere.h"
 
 namespace serosa::render {
 namespace {
@@ -23,6 +24,7 @@ constexpr std::array<float, 4> kShaftMaterial{0.10f, 0.10f, 0.11f, 0.55f};  // b
 constexpr std::array<float, 4> kSteelMaterial{0.66f, 0.68f, 0.72f, 0.95f};  // polished steel
 constexpr std::array<float, 4> kClipMaterial{0.78f, 0.76f, 0.70f, 0.9f};    // titanium
 constexpr std::array<float, 4> kSutureMaterial{0.55f, 0.42f, 0.75f, 0.5f};  // violet polydioxanone
+constexpr std::array<float, 4> kBloodMaterial{0.42f, 0.02f, 0.03f, 0.9f};   // fresh arterial blood
 constexpr float kSutureRadius = 3e-4f;  // a 2-0 suture with some slack, m
 constexpr std::array<float, 4> kGuideMaterial{0.45f, 0.18f, 0.78f, 0.2f};  // marker violet
 
@@ -191,6 +193,18 @@ void append_clip_mesh(const RenderClip& clip, ToolMesh& out) {
     add_box(out, mid + static_cast<float>(s) * leg * across, along, pin, across, half_len, hw, ht,
             kClipMaterial);
   add_box(out, b + ht * along, along, pin, across, ht, hw, leg + ht, kClipMaterial);  // the crown
+}
+
+void append_bleed_mesh(const RenderBleed& bleed, ToolMesh& out) {
+  if (!(bleed.radius > 0.0f)) return;
+  static const TriMesh unit = icosphere(2);
+  const auto base = static_cast<std::uint32_t>(out.num_vertices());
+  const V3 at = vec(bleed.at);
+  for (std::size_t v = 0; v + 2 < unit.pos.size(); v += 3) {
+    const V3 n(unit.pos[v], unit.pos[v + 1], unit.pos[v + 2]);
+    add_vertex(out, at + bleed.radius * n, n, kBloodMaterial);
+  }
+  for (std::uint32_t id : unit.tri) out.tri.push_back(base + id);
 }
 
 void ToolMesh::clear() {

@@ -57,6 +57,9 @@ inline constexpr float kClipLegThickness = 3e-4f;
 /// tissue (kClipGap apart, engine/clip.h), joined at the far end.
 void append_clip_mesh(const RenderClip& clip, ToolMesh& out);
 
+/// Appends a pool of blood: a sphere of bleed.radius about bleed.at, glossy dark red.
+void append_bleed_mesh(const RenderBleed& bleed, ToolMesh& out);
+
 /// Radius of the guide's marker tube, m.
 inline constexpr float kGuideRadius = 4e-4f;
 /// Appends the guide polyline (m) as a tube of kGuideRadius, violet like a surgical skin marker.

@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "app/headless.h"
+#include "app/render_frame_from_surface.h"
 #include "app_test_util.h"
 #include "beam_scene.h"
 #include "engine/hook.h"
@@ -163,6 +164,37 @@ TEST(ProcedureErrors, AGroupTheOrgansDoNotNameIsAnErrorAtItsKey) {
       EXPECT_NE(what.find("one of: artery"), std::string::npos) << what;
     }
   }
+}
+
+}  // namespace
+}  // namespace serosa::app
+
+namespace serosa::app {
+namespace {
+
+using namespace serosa::app::testing;
+
+TEST(ProcedureErrors, ABleedingIsShownInTheViewWhereTheArteryWasCutAndWells) {
+  const std::string at = ",scissors,0.03,-0.008,0," + kBeamAcross;
+  const std::string csv = "t,tool,px,py,pz,qw,qx,qy,qz,jaw,buttons\n0.00" + at + ",0.9,0\n0.35" +
+                          at + ",0.9,0\n0.45" + at + ",0.0,0\n3.00" + at + ",0.0,0\n";
+  auto run = beam_scene(out_dir("errors_bleed_view"), csv, "\"fem\", \"surface\", \"cutting\"",
+                        scripted_tool("scissors", "scissors"), "[metrics]\nartery = \"artery\"\n");
+  SimState& s = run->assembled.state;
+  run->comp.runner->run(s, 80);  // 0.4 s: not cut yet
+  EXPECT_TRUE(s.handoff.bleeds.empty());
+  run->comp.runner->run(s, 20);  // 0.5 s: cut
+  ASSERT_EQ(s.handoff.bleeds.size(), 1u);
+  EXPECT_NEAR(s.handoff.bleeds[0].first.x(), 0.03, 0.003);
+  render::RenderFrame frame;
+  fill_render_tools(run->scene, s, frame);
+  ASSERT_EQ(frame.bleeds.size(), 1u);
+  const float early = frame.bleeds[0].radius;
+  run->comp.runner->run(s, 200);  // a second later the pool is larger
+  fill_render_tools(run->scene, s, frame);
+  ASSERT_EQ(frame.bleeds.size(), 1u);
+  EXPECT_GT(frame.bleeds[0].radius, early);
+  EXPECT_NEAR(frame.bleeds[0].at[0], 0.03f, 0.003f);
 }
 
 }  // namespace

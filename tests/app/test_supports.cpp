@@ -68,7 +68,9 @@ TEST(Supports, PushOnlyAlongTheNormalOnNodesBelowThePlane) {
     }
     ++below;
     EXPECT_LT((f - f.dot(n) * n).norm(), 1e-12 * f.norm()) << "node " << i;
-    EXPECT_NEAR(f.dot(n), -d * std::min(contact::kSupportStiffness, contact::kSupportBeta * 1e-3 / 2.5e-5), 1e-12);
+    EXPECT_NEAR(f.dot(n),
+                -d * std::min(contact::kSupportStiffness, contact::kSupportBeta * 1e-3 / 2.5e-5),
+                1e-12);
   }
   EXPECT_GT(below, 0);
   EXPECT_EQ(stage.contacts(), below);

@@ -19,6 +19,7 @@ namespace {
 
 Scene applier_scene() {
   Scene scene;
+  scene.settings.effects = {Effect::kFem, Effect::kSurface, Effect::kContact, Effect::kClips};
   Tool t;
   t.name = "clipper";
   t.kind = ToolKind::kClipApplier;

@@ -156,7 +156,12 @@ TEST_F(SceneTest, ReadsEveryKey) {
 [scene]
 dt = 0.002
 gravity = [0, 0, -9.81]
-effects = ["record", "fem", "gravity", "plasticity", "cutting", "clips", "cautery", "surface", "contact", "render", "haptics"]
+effects = ["record", "fem", "gravity", "supports", "plasticity", "cutting", "clips", "loops", "cautery", "surface", "contact", "render", "haptics"]
+
+[[support]]
+name = "posterior wall"
+point = [0, 0, -0.004]
+normal = [0, 0, 3]
 
 [[organ]]
 name = "appendix"
@@ -193,6 +198,7 @@ tessellation = 5
 shape_factor = 0.5
 width = 640
 height = 480
+surroundings = "abdomen"
 
 [[tool]]
 name = "grasper"
@@ -227,6 +233,11 @@ steps = 250
   EXPECT_DOUBLE_EQ(s.settings.dt_s, 0.002);
   EXPECT_EQ(s.settings.gravity_mps2, Vec3(0, 0, -9.81));
   EXPECT_EQ(s.settings.effects.size(), kNumEffects);
+  ASSERT_EQ(s.supports.size(), 1u);
+  EXPECT_EQ(s.supports[0].name, "posterior wall");
+  EXPECT_EQ(s.supports[0].point_m, Vec3(0, 0, -0.004));
+  EXPECT_EQ(s.supports[0].normal, Vec3(0, 0, 1));
+  EXPECT_EQ(s.render.surroundings, Surroundings::kAbdomen);
   ASSERT_EQ(s.organs.size(), 2u);
   const Organ& o = s.organs[0];
   EXPECT_EQ(o.groups.at(2), "mesoappendix");
@@ -403,7 +414,8 @@ TEST_F(SceneTest, TomlSyntaxErrorGivesItsLine) {
 }
 
 TEST_F(SceneTest, UnknownTopLevelKeyListsTheAllowedOnes) {
-  expect_error(kOrgan + "[solvr]\nkind = \"pcg\"\n", 4, "solvr", "one of: scene, organ, solver");
+  expect_error(kOrgan + "[solvr]\nkind = \"pcg\"\n", 4, "solvr",
+               "one of: scene, organ, support, solver");
 }
 
 TEST_F(SceneTest, UnknownKeyInATable) {
