@@ -63,6 +63,14 @@ if [ "$what" = coarse ] || [ "$what" = all ]; then
     -setnumber h_cecum 0.008 -setnumber h_appendix 0.0035 -setnumber h_meso 0.0025 -setnumber curvature 8
   mesh liver.geo liver_coarse -setnumber h 0.010 -setnumber curvature 10
 fi
+if [ "$what" = coarse ] || [ "$what" = all ]; then
+  # The default scene's: refined round the base, the artery tagged in the mesoappendix.
+  mesh appendectomy.geo appendectomy_procedure \
+    -setnumber h_cecum 0.008 -setnumber h_appendix 0.0035 -setnumber h_meso 0.0025 -setnumber curvature 8 \
+    -setnumber h_base 0.0022
+  python3 "$src/tag_artery.py" "$out/appendectomy_procedure.msh"
+  python3 "$src/reorder_msh.py" "$out/appendectomy_procedure.msh"
+fi
 if [ "$what" = fine ] || [ "$what" = all ]; then
   mesh appendectomy.geo appendectomy_fine \
     -setnumber h_cecum 0.0032 -setnumber h_appendix 0.0015 -setnumber h_meso 0.0011 -setnumber curvature 16
@@ -72,7 +80,7 @@ fi
 # check everything present and rewrite the README's report
 cd "$root"
 files=()
-for f in appendectomy_coarse appendectomy_fine liver_coarse liver_fine beam_xcoarse beam_coarse beam_fine; do
+for f in appendectomy_coarse appendectomy_procedure appendectomy_fine liver_coarse liver_fine beam_xcoarse beam_coarse beam_fine; do
   [ -f "assets/$f.msh" ] && files+=("assets/$f.msh")
 done
 status=0

@@ -9,6 +9,7 @@ If (!Exists(h_cecum))    h_cecum = 0.008;     EndIf
 If (!Exists(h_appendix)) h_appendix = 0.0035; EndIf
 If (!Exists(h_meso))     h_meso = 0.0025;     EndIf
 If (!Exists(curvature))  curvature = 8;       EndIf  // elements per 2 Pi of curvature
+If (!Exists(h_base))     h_base = 0;          EndIf  // > 0: refine round the appendix's base
 
 // ---- cecum: a slightly flattened ellipsoidal pouch, 5 (x) x 6 (y) x 4 (z) cm
 Sphere(1) = {0, 0, 0, 1};
@@ -66,6 +67,16 @@ MeshSize{ PointsOf{ Volume{1}; } } = h_cecum;
 MeshSize{ PointsOf{ Volume{app2()}; } } = h_appendix;
 MeshSize{ PointsOf{ Volume{meso()}; } } = h_meso;
 Mesh.MeshSizeMax = h_cecum;
+// The base, where the appendix is secured and transected: h_base within 15 mm of the point
+// (0.025, -0.024, 0) (from the cecum wall to 2 cm along the appendix, the mesoappendix's root
+// included), growing to the other sizes over the next 10 mm.
+If (h_base > 0)
+  Field[1] = Ball;
+  Field[1].XCenter = 0.025; Field[1].YCenter = -0.024; Field[1].ZCenter = 0;
+  Field[1].Radius = 0.015; Field[1].Thickness = 0.010;
+  Field[1].VIn = h_base; Field[1].VOut = h_cecum;
+  Background Field = 1;
+EndIf
 Mesh.MeshSizeMin = 0.5*h_meso;
 Mesh.MeshSizeFromCurvature = curvature;
 Mesh.Algorithm3D = 1;   // Delaunay

@@ -1,0 +1,201 @@
+#!/usr/bin/env python3
+"""Writes the default scene's scripted appendectomy (config/paths/appendectomy_procedure.csv) and
+prints each instrument's trocar for config/appendectomy.toml.
+
+Each instrument pivots about its trocar: every row's orientation points the shaft (local +z) from
+the trocar through the row's tip, rolled so the jaws open towards a chosen direction (local +x,
+engine/tool_geometry.h). Instruments come in and go out along their shaft. Frame and anatomy:
+config/appendectomy.toml, docs/procedure.md. Times in s, positions in m, jaw angles in rad.
+
+usage: make_procedure_path.py [OUT.csv]     (default: config/paths/appendectomy_procedure.csv)
+"""
+import math
+import os
+import sys
+
+
+def sub(a, b):
+    return [a[k] - b[k] for k in range(3)]
+
+
+def add(a, b, s=1.0):
+    return [a[k] + s * b[k] for k in range(3)]
+
+
+def dot(a, b):
+    return sum(a[k] * b[k] for k in range(3))
+
+
+def cross(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def unit(a):
+    n = math.sqrt(dot(a, a))
+    return [x / n for x in a]
+
+
+def quaternion(side, pin, forward):
+    """(w, x, y, z) of the rotation whose columns are side, pin, forward."""
+    m = [[side[r], pin[r], forward[r]] for r in range(3)]
+    tr = m[0][0] + m[1][1] + m[2][2]
+    if tr > 0:
+        s = math.sqrt(tr + 1.0) * 2
+        return [0.25 * s, (m[2][1] - m[1][2]) / s, (m[0][2] - m[2][0]) / s, (m[1][0] - m[0][1]) / s]
+    i = max(range(3), key=lambda k: m[k][k])
+    j, k = (i + 1) % 3, (i + 2) % 3
+    s = math.sqrt(1.0 + m[i][i] - m[j][j] - m[k][k]) * 2
+    q = [0.0] * 4
+    q[0] = (m[k][j] - m[j][k]) / s
+    q[1 + i] = 0.25 * s
+    q[1 + j] = (m[j][i] + m[i][j]) / s
+    q[1 + k] = (m[k][i] + m[i][k]) / s
+    return q
+
+
+class Tool:
+    """An instrument through its trocar: rows of (time, tip, jaw, buttons)."""
+
+    def __init__(self, name, work, forward, side_hint, reach=0.15):
+        self.name = name
+        self.forward = unit(forward)
+        self.trocar = add(work, self.forward, -reach)
+        self.side_hint = side_hint
+        self.rows = []
+
+    def frame(self, tip, roll=None):
+        f = unit(sub(tip, self.trocar))
+        hint = roll or self.side_hint
+        s = unit(add(hint, f, -dot(hint, f)))
+        return s, cross(f, s), f
+
+    def at(self, t, tip, jaw=0.0, buttons=0, roll=None):
+        """A row: the tip (m) at time t (s); roll: where the jaws open (else the tool's way)."""
+        self.rows.append((t, list(tip), jaw, buttons, roll))
+
+    def parked(self, depth=0.05):
+        """Tip `depth` in from the trocar along the working line: out of the way and of view."""
+        return add(self.trocar, self.forward, depth)
+
+
+def procedure():
+    # Where the anatomy is (rest, m): the appendix's axis runs along +x at y = -0.022, z = 0 from
+    # the cecum wall (x = 0.017) to x = 0.040, then down along (1, -1, 0)/sqrt(2) to its tip near
+    # (0.080, -0.057, 0); the fold hangs below it in z = 0 with its free edge from (0.004, -0.027)
+    # to (0.034, -0.040) to (0.0725, -0.0496); the artery runs 3 mm inside that edge.
+    d = unit([1.0, -1.0, 0.0])
+    x_loop, x_transect, x_divide = 0.0265, 0.030, 0.029
+
+    grasper = Tool("grasper", [0.0700, -0.0470, 0.0], [-0.10, -0.35, -0.93], d)
+    clip = Tool("clip-applier", [0.0200, -0.0300, -0.0040], [0.10, 0.25, -0.96], [0.40, 0.92, 0.0])
+    hook = Tool("hook", [x_divide, -0.0300, 0.0], [0.0, -0.35, -0.94], [0.0, 1.0, 0.0])
+    loop = Tool("endoloop", [x_loop, -0.0330, 0.0], [-1.0, 0.0, -0.10], [0.0, 1.0, 0.0])
+    cut = [x_transect, -0.0232, -0.0071]
+    scissors = Tool("scissors", cut, [0.0, 0.30, -0.95], [0.0, 1.0, 0.0])
+    tools = [grasper, clip, hook, loop, scissors]
+    for tool in tools:
+        tool.at(0.0, tool.parked())
+
+    # expose: take the appendix 14 mm from its tip and lift it 15 mm towards the wall above
+    g = grasper
+    take = [0.0700, -0.0470, 0.0]
+    g.at(0.3, g.parked(), 1.0)
+    g.at(0.9, add(take, [0, 0, 0.010]), 1.0)
+    g.at(1.2, take, 1.0)
+    g.at(1.4, take, 0.0)
+    lifted = add(take, [0, 0, 0.015])
+    g.at(2.0, lifted, 0.0)
+
+    # clip the artery near its root: jaws across it, the fold between them
+    c = clip
+    at_artery = [0.0200, -0.0305, -0.0010]
+    c.at(2.0, c.parked(), 0.0)
+    c.at(2.3, c.parked(), 0.7)
+    c.at(2.8, add(at_artery, [0, 0, 0.012]), 0.7)
+    c.at(3.1, add(at_artery, [0, 0, -0.008]), 0.7)
+    c.at(3.3, add(at_artery, [0, 0, -0.008]), 0.0)
+    c.at(3.5, add(at_artery, [0, 0, 0.012]), 0.0)
+    c.at(3.9, c.parked(), 0.0)
+
+    # divide the fold beyond the clip, in two presses of the pedal. First across the fold: the
+    # crook (along +y) goes down past the free edge, along under the fold to the appendix and up
+    # into the appendix's wall (one stroke: the rectangle it spans, in the plane x = x_divide).
+    # Then the fold is freed from the appendix's base between the two cuts: the crook (along +x,
+    # from x_divide - 1 mm to x_divide + 2 mm, across where the scissors will cut) goes down through the fold just under the
+    # appendix. So the fold and the appendix part where the scissors will cut, and the specimen
+    # keeps no fold joined to the stump.
+    h = hook
+    y_edge, y_app, y_under = -0.0460, -0.0270, -0.0268
+    z_lo, z_hi = -0.0080, 0.0080
+    h.at(3.6, h.parked())
+    h.at(4.1, [x_divide, y_edge, z_hi])
+    h.at(4.2, [x_divide, y_edge, z_hi], 0.0, 2)
+    h.at(4.5, [x_divide, y_edge, z_lo], 0.0, 2)
+    h.at(5.0, [x_divide, y_app, z_lo], 0.0, 2)
+    h.at(5.3, [x_divide, y_app, z_hi], 0.0, 2)
+    h.at(5.35, [x_divide, y_app, z_hi])
+    under = [x_divide - 0.0010, y_under, z_hi]
+    h.at(5.6, under, 0.0, 0, roll=[1.0, 0.0, 0.0])
+    h.at(5.65, under, 0.0, 2, roll=[1.0, 0.0, 0.0])
+    h.at(5.95, add(under, [0, 0, z_lo - z_hi]), 0.0, 2, roll=[1.0, 0.0, 0.0])
+    h.at(6.0, add(under, [0, 0, z_lo - z_hi]), 0.0, 0, roll=[1.0, 0.0, 0.0])
+    h.at(6.4, h.parked(), 0.0, 0, roll=[1.0, 0.0, 0.0])
+
+    # secure the base: the open ring slid up to the base, round the appendix, then cinched
+    lp = loop
+    # the pusher's tip; the ring's centre is 10 mm along +y from it, 0.5 mm below the
+    # appendix's axis. The ring's plane is nearly upright so it keeps clear of the cecum.
+    ring_tip = [x_loop, -0.0330, 0.0]
+    lp.at(6.0, lp.parked(), 0.0)
+    lp.at(6.2, lp.parked(), 0.6)
+    lp.at(6.6, add(ring_tip, [0.010, 0, 0.004]), 0.6)
+    lp.at(6.8, ring_tip, 0.6)
+    lp.at(6.95, ring_tip, 0.0)
+    lp.at(7.3, lp.parked(0.1), 0.0)
+
+    # transect between the loop and the specimen: the blades open wide, their tips 7 mm beyond
+    # the lifted appendix's axis (8 mm from the hinge, where the blades are 9 mm apart)
+    s = scissors
+    s.at(7.1, s.parked(), 0.0)
+    s.at(7.3, s.parked(), 1.2)
+    s.at(7.7, add(cut, s.forward, -0.012), 1.2)
+    s.at(8.0, cut, 1.2)
+    s.at(8.3, cut, 0.0)
+    s.at(8.6, s.parked(), 0.0)
+
+    # extract: carry the freed appendix up and away
+    g.at(8.6, lifted, 0.0)
+    g.at(9.6, add(lifted, [0.020, -0.010, 0.040]), 0.0)
+    g.at(10.0, add(lifted, [0.020, -0.010, 0.040]), 0.0)
+    for tool in tools:
+        if tool is not grasper:
+            _, tip, jaw, _, roll = tool.rows[-1]
+            tool.at(10.0, tip, jaw, 0, roll)
+    return tools
+
+
+def main():
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "config/paths/appendectomy_procedure.csv")
+    tools = procedure()
+    rows = []
+    for tool in tools:
+        for t, tip, jaw, buttons, roll in tool.rows:
+            q = quaternion(*tool.frame(tip, roll))
+            rows.append((t, tool.name, tip, q, jaw, buttons))
+    # the endoscope stays put over the field, looking down (-z) from the umbilicus
+    scope = ([0.0400, -0.0300, 0.1100], [0.0, 0.0, 1.0, 0.0])
+    rows.append((0.0, "endoscope", scope[0], scope[1], 0.0, 0))
+    rows.append((10.0, "endoscope", scope[0], scope[1], 0.0, 0))
+    rows.sort(key=lambda r: (r[0], r[1]))
+    with open(out, "w") as f:
+        f.write("t,tool,px,py,pz,qw,qx,qy,qz,jaw,buttons\n")
+        for t, name, p, q, jaw, buttons in rows:
+            f.write(f"{t:.3f},{name},{p[0]:.5f},{p[1]:.5f},{p[2]:.5f},"
+                    f"{q[0]:.6f},{q[1]:.6f},{q[2]:.6f},{q[3]:.6f},{jaw:.2f},{buttons}\n")
+    for tool in tools:
+        print(f"{tool.name}: trocar = [{tool.trocar[0]:.4f}, {tool.trocar[1]:.4f}, {tool.trocar[2]:.4f}]")
+
+
+if __name__ == "__main__":
+    main()
