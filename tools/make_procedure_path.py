@@ -163,10 +163,10 @@ def procedure():
     s.at(8.3, cut, 0.0)
     s.at(8.6, s.parked(), 0.0)
 
-    # extract: carry the freed appendix up and away
+    # extract: carry the freed appendix away, towards the port it will leave by
     g.at(8.6, lifted, 0.0)
-    g.at(9.6, add(lifted, [0.020, -0.010, 0.040]), 0.0)
-    g.at(10.0, add(lifted, [0.020, -0.010, 0.040]), 0.0)
+    g.at(9.6, add(lifted, [0.045, -0.010, 0.015]), 0.0)
+    g.at(10.0, add(lifted, [0.045, -0.010, 0.015]), 0.0)
     for tool in tools:
         if tool is not grasper:
             _, tip, jaw, _, roll = tool.rows[-1]
@@ -184,7 +184,7 @@ def main():
             q = quaternion(*tool.frame(tip, roll))
             rows.append((t, tool.name, tip, q, jaw, buttons))
     # the endoscope stays put over the field, looking down (-z) from the umbilicus
-    scope = ([0.0400, -0.0300, 0.1100], [0.0, 0.0, 1.0, 0.0])
+    scope = ([0.0450, -0.0320, 0.0600], [0.0, 0.0, 1.0, 0.0])
     rows.append((0.0, "endoscope", scope[0], scope[1], 0.0, 0))
     rows.append((10.0, "endoscope", scope[0], scope[1], 0.0, 0))
     rows.sort(key=lambda r: (r[0], r[1]))

@@ -46,7 +46,7 @@ void expect_contract(const nlohmann::json& a) {
 
 TEST(Assessment, TheDefaultScenePassesAndItsNovicePathFails) {
   const fs::path dir = out_dir("assessment_cli");
-  const CliResult expert = run_serosa("headless '" + source("config/appendectomy.toml").string() +
+  const CliResult expert = run_serosa("headless '" + source("config/transection.toml").string() +
                                       "' --report '" + (dir / "expert.json").string() + "'");
   ASSERT_EQ(expert.code, 0) << expert.out;
   const nlohmann::json e = read_json(dir / "expert.json")["assessment"];
@@ -55,7 +55,7 @@ TEST(Assessment, TheDefaultScenePassesAndItsNovicePathFails) {
   EXPECT_GE(e["score"].get<double>(), e["pass_score"].get<double>());
 #if !defined(__SANITIZE_ADDRESS__)  // the 12 s novice run: ASan+UBSan is ~15x slower
   const CliResult novice =
-      run_serosa("headless '" + source("config/appendectomy.toml").string() + "' --path '" +
+      run_serosa("headless '" + source("config/transection.toml").string() + "' --path '" +
                  source("config/paths/appendectomy_novice.csv").string() +
                  "' --steps 2400 --report '" + (dir / "novice.json").string() + "'");
   ASSERT_EQ(novice.code, 0) << novice.out;  // a failed assessment is a result, not an error
@@ -100,7 +100,7 @@ fs::path degraded_path(const fs::path& dir, double slow, double off_m) {
 
 double score_of(const fs::path& dir, double slow, double off_m) {
   HeadlessOptions o;
-  o.scene = source("config/appendectomy.toml");
+  o.scene = source("config/transection.toml");
   o.tool_path = degraded_path(dir, slow, off_m);
   o.steps = static_cast<std::int64_t>(std::lround(1000 * slow));
   o.progress = false;
@@ -147,7 +147,7 @@ TEST(Assessment, TheTraineeSeesTheSummaryWhenTheSessionEnds) {
   const fs::path dir = out_dir("assessment_summary");
   const fs::path png = dir / "summary.png";
   const CliResult x =
-      run_serosa_under_xvfb("run '" + source("config/appendectomy.toml").string() + "' --path '" +
+      run_serosa_under_xvfb("run '" + source("config/transection.toml").string() + "' --path '" +
                             source("config/paths/appendectomy.csv").string() +
                             "' --seconds 1.5 --summary-seconds 0.3 --snapshot '" + png.string() +
                             "' --report '" + (dir / "session.json").string() + "'");

@@ -89,7 +89,7 @@ std::vector<Level> run_levels(const std::string& kind, const std::string& source
   std::vector<Level> out;
   for (const double v : levels) {
     HeadlessOptions o;
-    o.scene = source("config/appendectomy.toml");
+    o.scene = source("config/transection.toml");
     o.tool_path = changed_path(dir, kind + "_" + str(v), source_csv,
                                [&](std::vector<Row>& rows) { degrade(rows, v); });
     o.steps = steps(v);

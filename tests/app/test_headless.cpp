@@ -70,11 +70,11 @@ TEST(Headless, AppendectomyWritesPictures) {
 }
 
 // Every field of the report a regression run is judged by (docs/headless-report.md), each with a
-// value that could be wrong: the scripted transection of the default scene, pictures on.
+// value that could be wrong: the scripted transection of the transection drill, pictures on.
 TEST(Headless, ReportHasEveryFieldWithPlausibleValues) {
   const fs::path dir = out_dir("report_fields");
   HeadlessOptions o;
-  o.scene = fs::path(::serosa::test_paths::source_dir()) / "config" / "appendectomy.toml";
+  o.scene = fs::path(::serosa::test_paths::source_dir()) / "config" / "transection.toml";
   o.tool_path = fs::path(::serosa::test_paths::source_dir()) / "config" / "paths" /
                 "appendix_transection.csv";
   o.steps = 26;  // the stroke closes at step 23

@@ -28,7 +28,7 @@ const Tool& tool(const Scene& s, const std::string& name) {
 }
 
 TEST(InstrumentDevices, TheDefaultSceneGoesToTheMouseWithoutARig) {
-  Scene scene = load_scene(source("config/appendectomy.toml"));
+  Scene scene = load_scene(source("config/transection.toml"));
   ASSERT_FALSE(scene.settings.has(Effect::kHaptics));
   const auto given = give_instruments_to_trainee(scene, false);
   ASSERT_TRUE(given.has_value());
@@ -76,7 +76,7 @@ TEST(InstrumentDevices, TheDefaultSceneGoesToTheMouseWithoutARig) {
 }
 
 TEST(InstrumentDevices, ARigPluggedInTakesTheInstruments) {
-  Scene scene = load_scene(source("config/appendectomy.toml"));
+  Scene scene = load_scene(source("config/transection.toml"));
   const auto given = give_instruments_to_trainee(scene, true);
   ASSERT_TRUE(given.has_value());
   EXPECT_EQ(given->device, DeviceKind::kRig);
@@ -87,7 +87,7 @@ TEST(InstrumentDevices, ARigPluggedInTakesTheInstruments) {
 }
 
 TEST(InstrumentDevices, ASceneThatNamesADeviceKeepsIt) {
-  Scene scene = load_scene(source("config/appendectomy.toml"));
+  Scene scene = load_scene(source("config/transection.toml"));
   for (Tool& t : scene.tools)
     if (t.name == "grasper") t.device.kind = DeviceKind::kRigEmulated;
   const Scene before = scene;
@@ -96,14 +96,14 @@ TEST(InstrumentDevices, ASceneThatNamesADeviceKeepsIt) {
   EXPECT_EQ(tool(scene, "grasper").device.kind, DeviceKind::kRigEmulated);
   EXPECT_EQ(scene.settings.effects, before.settings.effects);
   // Nothing scripted but the camera: nothing to give.
-  Scene camera_only = load_scene(source("config/appendectomy.toml"));
+  Scene camera_only = load_scene(source("config/transection.toml"));
   std::erase_if(camera_only.tools, [](const Tool& t) { return t.kind != ToolKind::kEndoscope; });
   EXPECT_FALSE(give_instruments_to_trainee(camera_only, true).has_value());
   EXPECT_FALSE(camera_only.settings.has(Effect::kHaptics));
 }
 
 TEST(InstrumentDevices, APathReplacesEveryScriptAndAMissingOneIsAnError) {
-  Scene scene = load_scene(source("config/appendectomy.toml"));
+  Scene scene = load_scene(source("config/transection.toml"));
   const fs::path csv = source("config/paths/appendix_transection.csv");
   play_tool_path(scene, csv);
   for (const Tool& t : scene.tools) {

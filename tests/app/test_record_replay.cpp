@@ -39,7 +39,7 @@ struct Recorded {
 };
 Recorded record_transection(const fs::path& dir) {
   HeadlessOptions o;
-  o.scene = source("config/appendectomy.toml");
+  o.scene = source("config/transection.toml");
   o.tool_path = source("config/paths/appendix_transection.csv");
   o.steps = 40;
   o.record = dir / "run.lapr";

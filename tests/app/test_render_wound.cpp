@@ -86,7 +86,7 @@ double coverage(const render::Image& img) {
 
 // The appendectomy scene with every scripted tool on the transection path.
 Scene transection_scene() {
-  Scene scene = load_scene(source("config/appendectomy.toml"));
+  Scene scene = load_scene(source("config/transection.toml"));
   for (Tool& t : scene.tools)
     if (t.device.kind == DeviceKind::kScript)
       t.device.script = source("config/paths/appendix_transection.csv");
@@ -266,7 +266,7 @@ TEST(RenderWound, CutBeamShowsTheWoundInTheThreeViews) {
 TEST(RenderWound, HeadlessFramesDrawTheTools) {
   const fs::path dir = render_out("headless_frames");
   HeadlessOptions o;
-  o.scene = source("config/appendectomy.toml");
+  o.scene = source("config/transection.toml");
   o.tool_path = source("config/paths/appendix_transection.csv");
   o.steps = 4;
   o.frames = dir;

@@ -39,7 +39,7 @@ const fs::path& recording() {
   static const fs::path file = [] {
     const fs::path dir = own_dir("replay_controller");
     HeadlessOptions o;
-    o.scene = source("config/appendectomy.toml");
+    o.scene = source("config/transection.toml");
     o.tool_path = source("config/paths/appendix_transection.csv");
     o.steps = kSteps;
     o.record = dir / "run.lapr";

@@ -28,7 +28,7 @@ Recorded record_default(const std::string& name, const std::string& path, int st
   const fs::path dir = out_dir("replay_timeline_" + name);
   Recorded r{dir / "run.lapr", {}};
   const CliResult run = run_serosa(
-      "headless " + shell_quote(source("config/appendectomy.toml").string()) + " --path " +
+      "headless " + shell_quote(source("config/transection.toml").string()) + " --path " +
       shell_quote(source(path).string()) + " --steps " + std::to_string(steps) + " --record " +
       shell_quote(r.recording.string()) + " --report " + shell_quote((dir / "r.json").string()));
   EXPECT_EQ(run.code, 0) << run.out;

@@ -19,7 +19,7 @@ using namespace serosa::app::testing;
 // The default scene with a force limit of 0.5 N (both the grasper and the scissors cross it),
 // its relative paths made absolute.
 fs::path strict_scene(const fs::path& dir) {
-  std::ifstream in(source("config/appendectomy.toml"));
+  std::ifstream in(source("config/transection.toml"));
   std::ostringstream all;
   all << in.rdbuf();
   std::string text = all.str();

@@ -46,27 +46,21 @@ std::string quoted(const char* prefix, const std::filesystem::path& path) {
   return q;
 }
 
-// config/appendectomy.toml written into `dir` with its files named by absolute paths, the
-// posterior wall under the organs as a support, and the given surroundings.
+// config/appendectomy.toml (the default scene: the posterior wall under the organs as a support)
+// written into `dir` with its files named by absolute paths and the given surroundings.
 std::filesystem::path abdomen_scene(const std::filesystem::path& dir,
                                     const std::string& surroundings) {
   std::ifstream in(source("config/appendectomy.toml"));
   std::stringstream buf;
   buf << in.rdbuf();
   std::string toml = buf.str();
-  replace_all(toml, "\"../assets/appendectomy_coarse.msh\"",
-              quoted("", source("assets/appendectomy_coarse.msh")));
-  replace_all(toml, "\"script:paths/appendectomy.csv\"",
-              quoted("script:", source("config/paths/appendectomy.csv")));
-  replace_all(toml, "\"assessment/appendectomy.toml\"",
-              quoted("", source("config/assessment/appendectomy.toml")));
-  replace_all(toml, "effects = [\"fem\", ", "effects = [\"supports\", \"fem\", ");
-  std::string render = "[render]\nsurroundings = ";
-  render.append(quoted("", surroundings)).append("\n");
-  replace_all(toml, "[render]\n", render);
-  toml.append(
-      "\n[[support]]\nname = \"posterior wall\"\npoint = [0.0, 0.0, -0.0036]\n"
-      "normal = [0.0, 0.0, 1.0]\n");
+  replace_all(toml, "\"../assets/appendectomy_procedure.msh\"",
+              quoted("", source("assets/appendectomy_procedure.msh")));
+  replace_all(toml, "\"script:paths/appendectomy_procedure.csv\"",
+              quoted("script:", source("config/paths/appendectomy_procedure.csv")));
+  std::string chosen = "surroundings = ";
+  chosen.append(quoted("", surroundings));
+  replace_all(toml, "surroundings = \"abdomen\"", chosen);
   const std::filesystem::path file = dir / ("appendectomy_" + surroundings + ".toml");
   std::ofstream(file) << toml;
   return file;

@@ -43,7 +43,7 @@ struct Scope {
 
 // The default scene's endoscope at its scripted start.
 Scope default_scope() {
-  const Scene scene = load_scene(source("config/appendectomy.toml"));
+  const Scene scene = load_scene(source("config/transection.toml"));
   for (const Tool& t : scene.tools)
     if (t.kind == ToolKind::kEndoscope)
       return {t, sample(read_tool_path(t.device.script), t.name, 0.0)};

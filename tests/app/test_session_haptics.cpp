@@ -347,7 +347,7 @@ TEST(SessionHaptics, TheDefaultSceneInAWindowIsDrivenByTheTrainee) {
   const std::string xvfb =
       "xvfb-run -a -s '-screen 0 1280x720x24' '" + serosa_exe().string() + "' ";
   std::string scene = "'";  // (one append at a time: GCC 12 warns on "'" + string + "'")
-  scene.append(source("config/appendectomy.toml").string()).append("'");
+  scene.append(source("config/transection.toml").string()).append("'");
   const Shell run =
       shell(xvfb + "run " + scene + " --seconds 2 --record '" + (dir / "s.lapr").string() +
             "' --report '" + (dir / "s.json").string() + "'");
@@ -384,7 +384,7 @@ TEST(SessionHaptics, DraggingTheMouseInTheWindowMovesTheInstrument) {
     std::string cmd = "xvfb-run -a -s '-screen 0 1280x720x24' '";
     cmd.append(source("tests/app/drag_in_window.sh").string()).append("' '");
     cmd.append(serosa_exe().string()).append("' '");
-    cmd.append(source("config/appendectomy.toml").string()).append("' '");
+    cmd.append(source("config/transection.toml").string()).append("' '");
     cmd.append(report.string()).append(drag ? "' 1" : "' 0");
     const Shell run = shell(cmd);
     EXPECT_EQ(run.code, 0) << run.out;

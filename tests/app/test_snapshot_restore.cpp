@@ -43,7 +43,7 @@ struct Taken {
 };
 
 TEST(Snapshot, RestoreAtRandomStepsEqualsTheUninterruptedRunBitForBit) {
-  const Scene scene = load_scene(source("config/appendectomy.toml"));
+  const Scene scene = load_scene(source("config/transection.toml"));
   // Random steps from the grasp (1.8 s) to near the end, plus the first steps after the grasp
   // took hold and after the cut (the lagged factor patched for each).
   std::mt19937 rng(20261202);
@@ -133,7 +133,7 @@ TEST(Snapshot, DamagedSnapshotIsAnInputErrorNeverACrash) {
     }
   }
   // Another scene's stages do not take this one's blocks.
-  const Scene other = load_scene(source("config/appendectomy.toml"));
+  const Scene other = load_scene(source("config/transection.toml"));
   auto o = build(other);
   EXPECT_THROW(o->comp.runner->restore(bytes, o->assembled.state, "beam"), InputError);
 }
@@ -141,7 +141,7 @@ TEST(Snapshot, DamagedSnapshotIsAnInputErrorNeverACrash) {
 TEST(Snapshot, ReplayFromATimeStartsAtTheSnapshotBeforeItAndVerifies) {
   const fs::path dir = out_dir("snapshot_replay_from");
   HeadlessOptions h;
-  h.scene = source("config/appendectomy.toml");
+  h.scene = source("config/transection.toml");
   h.record = dir / "run.lapr";
   h.progress = false;
   const auto report = run_headless(h);

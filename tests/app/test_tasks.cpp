@@ -37,7 +37,7 @@ TEST(Tasks, TheShippedListLoadsBasicFirstWithEveryFileThere) {
       EXPECT_GE(tasks[i].level, tasks[i - 1].level);
     }
   }
-  EXPECT_EQ(find_task(tasks, "appendectomy", "t").scene, source("config/appendectomy.toml"));
+  EXPECT_EQ(find_task(tasks, "appendectomy", "t").scene, source("config/transection.toml"));
 }
 
 // Each task: its expert passes and its novice fails its own rubric (the cut-line task's and the
@@ -75,7 +75,7 @@ TEST(Tasks, TheCommandLineListsThemAndRunsOneByName) {
   EXPECT_NE(unknown.out.find("no task named 'cutline'"), std::string::npos) << unknown.out;
   EXPECT_NE(unknown.out.find("cut-line"), std::string::npos) << unknown.out;  // the names
   const CliResult both =
-      run_serosa("headless " + shell_quote(source("config/appendectomy.toml").string()) +
+      run_serosa("headless " + shell_quote(source("config/transection.toml").string()) +
                  " --task cut-line --tasks " + list);
   EXPECT_EQ(both.code, 1);
   EXPECT_NE(both.out.find("both a SCENE and --task"), std::string::npos) << both.out;

@@ -111,7 +111,7 @@ TEST(ProgressDb, TaskProgressAgreesWithAnIndependentCountOverRandomHistories) {
 }
 
 std::string headless_for(const std::string& trainee, const fs::path& db, int steps = 60) {
-  return "headless '" + source("config/appendectomy.toml").string() + "' --steps " +
+  return "headless '" + source("config/transection.toml").string() + "' --steps " +
          std::to_string(steps) + " --trainee '" + trainee + "' --db '" + db.string() + "'";
 }
 
@@ -136,7 +136,7 @@ TEST(ProgressDb, HeadlessFilesTheSessionAndTraineePrintsAndPlotsIt) {
   EXPECT_NE(sessions[0].recording, sessions[1].recording);  // even within the same second
   EXPECT_NE(sessions[0].report, sessions[1].report);
   for (const SessionRecord& s : sessions) {
-    EXPECT_EQ(s.task, "appendectomy");
+    EXPECT_EQ(s.task, "transection");
     ASSERT_TRUE(s.score.has_value());  // the default scene scores its sessions
     EXPECT_FALSE(*s.passed);           // 60 steps: nothing transected yet
     EXPECT_TRUE(recording::read_recording(s.recording).complete) << s.recording;
@@ -147,7 +147,7 @@ TEST(ProgressDb, HeadlessFilesTheSessionAndTraineePrintsAndPlotsIt) {
       run_serosa("trainee 'Dr. Ann' --db '" + db.string() + "' --plot '" + png.string() + "'");
   ASSERT_EQ(t.code, 0) << t.out;
   EXPECT_NE(t.out.find("trainee Dr. Ann: 2 sessions"), std::string::npos) << t.out;
-  EXPECT_NE(t.out.find("appendectomy                 2       0"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("transection                  2       0"), std::string::npos) << t.out;
   EXPECT_NE(t.out.find("not yet"), std::string::npos) << t.out;
   EXPECT_GT(fs::file_size(png), 1000u);
 

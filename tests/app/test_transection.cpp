@@ -46,7 +46,7 @@ void expect_transected_in_one_stroke(const nlohmann::json& report, const fs::pat
 TEST(Transection, ScissorsCutTheAppendixInTwo) {
   const fs::path dir = out_dir("transection");
   HeadlessOptions o;
-  o.scene = source("config/appendectomy.toml");
+  o.scene = source("config/transection.toml");
   o.tool_path = source("config/paths/appendix_transection.csv");
   o.steps = 30;  // the jaws close over steps 4..24
   o.validate_cuts = true;
@@ -100,7 +100,7 @@ fs::path default_scene_with(const fs::path& dir, const std::string& name, const 
                             const std::string& to) {
   std::string text;
   {
-    std::ifstream in(source("config/appendectomy.toml"));
+    std::ifstream in(source("config/transection.toml"));
     std::ostringstream all;
     all << in.rdbuf();
     text = all.str();
@@ -188,7 +188,7 @@ TEST(Transection, PausesWhileClosingCutTheAppendixInOneStroke) {
   for (std::size_t k = 0; k < closings.size(); ++k) {
     SCOPED_TRACE("closing " + std::to_string(k));
     HeadlessOptions o;
-    o.scene = source("config/appendectomy.toml");
+    o.scene = source("config/transection.toml");
     o.tool_path = closing_path(dir, "closing" + std::to_string(k) + ".csv", closings[k]);
     o.steps = 80;
     o.validate_cuts = true;
@@ -276,7 +276,7 @@ TEST(Transection, MovingScissorsCutTheAppendixInOneStroke) {
   for (const Closing& c : closings) {
     SCOPED_TRACE(c.name);
     HeadlessOptions o;
-    o.scene = source("config/appendectomy.toml");
+    o.scene = source("config/transection.toml");
     o.tool_path = moving_path(dir, c);
     o.steps = static_cast<std::uint64_t>(std::lround((c.duration + 0.15) / 0.005));
     o.validate_cuts = true;
@@ -314,7 +314,7 @@ TEST(Transection, AGrasperPullingWhileTheScissorsCloseStillTransects) {
   const fs::path path = dir / "pull.csv";
   { std::ofstream(path) << csv.str(); }
   HeadlessOptions o;
-  o.scene = source("config/appendectomy.toml");
+  o.scene = source("config/transection.toml");
   o.tool_path = path;
   o.steps = 680;
   o.validate_cuts = true;

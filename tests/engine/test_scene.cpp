@@ -710,10 +710,10 @@ void expect_bundled_scene_loads(const std::string& scene, const std::string& ass
 }
 
 TEST(BundledScenes, AppendectomyLoads) {
-  expect_bundled_scene_loads("config/appendectomy.toml", "assets/appendectomy_coarse.msh");
+  expect_bundled_scene_loads("config/transection.toml", "assets/appendectomy_coarse.msh");
   if (IsSkipped()) return;
   const Scene s =
-      load_scene(fs::path(::serosa::test_paths::source_dir()) / "config/appendectomy.toml");
+      load_scene(fs::path(::serosa::test_paths::source_dir()) / "config/transection.toml");
   // No "gravity": the scene does not simulate what holds the organs up (see its header).
   EXPECT_FALSE(s.settings.has(Effect::kGravity));
   for (const Effect e : {Effect::kFem, Effect::kCutting, Effect::kSurface, Effect::kContact,

@@ -1,0 +1,114 @@
+// The default scene, run as a user runs it (`serosa headless config/appendectomy.toml`): the
+// organs rest on the posterior wall under gravity and the scripted path does the appendectomy's
+// five steps with the procedure's instruments, without an error, leaving the freed specimen with
+// most of the appendix; the endoscope's last picture is filled with tissue. PNGs and the report go
+// to <build>/test-output/app/default_appendectomy/ for a person to look at.
+#include <gtest/gtest.h>
+#include <stb/stb_image.h>  // the implementation is compiled in test_render_wound.cpp
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "app/app_test_util.h"
+#include "render/image.h"
+#include "render/image_stats.h"
+
+namespace serosa::app {
+namespace {
+
+using testing::out_dir;
+using testing::source;
+
+render::Image read_png(const std::filesystem::path& png) {
+  int w = 0, h = 0, n = 0;
+  stbi_uc* data = stbi_load(png.c_str(), &w, &h, &n, 4);
+  render::Image img;
+  if (data == nullptr) return img;
+  img.width = w;
+  img.height = h;
+  img.rgba.assign(data, data + static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4);
+  stbi_image_free(data);
+  return img;
+}
+
+bool lists(const nlohmann::json& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+TEST(DefaultAppendectomy, TheScriptedPathDoesTheFiveStepsWithTheProcedureInstruments) {
+  const std::filesystem::path dir = out_dir("default_appendectomy");
+  const std::filesystem::path report = dir / "report.json";
+  const auto run =
+      testing::run_serosa("headless " + shell_quote(source("config/appendectomy.toml").string()) +
+                          " --frame-count 2 --frames " + shell_quote((dir / "frames").string()) +
+                          " --report " + shell_quote(report.string()));
+  ASSERT_EQ(run.code, 0) << run.out;
+  nlohmann::json r;
+  std::ifstream(report) >> r;
+
+  // Gravity on, the organs on their support, each instrument's effect simulated.
+  for (const char* effect : {"gravity", "supports", "clips", "loops", "cautery", "cutting"})
+    EXPECT_TRUE(lists(r["effects"]["simulated"], effect)) << effect << ": " << r["effects"].dump();
+
+  // The five steps, in their order, each by its instrument.
+  const auto& p = r["metrics"]["procedure"];
+  EXPECT_TRUE(p["completed"].get<bool>()) << p.dump();
+  const char* names[] = {"expose", "divide_mesentery", "secure_base", "transect", "extract"};
+  const char* tools[] = {"grasper", "hook", "endoloop", "scissors", "grasper"};
+  ASSERT_EQ(p["steps"].size(), 5u);
+  double before = 0.0;
+  for (std::size_t i = 0; i < 5; ++i) {
+    const auto& s = p["steps"][i];
+    EXPECT_EQ(s["name"], names[i]);
+    ASSERT_TRUE(s["done"].get<bool>()) << s.dump();
+    EXPECT_EQ(s["tool"], tools[i]) << s.dump();
+    EXPECT_GT(s["time_s"].get<double>(), before) << s.dump();
+    before = s["time_s"].get<double>();
+  }
+  // The transection at the base: the freed specimen holds most of the appendix.
+  EXPECT_GE(p["specimen_volume_fraction"].get<double>(), 0.8);
+  EXPECT_LT(p["specimen_volume_fraction"].get<double>(), 1.0);
+
+  // The artery clipped before the fold was divided (so no bleeding), the base looped.
+  const auto& placed = r["clips"]["placed"];
+  ASSERT_EQ(placed.size(), 2u) << r["clips"].dump();
+  EXPECT_EQ(placed[0]["tool"], "clip-applier");
+  EXPECT_EQ(placed[0]["kind"], "clip");
+  EXPECT_TRUE(lists(placed[0]["groups"], "artery")) << placed[0].dump();
+  EXPECT_LT(placed[0]["time_s"].get<double>(), p["steps"][1]["time_s"].get<double>());
+  EXPECT_EQ(placed[1]["tool"], "endoloop");
+  EXPECT_EQ(placed[1]["kind"], "loop");
+  EXPECT_TRUE(lists(placed[1]["groups"], "appendix")) << placed[1].dump();
+  EXPECT_FALSE(lists(placed[1]["groups"], "cecum")) << placed[1].dump();
+  EXPECT_GE(r["cutting"]["hook_strokes"].get<int>(), 1);
+
+  // No error: nothing bled, nothing burnt, nothing cut above the loop, nothing dropped.
+  const auto& m = r["metrics"];
+  EXPECT_TRUE(m["errors"].empty()) << m["errors"].dump();
+  for (const char* count :
+       {"bleeding_events", "thermal_injuries", "transections_above_securing", "specimens_dropped"})
+    EXPECT_EQ(m[count].get<int>(), 0) << count;
+
+  // Cutting conserves the volume: the rest volume is the one the mesh started with.
+  EXPECT_TRUE(r["mesh_final"]["valid"].get<bool>());
+  EXPECT_NEAR(r["mesh_final"]["rest_volume_m3"].get<double>(),
+              r["mesh_initial"]["rest_volume_m3"].get<double>(),
+              1e-9 * r["mesh_initial"]["rest_volume_m3"].get<double>());
+
+  // The endoscope's last picture is tissue: no colour covers a fifth of it.
+  const int steps = r["steps"].get<int>();
+  char last[32];
+  std::snprintf(last, sizeof last, "step_%06d.png", steps);
+  const render::Image image = read_png(dir / "frames" / last);
+  ASSERT_GT(image.width, 0) << last;
+  const render::DominantColor common = render::most_common_color(image);
+  EXPECT_LT(common.fraction, 0.2);
+  std::printf("most common colour of the last picture: %.3f\n", common.fraction);
+}
+
+}  // namespace
+}  // namespace serosa::app
