@@ -36,6 +36,8 @@ ClipStage::ClipStage(const Scene& scene) {
 
 void ClipStage::step(const StepContext& ctx, SimState& state) {
   clamp_clones(state);
+  if (!state.handoff.cuts.empty())
+    for (Placed& p : m_clips) prune_anchors(state.mesh, p);
   for (std::size_t i = 0; i < m_role.size() && i < state.tools.size(); ++i) {
     if (m_role[i] == Role::kNone) continue;
     const ToolState& ts = state.tools[i];
@@ -163,6 +165,27 @@ void ClipStage::find_anchors(const TetMesh& mesh, Placed& p) {
   p.clip.rest_centre_m = rest / static_cast<double>(p.nodes.size());
 }
 
+void ClipStage::prune_anchors(const TetMesh& mesh, Placed& p) {
+  std::vector<std::uint8_t> role(static_cast<std::size_t>(mesh.num_nodes()), 0);  // 1 clamped
+  for (std::int32_t n : p.nodes) role[static_cast<std::size_t>(n)] = 1;
+  for (const Tet& tet : mesh.tets) {
+    if (std::none_of(tet.begin(), tet.end(),
+                     [&](std::int32_t n) { return role[static_cast<std::size_t>(n)] == 1; }))
+      continue;
+    for (std::int32_t n : tet)
+      if (role[static_cast<std::size_t>(n)] == 0) role[static_cast<std::size_t>(n)] = 2;
+  }
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < p.anchors.size(); ++k) {
+    if (role[static_cast<std::size_t>(p.anchors[k])] != 2) continue;
+    p.anchors[kept] = p.anchors[k];
+    if (p.settled) p.anchor_ref[kept] = p.anchor_ref[k];
+    ++kept;
+  }
+  p.anchors.resize(kept);
+  if (p.settled) p.anchor_ref.resize(kept);
+}
+
 // A cut of the last step may have cloned a clamped node (the clone takes the tets on one side):
 // it is held where its original is.
 void ClipStage::clamp_clones(const SimState& state) {
@@ -191,8 +214,8 @@ void ClipStage::clamp_clones(const SimState& state) {
 
 void ClipStage::carry(Placed& p, const SimState& state, double age_s) {
   const std::vector<Vec3>& x = state.mesh.x;
-  if (age_s < kClipSettleS) return;  // held where it closed while the legs press
-  if (!p.settled) {                  // from now on the anchors carry it
+  if (age_s < settle_s(p.clip.kind)) return;  // held where it closed while the legs press
+  if (!p.settled) {                           // from now on the anchors carry it
     p.anchor_ref.clear();
     for (std::int32_t n : p.anchors) p.anchor_ref.push_back(x[static_cast<std::size_t>(n)]);
     p.ref_hinge = p.clip.hinge_m;
@@ -210,7 +233,7 @@ void ClipStage::carry(Placed& p, const SimState& state, double age_s) {
 
 void ClipStage::hold(Placed& p, SimState& state, double age_s) const {
   TetMesh& mesh = state.mesh;
-  const double scale = 1.0 + (p.press - 1.0) * std::clamp(age_s / kClipSqueezeS, 0.0, 1.0);
+  const double scale = 1.0 + (p.press - 1.0) * std::clamp(age_s / squeeze_s(p.clip.kind), 0.0, 1.0);
   for (std::size_t k = 0; k < p.nodes.size(); ++k) {
     const auto un = static_cast<std::size_t>(p.nodes[k]);
     if (un >= mesh.x.size()) continue;

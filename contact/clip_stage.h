@@ -13,9 +13,10 @@
 //   closes round them: its centre is theirs (in the plane), and they are pressed towards its axis
 //   until they lie within kLoopTightRadius. A loop round no tissue slips off: counted, not placed.
 // - Clamping: each clamped node is held (a Dirichlet node, like a grasper's) at its place in the
-//   clip's frame, pressed across the clip over kClipSqueezeS until the tissue between the legs
-//   is kClipGap thick.
-// - Carried by the tissue: from kClipSettleS on, the clip's frame follows the rigid motion that
+//   clip's frame, pressed across the clip over kClipSqueezeS (a loop: kLoopSqueezeS) until the
+//   tissue between the legs is kClipGap thick (a loop's within kLoopTightRadius).
+// - Carried by the tissue: from kClipSettleS (kLoopSettleS) on, the clip's frame follows the rigid
+// motion that
 //   best carries its anchors (the free nodes sharing a tet with a clamped node) from where they
 //   were then to where they are now (engine/geometry/rigid_fit.h). A rigid motion of the tissue
 //   moves the clip with it exactly; traction on the tissue drags it along.
@@ -42,6 +43,18 @@ inline constexpr double kClipArmRad = 0.3;     ///< the jaws must open this wide
 inline constexpr double kClipCloseRad = 0.05;  ///< closed this far, the clip is placed, rad
 inline constexpr double kClipSqueezeS = 0.05;  ///< time the legs take to press the tissue, s
 inline constexpr double kClipSettleS = 0.1;    ///< after this the tissue carries the clip, s
+/// A loop's knot is pushed down more slowly than a clip's legs close: pressing a whole
+/// cross-section to the loop's axis in 0.05 s strained the tissue so fast that the lagged
+/// factor went stale at once (100 CG iterations a step over 40 steps in the default scene).
+inline constexpr double kLoopSqueezeS = 0.25;  ///< time the knot takes to cinch the tissue, s
+inline constexpr double kLoopSettleS = 0.3;    ///< after this the tissue carries the loop, s
+
+[[nodiscard]] constexpr double squeeze_s(Clip::Kind kind) {
+  return kind == Clip::Kind::kLoop ? kLoopSqueezeS : kClipSqueezeS;
+}
+[[nodiscard]] constexpr double settle_s(Clip::Kind kind) {
+  return kind == Clip::Kind::kLoop ? kLoopSettleS : kClipSettleS;
+}
 
 class ClipStage final : public Stage {
  public:
@@ -81,6 +94,9 @@ class ClipStage final : public Stage {
   /// The anchors and the groups around p's nodes.
   static void find_anchors(const TetMesh& mesh, Placed& p);
   void clamp_clones(const SimState& state);
+  /// After a cut: drops the anchors that share no tet with a clamped node any more (the cut took
+  /// them to the other side), so a piece cut free beside the clip does not drag it.
+  static void prune_anchors(const TetMesh& mesh, Placed& p);
   void carry(Placed& p, const SimState& state, double age_s);
   void hold(Placed& p, SimState& state, double age_s) const;
   void publish(SimState& state) const;

@@ -13,6 +13,8 @@ import math
 import os
 import sys
 
+END = 9.4  # s: the path's length (the scene's headless.steps x dt)
+
 
 def sub(a, b):
     return [a[k] - b[k] for k in range(3)]
@@ -165,12 +167,12 @@ def procedure():
 
     # extract: carry the freed appendix away, towards the port it will leave by
     g.at(8.6, lifted, 0.0)
-    g.at(9.6, add(lifted, [0.045, -0.010, 0.015]), 0.0)
-    g.at(10.0, add(lifted, [0.045, -0.010, 0.015]), 0.0)
+    g.at(9.2, add(lifted, [0.045, -0.010, 0.015]), 0.0)
+    g.at(END, add(lifted, [0.045, -0.010, 0.015]), 0.0)
     for tool in tools:
         if tool is not grasper:
             _, tip, jaw, _, roll = tool.rows[-1]
-            tool.at(10.0, tip, jaw, 0, roll)
+            tool.at(END, tip, jaw, 0, roll)
     return tools
 
 
@@ -186,7 +188,7 @@ def main():
     # the endoscope stays put over the field, looking down (-z) from the umbilicus
     scope = ([0.0450, -0.0320, 0.0600], [0.0, 0.0, 1.0, 0.0])
     rows.append((0.0, "endoscope", scope[0], scope[1], 0.0, 0))
-    rows.append((10.0, "endoscope", scope[0], scope[1], 0.0, 0))
+    rows.append((END, "endoscope", scope[0], scope[1], 0.0, 0))
     rows.sort(key=lambda r: (r[0], r[1]))
     with open(out, "w") as f:
         f.write("t,tool,px,py,pz,qw,qx,qy,qz,jaw,buttons\n")

@@ -1,8 +1,9 @@
 // The endoloop (engine/endoloop.h, contact/clip_stage.h) on a cantilever beam: cinched round the
 // beam it ligates the whole cross-section inside the ring, pressing it within the loop's tight
 // radius; cinched round nothing it slips off; scissors never cut through it, while the same
-// stroke beside it divides the beam; a run restored with a loop in place continues bit for bit;
-// a scene with an endoloop but without the effect is an error naming the tool.
+// stroke beside it divides the beam; a piece cut free beside it does not drag it; a run restored
+// with a loop in place continues bit for bit; a scene with an endoloop but without the effect is an
+// error naming the tool.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -46,7 +47,7 @@ TEST(Endoloop, CinchedRoundTheBeamItLigatesTheCrossSectionWithinItsTightRadius) 
   SimState& s = run->assembled.state;
   run->comp.runner->run(s, 18);
   EXPECT_TRUE(s.handoff.clips.empty());
-  run->comp.runner->run(s, 22);  // t = 0.2: cinched at 0.1, pressed by 0.15
+  run->comp.runner->run(s, 58);  // t = 0.38: cinched at 0.1, pressed by 0.35 (kLoopSqueezeS)
   ASSERT_EQ(s.handoff.clips.size(), 1u);
   const Clip& c = s.handoff.clips[0];
   EXPECT_EQ(c.kind, Clip::Kind::kLoop);
@@ -108,6 +109,61 @@ TEST(Endoloop, ScissorsNeverCutThroughTheLoopAndBesideItDivide) {
   EXPECT_EQ(st.strokes, 2u);
   EXPECT_GE(st.cuts, 1u);
   EXPECT_GT(s.mesh.num_tets(), tets0);
+}
+
+// A hook divides the beam 4 mm beyond the loop (cinched at 7 cm) and a grasper pulls the freed
+// end 2 cm away: the loop stays with the stump. (The loop's anchors on the far side of the cut
+// used to go with the freed piece and drag the loop half way after it.)
+TEST(Endoloop, APieceCutFreeBesideTheLoopDoesNotDragIt) {
+  std::string csv = "t,tool,px,py,pz,qw,qx,qy,qz,jaw,buttons\n";
+  for (std::size_t at = 0, end = 0; (end = loop_rows().find('\n', at)) != std::string::npos;
+       at = end + 1)
+    csv.append(loop_rows(), at, end - at).append(",0\n");
+  const auto hook = [&](const char* t, double y, double z, int pedal) {
+    csv.append(t).append(",hook,0.074,").append(std::to_string(y)).append(",");
+    csv.append(std::to_string(z)).append(",").append(kBeamAcross).append(",0,");
+    csv.append(std::to_string(pedal)).append("\n");
+  };
+  hook("0.00", 0.012, -0.0065, 0);  // the crook spans z + [0, 3] mm
+  hook("0.40", 0.012, -0.0065, 0);
+  hook("0.41", 0.012, -0.0065, 2);  // down, across under the beam and up: the whole section
+  hook("0.50", -0.008, -0.0065, 2);
+  hook("0.60", -0.008, 0.0035, 2);
+  hook("0.70", 0.012, 0.0035, 2);
+  hook("0.71", 0.012, 0.0035, 0);
+  hook("1.50", 0.012, 0.0035, 0);
+  const auto grasp = [&](const char* t, double x, double jaw) {
+    csv.append(t).append(",grasper,").append(std::to_string(x)).append(",0.002,0,");
+    csv.append(kBeamDown).append(",").append(std::to_string(jaw)).append(",0\n");
+  };
+  grasp("0.00", 0.095, 0.9);
+  grasp("0.02", 0.095, 0.9);
+  grasp("0.05", 0.095, 0.0);
+  grasp("0.75", 0.095, 0.0);
+  grasp("1.00", 0.115, 0.0);
+  grasp("1.50", 0.115, 0.0);
+  const fs::path dir = out_dir("loop_cut_beside");
+  auto run = beam_scene(dir, csv, "\"fem\", \"surface\", \"contact\", \"loops\", \"cautery\"",
+                        scripted_tool("loop", "endoloop") + scripted_tool("hook", "hook") +
+                            scripted_tool("grasper", "grasper"));
+  SimState& s = run->assembled.state;
+  run->comp.runner->run(s, 146);  // t = 0.73: cinched, settled, the beam divided beside it
+  ASSERT_EQ(s.handoff.clips.size(), 1u);
+  ASSERT_GE(run->comp.cutting->stats().cuts, 1u);
+  const Vec3 loop0 = s.handoff.clips[0].hinge_m;
+  const std::vector<Vec3> x0 = s.mesh.x;
+  const auto moved = [&](double rest_x) {  // the largest motion of the nodes at rest_x since
+    double most = 0.0;
+    for (std::size_t n = 0; n < x0.size(); ++n)
+      if (std::abs(s.mesh.rest[n].x() - rest_x) < 1e-9)
+        most = std::max(most, (s.mesh.x[n] - x0[n]).norm());
+    return most;
+  };
+  run->comp.runner->run(s, 74);    // t = 1.1: the end pulled 2 cm away
+  EXPECT_GT(moved(0.1), 0.015);    // the freed end went with the grasper
+  EXPECT_LT(moved(0.065), 0.001);  // the stump stayed
+  EXPECT_LT((s.handoff.clips[0].hinge_m - loop0).norm(), 0.001);
+  for (const Vec3& x : s.mesh.x) ASSERT_TRUE(x.allFinite());
 }
 
 TEST(Endoloop, ARestoredSnapshotWithALoopContinuesBitForBit) {
