@@ -47,6 +47,16 @@ std::map<std::string, double> session_values(const Scene& scene,
   if (!scene.metrics.protected_groups.empty())
     v["thermal_injuries"] =
         static_cast<double>(errors.count(metrics::ProcedureError::Kind::kThermalInjury));
+  if (scene.metrics.procedure) {
+    const metrics::ProcedureSteps& steps = metrics.procedure_steps();
+    v["procedure.steps_done"] = static_cast<double>(std::count_if(
+        steps.steps().begin(), steps.steps().end(), [](const auto& s) { return s.done; }));
+    v["procedure.specimen_volume_fraction"] = steps.specimen_fraction();
+    v["transections_above_securing"] =
+        static_cast<double>(errors.count(metrics::ProcedureError::Kind::kTransectionAboveSecuring));
+    v["specimens_dropped"] =
+        static_cast<double>(errors.count(metrics::ProcedureError::Kind::kSpecimenDropped));
+  }
   for (const auto& [id, name] : groups)
     v["pieces." + name] = cutting::count_components(mesh, static_cast<std::uint16_t>(id));
   return v;

@@ -13,7 +13,7 @@ namespace serosa {
 namespace {
 
 // Values the session reports under a fixed name, and families with a tool's or a group's name.
-constexpr std::array<std::string_view, 14> kFixed = {"time_s",
+constexpr std::array<std::string_view, 18> kFixed = {"time_s",
                                                      "idle_time_s",
                                                      "bimanual_fraction",
                                                      "path_length_m",
@@ -26,7 +26,11 @@ constexpr std::array<std::string_view, 14> kFixed = {"time_s",
                                                      "targets_missed",
                                                      "targets_time_s",
                                                      "bleeding_events",
-                                                     "thermal_injuries"};
+                                                     "thermal_injuries",
+                                                     "procedure.steps_done",
+                                                     "procedure.specimen_volume_fraction",
+                                                     "transections_above_securing",
+                                                     "specimens_dropped"};
 constexpr std::array<std::string_view, 4> kFamilies = {"path_length_m", "force_max_n", "pieces",
                                                        "out_of_view_s"};
 

@@ -763,6 +763,10 @@ class Loader {
         fail(m_rubric_line, p, what + " needs an artery to watch", "metrics.artery");
       if (family == "thermal_injuries" && scene.metrics.protected_groups.empty())
         fail(m_rubric_line, p, what + " needs protected tissue to watch", "metrics.protected");
+      const bool steps = family.rfind("procedure.", 0) == 0 ||
+                         family == "transections_above_securing" || family == "specimens_dropped";
+      if (steps && !scene.metrics.procedure)
+        fail(m_rubric_line, p, what + " needs the procedure's steps followed", "metrics.procedure");
     }
   }
 

@@ -14,6 +14,8 @@
 #include <nlohmann/json.hpp>
 
 #include "app/app_test_util.h"
+#include "engine/input_error.h"
+#include "engine/scene.h"
 #include "render/image.h"
 #include "render/image_stats.h"
 
@@ -34,6 +36,9 @@ render::Image read_png(const std::filesystem::path& png) {
   stbi_image_free(data);
   return img;
 }
+
+// The whole scripted procedure scores at least this; a run stopped short scores less.
+constexpr double kExpertScore = 95.0;
 
 bool lists(const nlohmann::json& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -99,6 +104,14 @@ TEST(DefaultAppendectomy, TheScriptedPathDoesTheFiveStepsWithTheProcedureInstrum
               r["mesh_initial"]["rest_volume_m3"].get<double>(),
               1e-9 * r["mesh_initial"]["rest_volume_m3"].get<double>());
 
+  // Scored on the procedure's rubric: every step done, no error, a pass.
+  const auto& a = r["assessment"];
+  EXPECT_TRUE(a["passed"].get<bool>()) << a.dump();
+  EXPECT_GE(a["score"].get<double>(), kExpertScore);
+  EXPECT_EQ(a["metrics"]["procedure.steps_done"]["value"].get<double>(), 5.0);
+  EXPECT_EQ(a["metrics"]["procedure.specimen_volume_fraction"]["value"].get<double>(),
+            p["specimen_volume_fraction"].get<double>());
+
   // The endoscope's last picture is tissue: no colour covers a fifth of it.
   const int steps = r["steps"].get<int>();
   char last[32];
@@ -108,6 +121,53 @@ TEST(DefaultAppendectomy, TheScriptedPathDoesTheFiveStepsWithTheProcedureInstrum
   const render::DominantColor common = render::most_common_color(image);
   EXPECT_LT(common.fraction, 0.2);
   std::printf("most common colour of the last picture: %.3f\n", common.fraction);
+}
+
+// Stopped before the transection (7.5 s): three steps done, a critical metric of the rubric
+// failed, a lower score than the whole procedure's.
+TEST(DefaultAppendectomy, StoppedBeforeTheTransectionItFailsTheRubric) {
+  const std::filesystem::path report = out_dir("default_appendectomy_short") / "report.json";
+  const auto run =
+      testing::run_serosa("headless " + shell_quote(source("config/appendectomy.toml").string()) +
+                          " --steps 1500 --report " + shell_quote(report.string()));
+  ASSERT_EQ(run.code, 0) << run.out;
+  nlohmann::json r;
+  std::ifstream(report) >> r;
+  EXPECT_FALSE(r["metrics"]["procedure"]["completed"].get<bool>());
+  const auto& a = r["assessment"];
+  EXPECT_EQ(a["metrics"]["procedure.steps_done"]["value"].get<double>(), 3.0);
+  EXPECT_FALSE(a["passed"].get<bool>());
+  EXPECT_TRUE(std::any_of(a["failed"].begin(), a["failed"].end(), [](const nlohmann::json& f) {
+    return f.get<std::string>().rfind("procedure.steps_done", 0) == 0;
+  })) << a["failed"].dump();
+  EXPECT_LT(a["score"].get<double>(), kExpertScore);
+}
+
+// A rubric scoring the steps needs them followed: without [metrics] procedure the scene is an
+// error naming the rubric's metric.
+TEST(DefaultAppendectomy, ARubricScoringTheStepsNeedsThemFollowed) {
+  const std::filesystem::path dir = out_dir("default_appendectomy_no_steps");
+  std::ifstream in(source("config/appendectomy.toml"));
+  std::string toml, line;
+  while (std::getline(in, line)) {
+    if (line.rfind("procedure = ", 0) == 0) continue;
+    for (const char* rel : {"../assets/", "script:paths/", "assessment/"}) {
+      const auto at = line.find(rel);
+      if (at == std::string::npos) continue;
+      const std::string prefix = std::string(rel) == "script:paths/" ? "script:" : "";
+      const std::string path = std::string(rel).substr(prefix.size());
+      line.replace(at, std::string(rel).size(), prefix + source("config").string() + "/" + path);
+    }
+    toml.append(line).append("\n");
+  }
+  std::ofstream(dir / "scene.toml") << toml;
+  try {
+    (void)load_scene(dir / "scene.toml");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("needs the procedure's steps followed"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
