@@ -84,6 +84,11 @@ AssembledScene assemble_state(const Scene& scene) {
     out.reads.push_back(std::move(report));
   }
   out.state.tools.resize(scene.tools.size());
+  // Until its device first drives it, an instrument waits in its port, out of the tissue (a
+  // session's handles drive two instruments; the others are not inside the patient).
+  for (std::size_t i = 0; i < scene.tools.size(); ++i)
+    if (const auto& port = scene.tools[i].trocar_m)
+      out.state.tools[i].tip_m = {port->x(), port->y(), port->z()};
   // The boundary comes with the state: contact, which runs before the surface stage, reads it
   // from the first step on.
   if (scene.settings.has(Effect::kSurface) || scene.settings.has(Effect::kContact))

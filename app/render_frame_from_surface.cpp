@@ -144,10 +144,13 @@ void fill_render_tools(const Scene& scene, const SimState& state, render::Render
     const Tool& tool = scene.tools[i];
     if (tool.kind == ToolKind::kEndoscope) continue;
     const ToolState& in = state.tools[i];
-    // A tool no device has posed yet (its input still the default) is not drawn.
-    if (in.tip_m == std::array<double, 3>{0.0, 0.0, 0.0} &&
-        in.quat_wxyz == std::array<double, 4>{1.0, 0.0, 0.0, 0.0})
-      continue;
+    // A tool no device has posed yet (its input still the default: at the origin, or waiting in
+    // its port, app/assemble_state.cpp) is not drawn.
+    const std::array<double, 3> unposed =
+        tool.trocar_m
+            ? std::array<double, 3>{tool.trocar_m->x(), tool.trocar_m->y(), tool.trocar_m->z()}
+            : std::array<double, 3>{0.0, 0.0, 0.0};
+    if (in.tip_m == unposed && in.quat_wxyz == std::array<double, 4>{1.0, 0.0, 0.0, 0.0}) continue;
     render::RenderTool t;
     t.kind = tool.kind == ToolKind::kScissors      ? render::RenderTool::Kind::kScissors
              : tool.kind == ToolKind::kClipApplier ? render::RenderTool::Kind::kClipApplier

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/app_test_util.h"
+#include "app/assemble_state.h"
 #include "engine/input_error.h"
 #include "engine/scene.h"
 #include "render/image.h"
@@ -167,6 +168,26 @@ TEST(DefaultAppendectomy, ARubricScoringTheStepsNeedsThemFollowed) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("needs the procedure's steps followed"), std::string::npos)
         << e.what();
+  }
+}
+
+// Until a device drives it, every instrument waits in its port: outside the organs, touching
+// nothing (a trainee's two handles take two of the five; the others stay there).
+TEST(DefaultAppendectomy, InstrumentsWaitInTheirPortsUntilDriven) {
+  const Scene scene = load_scene(source("config/appendectomy.toml"));
+  const AssembledScene assembled = assemble_state(scene);
+  Vec3 lo = assembled.state.mesh.rest.front(), hi = lo;
+  for (const Vec3& p : assembled.state.mesh.rest) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  for (std::size_t i = 0; i < scene.tools.size(); ++i) {
+    ASSERT_TRUE(scene.tools[i].trocar_m.has_value()) << scene.tools[i].name;
+    const ToolState& t = assembled.state.tools[i];
+    const Vec3 tip(t.tip_m[0], t.tip_m[1], t.tip_m[2]);
+    EXPECT_EQ(tip, *scene.tools[i].trocar_m) << scene.tools[i].name;
+    const bool inside = (tip.array() >= lo.array()).all() && (tip.array() <= hi.array()).all();
+    EXPECT_FALSE(inside) << scene.tools[i].name;  // outside the organs' bounding box
   }
 }
 

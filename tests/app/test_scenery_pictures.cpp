@@ -58,6 +58,8 @@ std::filesystem::path abdomen_scene(const std::filesystem::path& dir,
               quoted("", source("assets/appendectomy_procedure.msh")));
   replace_all(toml, "\"script:paths/appendectomy_procedure.csv\"",
               quoted("script:", source("config/paths/appendectomy_procedure.csv")));
+  replace_all(toml, "\"assessment/procedure.toml\"",
+              quoted("", source("config/assessment/procedure.toml")));
   std::string chosen = "surroundings = ";
   chosen.append(quoted("", surroundings));
   replace_all(toml, "surroundings = \"abdomen\"", chosen);
