@@ -1,19 +1,23 @@
 #!/usr/bin/env python3
-"""Writes the default scene's scripted appendectomy (config/paths/appendectomy_procedure.csv) and
-prints each instrument's trocar for config/appendectomy.toml.
+"""Writes the default scene's scripted appendectomy, an expert's (config/paths/
+appendectomy_procedure.csv) and a novice's (appendectomy_procedure_novice.csv: every motion 1.5
+times slower, and the clip applier closed 12 mm above the fold, so the clip falls away and the
+hook then divides an unsecured artery), and prints each instrument's trocar for
+config/appendectomy.toml.
 
 Each instrument pivots about its trocar: every row's orientation points the shaft (local +z) from
 the trocar through the row's tip, rolled so the jaws open towards a chosen direction (local +x,
 engine/tool_geometry.h). Instruments come in and go out along their shaft. Frame and anatomy:
 config/appendectomy.toml, docs/procedure.md. Times in s, positions in m, jaw angles in rad.
 
-usage: make_procedure_path.py [OUT.csv]     (default: config/paths/appendectomy_procedure.csv)
+usage: make_procedure_path.py [FOLDER]     (default: config/paths)
 """
 import math
 import os
 import sys
 
-END = 9.4  # s: the path's length (the scene's headless.steps x dt)
+END = 9.4  # s: the expert's path's length (the scene's headless.steps x dt)
+NOVICE_SLOWER = 1.5  # the novice's times over the expert's
 
 
 def sub(a, b):
@@ -58,8 +62,9 @@ def quaternion(side, pin, forward):
 class Tool:
     """An instrument through its trocar: rows of (time, tip, jaw, buttons)."""
 
-    def __init__(self, name, work, forward, side_hint, reach=0.15):
+    def __init__(self, name, work, forward, side_hint, reach=0.15, slower=1.0):
         self.name = name
+        self.slower = slower
         self.forward = unit(forward)
         self.trocar = add(work, self.forward, -reach)
         self.side_hint = side_hint
@@ -73,14 +78,14 @@ class Tool:
 
     def at(self, t, tip, jaw=0.0, buttons=0, roll=None):
         """A row: the tip (m) at time t (s); roll: where the jaws open (else the tool's way)."""
-        self.rows.append((t, list(tip), jaw, buttons, roll))
+        self.rows.append((t * self.slower, list(tip), jaw, buttons, roll))
 
     def parked(self, depth=0.05):
         """Tip `depth` in from the trocar along the working line: out of the way and of view."""
         return add(self.trocar, self.forward, depth)
 
 
-def procedure():
+def procedure(novice=False):
     # Where the anatomy is (rest, m): the appendix's axis runs along +x at y = -0.022, z = 0 from
     # the cecum wall (x = 0.017) to x = 0.040, then down along (1, -1, 0)/sqrt(2) to its tip near
     # (0.080, -0.057, 0); the fold hangs below it in z = 0 with its free edge from (0.004, -0.027)
@@ -88,12 +93,14 @@ def procedure():
     d = unit([1.0, -1.0, 0.0])
     x_loop, x_transect, x_divide = 0.0265, 0.030, 0.029
 
-    grasper = Tool("grasper", [0.0700, -0.0470, 0.0], [-0.10, -0.35, -0.93], d)
-    clip = Tool("clip-applier", [0.0200, -0.0300, -0.0040], [0.10, 0.25, -0.96], [0.40, 0.92, 0.0])
-    hook = Tool("hook", [x_divide, -0.0300, 0.0], [0.0, -0.35, -0.94], [0.0, 1.0, 0.0])
-    loop = Tool("endoloop", [x_loop, -0.0330, 0.0], [-1.0, 0.0, -0.10], [0.0, 1.0, 0.0])
+    k = NOVICE_SLOWER if novice else 1.0
+    grasper = Tool("grasper", [0.0700, -0.0470, 0.0], [-0.10, -0.35, -0.93], d, slower=k)
+    clip = Tool("clip-applier", [0.0200, -0.0300, -0.0040], [0.10, 0.25, -0.96], [0.40, 0.92, 0.0],
+                slower=k)
+    hook = Tool("hook", [x_divide, -0.0300, 0.0], [0.0, -0.35, -0.94], [0.0, 1.0, 0.0], slower=k)
+    loop = Tool("endoloop", [x_loop, -0.0330, 0.0], [-1.0, 0.0, -0.10], [0.0, 1.0, 0.0], slower=k)
     cut = [x_transect, -0.0232, -0.0071]
-    scissors = Tool("scissors", cut, [0.0, 0.30, -0.95], [0.0, 1.0, 0.0])
+    scissors = Tool("scissors", cut, [0.0, 0.30, -0.95], [0.0, 1.0, 0.0], slower=k)
     tools = [grasper, clip, hook, loop, scissors]
     for tool in tools:
         tool.at(0.0, tool.parked())
@@ -114,8 +121,9 @@ def procedure():
     c.at(2.0, c.parked(), 0.0)
     c.at(2.3, c.parked(), 0.7)
     c.at(2.8, add(at_artery, [0, 0, 0.012]), 0.7)
-    c.at(3.1, add(at_artery, [0, 0, -0.008]), 0.7)
-    c.at(3.3, add(at_artery, [0, 0, -0.008]), 0.0)
+    closed_at = add(at_artery, [0, 0, 0.012 if novice else -0.008])  # the novice's is short
+    c.at(3.1, closed_at, 0.7)
+    c.at(3.3, closed_at, 0.0)
     c.at(3.5, add(at_artery, [0, 0, 0.012]), 0.0)
     c.at(3.9, c.parked(), 0.0)
 
@@ -176,10 +184,7 @@ def procedure():
     return tools
 
 
-def main():
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "config/paths/appendectomy_procedure.csv")
-    tools = procedure()
+def write(path, tools, end):
     rows = []
     for tool in tools:
         for t, tip, jaw, buttons, roll in tool.rows:
@@ -188,13 +193,22 @@ def main():
     # the endoscope stays put over the field, looking down (-z) from the umbilicus
     scope = ([0.0450, -0.0320, 0.0600], [0.0, 0.0, 1.0, 0.0])
     rows.append((0.0, "endoscope", scope[0], scope[1], 0.0, 0))
-    rows.append((END, "endoscope", scope[0], scope[1], 0.0, 0))
+    rows.append((end, "endoscope", scope[0], scope[1], 0.0, 0))
     rows.sort(key=lambda r: (r[0], r[1]))
-    with open(out, "w") as f:
+    with open(path, "w") as f:
         f.write("t,tool,px,py,pz,qw,qx,qy,qz,jaw,buttons\n")
         for t, name, p, q, jaw, buttons in rows:
             f.write(f"{t:.3f},{name},{p[0]:.5f},{p[1]:.5f},{p[2]:.5f},"
                     f"{q[0]:.6f},{q[1]:.6f},{q[2]:.6f},{q[3]:.6f},{jaw:.2f},{buttons}\n")
+
+
+def main():
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    folder = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "config/paths")
+    tools = procedure()
+    write(os.path.join(folder, "appendectomy_procedure.csv"), tools, END)
+    write(os.path.join(folder, "appendectomy_procedure_novice.csv"), procedure(novice=True),
+          END * NOVICE_SLOWER)
     for tool in tools:
         print(f"{tool.name}: trocar = [{tool.trocar[0]:.4f}, {tool.trocar[1]:.4f}, {tool.trocar[2]:.4f}]")
 

@@ -37,11 +37,13 @@ TEST(Tasks, TheShippedListLoadsBasicFirstWithEveryFileThere) {
       EXPECT_GE(tasks[i].level, tasks[i - 1].level);
     }
   }
-  EXPECT_EQ(find_task(tasks, "appendectomy", "t").scene, source("config/transection.toml"));
+  EXPECT_EQ(find_task(tasks, "transection", "t").scene, source("config/transection.toml"));
+  EXPECT_EQ(find_task(tasks, "appendectomy", "t").scene, source("config/appendectomy.toml"));
 }
 
 // Each task: its expert passes and its novice fails its own rubric (the cut-line task's and the
-// appendectomy's; the novice strays 4 mm towards the base, a critical collateral cut).
+// transection's novice strays 4 mm towards the base, a critical collateral cut; the
+// appendectomy's misses the clip, and its hook cuts the unsecured artery).
 TEST(Tasks, EveryExpertPassesAndEveryNoviceFails) {
   for (const Task& t : load_tasks(source("config/tasks.toml"))) {
     SCOPED_TRACE(t.name);
