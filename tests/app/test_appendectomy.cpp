@@ -4,7 +4,6 @@
 // most of the appendix; the endoscope's last picture is filled with tissue. PNGs and the report go
 // to <build>/test-output/app/default_appendectomy/ for a person to look at.
 #include <gtest/gtest.h>
-#include <stb/stb_image.h>  // the implementation is compiled in test_render_wound.cpp
 
 #include <algorithm>
 #include <filesystem>
@@ -15,6 +14,7 @@
 
 #include "app/app_test_util.h"
 #include "app/assemble_state.h"
+#include "app/read_png.h"
 #include "engine/input_error.h"
 #include "engine/scene.h"
 #include "render/image.h"
@@ -24,19 +24,8 @@ namespace serosa::app {
 namespace {
 
 using testing::out_dir;
+using testing::read_png;
 using testing::source;
-
-render::Image read_png(const std::filesystem::path& png) {
-  int w = 0, h = 0, n = 0;
-  stbi_uc* data = stbi_load(png.c_str(), &w, &h, &n, 4);
-  render::Image img;
-  if (data == nullptr) return img;
-  img.width = w;
-  img.height = h;
-  img.rgba.assign(data, data + static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4);
-  stbi_image_free(data);
-  return img;
-}
 
 // The whole scripted procedure scores at least this; a run stopped short scores less.
 constexpr double kExpertScore = 95.0;

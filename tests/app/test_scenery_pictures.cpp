@@ -3,7 +3,6 @@
 // --frames` draws it, so that no single colour (the black void before) fills the picture.
 // PNGs go to <build>/test-output/app/ for a person to look at.
 #include <gtest/gtest.h>
-#include <stb/stb_image.h>  // the implementation is compiled in test_render_wound.cpp
 
 #include <filesystem>
 #include <fstream>
@@ -14,6 +13,7 @@
 #include "app/app_test_util.h"
 #include "app/assemble_state.h"
 #include "app/frame_pictures.h"
+#include "app/read_png.h"
 #include "app/scenery_from_scene.h"
 #include "engine/scene.h"
 #include "render/image.h"
@@ -23,6 +23,7 @@ namespace serosa::app {
 namespace {
 
 using testing::out_dir;
+using testing::read_png;
 using testing::source;
 
 // Replaces every occurrence of `from` in `text` (there must be one).
@@ -66,18 +67,6 @@ std::filesystem::path abdomen_scene(const std::filesystem::path& dir,
   const std::filesystem::path file = dir / ("appendectomy_" + surroundings + ".toml");
   std::ofstream(file) << toml;
   return file;
-}
-
-render::Image read_png(const std::filesystem::path& png) {
-  int w = 0, h = 0, n = 0;
-  stbi_uc* data = stbi_load(png.c_str(), &w, &h, &n, 4);
-  render::Image img;
-  if (data == nullptr) return img;
-  img.width = w;
-  img.height = h;
-  img.rgba.assign(data, data + static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4);
-  stbi_image_free(data);
-  return img;
 }
 
 // The scene's scenery: an abdomen on the support around the organs, the same every time it is
