@@ -1,7 +1,8 @@
 // The assessment's validation property: the expert's scripted path of the default scene, made
 // worse step by step in one way at a time (slower, a longer path, more force, the scissors
 // further off the planned line), worsens the metric that measures that way at every step, and
-// the score never rises. (A missed clip needs the procedure's clip applier: not yet.)
+// the score never rises; on the appendectomy, a clip closed short of the artery is a bleeding
+// event and a lower score.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -84,12 +85,13 @@ struct Level {
 std::vector<Level> run_levels(const std::string& kind, const std::string& source_csv,
                               const std::vector<double>& levels, const std::string& pointer,
                               const std::function<void(std::vector<Row>&, double)>& degrade,
-                              const std::function<std::uint64_t(double)>& steps) {
+                              const std::function<std::uint64_t(double)>& steps,
+                              const std::string& scene = "config/transection.toml") {
   const fs::path dir = out_dir("assessment_degrade_" + kind);
   std::vector<Level> out;
   for (const double v : levels) {
     HeadlessOptions o;
-    o.scene = source("config/transection.toml");
+    o.scene = source(scene);
     o.tool_path = changed_path(dir, kind + "_" + str(v), source_csv,
                                [&](std::vector<Row>& rows) { degrade(rows, v); });
     o.steps = steps(v);
@@ -181,6 +183,27 @@ TEST(AssessmentDegrade, MoreForce) {
   expect_worse_step_by_step(levels,
                             run_levels("more_force", "config/paths/appendectomy.csv", levels,
                                        "/metrics/force_max_n/grasper", pull_harder, kThousand));
+}
+
+// The clip applier of the appendectomy closed `up_m` above where it clips the artery (3.1-3.3 s):
+// short of the fold, the clip falls away and the hook then divides an unsecured artery.
+void clip_short(std::vector<Row>& rows, double up_m) {
+  int moved = 0;
+  for (Row& r : rows)
+    if (r[1] == "clip-applier" && (num(r[0]) == 3.1 || num(r[0]) == 3.3)) {
+      r[4] = str(num(r[4]) + up_m);
+      ++moved;
+    }
+  ASSERT_EQ(moved, 2) << "the appendectomy's path changed: update this test";
+}
+
+TEST(AssessmentDegrade, AMissedClip) {
+  const std::vector<double> levels = {0.0, 0.02};
+  expect_worse_step_by_step(
+      levels, run_levels(
+                  "missed_clip", "config/paths/appendectomy_procedure.csv", levels,
+                  "/metrics/bleeding_events", clip_short,
+                  [](double) -> std::uint64_t { return 1880; }, "config/appendectomy.toml"));
 }
 #endif
 
