@@ -13,6 +13,7 @@
 #include "render/frame_renderer.h"
 #include "render/gl_context.h"
 #include "render/image_stats.h"
+#include "render/picture_test.h"
 #include "render/png_writer.h"
 #include "render/render_fixtures.h"
 #include "render/scenery.h"
@@ -235,24 +236,7 @@ TEST(Scenery, IsDeterministic) {
   EXPECT_NE(make_abdomen(moved).version, a.version);
 }
 
-class SceneryPictures : public ::testing::Test {
- protected:
-  void SetUp() override {
-    try {
-      ctx_ = std::make_unique<OffscreenContext>(320, 240);
-      fixtures::pin_gl_driver();
-    } catch (const std::exception& e) {
-      FAIL() << e.what();
-    }
-  }
-  void TearDown() override { ctx_.reset(); }
-  Image shoot(const RenderFrame& f, const SnapshotOptions& o, const std::string& name) {
-    Image img = render_image(*ctx_, f, o);
-    write_png(img, fixtures::output_path(name + ".png"));
-    return img;
-  }
-  std::unique_ptr<OffscreenContext> ctx_;
-};
+class SceneryPictures : public fixtures::PictureTest {};
 
 // A 2 cm organ resting on the plane z = 0, an endoscope 11 cm above it looking down.
 RenderFrame organ_from_above() {

@@ -15,6 +15,7 @@
 
 #include "render/frame_renderer.h"
 #include "render/gl_context.h"
+#include "render/picture_test.h"
 #include "render/png_writer.h"
 #include "render/render_fixtures.h"
 #include "render/scaled_target.h"
@@ -29,27 +30,7 @@ using fixtures::mask_difference;
 using fixtures::output_path;
 using View = SnapshotOptions::View;
 
-class Snapshot : public ::testing::Test {
- protected:
-  void SetUp() override {
-    try {
-      ctx_ = std::make_unique<OffscreenContext>(320, 240);
-      fixtures::pin_gl_driver();  // no false leak reports at exit (see render_fixtures.h)
-    } catch (const std::exception& e) {
-      FAIL() << e.what();
-    }
-  }
-  void TearDown() override { ctx_.reset(); }
-
-  // Renders and writes `name`.png.
-  Image shoot(const RenderFrame& f, const SnapshotOptions& o, const std::string& name) {
-    Image img = render_image(*ctx_, f, o);
-    write_png(img, output_path(name + ".png"));
-    return img;
-  }
-
-  std::unique_ptr<OffscreenContext> ctx_;
-};
+class Snapshot : public fixtures::PictureTest {};
 
 TEST_F(Snapshot, ContextIsOpenGL4CoreAndClears) {
   EXPECT_FALSE(ctx_->gl_renderer().empty());

@@ -12,6 +12,7 @@
 
 #include "render/camera.h"
 #include "render/gl_context.h"
+#include "render/picture_test.h"
 #include "render/png_writer.h"
 #include "render/render_fixtures.h"
 #include "render/snapshot.h"
@@ -187,24 +188,7 @@ TEST(RenderFrame, ValidateChecksTools) {
   EXPECT_NE(errors[1].find("tools[2]"), std::string::npos);
 }
 
-class ToolPictures : public ::testing::Test {
- protected:
-  void SetUp() override {
-    try {
-      ctx_ = std::make_unique<OffscreenContext>(320, 240);
-      fixtures::pin_gl_driver();
-    } catch (const std::exception& e) {
-      FAIL() << e.what();
-    }
-  }
-  void TearDown() override { ctx_.reset(); }
-  Image shoot(const RenderFrame& f, const SnapshotOptions& o, const std::string& name) {
-    Image img = render_image(*ctx_, f, o);
-    write_png(img, fixtures::output_path(name + ".png"));
-    return img;
-  }
-  std::unique_ptr<OffscreenContext> ctx_;
-};
+class ToolPictures : public fixtures::PictureTest {};
 
 // A 2 cm organ at the origin, seen by an endoscope 8 cm away on +z, a grasper and scissors in
 // front of it through trocars on the abdominal wall.
