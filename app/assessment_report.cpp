@@ -7,6 +7,31 @@
 
 namespace serosa::app {
 
+namespace {
+
+// The values the curriculum's tasks add: what each of the procedure's steps cost, the clips.
+void task_values(const Scene& scene, const metrics::MetricsStage& metrics,
+                 std::map<std::string, double>& v) {
+  const metrics::StepSplits& splits = metrics.step_splits();
+  if (splits.active())
+    for (std::size_t i = 0; i < kProcedureSteps.size(); ++i) {
+      const std::string step(kProcedureSteps[i]);
+      const bool done = metrics.procedure_steps().steps()[i].done;
+      // A step not done took the whole run, and all the path since the last one done.
+      const metrics::StepSplit& s = done ? splits.split(i) : splits.open();
+      v["step_time_s." + step] = done ? s.duration_s : metrics.time_s();
+      v["step_path_length_m." + step] = splits.hand_path_m(s);
+    }
+  const metrics::ClipPlacement& clips = metrics.clip_placement();
+  if (clips.active()) {
+    v["clips_on_artery"] = clips.on_artery();
+    v["clips_off_artery"] = clips.off_artery();
+    if (scene.metrics.clip_target_m) v["clip_target_error_m"] = clips.target_error_m();
+  }
+}
+
+}  // namespace
+
 std::map<std::string, double> session_values(const Scene& scene,
                                              const metrics::MetricsStage& metrics,
                                              const TetMesh& mesh,
@@ -57,6 +82,7 @@ std::map<std::string, double> session_values(const Scene& scene,
     v["specimens_dropped"] =
         static_cast<double>(errors.count(metrics::ProcedureError::Kind::kSpecimenDropped));
   }
+  task_values(scene, metrics, v);
   for (const auto& [id, name] : groups)
     v["pieces." + name] = cutting::count_components(mesh, static_cast<std::uint16_t>(id));
   return v;

@@ -13,7 +13,7 @@ namespace serosa {
 namespace {
 
 // Values the session reports under a fixed name, and families with a tool's or a group's name.
-constexpr std::array<std::string_view, 18> kFixed = {"time_s",
+constexpr std::array<std::string_view, 21> kFixed = {"time_s",
                                                      "idle_time_s",
                                                      "bimanual_fraction",
                                                      "path_length_m",
@@ -30,9 +30,12 @@ constexpr std::array<std::string_view, 18> kFixed = {"time_s",
                                                      "procedure.steps_done",
                                                      "procedure.specimen_volume_fraction",
                                                      "transections_above_securing",
-                                                     "specimens_dropped"};
-constexpr std::array<std::string_view, 4> kFamilies = {"path_length_m", "force_max_n", "pieces",
-                                                       "out_of_view_s"};
+                                                     "specimens_dropped",
+                                                     "clips_on_artery",
+                                                     "clips_off_artery",
+                                                     "clip_target_error_m"};
+constexpr std::array<std::string_view, 6> kFamilies = {
+    "path_length_m", "force_max_n", "pieces", "out_of_view_s", "step_time_s", "step_path_length_m"};
 
 class RubricReader {
  public:

@@ -4,6 +4,7 @@
 // below are the ones the loader applies when a key is absent.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -248,6 +249,10 @@ struct HeadlessSettings {
   std::int64_t steps = 1000;  ///< steps of `serosa headless` without --steps; >= 1
 };
 
+/// The steps an appendectomy is followed through, in their order (metrics/procedure_steps.h).
+inline constexpr std::array<std::string_view, 5> kProcedureSteps = {
+    "expose", "divide_mesentery", "secure_base", "transect", "extract"};
+
 /// The groups an appendectomy's steps are judged on (metrics/procedure_steps.h).
 struct ProcedureGroups {
   std::string specimen;   ///< what is taken out (the appendix)
@@ -271,6 +276,9 @@ struct MetricsSettings {
   /// The group that bleeds when a cut goes through it while no clip clamps it (the appendicular
   /// artery); none: no bleeding is watched for. A group name of one of the organs.
   std::optional<std::string> artery;
+  /// Where the artery should be clipped, at rest, m (a point on it the instructor marks); none:
+  /// no clip_target_error_m. Needs `artery`.
+  std::optional<Vec3> clip_target_m;
   /// Groups a live hook must not touch (the cecum wall): coagulating them is a thermal injury.
   std::vector<std::string> protected_groups;
   /// The procedure's steps are followed (expose, divide the mesentery, secure the base,

@@ -664,11 +664,15 @@ class Loader {
     const std::string p = "metrics";
     check_keys(t, p,
                {"planned_cut", "cut_band", "force_limit", "view_targets", "artery", "protected",
-                "procedure", "rubric"});
+                "clip_target", "procedure", "rubric"});
     if (const auto* n = t.get("procedure")) read_procedure(*n, sub(p, "procedure"), m);
     if (const auto* n = t.get("artery")) {
       m.artery = string(*n, sub(p, "artery"), "a group name");
       m_group_refs.push_back({line_of(*n), sub(p, "artery"), *m.artery});
+    }
+    if (const auto* n = t.get("clip_target")) {
+      m.clip_target_m = vec3(*n, sub(p, "clip_target"), "[x, y, z] in m (at rest)");
+      m_clip_target_line = line_of(*n);
     }
     if (const auto* n = t.get("protected")) {
       const std::string expected = "a list of group names";
@@ -767,7 +771,30 @@ class Loader {
                          family == "transections_above_securing" || family == "specimens_dropped";
       if (steps && !scene.metrics.procedure)
         fail(m_rubric_line, p, what + " needs the procedure's steps followed", "metrics.procedure");
+      check_rubric_task(scene, family, suffix, what);
     }
+  }
+
+  // The families the curriculum's tasks add: the procedure's steps, clips.
+  void check_rubric_task(const Scene& scene, const std::string& family, const std::string& suffix,
+                         const std::string& what) const {
+    const std::string p = "metrics.rubric";
+    if (family == "step_time_s" || family == "step_path_length_m") {
+      if (!scene.metrics.procedure)
+        fail(m_rubric_line, p, what + " needs the procedure's steps followed", "metrics.procedure");
+      if (std::find(kProcedureSteps.begin(), kProcedureSteps.end(), suffix) ==
+          kProcedureSteps.end())
+        fail(m_rubric_line, p, what + " names no step of the procedure",
+             "expose, divide_mesentery, secure_base, transect or extract");
+    }
+    const bool clips = family == "clips_on_artery" || family == "clips_off_artery" ||
+                       family == "clip_target_error_m";
+    if (clips && !scene.settings.has(Effect::kClips))
+      fail(m_rubric_line, p, what + " needs effect \"clips\"", "\"clips\" listed");
+    if (clips && !scene.metrics.artery)
+      fail(m_rubric_line, p, what + " needs an artery to watch", "metrics.artery");
+    if (family == "clip_target_error_m" && !scene.metrics.clip_target_m)
+      fail(m_rubric_line, p, what + " needs where the clip should go", "metrics.clip_target");
   }
 
   static bool has_group(const Scene& scene, const std::string& name) {
@@ -942,6 +969,9 @@ class Loader {
     if (!s.has(Effect::kSupports) && !scene.supports.empty())
       fail(m_support_line, "support", "a [[support]] plane, but effect \"supports\" is not listed",
            "\"supports\" in scene.effects");
+    if (scene.metrics.clip_target_m && !scene.metrics.artery)
+      fail(m_clip_target_line, "metrics.clip_target", "a clip target, but no artery is named",
+           "metrics.artery");
     if (scene.metrics.procedure && !scene.metrics.artery)
       fail(m_procedure_line, "metrics.procedure",
            "the procedure's steps include securing the artery, but no artery is named",
@@ -985,6 +1015,7 @@ class Loader {
   std::int64_t m_rubric_line = 0;          // where [metrics] rubric is
   std::int64_t m_support_line = 0;         // where [[support]] begins
   std::int64_t m_procedure_line = 0;       // where [metrics] procedure is
+  std::int64_t m_clip_target_line = 0;     // where [metrics] clip_target is
   std::int64_t m_surroundings_line = 0;    // where [render] surroundings is
   std::vector<std::int64_t> m_kind_lines;  // (tools) where each tool's kind is
   struct GroupRef {

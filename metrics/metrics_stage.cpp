@@ -1,6 +1,7 @@
 #include "metrics/metrics_stage.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -77,6 +78,10 @@ MetricsStage::MetricsStage(const Scene& scene, LameTable lame, std::int64_t stre
   m_target_first_s.assign(m_targets.size(), -1.0);
   m_errors = watch(scene.metrics, group_names);
   m_steps = follow(scene.metrics, group_names, m_names);
+  if (m_errors.active() && scene.metrics.artery && scene.settings.has(Effect::kClips))
+    if (const auto artery = id_of(group_names, *scene.metrics.artery))
+      m_clips = ClipPlacement(*artery, scene.metrics.clip_target_m);
+  if (m_steps.active()) m_splits = StepSplits(m_steps.steps().size(), m_names, m_hand);
 }
 
 void MetricsStage::step(const StepContext& ctx, SimState& state) {
@@ -93,7 +98,8 @@ void MetricsStage::step(const StepContext& ctx, SimState& state) {
   for (std::size_t i = 0; i < k; ++i)  // a scissors' blades load the tissue with no net force
     m_load[i] = (i < f.size() ? f[i].norm() : 0.0) +
                 (i < reactions.size() ? reactions[i].blade_force_n : 0.0);
-  if (m_have_last) add_use(m_moved, m_load, ctx.dt_s);
+  // (The first step's time counts towards the first split, though no move can be measured in it.)
+  m_splits.add(m_moved, m_have_last && add_use(m_moved, m_load, ctx.dt_s), ctx.dt_s);
   m_have_last = true;
   if (!f.empty()) {
     m_forces = true;
@@ -108,13 +114,22 @@ void MetricsStage::step(const StepContext& ctx, SimState& state) {
   add_view(state.tools, ctx.dt_s);
   for (const CutEvent& cut : state.handoff.cuts) add_cut(cut);
   if (m_errors.active()) m_errors.step(m_time, state);
-  m_steps.step(m_time, state, m_errors);
-  publish_bleeds(state);
+  m_clips.step(state.handoff.clips);
+  follow_steps(state);
   if (static_cast<std::int64_t>(ctx.step) % m_stress_every == 0)
     m_peak_stress = std::max(m_peak_stress, peak_stress(state.mesh));
 }
 
-void MetricsStage::add_use(const std::vector<double>& moved, const std::vector<double>& load,
+void MetricsStage::follow_steps(SimState& state) {
+  std::array<bool, kProcedureSteps.size()> before{};
+  for (std::size_t i = 0; i < before.size(); ++i) before[i] = m_steps.steps()[i].done;
+  m_steps.step(m_time, state, m_errors);
+  for (std::size_t i = 0; i < before.size(); ++i)
+    if (!before[i] && m_steps.steps()[i].done) m_splits.close(i);
+  publish_bleeds(state);
+}
+
+bool MetricsStage::add_use(const std::vector<double>& moved, const std::vector<double>& load,
                            double dt_s) {
   bool any_moving = false, all_at_work = true, over = false;
   std::size_t hands = 0;
@@ -134,6 +149,7 @@ void MetricsStage::add_use(const std::vector<double>& moved, const std::vector<d
     m_idle_s += dt_s;
   }
   if (over) m_force_over_s += dt_s;
+  return !any_moving;
 }
 
 double MetricsStage::peak_stress(const TetMesh& mesh) {
@@ -219,6 +235,8 @@ nlohmann::json MetricsStage::report() const {
   }
   m_errors.report(j, m_steps.active());
   m_steps.report(j);
+  m_splits.report(j);
+  m_clips.report(j);
   return j;
 }
 
@@ -239,6 +257,8 @@ void MetricsStage::save(StateWriter& out) const {
   out.u64(static_cast<std::uint64_t>(m_cut_tets));
   m_errors.save(out);  // (nothing when no errors are watched for)
   m_steps.save(out);   // (nothing when no procedure is followed)
+  m_splits.save(out);  // (likewise)
+  m_clips.save(out);   // (nothing without clips on an artery)
 }
 
 void MetricsStage::restore(StateReader& in, SimState& state) {
@@ -265,6 +285,8 @@ void MetricsStage::restore(StateReader& in, SimState& state) {
   m_cut_tets = static_cast<std::int64_t>(in.u64());
   m_errors.restore(in);
   m_steps.restore(in);
+  m_splits.restore(in);
+  m_clips.restore(in);
   state.handoff.bleeds.clear();
   publish_bleeds(state);
 }

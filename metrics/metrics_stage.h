@@ -27,8 +27,13 @@
 //                           only in scenes with an endoscope, s
 //   bleeding_events, thermal_injuries, errors   with [metrics] artery or protected: the
 //                           procedure's errors (metrics/procedure_errors.h)
+//   clips                   with [metrics] artery and effect clips: the clips on and off the
+//                           artery, and how far from [metrics] clip_target
+//                           (metrics/clip_placement.h)
 //   procedure               with [metrics] procedure: its steps, whether all are done, and the
-//                           freed specimen's share of its volume (metrics/procedure_steps.h)
+//                           freed specimen's share of its volume (metrics/procedure_steps.h),
+//                           and what each step cost: its duration, paths and idle time
+//                           (metrics/step_splits.h)
 // Without a planned cut line the deviation and collateral entries are absent (the volume stays).
 #pragma once
 
@@ -46,8 +51,10 @@
 #include "engine/sim_state.h"
 #include "engine/stage.h"
 #include "engine/tissue_stress.h"
+#include "metrics/clip_placement.h"
 #include "metrics/procedure_errors.h"
 #include "metrics/procedure_steps.h"
+#include "metrics/step_splits.h"
 
 namespace serosa::metrics {
 
@@ -107,6 +114,9 @@ class MetricsStage final : public Stage {
   [[nodiscard]] double targets_time_s() const;
   [[nodiscard]] const ProcedureErrors& procedure_errors() const noexcept { return m_errors; }
   [[nodiscard]] const ProcedureSteps& procedure_steps() const noexcept { return m_steps; }
+  [[nodiscard]] const ClipPlacement& clip_placement() const noexcept { return m_clips; }
+  /// What each of the procedure's steps cost (inactive without [metrics] procedure).
+  [[nodiscard]] const StepSplits& step_splits() const noexcept { return m_splits; }
   [[nodiscard]] double deviation_mean_m() const noexcept {
     return m_cut_volume > 0.0 ? m_dev_weighted / m_cut_volume : 0.0;
   }
@@ -122,8 +132,8 @@ class MetricsStage final : public Stage {
   /// Accounts one cut: volume, deviation from the planned line, collateral.
   void add_cut(const CutEvent& cut);
   /// Idle, active and bimanual time and time over the force limit, from this step's moves (m,
-  /// (tools)) and forces.
-  void add_use(const std::vector<double>& moved, const std::vector<double>& load, double dt_s);
+  /// (tools)) and forces. Returns whether every hand instrument was idle.
+  bool add_use(const std::vector<double>& moved, const std::vector<double>& load, double dt_s);
   /// The mesh's largest von Mises stress now, Pa.
   [[nodiscard]] double peak_stress(const TetMesh& mesh);
 
@@ -154,6 +164,10 @@ class MetricsStage final : public Stage {
 
   ProcedureErrors m_errors;
   ProcedureSteps m_steps;
+  StepSplits m_splits;  // with the procedure's steps
+  ClipPlacement m_clips;
+  /// Follows the procedure's steps at the end of a step, splitting the run where one is done.
+  void follow_steps(SimState& state);
 };
 
 }  // namespace serosa::metrics

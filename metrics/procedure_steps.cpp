@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "engine/node_components.h"
+#include "engine/scene.h"
 #include "engine/state_codec.h"
 
 namespace serosa::metrics {
@@ -17,9 +18,7 @@ constexpr std::uint8_t kBaseNode = 2;
 ProcedureSteps::ProcedureSteps(ProcedureGroupIds ids, std::vector<std::string> tools)
     : m_on(true), m_ids(std::move(ids)), m_tools(std::move(tools)) {
   std::sort(m_ids.mesentery.begin(), m_ids.mesentery.end());
-  const std::array<std::string_view, 5> names{"expose", "divide_mesentery", "secure_base",
-                                              "transect", "extract"};
-  for (std::size_t i = 0; i < names.size(); ++i) m_steps[i].name = names[i];
+  for (std::size_t i = 0; i < kProcedureSteps.size(); ++i) m_steps[i].name = kProcedureSteps[i];
 }
 
 void ProcedureSteps::step(double time_s, const SimState& state, ProcedureErrors& errors) {

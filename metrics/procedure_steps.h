@@ -23,6 +23,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/math.h"
+#include "engine/scene.h"
 #include "engine/sim_state.h"
 #include "metrics/procedure_errors.h"
 
@@ -61,7 +62,9 @@ class ProcedureSteps {
   /// Looks at the end of a solver step (time_s): grasps, ligatures, this step's cuts.
   void step(double time_s, const SimState& state, ProcedureErrors& errors);
 
-  [[nodiscard]] const std::array<ProcedureStep, 5>& steps() const noexcept { return m_steps; }
+  [[nodiscard]] const std::array<ProcedureStep, kProcedureSteps.size()>& steps() const noexcept {
+    return m_steps;
+  }
   [[nodiscard]] bool completed() const;
   /// The freed specimen's share of the specimen group's rest volume (0 before the transection).
   [[nodiscard]] double specimen_fraction() const noexcept { return m_fraction; }
@@ -88,7 +91,7 @@ class ProcedureSteps {
   bool m_on = false;
   ProcedureGroupIds m_ids;
   std::vector<std::string> m_tools;
-  std::array<ProcedureStep, 5> m_steps;
+  std::array<ProcedureStep, kProcedureSteps.size()> m_steps;
   double m_time = 0.0;  // the step being looked at, s
   // From the first step's mesh (saved):
   bool m_ready = false;

@@ -64,6 +64,22 @@ TEST(DefaultAppendectomy, TheScriptedPathDoesTheFiveStepsWithTheProcedureInstrum
     EXPECT_GT(s["time_s"].get<double>(), before) << s.dump();
     before = s["time_s"].get<double>();
   }
+  // What each step cost: the splits add up to the run's time and the hands' whole path.
+  double split_s = p["after_last_step"]["duration_s"].get<double>();
+  double split_m = p["after_last_step"]["path_length_m"]["hands"].get<double>();
+  for (const auto& s : p["steps"]) {
+    EXPECT_GT(s["duration_s"].get<double>(), 0.0) << s.dump();
+    split_s += s["duration_s"].get<double>();
+    split_m += s["path_length_m"]["hands"].get<double>();
+  }
+  double hands = 0.0;
+  for (const auto& [tool, m] : r["metrics"]["path_length_m"].items())
+    if (tool != "endoscope") hands += m.get<double>();
+  EXPECT_NEAR(split_s, r["metrics"]["time_s"].get<double>(), 1e-9);
+  EXPECT_NEAR(split_m, hands, 1e-9);
+  EXPECT_EQ(r["metrics"]["clips"]["on_artery"], 1);
+  EXPECT_EQ(r["metrics"]["clips"]["off_artery"], 0);
+
   // The transection at the base: the freed specimen holds most of the appendix.
   EXPECT_GE(p["specimen_volume_fraction"].get<double>(), 0.8);
   EXPECT_LT(p["specimen_volume_fraction"].get<double>(), 1.0);
