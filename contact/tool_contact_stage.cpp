@@ -123,15 +123,33 @@ void ToolContactStage::grab(SimState& state, std::size_t tool, Grasp& g) {
     if (std::abs(l.x()) > l.z() * tan_half + kJawRadius) continue;
     g.nodes.push_back(n);
     g.local.push_back(l);
-    g.was_fixed.push_back(state.mesh.fixed[un]);
+    const Grasp* other = held_elsewhere(n, g);
+    g.was_fixed.push_back(other != nullptr ? other->flag_of(n) : state.mesh.fixed[un]);
   }
   g.holding = true;
+}
+
+// Two graspers can hold the same node (one hands tissue to the other): each keeps the node's own
+// flag, from before either took it, and only the last to let go gives it back.
+const ToolContactStage::Grasp* ToolContactStage::held_elsewhere(std::int32_t node,
+                                                                const Grasp& self) const {
+  for (const Grasp& o : m_grasps)
+    if (&o != &self && o.holding &&
+        std::find(o.nodes.begin(), o.nodes.end(), node) != o.nodes.end())
+      return &o;
+  return nullptr;
+}
+
+std::uint8_t ToolContactStage::Grasp::flag_of(std::int32_t node) const {
+  const auto it = std::find(nodes.begin(), nodes.end(), node);
+  return was_fixed[static_cast<std::size_t>(it - nodes.begin())];
 }
 
 void ToolContactStage::release(SimState& state, Grasp& g) {
   for (std::size_t k = 0; k < g.nodes.size(); ++k) {
     const auto un = static_cast<std::size_t>(g.nodes[k]);
-    if (un < state.mesh.fixed.size()) state.mesh.fixed[un] = g.was_fixed[k];
+    if (un < state.mesh.fixed.size() && held_elsewhere(g.nodes[k], g) == nullptr)
+      state.mesh.fixed[un] = g.was_fixed[k];
   }
   g.nodes.clear();
   g.local.clear();

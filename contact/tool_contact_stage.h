@@ -92,7 +92,11 @@ class ToolContactStage final : public Stage {
     bool holding = false;
     double widest_rad = 0.0;  // grasper: widest opening since the last release; scissors: the
                               // opening the stroke began with
+    /// The node's own Dirichlet flag, from before it was grabbed (a node it holds).
+    [[nodiscard]] std::uint8_t flag_of(std::int32_t node) const;
   };
+  /// Another grasper's grasp that holds the node, if any.
+  [[nodiscard]] const Grasp* held_elsewhere(std::int32_t node, const Grasp& self) const;
   void refresh_boundary(const SimState& state);
   void resist_blades(const SimState& state, std::size_t tool, Grasp& g);
   void grab(SimState& state, std::size_t tool, Grasp& g);

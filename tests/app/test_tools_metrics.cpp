@@ -264,6 +264,48 @@ TEST(Grasper, GrabsLiftsAndLetsGo) {
   EXPECT_GT(m["peak_stress_pa"].get<double>(), 0.0);
 }
 
+// Two graspers on the beam's end: one takes it, the other takes it too, the first lets go (a
+// hand-to-hand transfer), the second lets go. Whichever lets go first, the nodes stay held while
+// either holds them, and every node gets its own Dirichlet flag back at the end.
+TEST(Grasper, TwoGraspersHandTissueOverAndEveryNodeGetsItsFlagBack) {
+  for (const bool first_lets_go_first : {true, false}) {
+    SCOPED_TRACE(first_lets_go_first);
+    const fs::path dir = out_dir("grasper_handover");
+    auto row = [&](const char* tool, double t, double jaw) {
+      char line[160];
+      std::snprintf(line, sizeof line, "%.3f,%s,0.095,0.002,0,%s,%.1f\n", t, tool, kDown.c_str(),
+                    jaw);
+      return std::string(line);
+    };
+    const double a_open = first_lets_go_first ? 0.12 : 0.16;
+    const double b_open = first_lets_go_first ? 0.16 : 0.12;
+    const std::string csv = row("a", 0.0, 0.9) + row("a", 0.02, 0.9) + row("a", 0.05, 0.0) +
+                            row("a", a_open - 0.01, 0.0) + row("a", a_open, 0.9) +
+                            row("b", 0.0, 0.9) + row("b", 0.05, 0.9) + row("b", 0.08, 0.0) +
+                            row("b", b_open - 0.01, 0.0) + row("b", b_open, 0.9);
+    std::string tools;
+    for (const char* name : {"a", "b"})
+      tools += std::string("[[tool]]\nname = \"") + name +
+               "\"\nkind = \"grasper\"\ndevice = \"script:path.csv\"\n";
+    auto run = beam_with_tools(dir, "\"fem\", \"surface\", \"contact\"", tools, csv);
+    SimState& s = run->assembled.state;
+    const std::vector<std::uint8_t> fixed0 = s.mesh.fixed;
+    run->comp.runner->run(s, 20);  // t = 0.1: both hold
+    const auto counts = run->comp.contact->grasped_counts();
+    ASSERT_GE(counts[0], 3u);
+    ASSERT_GE(counts[1], 3u);
+    run->comp.runner->run(s, 6);  // t = 0.13: one has let go, the other holds
+    const std::size_t holder = first_lets_go_first ? 1 : 0;
+    ASSERT_EQ(run->comp.contact->grasped_counts()[1 - holder], 0u);
+    ASSERT_GE(run->comp.contact->grasped_counts()[holder], 3u);
+    for (std::int32_t v : s.handoff.grasped[holder])
+      EXPECT_EQ(s.mesh.fixed[static_cast<std::size_t>(v)], 1) << "node " << v;
+    run->comp.runner->run(s, 8);  // t = 0.17: both have let go
+    EXPECT_EQ(run->comp.contact->grasped_counts()[holder], 0u);
+    EXPECT_EQ(s.mesh.fixed, fixed0);
+  }
+}
+
 // The stage with the haptic loop's reactions on, taking over `from`'s grasps (a snapshot).
 std::unique_ptr<contact::ToolContactStage> reacting_copy(const BeamRun& run,
                                                          const contact::ToolContactStage* from) {
