@@ -9,7 +9,8 @@ namespace serosa::app {
 
 namespace {
 
-// The values the curriculum's tasks add: what each of the procedure's steps cost, the clips.
+// The values the curriculum's tasks add: what each of the procedure's steps cost, the clips, the
+// transfer.
 void task_values(const Scene& scene, const metrics::MetricsStage& metrics,
                  std::map<std::string, double>& v) {
   const metrics::StepSplits& splits = metrics.step_splits();
@@ -27,6 +28,13 @@ void task_values(const Scene& scene, const metrics::MetricsStage& metrics,
     v["clips_on_artery"] = clips.on_artery();
     v["clips_off_artery"] = clips.off_artery();
     if (scene.metrics.clip_target_m) v["clip_target_error_m"] = clips.target_error_m();
+  }
+  const metrics::TransferWatch& transfer = metrics.transfer();
+  if (transfer.active()) {
+    v["transfer.handoffs"] = transfer.handoffs();
+    v["transfer.drops"] = transfer.drops();
+    v["transfer.placed"] = transfer.placed() ? 1.0 : 0.0;
+    v["transfer.placement_error_m"] = transfer.error_m();
   }
 }
 

@@ -260,6 +260,14 @@ struct ProcedureGroups {
   std::string mesentery;  ///< the fold that carries its artery (the mesoappendix)
 };
 
+/// A grasp-and-transfer drill: an object carried from where it lies onto a target on the board
+/// (metrics/transfer_watch.h).
+struct TransferSettings {
+  std::string object;            ///< the group carried (a bead): a group name of the organs
+  Vec3 target_m = Vec3::Zero();  ///< where it should be set down, on the board, m
+  double radius_m = 0.005;       ///< the target's radius across the board, m; > 0
+};
+
 /// What trainee metrics compare against (app's metrics stage).
 struct MetricsSettings {
   /// The planned cut line, a polyline in the scene frame, m ((k) points, k = 0 or k >= 2).
@@ -281,6 +289,8 @@ struct MetricsSettings {
   std::optional<Vec3> clip_target_m;
   /// Groups a live hook must not touch (the cecum wall): coagulating them is a thermal injury.
   std::vector<std::string> protected_groups;
+  /// A grasp-and-transfer drill is followed; none: no transfer metrics.
+  std::optional<TransferSettings> transfer;
   /// The procedure's steps are followed (expose, divide the mesentery, secure the base,
   /// transect, extract); needs `artery`. None: no steps are reported.
   std::optional<ProcedureGroups> procedure;

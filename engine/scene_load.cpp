@@ -664,7 +664,8 @@ class Loader {
     const std::string p = "metrics";
     check_keys(t, p,
                {"planned_cut", "cut_band", "force_limit", "view_targets", "artery", "protected",
-                "clip_target", "procedure", "rubric"});
+                "clip_target", "transfer", "procedure", "rubric"});
+    if (const auto* n = t.get("transfer")) read_transfer(*n, sub(p, "transfer"), m);
     if (const auto* n = t.get("procedure")) read_procedure(*n, sub(p, "procedure"), m);
     if (const auto* n = t.get("artery")) {
       m.artery = string(*n, sub(p, "artery"), "a group name");
@@ -711,6 +712,23 @@ class Loader {
       m.rubric = load_rubric(resolve(rel));
       m_rubric_line = line_of(*n);
     }
+  }
+
+  void read_transfer(const toml::node& n, const std::string& p, MetricsSettings& m) {
+    const auto* t = n.as_table();
+    if (t == nullptr)
+      fail(n, p, "not a table", "{ object = \"group\", target = [x, y, z], radius = r }");
+    check_keys(*t, p, {"object", "target", "radius"});
+    TransferSettings s;
+    const toml::node& object = required(*t, "object", p, "a group name");
+    s.object = string(object, sub(p, "object"), "a group name");
+    m_group_refs.push_back({line_of(object), sub(p, "object"), s.object});
+    s.target_m =
+        vec3(required(*t, "target", p, "[x, y, z] in m"), sub(p, "target"), "[x, y, z] in m");
+    if (const auto* r = t->get("radius"))
+      s.radius_m = ranged(*r, sub(p, "radius"), 0.0, true, std::numeric_limits<double>::infinity(),
+                          false, "a radius > 0 in m");
+    m.transfer = s;
   }
 
   void read_procedure(const toml::node& n, const std::string& p, MetricsSettings& m) {
@@ -795,6 +813,10 @@ class Loader {
       fail(m_rubric_line, p, what + " needs an artery to watch", "metrics.artery");
     if (family == "clip_target_error_m" && !scene.metrics.clip_target_m)
       fail(m_rubric_line, p, what + " needs where the clip should go", "metrics.clip_target");
+    if (family.rfind("transfer.", 0) == 0 && !scene.metrics.transfer)
+      fail(m_rubric_line, p, what + " needs a transfer to follow", "metrics.transfer");
+    if (family.rfind("transfer.", 0) == 0 && !scene.settings.has(Effect::kContact))
+      fail(m_rubric_line, p, what + " needs effect \"contact\" (grasps)", "\"contact\" listed");
   }
 
   static bool has_group(const Scene& scene, const std::string& name) {

@@ -51,6 +51,13 @@ ProcedureSteps follow(const MetricsSettings& m, const std::map<int, std::string>
   return {ids, tools};
 }
 
+// The board's normal: the first support's, else against gravity, else +z.
+Vec3 board_up(const Scene& scene) {
+  if (!scene.supports.empty()) return scene.supports.front().normal;
+  const Vec3 g = scene.settings.gravity_mps2;
+  return g.norm() > 0.0 ? Vec3(-g.normalized()) : Vec3(Vec3::UnitZ());
+}
+
 }  // namespace
 
 MetricsStage::MetricsStage(const Scene& scene, LameTable lame, std::int64_t stress_every,
@@ -81,6 +88,9 @@ MetricsStage::MetricsStage(const Scene& scene, LameTable lame, std::int64_t stre
   if (m_errors.active() && scene.metrics.artery && scene.settings.has(Effect::kClips))
     if (const auto artery = id_of(group_names, *scene.metrics.artery))
       m_clips = ClipPlacement(*artery, scene.metrics.clip_target_m);
+  if (const auto& t = scene.metrics.transfer)
+    if (const auto object = id_of(group_names, t->object))
+      m_transfer = TransferWatch(*object, t->target_m, t->radius_m, board_up(scene));
   if (m_steps.active()) m_splits = StepSplits(m_steps.steps().size(), m_names, m_hand);
 }
 
@@ -115,6 +125,7 @@ void MetricsStage::step(const StepContext& ctx, SimState& state) {
   for (const CutEvent& cut : state.handoff.cuts) add_cut(cut);
   if (m_errors.active()) m_errors.step(m_time, state);
   m_clips.step(state.handoff.clips);
+  m_transfer.step(m_time, state);
   follow_steps(state);
   if (static_cast<std::int64_t>(ctx.step) % m_stress_every == 0)
     m_peak_stress = std::max(m_peak_stress, peak_stress(state.mesh));
@@ -237,6 +248,7 @@ nlohmann::json MetricsStage::report() const {
   m_steps.report(j);
   m_splits.report(j);
   m_clips.report(j);
+  m_transfer.report(j);
   return j;
 }
 
@@ -259,6 +271,7 @@ void MetricsStage::save(StateWriter& out) const {
   m_steps.save(out);   // (nothing when no procedure is followed)
   m_splits.save(out);  // (likewise)
   m_clips.save(out);   // (nothing without clips on an artery)
+  m_transfer.save(out);
 }
 
 void MetricsStage::restore(StateReader& in, SimState& state) {
@@ -287,6 +300,7 @@ void MetricsStage::restore(StateReader& in, SimState& state) {
   m_steps.restore(in);
   m_splits.restore(in);
   m_clips.restore(in);
+  m_transfer.restore(in);
   state.handoff.bleeds.clear();
   publish_bleeds(state);
 }

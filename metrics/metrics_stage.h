@@ -30,6 +30,8 @@
 //   clips                   with [metrics] artery and effect clips: the clips on and off the
 //                           artery, and how far from [metrics] clip_target
 //                           (metrics/clip_placement.h)
+//   transfer                with [metrics] transfer: the object's hand-offs, drops and placing
+//                           (metrics/transfer_watch.h)
 //   procedure               with [metrics] procedure: its steps, whether all are done, and the
 //                           freed specimen's share of its volume (metrics/procedure_steps.h),
 //                           and what each step cost: its duration, paths and idle time
@@ -55,6 +57,7 @@
 #include "metrics/procedure_errors.h"
 #include "metrics/procedure_steps.h"
 #include "metrics/step_splits.h"
+#include "metrics/transfer_watch.h"
 
 namespace serosa::metrics {
 
@@ -115,6 +118,7 @@ class MetricsStage final : public Stage {
   [[nodiscard]] const ProcedureErrors& procedure_errors() const noexcept { return m_errors; }
   [[nodiscard]] const ProcedureSteps& procedure_steps() const noexcept { return m_steps; }
   [[nodiscard]] const ClipPlacement& clip_placement() const noexcept { return m_clips; }
+  [[nodiscard]] const TransferWatch& transfer() const noexcept { return m_transfer; }
   /// What each of the procedure's steps cost (inactive without [metrics] procedure).
   [[nodiscard]] const StepSplits& step_splits() const noexcept { return m_splits; }
   [[nodiscard]] double deviation_mean_m() const noexcept {
@@ -166,6 +170,7 @@ class MetricsStage final : public Stage {
   ProcedureSteps m_steps;
   StepSplits m_splits;  // with the procedure's steps
   ClipPlacement m_clips;
+  TransferWatch m_transfer;
   /// Follows the procedure's steps at the end of a step, splitting the run where one is done.
   void follow_steps(SimState& state);
 };

@@ -50,13 +50,15 @@ mesh() {
 }
 
 beam() {
-  python3 "$src/make_beam.py" "$1" "$2" "$3" "$out/$4.msh"
+  python3 "$src/make_beam.py" "$1" "$2" "$3" "$out/$4.msh" "${@:5}"
 }
 
 if [ "$what" = beam ] || [ "$what" = all ]; then
   beam 10 1 1 beam_xcoarse
   beam 20 2 2 beam_coarse
   beam 40 4 4 beam_fine
+  # the transfer drill's bead: 12 x 6 x 6 mm on the board (z = 0), at its start on the left
+  beam 6 3 3 bead --size 0.012 0.006 0.006 --corner -0.031 -0.003 0.0 --name bead
 fi
 if [ "$what" = coarse ] || [ "$what" = all ]; then
   mesh appendectomy.geo appendectomy_coarse \
@@ -80,7 +82,7 @@ fi
 # check everything present and rewrite the README's report
 cd "$root"
 files=()
-for f in appendectomy_coarse appendectomy_procedure appendectomy_fine liver_coarse liver_fine beam_xcoarse beam_coarse beam_fine; do
+for f in appendectomy_coarse appendectomy_procedure appendectomy_fine liver_coarse liver_fine beam_xcoarse beam_coarse beam_fine bead; do
   [ -f "assets/$f.msh" ] && files+=("assets/$f.msh")
 done
 status=0

@@ -184,14 +184,16 @@ def procedure(novice=False):
     return tools
 
 
-def write(path, tools, end):
+# the endoscope stays put over the field, looking down (-z) from the umbilicus: (tip, quaternion)
+SCOPE = ([0.0450, -0.0320, 0.0600], [0.0, 0.0, 1.0, 0.0])
+
+
+def write(path, tools, end, scope=SCOPE):
     rows = []
     for tool in tools:
         for t, tip, jaw, buttons, roll in tool.rows:
             q = quaternion(*tool.frame(tip, roll))
             rows.append((t, tool.name, tip, q, jaw, buttons))
-    # the endoscope stays put over the field, looking down (-z) from the umbilicus
-    scope = ([0.0450, -0.0320, 0.0600], [0.0, 0.0, 1.0, 0.0])
     rows.append((0.0, "endoscope", scope[0], scope[1], 0.0, 0))
     rows.append((end, "endoscope", scope[0], scope[1], 0.0, 0))
     rows.sort(key=lambda r: (r[0], r[1]))

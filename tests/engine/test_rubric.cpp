@@ -186,5 +186,64 @@ TEST_F(RubricTest, ASceneRefusesARubricNamingWhatItLacks) {
   EXPECT_EQ(seen.metrics.view_targets_m.size(), 1u);
 }
 
+// The curriculum's families: a step's time and path need the procedure's steps and a step's name;
+// the clips need the clips' effect, an artery, and for the target error a target; the transfer's
+// values need a transfer. A transfer names a group of the scene and a radius > 0.
+TEST_F(RubricTest, TaskMetricsNeedWhatTheyMeasure) {
+  write("organ.msh", "$MeshFormat\n");
+  write("p.csv", "t,tool,px,py,pz,qw,qx,qy,qz,jaw\n0,g,0,0,0,1,0,0,0,0\n0,c,0,0,0,1,0,0,0,0\n");
+  const auto scene = [&](const std::string& name, const std::string& metrics,
+                         const std::string& effects = "\"clips\", ") {
+    write("r.toml", rubric("[[metric]]\nname = \"" + name +
+                           "\"\ndomain = \"depth_perception\"\ngood = 1\npoor = 2\n"));
+    return "[scene]\neffects = [\"fem\", \"surface\", " + effects +
+           "\"contact\"]\n[[organ]]\nname = \"o\"\nmesh = \"organ.msh\"\n"
+           "groups = { 1 = \"appendix\", 2 = \"cecum\", 3 = \"fold\", 4 = \"artery\" }\n"
+           "[[tool]]\nname = \"g\"\nkind = \"grasper\"\ndevice = \"script:p.csv\"\n"
+           "[[tool]]\nname = \"c\"\nkind = \"clip-applier\"\ndevice = \"script:p.csv\"\n"
+           "[metrics]\n" +
+           metrics + "rubric = \"r.toml\"\n";
+  };
+  const std::string steps =
+      "artery = \"artery\"\nprocedure = { specimen = \"appendix\", base = \"cecum\", "
+      "mesentery = \"fold\" }\n";
+  const std::string transfer = "transfer = { object = \"appendix\", target = [0, 0, 0] }\n";
+  const auto accepted = [&](const std::string& toml) {
+    EXPECT_NO_THROW((void)parse_scene_text(toml, m_dir / "scene.toml")) << toml;
+  };
+  accepted(scene("step_time_s.divide_mesentery", steps));
+  accepted(scene("step_path_length_m.extract", steps));
+  accepted(scene("clips_on_artery", "artery = \"artery\"\n"));
+  accepted(scene("clip_target_error_m", "artery = \"artery\"\nclip_target = [0, 0, 0]\n"));
+  accepted(scene("transfer.placed", transfer));
+  const auto refused = [&](const std::string& toml, const std::string& needle) {
+    try {
+      (void)parse_scene_text(toml, m_dir / "scene.toml");
+      ADD_FAILURE() << "accepted; expected '" << needle << "'";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+      EXPECT_GT(e.line(), 0) << e.what();
+    }
+  };
+  refused(scene("step_time_s.expose", ""), "needs the procedure's steps followed");
+  refused(scene("step_time_s.suture", steps), "names no step of the procedure");
+  refused(scene("clips_off_artery", ""), "needs an artery to watch");
+  std::string no_clips = scene("clips_on_artery", "artery = \"artery\"\n", "");
+  const std::string applier = "[[tool]]\nname = \"c\"\nkind = \"clip-applier\"";
+  no_clips.replace(no_clips.find(applier), applier.size(),
+                   "[[tool]]\nname = \"c\"\nkind = \"grasper\"");
+  refused(no_clips, "needs effect \"clips\"");
+  refused(scene("clip_target_error_m", "artery = \"artery\"\n"), "needs where the clip should go");
+  refused(scene("transfer.drops", ""), "needs a transfer to follow");
+  refused(scene("time_s", "clip_target = [0, 0, 0]\n"), "no artery is named");
+  refused(scene("time_s", "transfer = { object = \"bead\", target = [0, 0, 0] }\n"), "bead");
+  refused(scene("time_s", "transfer = { object = \"appendix\", target = [0, 0, 0], radius = 0 }\n"),
+          "metrics.transfer.radius");
+  refused(scene("time_s", "transfer = { object = \"appendix\", target = [0, 0] }\n"),
+          "metrics.transfer.target");
+  refused(scene("time_s", "transfer = { object = \"appendix\", target = [0, 0, 0], size = 1 }\n"),
+          "metrics.transfer.size: unknown key");
+}
+
 }  // namespace
 }  // namespace serosa

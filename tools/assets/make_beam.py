@@ -8,13 +8,15 @@ tet per permutation of the axes, all sharing the cube diagonal from its lowest
 to its highest corner). Every cube is split the same way, so neighbouring
 cubes agree on their shared face diagonals and the mesh is conforming.
 Every tet (a,b,c,d) has (b-a).((c-a)x(d-a)) > 0. Physical volume 1 "beam".
+The same block of another size, at another place and with another name (the
+transfer drill's bead): --size L W H --corner X Y Z (its lowest corner, m)
+--name NAME; without --corner the block spans [0, L] x [-W/2, W/2] x [-H/2, H/2].
 
-usage: make_beam.py NX NY NZ OUT.msh
+usage: make_beam.py NX NY NZ OUT.msh [--size L W H] [--corner X Y Z] [--name NAME]
 """
+import argparse
 import itertools
 import sys
-
-L, W, H = 0.1, 0.01, 0.01
 
 
 def coord(i, n, lo, size):
@@ -24,18 +26,24 @@ def coord(i, n, lo, size):
 
 
 def main(argv):
-    if len(argv) != 4:
-        print(__doc__)
-        return 2
-    nx, ny, nz = (int(a) for a in argv[:3])
-    out = argv[3]
+    ap = argparse.ArgumentParser(usage=__doc__)
+    ap.add_argument("n", type=int, nargs=3)
+    ap.add_argument("out")
+    ap.add_argument("--size", type=float, nargs=3, default=[0.1, 0.01, 0.01])
+    ap.add_argument("--corner", type=float, nargs=3)
+    ap.add_argument("--name", default="beam")
+    opt = ap.parse_args(argv)
+    nx, ny, nz = opt.n
+    out = opt.out
+    L, W, H = opt.size
+    x0, y0, z0 = opt.corner if opt.corner else (0.0, -W / 2, -H / 2)
 
     def nid(i, j, k):
         return 1 + i + (nx + 1) * (j + (ny + 1) * k)
 
-    xs = [coord(i, nx, 0.0, L) for i in range(nx + 1)]
-    ys = [coord(j, ny, -W / 2, W) for j in range(ny + 1)]
-    zs = [coord(k, nz, -H / 2, H) for k in range(nz + 1)]
+    xs = [coord(i, nx, x0, L) for i in range(nx + 1)]
+    ys = [coord(j, ny, y0, W) for j in range(ny + 1)]
+    zs = [coord(k, nz, z0, H) for k in range(nz + 1)]
 
     # the 6 Kuhn tets of the unit cube as corner offsets, oriented positively
     pattern = []
@@ -56,7 +64,7 @@ def main(argv):
         pattern.append(corners)
 
     lines = ["$MeshFormat", "2.2 0 8", "$EndMeshFormat",
-             "$PhysicalNames", "1", '3 1 "beam"', "$EndPhysicalNames"]
+             "$PhysicalNames", "1", '3 1 "%s"' % opt.name, "$EndPhysicalNames"]
     nn = (nx + 1) * (ny + 1) * (nz + 1)
     lines += ["$Nodes", str(nn)]
     for k in range(nz + 1):
