@@ -104,4 +104,14 @@ nlohmann::json assessment_report(const Scene& scene, const metrics::MetricsStage
   return metrics::assessment_json(a, *scene.metrics.rubric);
 }
 
+void add_metrics_blocks(nlohmann::json& report, const Scene& scene,
+                        const metrics::MetricsStage* metrics, const TetMesh& mesh,
+                        const std::map<int, std::string>& groups) {
+  if (metrics == nullptr) return;
+  report["metrics"] = metrics->report();
+  if (report["metrics"].contains("procedure")) report["procedure"] = report["metrics"]["procedure"];
+  if (auto a = assessment_report(scene, metrics, mesh, groups); !a.is_null())
+    report["assessment"] = std::move(a);
+}
+
 }  // namespace serosa::app

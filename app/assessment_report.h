@@ -25,4 +25,11 @@ namespace serosa::app {
                                                const TetMesh& mesh,
                                                const std::map<int, std::string>& groups);
 
+/// The report's "metrics", "procedure" (the metrics' procedure block, at the top too: the report
+/// contract names it there) and "assessment" blocks, as the run ended; none without a metrics
+/// stage.
+void add_metrics_blocks(nlohmann::json& report, const Scene& scene,
+                        const metrics::MetricsStage* metrics, const TetMesh& mesh,
+                        const std::map<int, std::string>& groups);
+
 }  // namespace serosa::app

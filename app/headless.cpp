@@ -321,10 +321,7 @@ Json run_headless(const HeadlessOptions& options) {
     }
     report["cut_steps"] = std::move(cut_steps);
   }
-  if (comp.metrics) report["metrics"] = comp.metrics->report();
-  if (auto a = assessment_report(scene, comp.metrics, state.mesh, assembled.group_names());
-      !a.is_null())
-    report["assessment"] = std::move(a);
+  add_metrics_blocks(report, scene, comp.metrics, state.mesh, assembled.group_names());
   if (comp.contact) {
     const auto held = comp.contact->grasped_counts();
     for (std::size_t i = 0; i < scene.tools.size() && i < held.size(); ++i)

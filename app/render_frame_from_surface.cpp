@@ -113,8 +113,9 @@ void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
 }
 
 namespace {
-constexpr double kBleedRadius = 0.005;  ///< m: the pool a cut artery makes ...
-constexpr double kBleedGrowS = 2.0;     ///< s: ... in this long
+constexpr double kClipMarkHalfLength = 0.004;  ///< m: the clip target's pin, either side of it
+constexpr double kBleedRadius = 0.005;         ///< m: the pool a cut artery makes ...
+constexpr double kBleedGrowS = 2.0;            ///< s: ... in this long
 }  // namespace
 
 void fill_render_tools(const Scene& scene, const SimState& state, render::RenderFrame& frame) {
@@ -137,9 +138,15 @@ void fill_render_tools(const Scene& scene, const SimState& state, render::Render
     frame.bleeds.push_back(
         {to_float(where), static_cast<float>(kBleedRadius * (0.2 + 0.8 * grown))});
   }
-  for (const Vec3& p : scene.metrics.planned_cut_m)
-    frame.guide.push_back(
-        {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())});
+  for (const Vec3& p : scene.metrics.planned_cut_m) frame.guide.push_back(to_float(p));
+  if (scene.metrics.planned_cut_m.empty() && scene.metrics.clip_target_m) {
+    const Vec3 g = scene.settings.gravity_mps2;
+    const Vec3 up = !scene.supports.empty() ? scene.supports.front().normal
+                    : g.norm() > 0.0        ? Vec3(-g.normalized())
+                                            : Vec3(Vec3::UnitZ());
+    for (const double s : {-kClipMarkHalfLength, kClipMarkHalfLength})
+      frame.guide.push_back(to_float(Vec3(*scene.metrics.clip_target_m + s * up)));
+  }
   for (std::size_t i = 0; i < scene.tools.size() && i < state.tools.size(); ++i) {
     const Tool& tool = scene.tools[i];
     if (tool.kind == ToolKind::kEndoscope) continue;

@@ -31,7 +31,9 @@ void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
                        const std::vector<std::uint8_t>* coagulated = nullptr,
                        std::uint64_t coagulated_version = 0);
 
-/// frame.guide: the scene's planned cut ([metrics] planned_cut), drawn as a marker.
+/// frame.guide: the scene's planned cut ([metrics] planned_cut), drawn as a marker; without one,
+/// its clip target ([metrics] clip_target) as a short pin through the tissue there, along the
+/// board's normal (the first support's, else against gravity): a dot where the clip goes.
 /// frame.tools: one RenderTool per scene tool of kind scissors or grasper, posed by its latest
 /// consumed input (state.tools, scene order), with the scene's trocar when given. Endoscopes are
 /// cameras, not drawn; a tool no device has posed yet (tip at the origin, identity rotation: the

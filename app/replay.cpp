@@ -167,10 +167,7 @@ ReplayResult run_replay(const ReplayOptions& options) {
   report["state_hash"] = hash_hex(state_hash(state));
   report["mesh_final"] = {{"nodes", state.mesh.num_nodes()}, {"tets", state.mesh.num_tets()}};
   if (comp.cutting) report["cutting"] = cutting_json(comp);
-  if (comp.metrics) report["metrics"] = comp.metrics->report();
-  if (auto a = assessment_report(scene, comp.metrics, state.mesh, assembled.group_names());
-      !a.is_null())
-    report["assessment"] = std::move(a);
+  add_metrics_blocks(report, scene, comp.metrics, state.mesh, assembled.group_names());
   if (verify) {
     result.hashes_checked = verify->checked();
     report["verify"] = {{"hashes_recorded", rec.hashes.size()},

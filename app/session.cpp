@@ -430,11 +430,7 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
     report["interrupted"] = g_interrupted.load();
     if (comp.haptics != nullptr) report["haptics"] = comp.haptics->telemetry_json();
     if (writer) report["recording"] = close_recording(*writer, scene, assembled.state.step);
-    if (comp.metrics != nullptr) report["metrics"] = comp.metrics->report();
-    if (auto a =
-            assessment_report(scene, comp.metrics, assembled.state.mesh, assembled.group_names());
-        !a.is_null())
-      report["assessment"] = std::move(a);
+    add_metrics_blocks(report, scene, comp.metrics, assembled.state.mesh, assembled.group_names());
     report["state_hash"] = hash_hex(state_hash(assembled.state));
     if (so.report) {
       std::ofstream out(*so.report);

@@ -52,6 +52,7 @@ TEST(DefaultAppendectomy, TheScriptedPathDoesTheFiveStepsWithTheProcedureInstrum
   // The five steps, in their order, each by its instrument.
   const auto& p = r["metrics"]["procedure"];
   EXPECT_TRUE(p["completed"].get<bool>()) << p.dump();
+  EXPECT_EQ(r["procedure"], p);  // at the top too, where the report contract names it
   const char* names[] = {"expose", "divide_mesentery", "secure_base", "transect", "extract"};
   const char* tools[] = {"grasper", "hook", "endoloop", "scissors", "grasper"};
   ASSERT_EQ(p["steps"].size(), 5u);
@@ -142,6 +143,9 @@ TEST(DefaultAppendectomy, StoppedBeforeTheTransectionItFailsTheRubric) {
   EXPECT_FALSE(r["metrics"]["procedure"]["completed"].get<bool>());
   const auto& a = r["assessment"];
   EXPECT_EQ(a["metrics"]["procedure.steps_done"]["value"].get<double>(), 3.0);
+  // A step done is scored on its own split of the run.
+  EXPECT_EQ(a["metrics"]["step_time_s.divide_mesentery"]["value"].get<double>(),
+            r["metrics"]["procedure"]["steps"][1]["duration_s"].get<double>());
   EXPECT_FALSE(a["passed"].get<bool>());
   EXPECT_TRUE(std::any_of(a["failed"].begin(), a["failed"].end(), [](const nlohmann::json& f) {
     return f.get<std::string>().rfind("procedure.steps_done", 0) == 0;

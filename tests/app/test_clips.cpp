@@ -14,6 +14,7 @@
 #include "app/assemble_state.h"
 #include "app/compose.h"
 #include "app/headless.h"
+#include "app/render_frame_from_surface.h"
 #include "app_test_util.h"
 #include "beam_scene.h"
 #include "engine/clip.h"
@@ -227,6 +228,29 @@ TEST(Clip, ARestoredSnapshotWithAClipContinuesBitForBit) {
     ASSERT_EQ(state_hash(o), state_hash(s)) << "step " << s.step;
   }
   EXPECT_EQ(other->comp.runner->snapshot(o), run->comp.runner->snapshot(s));
+}
+
+}  // namespace
+}  // namespace serosa::app
+
+namespace serosa::app {
+namespace {
+
+// The clip task marks where the clip goes: a pin through the tissue at [metrics] clip_target,
+// along the posterior wall's normal, drawn as the guide (there is no planned cut to draw).
+TEST(Clip, TheClipTasksTargetIsMarkedInTheView) {
+  const Scene scene = load_scene(testing::source("config/clip_application.toml"));
+  ASSERT_TRUE(scene.metrics.clip_target_m.has_value());
+  const AssembledScene a = assemble_state(scene);
+  render::RenderFrame frame;
+  fill_render_tools(scene, a.state, frame);
+  ASSERT_EQ(frame.guide.size(), 2u);
+  const Vec3 t = *scene.metrics.clip_target_m, n = scene.supports.front().normal;
+  for (int k = 0; k < 2; ++k) {
+    const Vec3 p(frame.guide[k][0], frame.guide[k][1], frame.guide[k][2]);
+    EXPECT_LT((p - t).cross(n).norm(), 1e-6);  // on the normal through the target
+    EXPECT_NEAR((p - t).norm(), 0.004, 1e-6);
+  }
 }
 
 }  // namespace
