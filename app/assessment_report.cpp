@@ -50,6 +50,7 @@ std::map<std::string, double> session_values(const Scene& scene,
   v["bimanual_fraction"] = metrics.bimanual_fraction();
   v["force_over_s"] = metrics.force_over_s();
   v["peak_stress_pa"] = metrics.peak_stress_pa();
+  if (scene.metrics.tear_stress_pa) v["tears"] = static_cast<double>(metrics.tears());
   double hands = 0.0, unseen = 0.0;
   const bool scope = std::any_of(scene.tools.begin(), scene.tools.end(),
                                  [](const Tool& t) { return t.kind == ToolKind::kEndoscope; });

@@ -13,7 +13,7 @@ namespace serosa {
 namespace {
 
 // Values the session reports under a fixed name, and families with a tool's or a group's name.
-constexpr std::array<std::string_view, 25> kFixed = {"time_s",
+constexpr std::array<std::string_view, 26> kFixed = {"time_s",
                                                      "idle_time_s",
                                                      "bimanual_fraction",
                                                      "path_length_m",
@@ -37,7 +37,8 @@ constexpr std::array<std::string_view, 25> kFixed = {"time_s",
                                                      "transfer.handoffs",
                                                      "transfer.drops",
                                                      "transfer.placed",
-                                                     "transfer.placement_error_m"};
+                                                     "transfer.placement_error_m",
+                                                     "tears"};
 constexpr std::array<std::string_view, 6> kFamilies = {
     "path_length_m", "force_max_n", "pieces", "out_of_view_s", "step_time_s", "step_path_length_m"};
 

@@ -278,6 +278,10 @@ struct MetricsSettings {
   double cut_band_m = 0.003;
   /// A tool pressing on the tissue harder than this counts towards force_over_s, N; > 0.
   double force_limit_n = 5.0;
+  /// Above this von Mises stress the tissue would tear, Pa; none: no tears counted. The tissue is
+  /// not torn (no tearing is simulated): each time the mesh's peak stress rises above it counts as
+  /// a tear the trainee caused (`tears`).
+  std::optional<double> tear_stress_pa;
   /// Points the endoscope should be brought to look at, in any order (a camera drill), m; (k).
   /// Empty: no target metrics.
   std::vector<Vec3> view_targets_m;

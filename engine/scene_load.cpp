@@ -663,8 +663,8 @@ class Loader {
   void read_metrics(const toml::table& t, MetricsSettings& m) {
     const std::string p = "metrics";
     check_keys(t, p,
-               {"planned_cut", "cut_band", "force_limit", "view_targets", "artery", "protected",
-                "clip_target", "transfer", "procedure", "rubric"});
+               {"planned_cut", "cut_band", "force_limit", "tear_stress", "view_targets", "artery",
+                "protected", "clip_target", "transfer", "procedure", "rubric"});
     if (const auto* n = t.get("transfer")) read_transfer(*n, sub(p, "transfer"), m);
     if (const auto* n = t.get("procedure")) read_procedure(*n, sub(p, "procedure"), m);
     if (const auto* n = t.get("artery")) {
@@ -703,6 +703,10 @@ class Loader {
       m.cut_band_m = ranged(*n, sub(p, "cut_band"), 0.0, true,
                             std::numeric_limits<double>::infinity(), false, "a distance > 0 in m");
     }
+    if (const auto* n = t.get("tear_stress"))
+      m.tear_stress_pa =
+          ranged(*n, sub(p, "tear_stress"), 0.0, true, std::numeric_limits<double>::infinity(),
+                 false, "a stress > 0 in Pa");
     if (const auto* n = t.get("force_limit")) {
       m.force_limit_n = ranged(*n, sub(p, "force_limit"), 0.0, true,
                                std::numeric_limits<double>::infinity(), false, "a force > 0 in N");
@@ -813,6 +817,9 @@ class Loader {
       fail(m_rubric_line, p, what + " needs an artery to watch", "metrics.artery");
     if (family == "clip_target_error_m" && !scene.metrics.clip_target_m)
       fail(m_rubric_line, p, what + " needs where the clip should go", "metrics.clip_target");
+    if (family == "tears" && !scene.metrics.tear_stress_pa)
+      fail(m_rubric_line, p, what + " needs the stress at which tissue tears",
+           "metrics.tear_stress");
     if (family.rfind("transfer.", 0) == 0 && !scene.metrics.transfer)
       fail(m_rubric_line, p, what + " needs a transfer to follow", "metrics.transfer");
     if (family.rfind("transfer.", 0) == 0 && !scene.settings.has(Effect::kContact))

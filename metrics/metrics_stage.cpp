@@ -81,6 +81,7 @@ MetricsStage::MetricsStage(const Scene& scene, LameTable lame, std::int64_t stre
   m_moved.assign(k, 0.0);
   m_load.assign(k, 0.0);
   m_out_of_view_s.assign(k, 0.0);
+  m_tear_stress = scene.metrics.tear_stress_pa;
   m_targets = scene.metrics.view_targets_m;
   m_target_first_s.assign(m_targets.size(), -1.0);
   m_errors = watch(scene.metrics, group_names);
@@ -128,7 +129,7 @@ void MetricsStage::step(const StepContext& ctx, SimState& state) {
   m_transfer.step(m_time, state);
   follow_steps(state);
   if (static_cast<std::int64_t>(ctx.step) % m_stress_every == 0)
-    m_peak_stress = std::max(m_peak_stress, peak_stress(state.mesh));
+    add_stress(peak_stress(state.mesh));
 }
 
 void MetricsStage::follow_steps(SimState& state) {
@@ -161,6 +162,14 @@ bool MetricsStage::add_use(const std::vector<double>& moved, const std::vector<d
   }
   if (over) m_force_over_s += dt_s;
   return !any_moving;
+}
+
+void MetricsStage::add_stress(double now_pa) {
+  m_peak_stress = std::max(m_peak_stress, now_pa);
+  if (!m_tear_stress) return;
+  const bool over = now_pa > *m_tear_stress;
+  if (over && !m_over_tear) m_tear_times.push_back(m_time);
+  m_over_tear = over;
 }
 
 double MetricsStage::peak_stress(const TetMesh& mesh) {
@@ -233,6 +242,10 @@ nlohmann::json MetricsStage::report() const {
     j["view_targets"]["time_s"] = targets_time_s();
   }
   j["peak_stress_pa"] = m_peak_stress;
+  if (m_tear_stress) {
+    j["tears"] = tears();
+    j["tear_times_s"] = m_tear_times;
+  }
   j["idle_time_s"] = m_idle_s;
   j["bimanual_fraction"] = bimanual_fraction();
   if (m_forces) j["force_over_s"] = m_force_over_s;
@@ -267,6 +280,8 @@ void MetricsStage::save(StateWriter& out) const {
                    m_active_s, m_bimanual_s, m_force_over_s})
     out.f64(v);
   out.u64(static_cast<std::uint64_t>(m_cut_tets));
+  out.u8(m_over_tear ? 1 : 0);
+  out.array(m_tear_times);
   m_errors.save(out);  // (nothing when no errors are watched for)
   m_steps.save(out);   // (nothing when no procedure is followed)
   m_splits.save(out);  // (likewise)
@@ -296,6 +311,8 @@ void MetricsStage::restore(StateReader& in, SimState& state) {
                     &m_idle_s, &m_active_s, &m_bimanual_s, &m_force_over_s})
     *v = in.f64();
   m_cut_tets = static_cast<std::int64_t>(in.u64());
+  m_over_tear = in.u8() != 0;
+  in.array(m_tear_times);
   m_errors.restore(in);
   m_steps.restore(in);
   m_splits.restore(in);

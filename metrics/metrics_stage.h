@@ -11,6 +11,8 @@
 //                           grasp, and closing scissor blades' shear load, contact/): largest,
 //                           and mean over the steps in which it touched the tissue, N
 //   peak_stress_pa          largest von Mises stress over tets and steps (engine/tissue_stress.h)
+//   tears                   with [metrics] tear_stress: how many times the peak stress rose above
+//                           it (sampled as the peak stress is), and when (tear_times_s), 1
 //   idle_time_s             time in which no hand instrument (grasper, scissors) moved: every
 //                           tip slower than kIdleSpeed, s
 //   bimanual_fraction       of the time some hand instrument moved, the part in which every hand
@@ -100,6 +102,10 @@ class MetricsStage final : public Stage {
   /// Above this a tool's force counts as rough handling (the scene's force_limit), N.
   [[nodiscard]] double force_limit_n() const noexcept { return m_force_limit; }
   [[nodiscard]] double peak_stress_pa() const noexcept { return m_peak_stress; }
+  /// Times the peak stress rose above the scene's tear stress (0 without one).
+  [[nodiscard]] std::int64_t tears() const noexcept {
+    return static_cast<std::int64_t>(m_tear_times.size());
+  }
   [[nodiscard]] double time_s() const noexcept { return m_time; }
   [[nodiscard]] double cut_volume_m3() const noexcept { return m_cut_volume; }
   [[nodiscard]] double collateral_m3() const noexcept { return m_collateral; }
@@ -138,6 +144,9 @@ class MetricsStage final : public Stage {
   /// Idle, active and bimanual time and time over the force limit, from this step's moves (m,
   /// (tools)) and forces. Returns whether every hand instrument was idle.
   bool add_use(const std::vector<double>& moved, const std::vector<double>& load, double dt_s);
+  /// Accounts a sample of the mesh's largest von Mises stress (Pa): the peak, and a tear when it
+  /// rises above the tear stress.
+  void add_stress(double now_pa);
   /// The mesh's largest von Mises stress now, Pa.
   [[nodiscard]] double peak_stress(const TetMesh& mesh);
 
@@ -151,6 +160,9 @@ class MetricsStage final : public Stage {
   std::vector<double> m_force_max, m_force_sum;  // (tools)
   std::vector<std::int64_t> m_force_steps;       // (tools)
   double m_peak_stress = 0.0;
+  std::optional<double> m_tear_stress;  // Pa
+  bool m_over_tear = false;             // the last sample's peak stress was above it
+  std::vector<double> m_tear_times;     // s
   double m_idle_s = 0.0, m_active_s = 0.0, m_bimanual_s = 0.0, m_force_over_s = 0.0;  // s
   std::vector<double> m_moved;           // (tools) this step's tip moves, m
   std::vector<double> m_load;            // (tools) this step's force on the tissue, N

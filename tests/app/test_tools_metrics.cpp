@@ -306,6 +306,33 @@ TEST(Grasper, TwoGraspersHandTissueOverAndEveryNodeGetsItsFlagBack) {
   }
 }
 
+// Tears: each time the peak stress rises above the scene's tear stress. The grasper's lift
+// stresses the beam; a tear stress under that peak counts one tear, while it is lifted; one over
+// it counts none. The rubric may score `tears` only where the scene sets a tear stress.
+TEST(Grasper, LiftingHarderThanTheTissueBearsCountsATear) {
+  const fs::path dir = out_dir("grasper_tears");
+  const std::string csv =
+      "0.00,grasper,0.095,0.002,0," + kDown + ",0.9\n" + "0.02,grasper,0.095,0.002,0," + kDown +
+      ",0.9\n" + "0.05,grasper,0.095,0.002,0," + kDown + ",0.0\n" + "0.15,grasper,0.095,0.007,0," +
+      kDown + ",0.0\n" + "0.20,grasper,0.095,0.007,0," + kDown + ",0.9\n";
+  auto run_with = [&](const std::string& metrics) {
+    const std::string tool = metrics +
+                             "[[tool]]\nname = \"grasper\"\nkind = \"grasper\"\n"
+                             "device = \"script:path.csv\"\n";
+    auto run = beam_with_tools(dir, "\"fem\", \"surface\", \"contact\"", tool, csv);
+    run->comp.runner->run(run->assembled.state, 44);  // lifted, then let go
+    return run->comp.metrics->report();
+  };
+  const double peak = run_with("")["peak_stress_pa"].get<double>();
+  ASSERT_GT(peak, 0.0);
+  const auto torn = run_with("[metrics]\ntear_stress = " + std::to_string(0.5 * peak) + "\n");
+  EXPECT_EQ(torn["tears"].get<int>(), 1) << torn.dump();
+  EXPECT_GT(torn["tear_times_s"][0].get<double>(), 0.05);  // after the grasp
+  const auto whole = run_with("[metrics]\ntear_stress = " + std::to_string(2.0 * peak) + "\n");
+  EXPECT_EQ(whole["tears"].get<int>(), 0);
+  EXPECT_FALSE(run_with("").contains("tears"));
+}
+
 // The stage with the haptic loop's reactions on, taking over `from`'s grasps (a snapshot).
 std::unique_ptr<contact::ToolContactStage> reacting_copy(const BeamRun& run,
                                                          const contact::ToolContactStage* from) {

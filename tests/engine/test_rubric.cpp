@@ -235,6 +235,9 @@ TEST_F(RubricTest, TaskMetricsNeedWhatTheyMeasure) {
   refused(no_clips, "needs effect \"clips\"");
   refused(scene("clip_target_error_m", "artery = \"artery\"\n"), "needs where the clip should go");
   refused(scene("transfer.drops", ""), "needs a transfer to follow");
+  refused(scene("tears", ""), "needs the stress at which tissue tears");
+  accepted(scene("tears", "tear_stress = 1e6\n"));
+  refused(scene("time_s", "tear_stress = -1\n"), "metrics.tear_stress");
   refused(scene("time_s", "clip_target = [0, 0, 0]\n"), "no artery is named");
   refused(scene("time_s", "transfer = { object = \"bead\", target = [0, 0, 0] }\n"), "bead");
   refused(scene("time_s", "transfer = { object = \"appendix\", target = [0, 0, 0], radius = 0 }\n"),
