@@ -1,7 +1,7 @@
 // serosa headless SCENE|--task NAME [--steps N] [--path TOOLPATH.csv] [--record OUT.lapr]
 //                       [--export-final OUT.msh] [--report OUT.json] [--frames DIR]
 //                       [--golden GOLDEN.json [--update-golden]] [--validate-cuts]
-//                       [--trainee NAME [--db FILE]]
+//                       [--trainee NAME [--db FILE]] [--set KEY=VALUE ...]
 // Exit codes: 0 done; 1 bad input; 3 the report differs from the golden (or it is missing).
 // Ctrl-C or SIGTERM stops after the current step with the recording closed and the report written.
 #include <atomic>
@@ -40,6 +40,7 @@ void add_headless_command(CLI::App& app, Action& action) {
   auto golden = std::make_shared<std::string>();
   auto update_golden = std::make_shared<bool>(false);
   auto trainee = std::make_shared<TraineeOptions>();
+  auto sets = std::make_shared<std::vector<std::string>>();
   CLI::App* cmd = app.add_subcommand("headless", "Run a scene without window or device");
   auto scene = std::make_shared<std::string>();
   auto task = std::make_shared<TaskOption>();
@@ -60,14 +61,19 @@ void add_headless_command(CLI::App& app, Action& action) {
   cmd->add_option("--frame-count", opts->frame_count, "Pictures over the run (with --frames)")
       ->check(CLI::Range(1, 100000));
   add_trainee_options(*cmd, *trainee);
+  cmd->add_option("--set", *sets,
+                  "Override a scene key, KEY=VALUE with a TOML value (solver.tolerance=1e-4); "
+                  "repeatable");
   cmd->callback([&action, opts, record, steps, path, final_msh, report, frames, golden,
-                 update_golden, trainee, scene, task] {
+                 update_golden, trainee, scene, task, sets] {
     action = [opts, record, steps, path, final_msh, report, frames, golden, update_golden, trainee,
-              scene, task] {
+              scene, task, sets] {
       opts->scene = scene_to_run(*scene, *task);
+      for (const std::string& s : *sets) opts->overrides.push_back(parse_override(s, "--set"));
+      opts->positions = !golden->empty();
       if (*update_golden && golden->empty())
         throw InputError("--update-golden", 0, "needs --golden FILE", "--golden FILE");
-      run_under_umockdev_if_rig_emulated(load_scene(opts->scene));
+      run_under_umockdev_if_rig_emulated(load_scene(opts->scene, opts->overrides));
       if (!record->empty()) opts->record = *record;
       if (!report->empty()) opts->report = *report;
       const std::optional<TraineeSession> kept =

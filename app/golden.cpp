@@ -75,6 +75,60 @@ void near_all(const Json& r, const Json& g, const std::string& prefix, GoldenCom
   }
 }
 
+// Every final node within kGoldenPositionTolerance of the golden's; the first few beyond it named.
+void near_positions(const Json& r, const Json& g, GoldenComparison& out) {
+  const Json* a = find(r, "/nodes_final_m");
+  const Json* b = find(g, "/nodes_final_m");
+  if (a == nullptr || b == nullptr) return;
+  if (a->size() != b->size()) {
+    out.failures.push_back("nodes_final_m: golden " + std::to_string(b->size()) + " nodes, got " +
+                           std::to_string(a->size()));
+    return;
+  }
+  std::size_t beyond = 0, worst = 0;
+  double worst_d = 0.0;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    double d2 = 0.0;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const double d = (*a)[i][k].get<double>() - (*b)[i][k].get<double>();
+      d2 += d * d;
+    }
+    const double d = std::sqrt(d2);
+    if (!(d <= kGoldenPositionTolerance)) ++beyond;
+    if (!(d <= worst_d)) worst_d = d, worst = i;
+  }
+  if (beyond == 0) return;
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "nodes_final_m: %zu of %zu nodes beyond %.0e m of the golden's; the farthest, "
+                "node %zu, by %.3g m: golden %s, got %s",
+                beyond, a->size(), kGoldenPositionTolerance, worst, worst_d,
+                (*b)[worst].dump().c_str(), (*a)[worst].dump().c_str());
+  out.failures.push_back(buf);
+}
+
+// The state hash: equal when the same binary ran with the same thread count, else only noted.
+void same_hash(const Json& r, const Json& g, GoldenComparison& out) {
+  const Json* h = find(r, "/state_hash");
+  const Json* gh = find(g, "/state_hash");
+  if (h == nullptr || gh == nullptr || *h == *gh) return;
+  const Json* bin = find(r, "/binary_id");
+  const Json* gbin = find(g, "/binary_id");
+  const Json* th = find(r, "/solver/threads");
+  const Json* gth = find(g, "/solver/threads");
+  const bool same = bin != nullptr && gbin != nullptr && *bin == *gbin && th != nullptr &&
+                    gth != nullptr && *th == *gth;
+  std::string line = "state_hash: golden ";
+  line.append(text(*gh)).append(", got ").append(text(*h));
+  if (same) {
+    line.append(" (must be equal: the same binary with the same thread count wrote the golden)");
+    out.failures.push_back(std::move(line));
+  } else {
+    line.append(" (not compared: exact only for the same binary and thread count)");
+    out.notes.push_back(std::move(line));
+  }
+}
+
 }  // namespace
 
 GoldenComparison compare_golden(const Json& report, const Json& golden) {
@@ -88,14 +142,8 @@ GoldenComparison compare_golden(const Json& report, const Json& golden) {
   near(report, golden, "/simulated_time_s", 1e-12, 1e-12, out);
   near_all(report, golden, "/metrics", out);
   near(report, golden, "/assessment/score", 0.0, 0.5, out);  // half a point of 0-100
-  const Json* h = find(report, "/state_hash");
-  const Json* gh = find(golden, "/state_hash");
-  if (h && gh && *h != *gh) {
-    std::string line = "state_hash: golden ";
-    line.append(text(*gh)).append(", got ").append(text(*h));
-    line.append(" (not compared: exact only for the same binary and thread count)");
-    out.notes.push_back(std::move(line));
-  }
+  near_positions(report, golden, out);
+  same_hash(report, golden, out);
   return out;
 }
 

@@ -197,7 +197,7 @@ std::string hash_hex(std::uint64_t hash) {
 
 Json run_headless(const HeadlessOptions& options) {
   const auto wall0 = std::chrono::steady_clock::now();
-  Scene scene = load_scene(options.scene);
+  Scene scene = load_scene(options.scene, options.overrides);
   if (options.tool_path) play_tool_path(scene, *options.tool_path);
   const std::int64_t steps = options.steps.value_or(scene.headless.steps);
   if (steps < 0) throw InputError("--steps", 0, "negative step count", ">= 0");
@@ -306,6 +306,14 @@ Json run_headless(const HeadlessOptions& options) {
   for (double ms : step_ms) stepped_s += 1e-3 * ms;
   report["real_time_factor"] = stepped_s > 0.0 ? state.time_s / stepped_s : 0.0;
   report["mesh_final"] = mesh_json(state.mesh);
+  if (options.positions) {
+    // For a golden: where every node ended, and which binary put it there (the state hash is
+    // exact only for the same binary and thread count).
+    Json nodes = Json::array();
+    for (const Vec3& x : state.mesh.x) nodes.push_back({x.x(), x.y(), x.z()});
+    report["nodes_final_m"] = std::move(nodes);
+    report["binary_id"] = binary_id();
+  }
   report["state_hash"] = hash_hex(state_hash(state));
   if (comp.cutting) {
     report["cutting"] = cutting_json(comp);

@@ -14,6 +14,7 @@
 #include "engine/recording_format.h"
 #include "engine/recording_writer.h"
 #include "engine/scene.h"
+#include "engine/scene_override.h"
 
 namespace serosa::app {
 
@@ -21,6 +22,7 @@ struct Composition;
 
 struct HeadlessOptions {
   std::filesystem::path scene;                        ///< scene TOML
+  std::vector<SceneOverride> overrides;               ///< scene keys set over the file's
   std::optional<std::int64_t> steps;                  ///< default: the scene's headless.steps
   std::optional<std::filesystem::path> tool_path;     ///< replaces every scripted tool's CSV
   std::optional<std::filesystem::path> export_final;  ///< Gmsh 2.2 of the final state
@@ -30,6 +32,8 @@ struct HeadlessOptions {
   bool progress = true;  ///< progress bar on stderr when it is a terminal
   std::optional<std::filesystem::path> record;  ///< .lapr recording of the run
   bool validate_cuts = false;  ///< check every cut's invariants (cutting/validate.h); costly
+  /// The final node positions in the report ("nodes_final_m"), for a golden comparison.
+  bool positions = false;
   /// Set (from a signal handler, another thread) to stop after the current step; the run then
   /// ends cleanly: recording closed, report written with "interrupted": true.
   const std::atomic<bool>* stop = nullptr;

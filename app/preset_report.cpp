@@ -9,7 +9,8 @@ namespace serosa::app {
 nlohmann::json solver_report(const SolverSettings& solver) {
   nlohmann::json j = {{"kind", std::string(solver_kind_name(solver.kind))},
                       {"tolerance", solver.tolerance},
-                      {"max_iterations", solver.max_iterations}};
+                      {"max_iterations", solver.max_iterations},
+                      {"threads", solver.threads}};
   if (solver.kind == SolverKind::kPcgLagged) {
     j["refresh_iterations"] = solver.refresh_iterations;
     j["factor_lag_steps"] = solver.factor_lag_steps;
