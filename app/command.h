@@ -21,5 +21,6 @@ void add_cut_command(CLI::App& app, Action& action);
 void add_bench_command(CLI::App& app, Action& action);
 void add_trainee_command(CLI::App& app, Action& action);
 void add_tasks_command(CLI::App& app, Action& action);
+void add_batch_command(CLI::App& app, Action& action);
 
 }  // namespace serosa::app

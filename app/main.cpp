@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   serosa::app::add_bench_command(cli, action);
   serosa::app::add_trainee_command(cli, action);
   serosa::app::add_tasks_command(cli, action);
+  serosa::app::add_batch_command(cli, action);
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
