@@ -7,7 +7,8 @@
 // within kGoldenPositionTolerance; timings are never compared. The state hash must be equal when
 // the golden was written by the same binary (binary_id) with the same solver thread count;
 // otherwise a difference is only noted (it is exact for the same binary and thread count, not
-// across compilers or CPUs).
+// across compilers or CPUs). A run paced to real time (a device in the loop: the emulated rig)
+// is compared on its step counts, validity, cuts and volume only.
 #pragma once
 
 #include <filesystem>

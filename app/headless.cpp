@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -310,7 +311,9 @@ Json run_headless(const HeadlessOptions& options) {
     // For a golden: where every node ended, and which binary put it there (the state hash is
     // exact only for the same binary and thread count).
     Json nodes = Json::array();
-    for (const Vec3& x : state.mesh.x) nodes.push_back({x.x(), x.y(), x.z()});
+    // To the nanometre: a golden compares them to 10 um, and the file stays small.
+    const auto nm = [](double v) { return std::round(v * 1e9) / 1e9; };
+    for (const Vec3& x : state.mesh.x) nodes.push_back({nm(x.x()), nm(x.y()), nm(x.z())});
     report["nodes_final_m"] = std::move(nodes);
     report["binary_id"] = binary_id();
   }

@@ -26,7 +26,10 @@ stop() {
 
 if [[ "$cmd" == stop ]]; then stop; exit 0; fi
 [[ "$cmd" == start ]] || { echo "usage: $0 start|stop DIR" >&2; exit 2; }
-[[ $(id -u) -eq 0 ]] || { echo "$0: needs root (slurmd, munged)" >&2; exit 1; }
+if [[ $(id -u) -ne 0 ]]; then
+  command -v sudo >/dev/null || { echo "$0: needs root (slurmd, munged), and sudo is missing" >&2; exit 1; }
+  exec sudo -n "$0" "$@"
+fi
 for b in munged slurmctld slurmd sbatch squeue scontrol; do
   command -v "$b" >/dev/null || { echo "$0: $b is missing: install slurm-wlm and munge" >&2; exit 1; }
 done
