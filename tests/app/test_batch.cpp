@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/batch_manifest.h"
+#include "app/batch_runner.h"
 #include "app/path_perturb.h"
 #include "app/shell_command.h"
 #include "app_test_util.h"
@@ -106,6 +107,30 @@ TEST(Batch, RunsTwoAtOnceReportsFailuresWithTheirLogsAndResumes) {
   EXPECT_TRUE(fs::is_regular_file(dir / "one/runs/plain/result.json"));
   EXPECT_FALSE(fs::exists(dir / "one/runs/drill.seed-1"));
   EXPECT_FALSE(fs::exists(dir / "one/summary.json"));
+}
+
+// A run whose process dies by a signal is failed, saying which; its log is kept.
+TEST(Batch, ACrashedRunIsFailedNamingTheSignal) {
+  const fs::path dir = out_dir("batch_crash");
+  fs::remove_all(dir / "out");
+  std::ofstream(dir / "m.toml") << "[[run]]\nname = \"a\"\nscene = \""
+                                << source("config/transfer.toml").string() << "\"\n";
+  // A stand-in for serosa that crashes as soon as it starts.
+  std::ofstream(dir / "crash.sh") << "#!/bin/sh\necho starting\nkill -SEGV $$\n";
+  fs::permissions(dir / "crash.sh", fs::perms::owner_all);
+  const BatchManifest m = load_manifest(dir / "m.toml", false);
+  BatchOptions o;
+  o.out = dir / "out";
+  o.exe = dir / "crash.sh";
+  const nlohmann::json r = run_one(m, m.runs[0], o);
+  EXPECT_EQ(r["status"], "failed");
+  EXPECT_EQ(r["signal"], 11);
+  EXPECT_NE(r["reason"].get<std::string>().find("signal 11"), std::string::npos) << r.dump(1);
+  std::ifstream log(r["log"].get<std::string>());
+  std::string first;
+  std::getline(log, first);
+  EXPECT_EQ(first, "starting");
+  EXPECT_TRUE(fs::is_regular_file(dir / "out/runs/a/result.json"));
 }
 
 // The manifest's mistakes name its line, before any run starts (no run folder is made).

@@ -79,6 +79,63 @@ TEST(Golden, TimingsAreIgnoredAndHashIsOnlyNoted) {
   EXPECT_EQ(c.notes.size(), 1u);
 }
 
+// Final node positions: each within kGoldenPositionTolerance, and the mismatch names how many
+// are beyond it and the farthest node with both positions.
+TEST(Golden, NodePositionsWithinTheToleranceMatchAndTheFarthestIsNamed) {
+  Json g = sample();
+  g["nodes_final_m"] = Json::array();
+  for (int i = 0; i < 40; ++i) g["nodes_final_m"].push_back({0.001 * i, 0.0, 0.0});
+  Json r = g;
+  r["nodes_final_m"][7][1] = 0.5 * kGoldenPositionTolerance;
+  EXPECT_TRUE(compare_golden(r, g).ok());
+  r["nodes_final_m"][3][2] = 2.0 * kGoldenPositionTolerance;
+  r["nodes_final_m"][9][0] = 0.009 + 5.0 * kGoldenPositionTolerance;
+  const GoldenComparison c = compare_golden(r, g);
+  ASSERT_EQ(c.failures.size(), 1u);
+  EXPECT_NE(c.failures[0].find("2 of 40 nodes beyond"), std::string::npos) << c.failures[0];
+  EXPECT_NE(c.failures[0].find("node 9"), std::string::npos) << c.failures[0];
+  Json fewer = g;
+  fewer["nodes_final_m"].erase(0);
+  EXPECT_FALSE(compare_golden(fewer, g).ok());
+}
+
+// The state hash binds only when the same binary with the same thread count wrote the golden.
+TEST(Golden, TheHashMustMatchForTheSameBinaryAndThreads) {
+  Json g = sample();
+  g["binary_id"] = "abc";
+  g["solver"] = {{"threads", 1}};
+  Json r = g;
+  r["state_hash"] = "0f0f";
+  EXPECT_FALSE(compare_golden(r, g).ok());  // the same binary, the same threads
+  r["binary_id"] = "def";
+  GoldenComparison c = compare_golden(r, g);
+  EXPECT_TRUE(c.ok());  // another binary: noted
+  EXPECT_EQ(c.notes.size(), 1u);
+  r["binary_id"] = "abc";
+  r["solver"]["threads"] = 2;
+  EXPECT_TRUE(compare_golden(r, g).ok());  // another thread count: noted
+}
+
+// A run paced to real time (the emulated rig in the loop) is compared on what timing cannot
+// change: its steps, validity, cuts and volume.
+TEST(Golden, ARunPacedToRealTimeComparesWhatTimingCannotChange) {
+  Json g = sample();
+  g["paced_to_real_time"] = true;
+  Json r = g;
+  r["metrics"]["peak_stress_pa"] = 5000.0;
+  r["mesh_final"]["tets"] = 104;
+  r["state_hash"] = "1234";
+  const GoldenComparison c = compare_golden(r, g);
+  EXPECT_TRUE(c.ok());
+  ASSERT_EQ(c.notes.size(), 1u);
+  EXPECT_NE(c.notes[0].find("paced to real time"), std::string::npos);
+  r["cutting"]["cuts"] = 2;
+  EXPECT_FALSE(compare_golden(r, g).ok());
+  r = g;
+  r["mesh_final"]["rest_volume_m3"] = 2.1e-6;
+  EXPECT_FALSE(compare_golden(r, g).ok());
+}
+
 TEST(Golden, MissingGoldenFailsUnlessUpdating) {
   const fs::path dir = out_dir("golden_unit");
   const GoldenComparison missing = check_golden(sample(), dir / "g.json", false);
