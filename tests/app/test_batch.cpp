@@ -33,11 +33,12 @@ nlohmann::json read_json(const fs::path& p) {
 }
 
 // A small manifest in `dir`: two seeds of the transfer drill, one plain run, one whose path is
-// not a tool path (its headless run fails), one that outlives the timeout.
+// not a tool path (its headless run fails), one that outlives the timeout (10 s: the fine scene's
+// whole path takes about 40 s; the others well under a second, some seconds under ASan).
 fs::path small_manifest(const fs::path& dir) {
   std::ofstream(dir / "broken.csv") << "t,tool,px\n0,left-grasper,0\n";
   const std::string scene = source("config/transfer.toml").string();
-  std::ofstream(dir / "m.toml") << "title = \"small\"\ntimeout = 3\n"
+  std::ofstream(dir / "m.toml") << "title = \"small\"\ntimeout = 10\n"
                                 << "[[run]]\nname = \"drill\"\nscene = \"" << scene
                                 << "\"\nsteps = 100\nseeds = [1, 2]\n"
                                 << "[[run]]\nname = \"plain\"\nscene = \"" << scene
@@ -47,7 +48,7 @@ fs::path small_manifest(const fs::path& dir) {
                                 << "\"\nsteps = 100\n"
                                 << "path = \"broken.csv\"\n"
                                 << "[[run]]\nname = \"slow\"\nscene = \""
-                                << source("config/appendectomy.toml").string() << "\"\n";
+                                << source("config/appendectomy_fine.toml").string() << "\"\n";
   return dir / "m.toml";
 }
 
