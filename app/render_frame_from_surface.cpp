@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 
+#include "engine/board_normal.h"
 #include "engine/scope_view.h"
 #include "render/camera.h"
 #include "surface/surface_normals.h"
@@ -140,10 +141,7 @@ void fill_render_tools(const Scene& scene, const SimState& state, render::Render
   }
   for (const Vec3& p : scene.metrics.planned_cut_m) frame.guide.push_back(to_float(p));
   if (scene.metrics.planned_cut_m.empty() && scene.metrics.clip_target_m) {
-    const Vec3 g = scene.settings.gravity_mps2;
-    const Vec3 up = !scene.supports.empty() ? scene.supports.front().normal
-                    : g.norm() > 0.0        ? Vec3(-g.normalized())
-                                            : Vec3(Vec3::UnitZ());
+    const Vec3 up = board_normal(scene);
     for (const double s : {-kClipMarkHalfLength, kClipMarkHalfLength})
       frame.guide.push_back(to_float(Vec3(*scene.metrics.clip_target_m + s * up)));
   }

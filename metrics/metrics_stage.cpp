@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 
+#include "engine/board_normal.h"
 #include "engine/scope_view.h"
 #include "engine/sim_state.h"
 #include "engine/state_codec.h"
@@ -51,13 +52,6 @@ ProcedureSteps follow(const MetricsSettings& m, const std::map<int, std::string>
   return {ids, tools};
 }
 
-// The board's normal: the first support's, else against gravity, else +z.
-Vec3 board_up(const Scene& scene) {
-  if (!scene.supports.empty()) return scene.supports.front().normal;
-  const Vec3 g = scene.settings.gravity_mps2;
-  return g.norm() > 0.0 ? Vec3(-g.normalized()) : Vec3(Vec3::UnitZ());
-}
-
 }  // namespace
 
 MetricsStage::MetricsStage(const Scene& scene, LameTable lame, std::int64_t stress_every,
@@ -91,7 +85,7 @@ MetricsStage::MetricsStage(const Scene& scene, LameTable lame, std::int64_t stre
       m_clips = ClipPlacement(*artery, scene.metrics.clip_target_m);
   if (const auto& t = scene.metrics.transfer)
     if (const auto object = id_of(group_names, t->object))
-      m_transfer = TransferWatch(*object, t->target_m, t->radius_m, board_up(scene));
+      m_transfer = TransferWatch(*object, t->target_m, t->radius_m, board_normal(scene));
   if (m_steps.active()) m_splits = StepSplits(m_steps.steps().size(), m_names, m_hand);
 }
 
