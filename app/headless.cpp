@@ -160,6 +160,8 @@ Json cutting_json(const Composition& comp) {
                          {"swept_area_m2", r.swept_area_m2},
                          {"crack_area_m2", r.crack_area_m2},
                          {"deviation_m", r.deviation_m},
+                         {"bent", r.bent},
+                         {"crack_deviation_m", r.crack_deviation_m},
                          {"min_quality", r.min_quality},
                          {"on_clip", r.on_clip}});
     j["per_stroke"] = std::move(strokes);

@@ -23,6 +23,7 @@ CuttingStage::CuttingStage(const Scene& scene, CuttingStageOptions options) : m_
       m_hooks.push_back(Hook{i, std::nullopt, std::nullopt, 0});
   }
   m_cut_options.classify_rel = scene.cutting.tolerance;
+  m_swept_strokes = scene.cutting.strokes == StrokeSurfaceKind::kSwept;
   switch (scene.cutting.method) {
     case serosa::CutMethod::kPattern:
       m_method = CutMethod::kPattern;
@@ -226,12 +227,33 @@ void CuttingStage::cut_stroke(const StepContext& ctx, SimState& state, std::size
   if (report.on_clip) {
     ++m_stats.strokes_on_clip;
   } else {
+    std::optional<FlattenedPositions> flat = flattening(ctx, state, polygons, report);
     for (std::size_t k = 0; k < polygons.polygons.size(); ++k) {
       ++m_stats.sweeps;
-      cut(ctx, state, tool, polygons.blades[k], polygons.polygons[k], report);
+      cut(ctx, state, tool, polygons.blades[k], polygons.polygons[k], flat ? &*flat : nullptr,
+          report);
     }
   }
   if (m_stats.stroke_reports.size() < kMaxStrokeReports) m_stats.stroke_reports.push_back(report);
+}
+
+std::optional<FlattenedPositions> CuttingStage::flattening(const StepContext& ctx, SimState& state,
+                                                           const StrokePolygons& polygons,
+                                                           StrokeReport& report) {
+  refresh_bvh(ctx, state.mesh);
+  const std::span<const Vec3> points = polygons.surface_points_m;
+  report.crack_deviation_m = crack_deviation(state.mesh, *m_bvh, points, polygons.fit, nullptr);
+  // Only the paper's pattern cut classifies against a plane that flattening can bend.
+  if (!polygons.surface || m_method != CutMethod::kPattern || !m_swept_strokes) return std::nullopt;
+  std::optional<FlattenedPositions> flat(std::in_place, *polygons.surface);
+  if (!flattening_keeps_tets(state.mesh, *flat, polygons.polygons, *m_bvh)) return std::nullopt;
+  // A surface that folds over its plane interpolates between its sheets: the plane may then be
+  // nearer the blades' path in the tissue than the bent crack.
+  const double bent = crack_deviation(state.mesh, *m_bvh, points, polygons.fit, &*flat);
+  if (!(bent < report.crack_deviation_m)) return std::nullopt;
+  report.crack_deviation_m = bent;
+  report.bent = true;
+  return flat;
 }
 
 void CuttingStage::refresh_bvh(const StepContext& ctx, const TetMesh& mesh) {
@@ -249,12 +271,21 @@ void CuttingStage::refresh_bvh(const StepContext& ctx, const TetMesh& mesh) {
 }
 
 void CuttingStage::cut(const StepContext& ctx, SimState& state, std::size_t tool, int blade,
-                       const cutting::ConvexPolygon& polygon, StrokeReport& report) {
+                       const cutting::ConvexPolygon& polygon, FlattenedPositions* flat,
+                       StrokeReport& report) {
   TetMesh& mesh = state.mesh;
   refresh_bvh(ctx, mesh);
-  cutting::CutResult result = cut_with(m_method, mesh, polygon, m_cut_options, m_bvh->as_query());
+  cutting::CutResult result;
+  if (flat) {
+    FlatCutResult r = cut_flattened(mesh, *flat, polygon, m_cut_options, *m_bvh);
+    result = std::move(r.cut);
+    report.swept_area_m2 += r.swept_area_m2;
+  } else {
+    result = cut_with(m_method, mesh, polygon, m_cut_options, m_bvh->as_query());
+    if (!result.delta.empty())
+      report.swept_area_m2 += swept_area(mesh, result.delta.removed_tets, polygon);
+  }
   if (result.delta.empty()) return;
-  report.swept_area_m2 += swept_area(mesh, result.delta.removed_tets, polygon);
 
   CutEvent applied;
   applied.step = ctx.step;
@@ -271,18 +302,22 @@ void CuttingStage::cut(const StepContext& ctx, SimState& state, std::size_t tool
   }
   std::optional<TetMesh> before;
   // The invariants hold for the paper's method; removal loses volume and snapping moves nodes.
-  if (m_options.validate && m_method == CutMethod::kPattern) before = mesh;
+  // A bent stroke's cut is checked as what it is: the flattened mesh cut by the polygon.
+  if (m_options.validate && m_method == CutMethod::kPattern)
+    before = flat ? flattened_copy(mesh, *flat) : mesh;
 
   apply(mesh, result.delta);
   m_bvh->update(mesh, result.delta);
   m_bvh_version = mesh.topology_version;
+  if (flat) flat->added(mesh, result.delta);
 
   ++report.cuts;
   report.tets_crossed += static_cast<std::int64_t>(result.delta.removed_tets.size());
   report.tets_created += static_cast<std::int64_t>(result.delta.added_tets.size());
   report.pinned += result.stats.tets_pinned;
-  report.crack_area_m2 +=
-      crack_area(mesh, result.delta, polygon, 2.0 * result.stats.tolerance_m + 1e-12);
+  const double crack_tol = 2.0 * result.stats.tolerance_m + 1e-12;
+  report.crack_area_m2 += flat ? flattened_crack_area(mesh, *flat, result.delta, polygon, crack_tol)
+                               : crack_area(mesh, result.delta, polygon, crack_tol);
   report.min_quality = std::min(report.min_quality, min_added_quality(mesh, result.delta));
 
   ++m_stats.cuts;
@@ -295,7 +330,9 @@ void CuttingStage::cut(const StepContext& ctx, SimState& state, std::size_t tool
     cutting::CutCheckOptions co;
     co.geometry_tol_m = 4.0 * result.stats.tolerance_m + 1e-12;
     co.plane_tol_m = result.stats.tolerance_m;
-    const cutting::CutCheckReport r = cutting::check_cut(*before, mesh, polygon, co);
+    const cutting::CutCheckReport r =
+        flat ? cutting::check_cut(*before, flattened_copy(mesh, *flat), polygon, co)
+             : cutting::check_cut(*before, mesh, polygon, co);
     ++m_stats.validated;
     if (!r.ok) {
       ++m_stats.invalid;

@@ -19,14 +19,18 @@
 // closed. So a pause, a partial reopening (a second bite at the same place), tremor and any motion
 // while the jaws close keep the stroke: cut at a partial reopening, the two blades' polygons left
 // outlines through the tissue that the next closing had to cross again, and the tissue stayed in
-// one piece. A stroke is cut in one plane however far its swept surface bends (a roll of the
-// wrist while the jaws close): cut as successive planar pieces, each crack ended inside the tets
-// along the edge two pieces shared and left a bridge there, and overlapping the pieces to make
-// the cracks cross doubled the tets and still left one piece. So the crack lies up to the
-// stroke's deviation from where the blades passed (the per-stroke report gives it: 0.4 mm for
-// a 0.25 rad roll, 2 mm for 1.2 rad). It opens when the stroke ends rather than while the jaws
-// close, and where the swept region is not convex (a blade drawn back while it closes), its
-// hull is cut.
+// one piece. A stroke whose swept surface bends (a roll of the wrist, a drift across the blade
+// plane while the jaws close) is cut along that surface in one cut: the mesh is flattened onto
+// the stroke's plane by the surface's height field for the cut alone (cutting/flat_cut.h), so
+// the crack is one welded piecewise-planar surface through every tet the blades crossed. Cut as
+// successive planar pieces instead, each crack ended inside the tets along the edge two pieces
+// shared and left a bridge there, and overlapping the pieces to make the cracks cross doubled
+// the tets and still left one piece. A surface that folds over its plane (a roll of more than
+// about 2.2 rad), or whose flattening would turn a tet near it over, is cut in the plane, up to
+// the stroke's deviation from where the blades passed; the per-stroke report says which
+// (`bent`) and how far the crack lies from the samples in the tissue. A stroke opens when it
+// ends rather than while the jaws close, and where the swept region is not convex (a blade
+// drawn back while it closes), its hull is cut.
 //
 // A hook (effect "cautery", engine/hook.h) divides the same way: while its pedal is down, its
 // crook's path is one stroke (the same pinned samples), cut as one polygon when the pedal comes
@@ -47,6 +51,7 @@
 #include "cutting/convex_polygon.h"
 #include "cutting/cut_mesh.h"
 #include "cutting/cut_method.h"
+#include "cutting/flat_cut.h"
 #include "cutting/scissors_stroke.h"
 #include "engine/scene.h"
 #include "engine/stage.h"
@@ -103,7 +108,12 @@ struct StrokeReport {
   double swept_area_m2 = 0.0;     ///< polygons ∩ the tets they crossed, m²
   double crack_area_m2 = 0.0;     ///< one side of the crack opened, m²
   double deviation_m = 0.0;       ///< farthest swept sample from the polygons' plane, m
-  double min_quality = 1.0;       ///< smallest mean-ratio quality of the created tets (rest)
+  /// Cut along its bent swept surface (cutting/flat_cut.h) rather than in the polygons' plane.
+  bool bent = false;
+  /// Farthest swept sample inside the tissue from the crack cut (ScissorsStroke::
+  /// crack_deviation), m: the crack's deviation from where the blades passed.
+  double crack_deviation_m = 0.0;
+  double min_quality = 1.0;  ///< smallest mean-ratio quality of the created tets (rest)
   /// The blades closed on a clip (cutting/clip_guard.h): the stroke cut nothing.
   bool on_clip = false;
 };
@@ -180,9 +190,16 @@ class CuttingStage final : public Stage {
               const ToolState& now);
   /// Cuts the stroke as it stands with the jaws at `end`, reports it and forgets it.
   void end_stroke(const StepContext& ctx, SimState& state, Scissors& s, ToolState end);
-  /// Cuts one polygon; adds what it did to `report`.
+  /// A bent stroke's flattened positions, when its surface can be cut along and the crack then
+  /// lies nearer the blades' path than the plane (std::nullopt: cut in the plane). Sets the
+  /// report's bent and crack_deviation_m.
+  std::optional<FlattenedPositions> flattening(const StepContext& ctx, SimState& state,
+                                               const StrokePolygons& polygons,
+                                               StrokeReport& report);
+  /// Cuts one polygon (in flattened positions when `flat` is given); adds what it did to
+  /// `report`.
   void cut(const StepContext& ctx, SimState& state, std::size_t tool, int blade,
-           const cutting::ConvexPolygon& polygon, StrokeReport& report);
+           const cutting::ConvexPolygon& polygon, FlattenedPositions* flat, StrokeReport& report);
   void refresh_bvh(const StepContext& ctx, const TetMesh& mesh);
   std::vector<Scissors> m_scissors;
   std::vector<Hook> m_hooks;
@@ -191,6 +208,7 @@ class CuttingStage final : public Stage {
   std::uint64_t m_coagulated_version = 0;  // bumped with every mark added
   cutting::CutOptions m_cut_options;
   CutMethod m_method = CutMethod::kPattern;  // the scene's [cutting] method
+  bool m_swept_strokes = true;               // [cutting] strokes = "swept"
   CuttingStageOptions m_options;
   std::unique_ptr<cutting::TetBvh> m_bvh;
   std::uint64_t m_bvh_version = 0;

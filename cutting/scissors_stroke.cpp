@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "cutting/tet_bvh.h"
+#include "engine/geometry/tet_barycentric.h"
 #include "engine/state_codec.h"
 #include "engine/tool_geometry.h"
 
@@ -18,23 +19,6 @@ Eigen::Quaterniond quat(const ToolState& t) {
   Eigen::Quaterniond q(t.quat_wxyz[0], t.quat_wxyz[1], t.quat_wxyz[2], t.quat_wxyz[3]);
   if (!(q.norm() > 0.0)) return Eigen::Quaterniond::Identity();
   return q.normalized();
-}
-
-// Barycentric weights of p in tet t (current positions); std::nullopt for a flat tet.
-std::optional<std::array<double, 4>> barycentric(const Vec3& p, const TetMesh& mesh,
-                                                 std::int32_t t) {
-  const Tet& tet = mesh.tets[static_cast<std::size_t>(t)];
-  const Vec3& a = mesh.x[static_cast<std::size_t>(tet[0])];
-  const Vec3& b = mesh.x[static_cast<std::size_t>(tet[1])];
-  const Vec3& c = mesh.x[static_cast<std::size_t>(tet[2])];
-  const Vec3& d = mesh.x[static_cast<std::size_t>(tet[3])];
-  Mat3 e;
-  e << b - a, c - a, d - a;
-  const double det = e.determinant();
-  const double scale = (b - a).norm() * (c - a).norm() * (d - a).norm();
-  if (!(std::abs(det) > 1e-12 * scale)) return std::nullopt;
-  const Vec3 l = e.inverse() * (p - a);
-  return std::array<double, 4>{1.0 - l.sum(), l.x(), l.y(), l.z()};
 }
 
 // The blade's final edge direction and the shaft's side, in the plane's coordinates.
@@ -105,6 +89,29 @@ std::optional<ConvexPolygon> to_polygon(const PlaneFit& fit, const std::vector<V
   return ConvexPolygon::make(std::move(w), 1e-6);
 }
 
+// The carried samples and, for each sampled pose (a hinge followed by its two tips), points
+// along both blade edges between them: the blade is straight, so they lie on the swept surface.
+std::vector<Vec3> surface_points(const std::vector<StrokeSample>& s, const std::vector<Vec3>& p) {
+  std::vector<Vec3> out = p;
+  for (std::size_t i = 0; i + 2 < s.size(); ++i) {
+    if (s[i].blade >= 0 || s[i + 1].blade != 0 || s[i + 2].blade != 1) continue;
+    for (std::size_t k = 1; k <= 2; ++k)
+      for (int j = 1; j <= kBladeEdgePoints; ++j) {
+        const double f = static_cast<double>(j) / (kBladeEdgePoints + 1);
+        out.push_back((1.0 - f) * p[i] + f * p[i + k]);
+      }
+  }
+  return out;
+}
+
+// The swept surface of a bent stroke over its plane, std::nullopt when it is not a height field.
+std::optional<StrokeSurface> bent_surface(const PlaneFit& fit, const std::vector<Vec3>& points) {
+  if (!(fit.deviation_m > kBentStrokeTol)) return std::nullopt;
+  double size = 0.0;
+  for (const Vec3& x : points) size = std::max(size, (x - points.front()).norm());
+  return StrokeSurface::make(fit, points, 1e-3 * size);
+}
+
 }  // namespace
 
 ToolState interpolate(const ToolState& a, const ToolState& b, double s) {
@@ -133,7 +140,7 @@ void ScissorsStroke::add(const Vec3& x, std::int32_t blade, const TetMesh& mesh,
     m_candidates.clear();
     if (x.allFinite()) bvh.query(x - Vec3::Constant(r), x + Vec3::Constant(r), m_candidates);
     for (std::int32_t t : m_candidates) {
-      const auto w = barycentric(x, mesh, t);
+      const auto w = geometry::tet_barycentric(x, mesh, t);
       if (!w) continue;
       const double inside = *std::min_element(w->begin(), w->end());
       if (inside > best) {
@@ -196,6 +203,9 @@ StrokePolygons ScissorsStroke::polygons(const TetMesh& mesh, const ToolState& en
   const auto fit = fit_plane(p, tool_frame(m_start).pin);
   if (!fit) return out;
   out.deviation_m = fit->deviation_m;
+  out.fit = *fit;
+  out.surface_points_m = surface_points(m_samples, p);
+  out.surface = bent_surface(*fit, out.surface_points_m);
   std::vector<Vec2> q;
   q.reserve(p.size());
   for (const Vec3& x : p) q.push_back(fit->to_plane(x));

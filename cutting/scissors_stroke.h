@@ -6,7 +6,10 @@
 // tissue is now, so a stroke through tissue the grasper pulls or the FEM deforms cuts the
 // material the blades passed through, not the empty space they left behind. The stroke is cut
 // as convex polygons in the plane that fits those samples best: one across both blades when the
-// jaws closed, one per blade (up to where it stopped) when the stroke ended part way.
+// jaws closed, one per blade (up to where it stopped) when the stroke ended part way. When the
+// samples bend away from that plane (a roll or a drift across it), the polygons come with the
+// stroke's surface (cutting/stroke_surface.h), through the samples and points along each sampled
+// blade edge, and the cut follows it (cutting/flat_cut.h).
 #pragma once
 
 #include <array>
@@ -16,6 +19,7 @@
 
 #include "cutting/convex_polygon.h"
 #include "cutting/planar_hull.h"
+#include "cutting/stroke_surface.h"
 #include "engine/tet_mesh.h"
 #include "engine/tool_state.h"
 
@@ -32,6 +36,12 @@ inline constexpr double kStrokeArcStep = 0.05;
 /// A sample is pinned to a tet found within this distance (m), doubled up to 16 times as far.
 /// Farther than that from every tet, it stays where it was in the world.
 inline constexpr double kStrokeTrackRadius = 3e-3;
+/// Samples farther than this (m) from their best-fit plane make a bent stroke: it is cut along
+/// its swept surface. Nearer, the plane is within a few classification tolerances of every
+/// sample and is cut as it is.
+inline constexpr double kBentStrokeTol = 5e-5;
+/// Points sampled along each blade edge between the hinge and the tip for the stroke's surface.
+inline constexpr int kBladeEdgePoints = 3;
 
 /// One sampled point of the swept surface.
 struct StrokeSample {
@@ -46,6 +56,13 @@ struct StrokePolygons {
   std::vector<ConvexPolygon> polygons;
   std::vector<std::int32_t> blades;  ///< blade of each polygon (0 for the one across both)
   double deviation_m = 0.0;  ///< largest distance of a (carried) sample from the polygons' plane
+  PlaneFit fit;              ///< the polygons' plane
+  /// The swept surface over that plane, for a bent stroke (deviation_m > kBentStrokeTol) whose
+  /// surface is a height field over it; else std::nullopt: cut in the plane.
+  std::optional<StrokeSurface> surface;
+  /// (p) points of the swept surface where the tissue is now: the carried samples and
+  /// kBladeEdgePoints along each sampled blade edge, m.
+  std::vector<Vec3> surface_points_m;
 };
 
 class ScissorsStroke {
@@ -70,7 +87,6 @@ class ScissorsStroke {
   /// closed_rad).
   [[nodiscard]] StrokePolygons polygons(const TetMesh& mesh, const ToolState& end,
                                         double closed_rad) const;
-
   [[nodiscard]] const ToolState& start() const noexcept { return m_start; }
   [[nodiscard]] const std::vector<StrokeSample>& samples() const noexcept { return m_samples; }
   [[nodiscard]] std::size_t size() const noexcept { return m_samples.size(); }

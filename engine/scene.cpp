@@ -46,6 +46,9 @@ constexpr NameTable<Hand, 2> kHandNames{{{Hand::kLeft, "left"}, {Hand::kRight, "
 constexpr NameTable<CutMethod, 3> kCutMethodNames{
     {{CutMethod::kPattern, "pattern"}, {CutMethod::kRemove, "remove"}, {CutMethod::kSnap, "snap"}}};
 
+constexpr NameTable<StrokeSurfaceKind, 2> kStrokeSurfaceNames{
+    {{StrokeSurfaceKind::kSwept, "swept"}, {StrokeSurfaceKind::kPlane, "plane"}}};
+
 constexpr NameTable<Surroundings, 2> kSurroundingsNames{
     {{Surroundings::kNone, "none"}, {Surroundings::kAbdomen, "abdomen"}}};
 
@@ -92,6 +95,12 @@ std::optional<Hand> hand_from_name(std::string_view s) noexcept { return value_o
 std::string_view cut_method_name(CutMethod m) noexcept { return name_of(kCutMethodNames, m); }
 std::optional<CutMethod> cut_method_from_name(std::string_view s) noexcept {
   return value_of(kCutMethodNames, s);
+}
+std::string_view stroke_surface_name(StrokeSurfaceKind k) noexcept {
+  return name_of(kStrokeSurfaceNames, k);
+}
+std::optional<StrokeSurfaceKind> stroke_surface_from_name(std::string_view s) noexcept {
+  return value_of(kStrokeSurfaceNames, s);
 }
 std::string_view surroundings_name(Surroundings s) noexcept {
   return name_of(kSurroundingsNames, s);

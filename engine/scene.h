@@ -69,6 +69,9 @@ enum class ToolKind : std::uint8_t {
 enum class DeviceKind : std::uint8_t { kRig, kRigEmulated, kMouse, kScript };
 enum class Hand : std::uint8_t { kLeft, kRight };
 enum class CutMethod : std::uint8_t { kPattern, kRemove, kSnap };
+/// What a scissors stroke whose blades bent out of one plane is cut along: its swept surface, or
+/// the plane that fits it best.
+enum class StrokeSurfaceKind : std::uint8_t { kSwept, kPlane };
 /// What the endoscope sees around the organs: nothing (a black void) or an abdomen.
 enum class Surroundings : std::uint8_t { kNone, kAbdomen };
 
@@ -76,10 +79,11 @@ enum class Surroundings : std::uint8_t { kNone, kAbdomen };
 [[nodiscard]] std::string_view solver_kind_name(SolverKind k) noexcept;  ///< pcg|cholmod|...
 [[nodiscard]] std::string_view tool_kind_name(
     ToolKind k) noexcept;  ///< scissors|...|clip-applier|hook|endoloop
-[[nodiscard]] std::string_view device_kind_name(DeviceKind k) noexcept;     ///< rig|...|script
-[[nodiscard]] std::string_view hand_name(Hand h) noexcept;                  ///< left|right
-[[nodiscard]] std::string_view cut_method_name(CutMethod m) noexcept;       ///< pattern|remove|snap
-[[nodiscard]] std::string_view surroundings_name(Surroundings s) noexcept;  ///< none|abdomen
+[[nodiscard]] std::string_view device_kind_name(DeviceKind k) noexcept;  ///< rig|...|script
+[[nodiscard]] std::string_view hand_name(Hand h) noexcept;               ///< left|right
+[[nodiscard]] std::string_view cut_method_name(CutMethod m) noexcept;    ///< pattern|remove|snap
+[[nodiscard]] std::string_view stroke_surface_name(StrokeSurfaceKind k) noexcept;  ///< swept|plane
+[[nodiscard]] std::string_view surroundings_name(Surroundings s) noexcept;         ///< none|abdomen
 
 [[nodiscard]] std::optional<Quality> quality_from_name(std::string_view s) noexcept;
 [[nodiscard]] std::optional<SolverKind> solver_kind_from_name(std::string_view s) noexcept;
@@ -89,6 +93,8 @@ enum class Surroundings : std::uint8_t { kNone, kAbdomen };
 [[nodiscard]] std::optional<DeviceKind> device_kind_from_name(std::string_view s) noexcept;
 [[nodiscard]] std::optional<Hand> hand_from_name(std::string_view s) noexcept;
 [[nodiscard]] std::optional<CutMethod> cut_method_from_name(std::string_view s) noexcept;
+[[nodiscard]] std::optional<StrokeSurfaceKind> stroke_surface_from_name(
+    std::string_view s) noexcept;
 [[nodiscard]] std::optional<Surroundings> surroundings_from_name(std::string_view s) noexcept;
 
 // ---------------------------------------------------------------------------------------------
@@ -243,6 +249,8 @@ struct CuttingSettings {
   CutMethod method = CutMethod::kPattern;  ///< pattern (paper), remove (delete tets), snap
   double tolerance =
       1e-3;  ///< node-on-plane tolerance relative to the tet's longest edge; [0, 0.5)
+  /// A bent stroke is cut along its swept surface (pattern method only) or in its plane.
+  StrokeSurfaceKind strokes = StrokeSurfaceKind::kSwept;
 };
 
 struct HeadlessSettings {

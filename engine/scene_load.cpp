@@ -640,7 +640,7 @@ class Loader {
 
   void read_cutting(const toml::table& t, CuttingSettings& c) const {
     const std::string p = "cutting";
-    check_keys(t, p, {"method", "tolerance"});
+    check_keys(t, p, {"method", "tolerance", "strokes"});
     if (const auto* n = t.get("method")) {
       c.method = enum_value<CutMethod>(*n, sub(p, "method"), cut_method_from_name,
                                        "pattern, remove, snap");
@@ -648,6 +648,10 @@ class Loader {
     if (const auto* n = t.get("tolerance")) {
       c.tolerance = ranged(*n, sub(p, "tolerance"), 0.0, false, 0.5, true,
                            "a tolerance relative to the tet's mean edge length within [0, 0.5)");
+    }
+    if (const auto* n = t.get("strokes")) {
+      c.strokes = enum_value<StrokeSurfaceKind>(*n, sub(p, "strokes"), stroke_surface_from_name,
+                                                "swept, plane");
     }
   }
 

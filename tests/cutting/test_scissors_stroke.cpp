@@ -19,6 +19,8 @@
 #include "cutting/planar_hull.h"
 #include "cutting/scissors_stroke.h"
 #include "cutting/validate.h"
+#include "engine/boundary.h"
+#include "engine/geometry/point_triangle.h"
 #include "engine/mesh_check.h"
 #include "engine/sim_state.h"
 #include "engine/state_codec.h"
@@ -191,8 +193,36 @@ Expect expectation(const std::vector<std::array<Vec3, 3>>& rest_edges, double ma
   return miss_inside ? Expect::kNotThrough : Expect::kUnsure;
 }
 
+// Farthest node the cut created on the final boundary (rest positions: the bar moves rigidly or
+// by a shear the rest frame undoes) from the blades' ruled sweep carried to the rest frame, m.
+double crack_distance(const TetMesh& before, const TetMesh& after,
+                      const std::vector<std::array<Vec3, 3>>& rest_edges) {
+  std::vector<std::array<Vec3, 3>> tris;
+  for (std::size_t k = 0; k + 1 < rest_edges.size(); ++k)
+    for (std::size_t blade = 1; blade <= 2; ++blade) {
+      const Vec3 &h0 = rest_edges[k][0], &t0 = rest_edges[k][blade];
+      const Vec3 &h1 = rest_edges[k + 1][0], &t1 = rest_edges[k + 1][blade];
+      tris.push_back({h0, t0, t1});
+      tris.push_back({h0, t1, h1});
+    }
+  std::vector<char> seen(after.x.size(), 0);
+  double worst = 0.0;
+  for (const BoundaryFace& f : face_census(after).boundary)
+    for (std::int32_t n : f.nodes) {
+      const auto i = static_cast<std::size_t>(n);
+      if (n < before.num_nodes() || seen[i] != 0) continue;
+      seen[i] = 1;
+      double best = 1e300;
+      for (const auto& t : tris)
+        best = std::min(best, geometry::point_triangle_distance(after.rest[i], t[0], t[1], t[2]));
+      worst = std::max(worst, best);
+    }
+  return worst;
+}
+
 struct StrokeOutcome {
   Expect expect = Expect::kUnsure;
+  double crack_distance_m = 0.0;  ///< crack_distance of the final mesh
   int components = 0;
   CuttingStageStats stats;
   double volume_before = 0.0, volume_after = 0.0;
@@ -247,6 +277,7 @@ StrokeOutcome run_stroke(const TetMesh& bar, const Motion& m, std::mt19937& rng)
     stage.step(StepContext{k, 0.005 * static_cast<double>(k), 0.005}, state);
   }
   out.expect = expectation(rest_edges, 0.4e-3);
+  out.crack_distance_m = crack_distance(bar, state.mesh, rest_edges);
   out.components = count_components(state.mesh);
   out.stats = stage.stats();
   out.volume_after = total_volume(state.mesh);
@@ -317,6 +348,12 @@ void expect_stroke_outcomes(const TetMesh& bar, int trials, std::uint32_t seed) 
     // Bounded growth: a stroke adds tets in proportion to the tets it crosses.
     for (const StrokeReport& s : r.stats.stroke_reports)
       ASSERT_LE(s.tets_created, 12 * s.tets_crossed + 12);
+    if (trial % 6 == 1 || trial % 6 == 2) {
+      const StrokeReport& k = r.stats.stroke_reports.back();
+      std::printf("DIST kind %d bent %d dev %.3f crackdev %.3f dist %.3f\n", trial % 6,
+                  k.bent ? 1 : 0, k.deviation_m * 1e3, k.crack_deviation_m * 1e3,
+                  r.crack_distance_m * 1e3);
+    }
     if (r.expect == Expect::kThrough) {
       ++through;
       ASSERT_EQ(r.components, 2) << describe(r);
