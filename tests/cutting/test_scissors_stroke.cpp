@@ -18,6 +18,7 @@
 #include "cutting/cutting_stage.h"
 #include "cutting/planar_hull.h"
 #include "cutting/scissors_stroke.h"
+#include "cutting/stroke_surface.h"
 #include "cutting/validate.h"
 #include "engine/boundary.h"
 #include "engine/geometry/point_triangle.h"
@@ -68,6 +69,47 @@ TEST(PlanarHull, FitsPlanesHullsAndClipsOverRandomClouds) {
   const std::vector<Vec3> line{Vec3(0, 0, 0), Vec3(1, 1, 1), Vec3(2, 2, 2), Vec3(3, 3, 3)};
   EXPECT_FALSE(fit_plane(line));
   EXPECT_FALSE(fit_plane(std::vector<Vec3>{Vec3(0, 0, 0), Vec3(1, 0, 0)}));
+}
+
+// Delaunay triangles are counter-clockwise with empty circumcircles, and a terrain through points
+// of a plane tilted off the fit plane reproduces that plane inside their hull.
+TEST(StrokeSurface, TriangulatesRandomCloudsAndReproducesTiltedPlanes) {
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 300; ++trial) {
+    std::vector<Vec2> q;
+    for (int k = 0; k < 4 + trial % 60; ++k) q.emplace_back(u(rng) * 5e-3, u(rng) * 5e-3);
+    const auto tris = delaunay2d(q);
+    ASSERT_FALSE(tris.empty());
+    for (const auto& t : tris) {
+      const Vec2 &a = q[t[0]], &b = q[t[1]], &c = q[t[2]];
+      ASSERT_GT((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x(), 0.0);
+      Mat3 m;  // in-circle determinant (scaled): no other point strictly inside
+      for (std::size_t k = 0; k < q.size(); ++k) {
+        const Vec2 ad = a - q[k], bd = b - q[k], cd = c - q[k];
+        m << ad.x(), ad.y(), ad.squaredNorm(), bd.x(), bd.y(), bd.squaredNorm(), cd.x(), cd.y(),
+            cd.squaredNorm();
+        ASSERT_LE(m.determinant(), 1e-18);
+      }
+    }
+    PlaneFit fit;  // the xy plane through the origin
+    const double gx = 0.8 * u(rng), gy = 0.8 * u(rng);
+    std::vector<Vec3> p;
+    for (const Vec2& x : q) p.emplace_back(x.x(), x.y(), gx * x.x() + gy * x.y());
+    const auto surface = StrokeSurface::make(fit, p, 1e-9);
+    ASSERT_TRUE(surface);
+    EXPECT_NEAR(surface->max_slope(), std::hypot(gx, gy), 1e-6);
+    for (int k = 0; k < 50; ++k) {  // points inside a triangle's convex combination
+      const auto& t = tris[static_cast<std::size_t>(k) % tris.size()];
+      const double a = 0.5 * (u(rng) + 1), b = 0.5 * (1 - a) * (u(rng) + 1);
+      const Vec2 x = a * q[t[0]] + b * q[t[1]] + (1 - a - b) * q[t[2]];
+      EXPECT_NEAR(surface->height(x), gx * x.x() + gy * x.y(), 1e-12);
+      // Flattening is a shear along the normal: it moves x onto the plane and keeps (u, v).
+      const Vec3 w(x.x(), x.y(), gx * x.x() + gy * x.y() + 1e-3);
+      EXPECT_NEAR(surface->flatten(w).z(), 1e-3, 1e-12);
+      EXPECT_EQ(surface->flatten(w).head<2>(), w.head<2>());
+    }
+  }
 }
 
 // ---- strokes over a bar -------------------------------------------------------------------
@@ -330,13 +372,15 @@ std::string describe(const StrokeOutcome& r) {
          " crossed " + std::to_string(k.tets_crossed) + " created " +
          std::to_string(k.tets_created) + " pinned " + std::to_string(k.pinned) + " swept " +
          std::to_string(k.swept_area_m2 * 1e6) + " crack " + std::to_string(k.crack_area_m2 * 1e6) +
-         " mm2, deviation " + std::to_string(k.deviation_m * 1e3) + " mm";
+         " mm2, deviation " + std::to_string(k.deviation_m * 1e3) + " mm, bent " +
+         std::to_string(k.bent) + ", crack deviation " + std::to_string(k.crack_deviation_m * 1e3) +
+         " mm, crack from the sweep " + std::to_string(r.crack_distance_m * 1e3) + " mm";
   return s;
 }
 
 void expect_stroke_outcomes(const TetMesh& bar, int trials, std::uint32_t seed) {
   std::mt19937 rng(seed);
-  int through = 0, not_through = 0, unsure = 0;
+  int through = 0, not_through = 0, unsure = 0, bent = 0, bent_judged = 0;
   for (int trial = 0; trial < trials; ++trial) {
     const Motion m = random_motion(rng, trial);
     const StrokeOutcome r = run_stroke(bar, m, rng);
@@ -348,11 +392,20 @@ void expect_stroke_outcomes(const TetMesh& bar, int trials, std::uint32_t seed) 
     // Bounded growth: a stroke adds tets in proportion to the tets it crosses.
     for (const StrokeReport& s : r.stats.stroke_reports)
       ASSERT_LE(s.tets_created, 12 * s.tets_crossed + 12);
-    if (trial % 6 == 1 || trial % 6 == 2) {
-      const StrokeReport& k = r.stats.stroke_reports.back();
-      std::printf("DIST kind %d bent %d dev %.3f crackdev %.3f dist %.3f\n", trial % 6,
-                  k.bent ? 1 : 0, k.deviation_m * 1e3, k.crack_deviation_m * 1e3,
-                  r.crack_distance_m * 1e3);
+    // A stroke that rolls or drifts across the blade plane is cut along its swept surface: its
+    // crack lies well within the stroke's departure from one plane (cut in the plane, it lay
+    // 0.46 of it away for a roll, 0.77 for a drift across; cells vary up to 2x on the jittered
+    // bar).
+    const StrokeReport& last = r.stats.stroke_reports.back();
+    if ((trial % 6 == 1 || trial % 6 == 2) && last.deviation_m > kBentStrokeTol) {
+      ++bent_judged;
+      bent += last.bent ? 1 : 0;
+      const double bound =
+          trial % 6 == 2 ? 0.3 * last.deviation_m + 0.05e-3 : 0.6 * last.deviation_m + 0.06e-3;
+      if (last.bent) {
+        EXPECT_LE(r.crack_distance_m, bound) << describe(r);
+      }
+      EXPECT_LE(last.crack_deviation_m, last.deviation_m) << describe(r);
     }
     if (r.expect == Expect::kThrough) {
       ++through;
@@ -374,6 +427,7 @@ void expect_stroke_outcomes(const TetMesh& bar, int trials, std::uint32_t seed) 
   EXPECT_GT(through, trials / 2);
   EXPECT_GT(not_through, trials / 30);
   EXPECT_LT(unsure, trials / 8);
+  EXPECT_GT(bent, 8 * bent_judged / 10);  // rolls up to 1.5 rad stay height fields
 }
 
 #if defined(__SANITIZE_ADDRESS__)
