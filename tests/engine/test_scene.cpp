@@ -146,6 +146,7 @@ TEST_F(SceneTest, MinimalSceneGetsDefaults) {
   EXPECT_DOUBLE_EQ(s.record.snapshot_every_s, 1.0);
   EXPECT_TRUE(s.solver.patch_after_cut);
   EXPECT_EQ(s.cutting.method, CutMethod::kPattern);
+  EXPECT_EQ(s.cutting.strokes, StrokeSurfaceKind::kSwept);
   EXPECT_DOUBLE_EQ(s.cutting.tolerance, 1e-3);
   EXPECT_EQ(s.headless.steps, 1000);
   EXPECT_EQ(s.file, scene_path());
@@ -226,6 +227,7 @@ snapshot_every_s = 0.5
 [cutting]
 method = "snap"
 tolerance = 0.05
+strokes = "plane"
 
 [headless]
 steps = 250
@@ -294,6 +296,7 @@ steps = 250
   EXPECT_EQ(s.solver.cut_lag_steps, 30);
   EXPECT_EQ(s.cutting.method, CutMethod::kSnap);
   EXPECT_DOUBLE_EQ(s.cutting.tolerance, 0.05);
+  EXPECT_EQ(s.cutting.strokes, StrokeSurfaceKind::kPlane);
   EXPECT_EQ(s.headless.steps, 250);
 }
 
@@ -568,6 +571,7 @@ TEST_F(SceneTest, BadRecordCuttingHeadlessQuality) {
   expect_error(kOrgan + "[cutting]\nmethod = \"laser\"\n", 5, "cutting.method",
                "pattern, remove, snap");
   expect_error(kOrgan + "[cutting]\ntolerance = 0.5\n", 5, "cutting.tolerance", "< 0.5");
+  expect_error(kOrgan + "[cutting]\nstrokes = \"curved\"\n", 5, "cutting.strokes", "swept, plane");
   expect_error(kOrgan + "[headless]\nsteps = 0\n", 5, "headless.steps", ">= 1");
   expect_error("[scene]\nquality = \"ultra\"\n" + kOrgan, 2, "scene.quality",
                "fast, balanced, accurate");
