@@ -72,29 +72,28 @@ void FlattenedPositions::added(const TetMesh& mesh, const TopologyDelta& delta) 
 }
 
 void FlattenedScope::flatten_tet(std::int32_t t) {
-  if (m_done.size() < m_mesh.x.size()) m_done.resize(m_mesh.x.size(), 0);
+  if (m_slot.size() < m_mesh.x.size()) m_slot.resize(m_mesh.x.size(), 0);
   for (std::int32_t n : m_mesh.tets[static_cast<std::size_t>(t)]) {
     const auto i = static_cast<std::size_t>(n);
-    if (m_done[i] != 0) continue;
+    if (m_slot[i] != 0) continue;
     const Vec3 flat = m_flat.of(m_mesh, n);  // (from the real position: not yet swapped)
-    m_done[i] = 1;
     m_nodes.push_back(n);
     m_saved.push_back(m_mesh.x[i]);
+    m_slot[i] = static_cast<std::int32_t>(m_nodes.size());
     m_mesh.x[i] = flat;
   }
 }
 
 Vec3 FlattenedScope::real(std::int32_t n) const {
   const auto i = static_cast<std::size_t>(n);
-  if (i >= m_done.size() || m_done[i] == 0) return m_mesh.x[i];
-  const auto at = std::find(m_nodes.begin(), m_nodes.end(), n) - m_nodes.begin();
-  return m_saved[static_cast<std::size_t>(at)];
+  if (i >= m_slot.size() || m_slot[i] == 0) return m_mesh.x[i];
+  return m_saved[static_cast<std::size_t>(m_slot[i] - 1)];
 }
 
 void FlattenedScope::restore() {
   for (std::size_t k = 0; k < m_nodes.size(); ++k) {
     m_mesh.x[static_cast<std::size_t>(m_nodes[k])] = m_saved[k];
-    m_done[static_cast<std::size_t>(m_nodes[k])] = 0;
+    m_slot[static_cast<std::size_t>(m_nodes[k])] = 0;
   }
   m_nodes.clear();
   m_saved.clear();

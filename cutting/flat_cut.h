@@ -63,7 +63,7 @@ class FlattenedScope {
   FlattenedPositions& m_flat;
   std::vector<std::int32_t> m_nodes;  ///< nodes flattened, in order
   std::vector<Vec3> m_saved;          ///< their real positions, m
-  std::vector<std::uint8_t> m_done;   ///< (n) 1 when flattened
+  std::vector<std::int32_t> m_slot;   ///< (n) 1 + its index in m_nodes; 0: not flattened
 };
 
 /// True when flattening keeps every tet near `polygons` (the stroke's, in its plane) turned the
