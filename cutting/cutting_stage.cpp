@@ -49,7 +49,7 @@ StrokeReport stroke_report(std::uint64_t first_step, std::uint64_t last_step,
   r.last_step = last_step;
   r.steps = stroke.steps();
   r.polygons = polygons.polygons.size();
-  r.deviation_m = polygons.deviation_m;
+  r.deviation_m = polygons.fit.deviation_m;
   return r;
 }
 

@@ -25,10 +25,11 @@
 // the crack is one welded piecewise-planar surface through every tet the blades crossed. Cut as
 // successive planar pieces instead, each crack ended inside the tets along the edge two pieces
 // shared and left a bridge there, and overlapping the pieces to make the cracks cross doubled
-// the tets and still left one piece. A surface that folds over its plane (a roll of more than
-// about 2.2 rad), or whose flattening would turn a tet near it over, is cut in the plane, up to
-// the stroke's deviation from where the blades passed; the per-stroke report says which
-// (`bent`) and how far the crack lies from the samples in the tissue. A stroke opens when it
+// the tets and still left one piece. A stroke is cut in the plane instead when its surface
+// would put the crack farther from the blades' path in the tissue than the plane does (a
+// surface that folds over its plane, as a 3 rad roll; tremor) or flattening would turn a tet
+// near it over; the per-stroke report says which (`bent`) and how far the crack lies from the
+// blades' path in the tissue. A stroke opens when it
 // ends rather than while the jaws close, and where the swept region is not convex (a blade
 // drawn back while it closes), its hull is cut.
 //

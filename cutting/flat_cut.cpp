@@ -6,21 +6,12 @@
 #include "cutting/cut_areas.h"
 #include "cutting/tet_bvh.h"
 #include "engine/geometry/tet_barycentric.h"
+#include "engine/geometry/tet_extent.h"
 
 namespace serosa::cutting {
 namespace {
 
 double tet_volume(const std::array<Vec3, 4>& x) { return signed_volume(x[0], x[1], x[2], x[3]); }
-
-// The box (m) of tet t's current positions.
-void box_of(const TetMesh& mesh, std::int32_t t, Vec3& lo, Vec3& hi) {
-  const Tet& tet = mesh.tets[static_cast<std::size_t>(t)];
-  lo = hi = mesh.x[static_cast<std::size_t>(tet[0])];
-  for (int k = 1; k < 4; ++k) {
-    lo = lo.cwiseMin(mesh.x[static_cast<std::size_t>(tet[k])]);
-    hi = hi.cwiseMax(mesh.x[static_cast<std::size_t>(tet[k])]);
-  }
-}
 
 // Tets whose flattened boxes meet [lo, hi] (flattened, m), their nodes flattened in mesh.x:
 // flattening moves a point by at most the terrain's largest height, so the real boxes that can
@@ -33,7 +24,7 @@ void flattened_query(FlattenedScope& scope, const TetMesh& mesh, const TetBvh& b
   for (std::int32_t t : near) {
     scope.flatten_tet(t);
     Vec3 tlo, thi;
-    box_of(mesh, t, tlo, thi);
+    geometry::tet_box(mesh, mesh.tets[static_cast<std::size_t>(t)], tlo, thi);
     if ((tlo.array() <= hi.array()).all() && (thi.array() >= lo.array()).all()) out.push_back(t);
   }
 }

@@ -104,7 +104,7 @@ std::vector<Vec3> surface_points(const std::vector<StrokeSample>& s, const std::
   return out;
 }
 
-// The swept surface of a bent stroke over its plane, std::nullopt when it is not a height field.
+// The swept surface of a bent stroke over its plane; std::nullopt for a stroke near its plane.
 std::optional<StrokeSurface> bent_surface(const PlaneFit& fit, const std::vector<Vec3>& points) {
   if (!(fit.deviation_m > kBentStrokeTol)) return std::nullopt;
   double size = 0.0;
@@ -202,7 +202,6 @@ StrokePolygons ScissorsStroke::polygons(const TetMesh& mesh, const ToolState& en
   carried(mesh, p);
   const auto fit = fit_plane(p, tool_frame(m_start).pin);
   if (!fit) return out;
-  out.deviation_m = fit->deviation_m;
   out.fit = *fit;
   out.surface_points_m = surface_points(m_samples, p);
   out.surface = bent_surface(*fit, out.surface_points_m);

@@ -55,10 +55,11 @@ struct StrokeSample {
 struct StrokePolygons {
   std::vector<ConvexPolygon> polygons;
   std::vector<std::int32_t> blades;  ///< blade of each polygon (0 for the one across both)
-  double deviation_m = 0.0;  ///< largest distance of a (carried) sample from the polygons' plane
-  PlaneFit fit;              ///< the polygons' plane
-  /// The swept surface over that plane, for a bent stroke (deviation_m > kBentStrokeTol) whose
-  /// surface is a height field over it; else std::nullopt: cut in the plane.
+  /// The polygons' plane; its deviation_m is the largest distance of a (carried) sample from it.
+  PlaneFit fit;
+  /// The swept surface over that plane, for a bent stroke (fit.deviation_m > kBentStrokeTol);
+  /// else std::nullopt. The cutting stage still cuts in the plane where the surface folds over
+  /// it (cutting/cutting_stage.h).
   std::optional<StrokeSurface> surface;
   /// (p) points of the swept surface where the tissue is now: the carried samples and
   /// kBladeEdgePoints along each sampled blade edge, m.
@@ -87,6 +88,7 @@ class ScissorsStroke {
   /// closed_rad).
   [[nodiscard]] StrokePolygons polygons(const TetMesh& mesh, const ToolState& end,
                                         double closed_rad) const;
+
   [[nodiscard]] const ToolState& start() const noexcept { return m_start; }
   [[nodiscard]] const std::vector<StrokeSample>& samples() const noexcept { return m_samples; }
   [[nodiscard]] std::size_t size() const noexcept { return m_samples.size(); }
