@@ -8,6 +8,7 @@
 
 #include "app/command.h"
 #include "app/emulated_rig_process.h"
+#include "app/help_seen.h"
 #include "app/session.h"
 #include "app/task_option.h"
 #include "app/trainee_session.h"
@@ -38,12 +39,17 @@ void add_run_command(CLI::App& app, Action& action) {
                   "Write a JSON report at the end (frames, steps, haptic telemetry, metrics)");
   auto trainee = std::make_shared<TraineeOptions>();
   add_trainee_options(*cmd, *trainee);
+  auto view_log = std::make_shared<std::string>();
+  cmd->add_option("--view-log", *view_log,
+                  "JSON lines: where each frame drew the instruments, the guide and the organs "
+                  "(window pixels), for studies and scripted checks");
   auto path = std::make_shared<std::string>();
   cmd->add_option("--path", *path,
                   "Tool path CSV every scripted tool plays (default: the scripted instruments "
                   "follow the rig when it is plugged in, else the mouse)");
-  cmd->callback([&action, scene, seconds, snapshot, record, report, path, summary, trainee, task] {
-    action = [scene, seconds, snapshot, record, report, path, summary, trainee, task] {
+  cmd->callback([&action, scene, seconds, snapshot, record, report, path, summary, trainee, task,
+                 view_log] {
+    action = [scene, seconds, snapshot, record, report, path, summary, trainee, task, view_log] {
       *scene = scene_to_run(*scene, *task).string();
       const char* x = std::getenv("DISPLAY");
       const char* wl = std::getenv("WAYLAND_DISPLAY");
@@ -58,6 +64,9 @@ void add_run_command(CLI::App& app, Action& action) {
       if (!record->empty()) so.record = *record;
       if (!report->empty()) so.report = *report;
       if (!path->empty()) so.tool_path = *path;
+      so.trainee = trainee->name;
+      if (!view_log->empty()) so.view_log = *view_log;
+      so.help_file = help_seen_file(trainee->db);
       const std::optional<TraineeSession> kept =
           begin_trainee_session(*trainee, *scene, so.record, so.report);
       const int code = run_session(*scene, so);

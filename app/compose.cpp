@@ -168,7 +168,7 @@ Composition compose(const Scene& scene, const AssembledScene& assembled, Compose
   if (haptic_loop) {
     HapticsStageOptions ho;
     ho.realtime = options.realtime_haptics;
-    ho.rest_tip_m = options.mouse_rest_tip_m;
+    ho.rest_pose = options.mouse_rest_pose;
     const TetMesh& mesh = assembled.state.mesh;
     if (!mesh.x.empty()) {
       Vec3 sum = Vec3::Zero();

@@ -57,8 +57,8 @@ struct ComposeOptions {
   bool validate_cuts = false;
   /// The haptic loop asks for SCHED_FIFO and runs its gap monitor (the trainee session).
   bool realtime_haptics = false;
-  /// (tools, or empty) Where mouse-driven tools rest at the start, m (HapticsStageOptions).
-  std::vector<std::optional<Vec3>> mouse_rest_tip_m;
+  /// (tools, or empty) How mouse-driven tools rest at the start (HapticsStageOptions).
+  std::vector<std::optional<ToolState>> mouse_rest_pose;
   /// Tools another thread poses (the session's endoscope in the trainee's hands): a
   /// LivePoseStage in the tools slot, after the scripts.
   std::vector<LivePoseStage::Source> live_poses;

@@ -29,10 +29,12 @@ void play_tool_path(Scene& scene, const std::filesystem::path& csv);
 /// The instruments handed to the trainee.
 struct TraineeInstruments {
   DeviceKind device = DeviceKind::kMouse;  ///< rig or mouse
-  /// (tools) Where each handed-over instrument's script started it, m (nullopt for the others,
-  /// and for a tool its script does not name): mouse handles rest there, in the endoscope's view
-  /// (ComposeOptions::mouse_rest_tip_m).
-  std::vector<std::optional<Vec3>> start_tip_m;
+  /// (tools) Where each handed-over instrument rests at the start, m: the first pose of its
+  /// script in which the endoscope, as its script starts it, sees the tip and the shaft behind
+  /// it, 4 cm or more from the lens (else where its script starts it; nullopt for the others, and
+  /// for a tool its script does not name): mouse handles rest there
+  /// (ComposeOptions::mouse_rest_pose), their blades turned as the script turns them there.
+  std::vector<std::optional<ToolState>> start_pose;
   /// (tools) The handed-over endoscope's first scripted pose (nullopt for the other tools): the
   /// trainee's scope starts there.
   std::vector<std::optional<ToolState>> scope_start;

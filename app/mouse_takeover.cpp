@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "app/replay_controller.h"
+#include "engine/jaw_range.h"
 
 namespace serosa::app {
 
@@ -28,9 +29,11 @@ MouseTakeover::MouseTakeover(const Scene& scene, const std::vector<ToolState>& t
     m_trocars[h].rotation = q;
     m_map.rest[h] = haptics::JointState{};
     m_map.rest[h].insertion_m = length;
+    m_map.rest[h].jaw_rad = s.jaw_rad;
     m_map.max_insertion_m = std::max(m_map.max_insertion_m, 2.0 * length);
-    m_jaw[h] = s.jaw_rad;
-    m_initial.jaw_open[h] = s.jaw_rad > 0.5 * m_map.jaw_open_rad ? 1u : 0u;
+    m_map.min_insertion_m = std::min(m_map.min_insertion_m, length);
+    m_map.jaw_max_rad[h] = std::max(max_jaw_rad(scene.tools[i].kind), s.jaw_rad);
+    m_initial.jaw_fraction[h] = m_map.jaw_max_rad[h] > 0.0 ? s.jaw_rad / m_map.jaw_max_rad[h] : 0.0;
     m_initial.buttons[h] = s.buttons;
   }
   m_device = std::make_unique<haptics::MouseKeyboardDevice>(m_trocars, m_map);
@@ -41,7 +44,6 @@ void MouseTakeover::apply(const haptics::PointerInput& in, ReplayController& rep
   haptics::DeviceSample sample;
   const double t = replay.time_s();
   if (!m_device->poll(t, sample)) return;
-  const double max_jaw_step = kJawSpeed * replay.dt_s();
   for (std::size_t h = 0; h < haptics::kHandles; ++h) {
     if (!m_tool[h]) continue;
     // A fresh state with zero padding: the state hash covers the whole struct, and a replay reads
@@ -50,13 +52,7 @@ void MouseTakeover::apply(const haptics::PointerInput& in, ReplayController& rep
     std::memset(static_cast<void*>(&s), 0, sizeof s);
     s.tip_m = sample.pose[h].tip_m;
     s.quat_wxyz = sample.pose[h].quat_wxyz;
-    // The jaws hold the recorded opening until the input's jaw flag first changes.
-    m_jaw_moved[h] = m_jaw_moved[h] || in.jaw_open[h] != m_initial.jaw_open[h];
-    if (m_jaw_moved[h]) {
-      const double target = in.jaw_open[h] ? m_map.jaw_open_rad : 0.0;
-      m_jaw[h] += std::clamp(target - m_jaw[h], -max_jaw_step, max_jaw_step);
-    }
-    s.jaw_rad = m_jaw[h];
+    s.jaw_rad = sample.pose[h].jaw_rad;
     s.tick = replay.steps_taken();
     s.time_s = t;
     s.buttons = sample.buttons[h];

@@ -6,9 +6,9 @@
 //    pivot at the tool's `trocar` distance from the tip, else 10 cm back along the shaft), its
 //    frame the tool's orientation, so the device's rest joints (insertion only) reproduce that
 //    pose exactly: taking over moves nothing until the input does;
-//  - the jaws hold the opening the recording left them at until the input's jaw_open flag first
-//    changes; then they move towards open (jaw_open_rad) or closed at kJawSpeed (a jump would cut
-//    or grab at once).
+//  - the jaws hold the opening the recording left them at (the input's jaw_fraction starts
+//    there) until the input asks for another; then they move at the device's jaw speed (a jump
+//    would cut or grab at once), over the instrument's range (engine/jaw_range.h).
 // apply() polls the device with the cumulative input and hands the poses to the controller for
 // its next step; it is deterministic (no thread), so a scripted input sequence stands in for the
 // user in tests, and the branch recording holds exactly what the steps consumed.
@@ -30,14 +30,12 @@ class ReplayController;
 
 class MouseTakeover {
  public:
-  static constexpr double kJawSpeed = 4.0;  ///< jaw opening/closing speed, rad/s
-
   /// Takes the handles' poses from `tools` (the state at the branch, scene order).
   MouseTakeover(const Scene& scene, const std::vector<ToolState>& tools,
                 const haptics::MouseMapping& mapping = {});
 
-  /// Cumulative input at the branch: its jaw_open flags follow the recorded jaws (open when
-  /// wider than half jaw_open_rad). Start accumulating from this.
+  /// Cumulative input at the branch: its jaw fractions hold the recorded jaws. Start
+  /// accumulating from this.
   [[nodiscard]] const haptics::PointerInput& initial_input() const noexcept { return m_initial; }
 
   /// Feeds `in` (cumulative since the branch began, initial_input() included) to the device,
@@ -57,8 +55,6 @@ class MouseTakeover {
  private:
   std::array<std::optional<std::size_t>, haptics::kHandles> m_tool{};
   std::array<haptics::Trocar, haptics::kHandles> m_trocars{};
-  std::array<double, haptics::kHandles> m_jaw{};
-  std::array<bool, haptics::kHandles> m_jaw_moved{};
   haptics::MouseMapping m_map;
   std::unique_ptr<haptics::MouseKeyboardDevice> m_device;
   haptics::PointerInput m_initial{};

@@ -165,6 +165,17 @@ void fill_render_tools(const Scene& scene, const SimState& state, render::Render
     t.tip = to_float(in.tip_m);
     t.quat_wxyz = to_float(in.quat_wxyz);
     t.jaw_rad = std::clamp(static_cast<float>(in.jaw_rad), 0.0f, 3.14159265f);
+    t.scene_tool = static_cast<std::uint32_t>(i);
+    const auto& planes = state.handoff.contact_planes;
+    if (i < planes.size() && planes[i]) {
+      const Vec3 p(planes[i]->point_m[0], planes[i]->point_m[1], planes[i]->point_m[2]);
+      const Vec3 n(planes[i]->normal[0], planes[i]->normal[1], planes[i]->normal[2]);
+      t.has_tissue = true;
+      t.tissue_point = to_float(p);
+      t.tissue_normal = to_float(n);
+      t.tissue_distance_m =
+          static_cast<float>((Vec3(in.tip_m[0], in.tip_m[1], in.tip_m[2]) - p).dot(n));
+    }
     if (tool.trocar_m) {
       t.has_trocar = true;
       t.trocar = {static_cast<float>(tool.trocar_m->x()), static_cast<float>(tool.trocar_m->y()),

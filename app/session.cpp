@@ -19,10 +19,13 @@
 #include "app/compose.h"
 #include "app/drawn_surface.h"
 #include "app/frame_pacer.h"
+#include "app/hand_overlay.h"
 #include "app/headless.h"
+#include "app/help_seen.h"
 #include "app/instrument_devices.h"
 #include "app/mouse_takeover.h"
 #include "app/overlay_stats.h"
+#include "app/pointer_control.h"
 #include "app/render_frame_from_surface.h"
 #include "app/replay_controller.h"
 #include "app/replay_timeline.h"
@@ -30,6 +33,8 @@
 #include "app/scope_control.h"
 #include "app/session_summary.h"
 #include "app/summary_screen.h"
+#include "app/view_log.h"
+#include "app/window_pointer.h"
 #include "engine/hook.h"
 #include "engine/input_error.h"
 #include "engine/record_stage.h"
@@ -84,47 +89,10 @@ class InterruptGuard {
   void (*m_term)(int) = SIG_DFL;
 };
 
-// The window's pointer and keys as the mouse device's cumulative input (window thread only):
-// drag with the left button pivots the active instrument, W/S insert/retract, Q/E roll, J toggles
-// the jaws, P presses or releases its cautery pedal (a hook's current), Tab switches the active
-// instrument.
-class PointerControl {
- public:
-  explicit PointerControl(const haptics::PointerInput& start = {}) : m_input(start) {}
-  // Reads the keys and the pointer; returns the cumulative input.
-  const haptics::PointerInput& update(render::Window& w) {
-    if (w.pressed(render::Key::kTab)) m_active = (m_active + 1) % haptics::kHandles;
-    if (w.pressed(render::Key::kW)) m_input.scroll_steps[m_active] += 1.0;
-    if (w.pressed(render::Key::kS)) m_input.scroll_steps[m_active] -= 1.0;
-    if (w.pressed(render::Key::kQ)) m_input.roll_steps[m_active] -= 1.0;
-    if (w.pressed(render::Key::kE)) m_input.roll_steps[m_active] += 1.0;
-    if (w.pressed(render::Key::kJ)) m_input.jaw_open[m_active] ^= 1u;
-    if (w.pressed(render::Key::kP)) m_input.buttons[m_active] ^= kPedalButton;
-    float x = 0.0f;
-    float y = 0.0f;
-    w.cursor(x, y);
-    const bool down = w.mouse_down();
-    if (down && m_dragging) {
-      m_input.dx_px[m_active] += static_cast<double>(x - m_x);
-      m_input.dy_px[m_active] += static_cast<double>(y - m_y);
-    }
-    m_dragging = down;
-    m_x = x;
-    m_y = y;
-    return m_input;
-  }
-
- private:
-  haptics::PointerInput m_input;
-  std::size_t m_active = 0;
-  bool m_dragging = false;
-  float m_x = 0.0f;
-  float m_y = 0.0f;
-};
-
 // What the window thread tells the solver thread.
 struct Control {
   std::atomic<bool> paused{false};
+  std::atomic<std::size_t> active_handle{0};  // the mouse's active hand (window thread writes)
   std::atomic<bool> finished{false};  // set by the solver thread when it stops (error or stop)
 };
 
@@ -252,6 +220,14 @@ class SolverLoop {
     stats.paused = m_control.paused.load();
     stats.slow_motion = m_slow;
     f.overlay = overlay_data(stats);
+    if (m_comp.haptics != nullptr && m_comp.haptics->device_kind() != DeviceKind::kScript) {
+      const HandleTools& handles = m_comp.haptics->handle_tools();
+      const std::size_t active = m_control.active_handle.load();
+      const bool mouse = m_comp.haptics->device_kind() == DeviceKind::kMouse;
+      mark_active_tool(f, mouse && active < handles.size() ? handles[active] : std::nullopt);
+      f.overlay.hands =
+          overlay_hands(m_scene, m_state, handles, mouse ? active : handles.size(), f);
+    }
     m_frames.publish();
   }
 
@@ -292,7 +268,7 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
   } else if (auto given = give_instruments_to_trainee(scene, haptics::rig_plugged_in())) {
     spdlog::info("the instruments follow the {} (serosa headless plays the scene's script)",
                  given->device == DeviceKind::kRig ? "rig" : "mouse and keyboard");
-    co.mouse_rest_tip_m = std::move(given->start_tip_m);
+    co.mouse_rest_pose = std::move(given->start_pose);
     for (std::size_t i = 0; i < given->scope_start.size() && !scope; ++i) {
       if (!given->scope_start[i]) continue;
       scope = std::make_unique<ScopeControl>(scene.tools[i], *given->scope_start[i]);
@@ -308,7 +284,17 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
   for (Effect e : comp.unavailable)
     spdlog::warn("effect '{}' is not implemented in this build: not simulated", effect_name(e));
   const bool mouse = comp.haptics != nullptr && comp.haptics->device_kind() == DeviceKind::kMouse;
+  const bool in_hands =
+      comp.haptics != nullptr && comp.haptics->device_kind() != DeviceKind::kScript;
   PointerControl pointer;
+  std::optional<ViewLog> view_log;
+  if (so.view_log) {
+    std::vector<std::string> names;
+    for (const Tool& t : scene.tools) names.push_back(t.name);
+    view_log.emplace(*so.view_log, std::move(names));
+  }
+  // The controls show by themselves the first time a trainee (or this machine) drives.
+  bool show_help = in_hands && !so.help_file.empty() && first_time_help(so.help_file, so.trainee);
 
   const InterruptGuard interrupts;
   render::Window window(scene.render.width, scene.render.height, "Serosa");
@@ -356,8 +342,16 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
         asked_tessellation = std::max(asked_tessellation - 1, 1);
       pacer.set_tessellation(asked_tessellation);
       options.tessellation = pacer.tessellation();
-      if (window.pressed(render::Key::kH)) show_overlay = !show_overlay;
-      if (mouse) comp.haptics->feed_pointer(pointer.update(window));
+      const bool help_key = window.pressed(render::Key::kH);
+      if (window.pressed(render::Key::kF1) || help_key) show_help = !show_help;
+      if (window.pressed(render::Key::kF2)) show_overlay = !show_overlay;
+      const PointerEvents events = pointer_events(window);
+      if (mouse) {
+        const double now_s = std::chrono::duration<double>(Clock::now() - start).count();
+        comp.haptics->feed_pointer(
+            pointer.update(events, screen_axes(frames.front().camera), now_s));
+        control.active_handle.store(pointer.active());
+      }
       if (scope) scope->update(window);
 
       frames.take();  // the newest frame, if the solver published one since
@@ -378,12 +372,16 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
       last = now;
       render::OverlayData shown = frame.overlay;
       shown.visible = show_overlay;
+      shown.help = show_help;
       shown.frame_rate_hz = frame_rate.hz();
       shown.drawn_tessellation = options.tessellation;
       shown.drawn_scale = pacer.resolution_scale();
       const render::OverlayResult r = overlay.draw(shown, options, w, h, input);
       if (r.view) options.view = *r.view;
       if (r.tessellation) asked_tessellation = *r.tessellation;
+      if (view_log)
+        view_log->write(frame, w, h, std::chrono::duration<double>(now - start).count(),
+                        mouse ? static_cast<int>(pointer.active()) : -1);
       const bool last_frame =
           seconds > 0.0 && std::chrono::duration<double>(now - start).count() > seconds;
       if (!snapshot.empty() && (last_frame || window.should_close() || g_interrupted.load()))
@@ -432,6 +430,7 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
     if (writer) report["recording"] = close_recording(*writer, scene, assembled.state.step);
     add_metrics_blocks(report, scene, comp.metrics, assembled.state.mesh, assembled.group_names());
     report["state_hash"] = hash_hex(state_hash(assembled.state));
+    if (comp.cutting) report["cutting"] = cutting_json(comp);  // as headless reports it
     if (so.report) {
       std::ofstream out(*so.report);
       out << report.dump(2) << '\n';
@@ -524,7 +523,11 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
       options.tessellation = std::max(options.tessellation - 1, 1);
     if (window.pressed(render::Key::kH)) show_overlay = !show_overlay;
     if (window.pressed(render::Key::kB) && !replay.branched()) branch_here();
-    if (takeover) takeover->apply(pointer.update(window), replay);
+    const PointerEvents events = pointer_events(window);  // taken every frame: none pile up
+    if (takeover)
+      takeover->apply(pointer.update(events, screen_axes(frame.camera),
+                                     std::chrono::duration<double>(Clock::now() - start).count()),
+                      replay);
     const TimelineData known = timeline.data();
     if (window.pressed(render::Key::kN)) jump_to_next_error(known.marks);
 

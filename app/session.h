@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <string>
 
 namespace serosa::app {
 
@@ -23,6 +24,13 @@ struct SessionOptions {
   /// `seconds` ended, s (0: not shown then). A session the trainee ends (Esc, or the procedure
   /// finished) shows it until they leave it.
   double summary_seconds = 0.0;
+  /// Who drives (--trainee; empty: no name) and the file remembering who has seen the controls
+  /// (app/help_seen.h; empty: the controls panel never shows by itself).
+  std::string trainee;
+  std::filesystem::path help_file;
+  /// Where each frame's instruments, guide and organs were drawn, as JSON lines
+  /// (app/view_log.h); none when empty.
+  std::optional<std::filesystem::path> view_log;
 };
 
 /// Opens a window on the scene and runs it in real time until the window closes, Ctrl-C (SIGINT
@@ -41,11 +49,16 @@ struct SessionOptions {
 /// the haptic loop (motors off), then the recording is closed and the report written.
 ///
 /// Keys: Space pause, V cycle the views (visual, collision, mechanical), Up/Down tessellation
-/// level, O toggle a 0/30 degree scope, H hide/show the overlay, Esc end the session (then the
-/// summary of its assessment, when the scene scores it; Esc again to leave). With mouse-driven
-/// instruments: drag with the left button to pivot the active one about its trocar, W/S insert
-/// and retract, Q/E roll, J open/close the jaws, Tab switch the active instrument. The overlay's
-/// view and tessellation controls work with the mouse.
+/// level, O toggle a 0/30 degree scope, H or F1 the controls panel (shown by itself the first
+/// time a trainee drives), F2 hide/show the overlay, Esc end the session (then the summary of
+/// its assessment, when the scene scores it; Esc again to leave). With mouse-driven instruments
+/// (app/pointer_control.h): drag with the left button to move the active one's tip the way the
+/// pointer goes in the picture (it pivots about its trocar), W/S or the wheel insert and
+/// retract, Q/E roll, J taps open/close the jaws and held closes them steadily, P the pedal,
+/// Home back into view, Tab the other hand. The overlay names what each hand holds, its jaws,
+/// pedal and distance to tissue; the active instrument wears a coloured collar and a ring on the
+/// tissue under each tip closes in as it comes near. The overlay's view and tessellation
+/// controls work with the mouse.
 int run_session(const std::filesystem::path& scene, const SessionOptions& options);
 
 /// The instructor's replay of a .lapr recording in a window (`serosa replay REC.lapr`), driven

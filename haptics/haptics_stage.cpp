@@ -4,12 +4,14 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <thread>
 
 #include "engine/input_error.h"
+#include "engine/jaw_range.h"
 #include "engine/sim_state.h"
 #include "engine/tool_path.h"
 #include "haptics/emulated_rig.h"
@@ -20,14 +22,28 @@
 namespace serosa::haptics {
 
 MouseHandle mouse_handle(const Tool& tool, std::size_t handle, const Vec3& aim_m,
-                         const std::optional<Vec3>& rest_tip_m) {
+                         const std::optional<ToolState>& rest_pose) {
   MouseHandle m;
   const Vec3 side = handle == 0 ? Vec3(-0.05, 0.0, 0.0) : Vec3(0.05, 0.0, 0.0);
   m.trocar.pivot_m = tool.trocar_m.value_or(Vec3(aim_m + Vec3(0.0, 0.12, 0.0) + side));
-  Vec3 axis = rest_tip_m.value_or(aim_m) - m.trocar.pivot_m;
+  const std::optional<Vec3> rest_tip =
+      rest_pose
+          ? std::optional<Vec3>(Vec3(rest_pose->tip_m[0], rest_pose->tip_m[1], rest_pose->tip_m[2]))
+          : std::nullopt;
+  Vec3 axis = rest_tip.value_or(aim_m) - m.trocar.pivot_m;
   if (axis.norm() < 1e-6) axis = Vec3(0.0, -1.0, 0.0);
   m.trocar.rotation = Quat::FromTwoVectors(Vec3::UnitZ(), axis.normalized());
-  m.rest.insertion_m = (rest_tip_m ? 1.0 : 0.5) * axis.norm();
+  m.rest.insertion_m = (rest_tip ? 1.0 : 0.5) * axis.norm();
+  if (rest_pose) {  // the roll that turns the jaw plane's normal (local +y) nearest the pose's
+    const Quat q(rest_pose->quat_wxyz[0], rest_pose->quat_wxyz[1], rest_pose->quat_wxyz[2],
+                 rest_pose->quat_wxyz[3]);
+    const Vec3 shaft = m.trocar.rotation * Vec3::UnitZ();
+    Vec3 want = q.normalized() * Vec3::UnitY();
+    want -= want.dot(shaft) * shaft;
+    if (want.norm() > 1e-6)  // Rz(roll) e_y = -sin(roll) e_x + cos(roll) e_y
+      m.rest.roll_rad = std::atan2(-want.dot(m.trocar.rotation * Vec3::UnitX()),
+                                   want.dot(m.trocar.rotation * Vec3::UnitY()));
+  }
   return m;
 }
 
@@ -162,9 +178,10 @@ HapticsStage::HapticsStage(const Scene& scene, const HapticsStageOptions& option
       const std::size_t tool = *m_tool[h];
       const MouseHandle mh =
           mouse_handle(scene.tools[tool], h, options.aim_m,
-                       tool < options.rest_tip_m.size() ? options.rest_tip_m[tool] : std::nullopt);
+                       tool < options.rest_pose.size() ? options.rest_pose[tool] : std::nullopt);
       trocars[h] = mh.trocar;
       map.rest[h] = mh.rest;
+      map.jaw_max_rad[h] = max_jaw_rad(scene.tools[tool].kind);
       m_rest_pose[h] = haptics::forward(mh.trocar, mh.rest);
     }
     auto mouse = std::make_unique<haptics::MouseKeyboardDevice>(trocars, map);

@@ -30,8 +30,8 @@
 // tip), or the first tip itself when none is given. A mouse handle's trocar is its tool's
 // `trocar`, else 12 cm above the aim point (the organs' centroid; handle 1 5 cm to the side);
 // its axis points at the aim point and the tool rests halfway there, or, given a rest tip
-// (HapticsStageOptions::rest_tip_m: `serosa run` passes where the scene's script started the
-// tool), at that tip.
+// (HapticsStageOptions::rest_pose: `serosa run` passes the first pose of the tool's script that
+// the endoscope sees), at that tip, rolled to that pose's jaw plane.
 #pragma once
 
 #include <array>
@@ -69,9 +69,10 @@ struct HapticsStageOptions {
   bool realtime = false;
   /// Where mouse handles' trocar axes point, m (compose passes the organs' centroid).
   Vec3 aim_m = Vec3::Zero();
-  /// (tools, or empty) Where a mouse-driven tool rests at the start, m: its trocar axis points
-  /// there and the tip starts on it. nullopt: halfway to aim_m.
-  std::vector<std::optional<Vec3>> rest_tip_m;
+  /// (tools, or empty) How a mouse-driven tool rests at the start: its trocar axis points at the
+  /// pose's tip and the tip starts there, rolled to the pose's jaw plane. nullopt: halfway to
+  /// aim_m, unrolled.
+  std::vector<std::optional<ToolState>> rest_pose;
   /// Rig devices: how long the constructor waits for the rig to connect before it warns "rig not
   /// connected" and goes on, s.
   double rig_wait_s = 1.0;
@@ -149,7 +150,7 @@ struct MouseHandle {
   haptics::JointState rest;
 };
 [[nodiscard]] MouseHandle mouse_handle(const Tool& tool, std::size_t handle, const Vec3& aim_m,
-                                       const std::optional<Vec3>& rest_tip_m = std::nullopt);
+                                       const std::optional<ToolState>& rest_pose = std::nullopt);
 
 /// The tissue's push on a tool's shaft (r.shaft_push_n, acting r.shaft_lever of the way from
 /// the port to the tip) as the tip force with the same moment about the port: its lateral part

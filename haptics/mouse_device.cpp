@@ -1,27 +1,90 @@
 #include "haptics/mouse_device.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace serosa::haptics {
 
+JointState reach(const Trocar& t, const Vec3& goal_tip_m, const JointState& previous,
+                 const MouseMapping& m) {
+  Vec3 local = t.rotation.conjugate() * (goal_tip_m - t.pivot_m);
+  const double n = local.norm();
+  if (!(n > 1e-9)) {  // at the pivot (or not finite): keep the direction, shortest insertion
+    JointState q = previous;
+    q.insertion_m = m.min_insertion_m;
+    return q;
+  }
+  Vec3 d = local / n;
+  // Outside the cone the port allows: the nearest direction on its rim.
+  const double cos_max = std::cos(m.max_cone_rad);
+  if (d.z() < cos_max) {
+    Vec3 across(d.x(), d.y(), 0.0);
+    if (across.norm() < 1e-12) across = Vec3::UnitX();
+    d = cos_max * Vec3::UnitZ() + std::sin(m.max_cone_rad) * across.normalized();
+  }
+  const double along = std::max(local.dot(d), 0.0);  // the goal's distance along that direction
+  JointState q = inverse_from_tip(t, t.pivot_m + t.rotation * d, previous);
+  q.insertion_m = std::clamp(along, m.min_insertion_m, m.max_insertion_m);
+  return q;
+}
+
+MouseKeyboardDevice::MouseKeyboardDevice(std::array<Trocar, kHandles> trocars,
+                                         const MouseMapping& m)
+    : m_trocars(trocars), m_map(m), m_goal(m.rest), m_q(m.rest) {
+  for (std::size_t h = 0; h < kHandles; ++h)
+    m_seen.jaw_fraction[h] = m.jaw_max_rad[h] > 0.0 ? m.rest[h].jaw_rad / m.jaw_max_rad[h] : 0.0;
+  m_input.store(m_seen);
+}
+
+void MouseKeyboardDevice::follow_input(std::size_t h, const PointerInput& in) {
+  JointState& g = m_goal[h];
+  if (in.homes[h] != m_seen.homes[h]) {
+    const double jaw = g.jaw_rad;
+    g = m_map.rest[h];
+    g.jaw_rad = jaw;
+  }
+  const Vec3 move(in.move_m[h][0] - m_seen.move_m[h][0], in.move_m[h][1] - m_seen.move_m[h][1],
+                  in.move_m[h][2] - m_seen.move_m[h][2]);
+  if (move.squaredNorm() > 0.0) {
+    const ToolState now = forward(m_trocars[h], g);
+    g = reach(m_trocars[h], Vec3(now.tip_m[0], now.tip_m[1], now.tip_m[2]) + move, g, m_map);
+  }
+  g.insertion_m =
+      std::clamp(g.insertion_m + (in.depth_steps[h] - m_seen.depth_steps[h]) * m_map.m_per_step,
+                 m_map.min_insertion_m, m_map.max_insertion_m);
+  g.roll_rad += (in.roll_steps[h] - m_seen.roll_steps[h]) * m_map.rad_per_step;
+  g.jaw_rad = std::clamp(in.jaw_fraction[h], 0.0, 1.0) * m_map.jaw_max_rad[h];
+}
+
+void MouseKeyboardDevice::ease(std::size_t h, double dt_s) {
+  const JointState& g = m_goal[h];
+  JointState& q = m_q[h];
+  const double jaw = q.jaw_rad;
+  const double a = m_map.ease_s > 0.0 ? 1.0 - std::exp(-dt_s / m_map.ease_s) : 1.0;
+  q.pitch_rad += a * (g.pitch_rad - q.pitch_rad);
+  q.yaw_rad += a * (g.yaw_rad - q.yaw_rad);
+  q.roll_rad += a * (g.roll_rad - q.roll_rad);
+  q.insertion_m += a * (g.insertion_m - q.insertion_m);
+  if (a >= 1.0) q = g;  // exact, not within rounding
+  const double jaw_step = m_map.jaw_speed_rad_s * dt_s;
+  q.jaw_rad = jaw + std::clamp(g.jaw_rad - jaw, -jaw_step, jaw_step);
+}
+
 bool MouseKeyboardDevice::poll(double now_s, DeviceSample& out) noexcept {
   const PointerInput in = m_input.load();
+  const double dt = m_seq == 0 ? 0.0 : std::max(now_s - m_last_s, 0.0);
+  m_last_s = now_s;
   DeviceSample s;
   s.sequence = ++m_seq;
   s.time_s = now_s;
   for (std::size_t h = 0; h < kHandles; ++h) {
-    JointState q = m_map.rest[h];
-    q.yaw_rad += in.dx_px[h] * m_map.rad_per_px;
-    q.pitch_rad = std::clamp(q.pitch_rad + in.dy_px[h] * m_map.rad_per_px, -m_map.max_pitch_rad,
-                             m_map.max_pitch_rad);
-    q.insertion_m = std::clamp(q.insertion_m + in.scroll_steps[h] * m_map.m_per_step, 0.0,
-                               m_map.max_insertion_m);
-    q.roll_rad += in.roll_steps[h] * m_map.rad_per_step;
-    q.jaw_rad = in.jaw_open[h] ? m_map.jaw_open_rad : 0.0;
-    s.joints[h] = q;
-    s.pose[h] = forward(m_trocars[h], q);
+    follow_input(h, in);
+    ease(h, dt);
+    s.joints[h] = m_q[h];
+    s.pose[h] = forward(m_trocars[h], m_q[h]);
     s.buttons[h] = in.buttons[h];
   }
+  m_seen = in;
   out = s;
   return true;
 }

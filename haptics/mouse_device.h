@@ -1,10 +1,22 @@
 // MouseKeyboardDevice: a trainee without the rig steers the instruments with mouse and keyboard.
 // The window thread feeds cumulative input (a plain struct; no GLFW here) through a Seqlock; the
-// loop maps it to joints about each trocar:
-//   yaw   = rest.yaw   + dx_px * rad_per_px        pitch = rest.pitch + dy_px * rad_per_px
-//   insertion = rest.insertion + scroll_steps * m_per_step  (clamped to [0, max_insertion_m])
-//   roll  = rest.roll  + roll_steps * rad_per_step  jaw = jaw_open ? jaw_open_rad : 0
-// pitch is clamped to +-max_pitch_rad. Cumulative values mean no motion is lost between polls.
+// loop turns what changed since its last poll into a goal for each handle and moves the handle
+// towards it at the haptic rate:
+//  - a drag moves the goal tip by move_m, in the scene frame: the window turns pixels into metres
+//    along the picture's right and up at a fixed gain (app/pointer_control.h), so the tip goes
+//    the way the pointer went whatever the instrument's insertion or shaft direction;
+//  - the goal tip then goes through the trocar kinematics: the shaft pivots about its port and
+//    the tip stays within max_cone_rad of the port's axis and between min and max insertion, so
+//    a tip that cannot go where the drag asks goes as near as the port allows;
+//  - depth steps (W/S, the wheel) insert or retract it along the shaft by m_per_step, roll steps
+//    (Q/E) roll it by rad_per_step, and each press of Home (homes) brings it back to its rest
+//    joints, in view (the rest pose serosa run gives each instrument);
+//  - jaw_fraction (0 closed, 1 open) opens the jaws to that share of the instrument's range
+//    (jaw_max_rad: engine/jaw_range.h), at most jaw_speed_rad_s fast;
+//  - the joints follow the goal with time constant ease_s, so a frame's worth of motion that
+//    arrives at once (the window reads its input once a frame) is spread over the loop's ticks
+//    instead of jumping; ease_s = 0 follows at once.
+// Cumulative values mean no motion is lost between polls.
 #pragma once
 
 #include <array>
@@ -15,30 +27,32 @@
 
 namespace serosa::haptics {
 
-/// Cumulative input since the window opened, per handle (the window owns the accumulation).
+/// Cumulative input since the window opened, per handle (the window owns the accumulation);
+/// jaw_fraction and buttons are the current state, not sums.
 struct PointerInput {
-  std::array<double, kHandles> dx_px{};            ///< total horizontal pointer motion, px
-  std::array<double, kHandles> dy_px{};            ///< total vertical pointer motion, px
-  std::array<double, kHandles> scroll_steps{};     ///< total scroll, wheel steps (+ = insert)
-  std::array<double, kHandles> roll_steps{};       ///< total roll key presses (+ = clockwise)
-  std::array<std::uint32_t, kHandles> jaw_open{};  ///< 1 while the jaw key is held
-  std::array<std::uint32_t, kHandles> buttons{};   ///< button bits (protocol layout)
+  std::array<std::array<double, 3>, kHandles> move_m{};  ///< total drag, scene frame, m
+  std::array<double, kHandles> depth_steps{};            ///< total insertion steps (+ = insert)
+  std::array<double, kHandles> roll_steps{};             ///< total roll steps (+ = clockwise)
+  std::array<double, kHandles> jaw_fraction{};           ///< jaws: 0 closed .. 1 fully open
+  std::array<std::uint32_t, kHandles> buttons{};         ///< button bits (protocol layout)
+  std::array<std::uint32_t, kHandles> homes{};           ///< times Home was pressed
 };
 
 struct MouseMapping {
-  double rad_per_px = 0.002;
-  double m_per_step = 0.005;
-  double rad_per_step = 0.1;
-  double jaw_open_rad = 0.6;
-  double max_pitch_rad = 1.2;
-  double max_insertion_m = 0.3;
-  std::array<JointState, kHandles> rest{};  ///< joints with no input
+  double m_per_step = 0.003;      ///< insertion per depth step, m
+  double rad_per_step = 0.1;      ///< roll per roll step, rad
+  double max_cone_rad = 1.2;      ///< largest angle of the shaft from the port's axis, rad
+  double min_insertion_m = 0.01;  ///< shortest insertion past the port, m
+  double max_insertion_m = 0.3;   ///< longest, m
+  double ease_s = 0.03;           ///< time constant of the joints following the goal, s (>= 0)
+  double jaw_speed_rad_s = 4.0;   ///< fastest jaw motion, rad/s
+  std::array<double, kHandles> jaw_max_rad{1.0, 1.0};  ///< each handle's instrument's range, rad
+  std::array<JointState, kHandles> rest{};             ///< joints with no input (and after Home)
 };
 
 class MouseKeyboardDevice final : public Device {
  public:
-  MouseKeyboardDevice(std::array<Trocar, kHandles> trocars, const MouseMapping& m = {})
-      : m_trocars(trocars), m_map(m) {}
+  MouseKeyboardDevice(std::array<Trocar, kHandles> trocars, const MouseMapping& m = {});
 
   /// Window thread (single writer): the current cumulative input.
   void feed(const PointerInput& in) noexcept { m_input.store(in); }
@@ -50,11 +64,25 @@ class MouseKeyboardDevice final : public Device {
   [[nodiscard]] const DeviceCommand& last_command() const noexcept { return m_last; }
 
  private:
+  void follow_input(std::size_t h, const PointerInput& in);
+  void ease(std::size_t h, double dt_s);
+
   std::array<Trocar, kHandles> m_trocars;
   MouseMapping m_map;
   Seqlock<PointerInput> m_input{};
+  // Loop thread only: the input last taken in, each handle's goal and joints, the last poll.
+  PointerInput m_seen{};
+  std::array<JointState, kHandles> m_goal{};
+  std::array<JointState, kHandles> m_q{};
+  double m_last_s = 0.0;
   std::uint64_t m_seq = 0;
   DeviceCommand m_last{};
 };
+
+/// The joints nearest `goal_tip_m` that the port allows: the shaft within max_cone_rad of the
+/// port's axis, the insertion within [min_insertion_m, max_insertion_m]; roll and jaw of
+/// `previous`.
+[[nodiscard]] JointState reach(const Trocar& t, const Vec3& goal_tip_m, const JointState& previous,
+                               const MouseMapping& m);
 
 }  // namespace serosa::haptics

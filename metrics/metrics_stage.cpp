@@ -73,6 +73,8 @@ MetricsStage::MetricsStage(const Scene& scene, LameTable lame, std::int64_t stre
   m_force_sum.assign(k, 0.0);
   m_force_steps.assign(k, 0);
   m_moved.assign(k, 0.0);
+  m_window = std::max<std::size_t>(
+      1, static_cast<std::size_t>(std::lround(kIdleWindowS / scene.settings.dt_s)));
   m_load.assign(k, 0.0);
   m_out_of_view_s.assign(k, 0.0);
   m_tear_stress = scene.metrics.tear_stress_pa;
@@ -137,14 +139,20 @@ void MetricsStage::follow_steps(SimState& state) {
 
 bool MetricsStage::add_use(const std::vector<double>& moved, const std::vector<double>& load,
                            double dt_s) {
+  const std::size_t n = moved.size();
+  const std::size_t slot = static_cast<std::size_t>(m_recent_at++ % m_window);
+  m_recent.resize(m_window * n, 0.0);
+  std::copy(moved.begin(), moved.end(), m_recent.begin() + static_cast<std::ptrdiff_t>(slot * n));
   bool any_moving = false, all_at_work = true, over = false;
   std::size_t hands = 0;
-  for (std::size_t i = 0; i < moved.size(); ++i) {
+  for (std::size_t i = 0; i < n; ++i) {
     const double f = i < load.size() ? load[i] : 0.0;
     over = over || f > m_force_limit;
     if (m_hand[i] == 0) continue;
     ++hands;
-    const bool moving = moved[i] > kIdleSpeed * dt_s;
+    double path = 0.0;
+    for (std::size_t k = 0; k < m_window; ++k) path += m_recent[k * n + i];
+    const bool moving = path > kIdleSpeed * static_cast<double>(m_window) * dt_s;
     any_moving = any_moving || moving;
     all_at_work = all_at_work && (moving || f > 0.0);
   }
@@ -270,6 +278,8 @@ void MetricsStage::save(StateWriter& out) const {
   out.array(m_force_steps);
   out.array(m_out_of_view_s);
   out.array(m_target_first_s);
+  out.array(m_recent);
+  out.u64(m_recent_at);
   for (double v : {m_peak_stress, m_cut_volume, m_collateral, m_dev_weighted, m_dev_max, m_idle_s,
                    m_active_s, m_bimanual_s, m_force_over_s})
     out.f64(v);
@@ -297,6 +307,10 @@ void MetricsStage::restore(StateReader& in, SimState& state) {
   in.array(m_out_of_view_s);
   in.array(m_target_first_s);
   if (m_target_first_s.size() != m_targets.size()) in.fail("another number of view targets");
+  in.array(m_recent);
+  m_recent_at = in.u64();
+  if (!m_recent.empty() && m_recent.size() != m_window * tools)
+    in.fail("another idle window than the scene's");
   if (m_path.size() != tools || m_last_tip.size() != tools || m_force_max.size() != tools ||
       m_force_sum.size() != tools || m_force_steps.size() != tools ||
       m_out_of_view_s.size() != tools)

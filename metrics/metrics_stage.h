@@ -14,7 +14,7 @@
 //   tears                   with [metrics] tear_stress: how many times the peak stress rose above
 //                           it (sampled as the peak stress is), and when (tear_times_s), 1
 //   idle_time_s             time in which no hand instrument (grasper, scissors) moved: every
-//                           tip slower than kIdleSpeed, s
+//                           tip slower than kIdleSpeed over the last kIdleWindowS, s
 //   bimanual_fraction       of the time some hand instrument moved, the part in which every hand
 //                           instrument was at work: moving or holding tissue (1: both hands
 //                           worked together throughout; 0 with fewer than two)
@@ -66,6 +66,11 @@ namespace serosa::metrics {
 /// A tip slower than this is still (idle time, bimanual use), m/s: a hand holding an instrument
 /// drifts by a millimetre or so a second.
 inline constexpr double kIdleSpeed = 5e-3;
+/// The speed is the tip's path over this much time before the step, over that time, s: whatever
+/// drives the instrument, its pose may change in steps (a mouse read once a frame, a rig's
+/// packets, a script from Python) rather than every solver step, and a hand in motion is not
+/// idle between two of them.
+inline constexpr double kIdleWindowS = 0.25;
 
 /// Distance from p to the polyline (k >= 1 points), m.
 [[nodiscard]] double distance_to_polyline(const Vec3& p, const std::vector<Vec3>& line);
@@ -165,6 +170,9 @@ class MetricsStage final : public Stage {
   std::vector<double> m_tear_times;     // s
   double m_idle_s = 0.0, m_active_s = 0.0, m_bimanual_s = 0.0, m_force_over_s = 0.0;  // s
   std::vector<double> m_moved;           // (tools) this step's tip moves, m
+  std::vector<double> m_recent;          // (window x tools) the last steps' tip moves, m
+  std::uint64_t m_recent_at = 0;         // steps put into m_recent so far
+  std::size_t m_window = 1;              // steps in kIdleWindowS
   std::vector<double> m_load;            // (tools) this step's force on the tissue, N
   std::vector<double> m_out_of_view_s;   // (tools) time each tip spent out of the scope's view, s
   std::optional<std::size_t> m_scope;    // the scene's first endoscope

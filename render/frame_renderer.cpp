@@ -202,11 +202,13 @@ void FrameRenderer::upload_topology(const RenderFrame& frame) {
 }
 
 void FrameRenderer::draw_tools(const RenderFrame& frame, const float* view_proj, const float* eye,
-                               float ref_dist) {
+                               float ref_dist, bool depth_cue) {
   if (frame.tools.empty() && frame.guide.empty() && frame.clips.empty() && frame.bleeds.empty())
     return;
   tool_mesh_.clear();
   for (const RenderTool& t : frame.tools) append_tool_mesh(t, tool_mesh_);
+  if (depth_cue)
+    for (const RenderTool& t : frame.tools) append_depth_cue(t, tool_mesh_);
   for (const RenderClip& c : frame.clips) append_clip_mesh(c, tool_mesh_);
   for (const RenderBleed& b : frame.bleeds) append_bleed_mesh(b, tool_mesh_);
   append_guide_mesh(frame.guide, tool_mesh_);
@@ -442,7 +444,7 @@ void FrameRenderer::draw(const RenderFrame& frame, const SnapshotOptions& option
   glDisable(GL_CULL_FACE);
   glEnable(GL_MULTISAMPLE);
   // Instruments first, depth-tested; the views' lines and surfaces then meet them in depth.
-  draw_tools(frame, v.view_proj.data(), v.eye.data(), v.ref_dist);
+  draw_tools(frame, v.view_proj.data(), v.eye.data(), v.ref_dist, options.depth_cue);
   glBindVertexArray(vao_);
   switch (options.view) {
     case SnapshotOptions::View::kVisual:

@@ -62,7 +62,7 @@ class FrameRenderer {
   void draw_mechanical(const View& v);
   void draw_scenery(const View& v);
   void draw_tools(const RenderFrame& frame, const float* view_proj, const float* eye,
-                  float ref_dist);
+                  float ref_dist, bool depth_cue);
 
   std::unique_ptr<GlProgram> visual_;
   std::unique_ptr<GlProgram> flat_;

@@ -66,7 +66,51 @@ void format_time(double s, char* out, std::size_t size) {
   std::snprintf(out, size, "%d:%04.1f", minutes, s - 60.0 * minutes);
 }
 
+std::string hand_line(const OverlayHand& h) {
+  std::string l = h.active ? "> " : "  ";
+  l.append(h.hand).append(": ").append(h.tool);
+  char part[96];
+  if (h.jaw_max_rad > 0.0) {
+    if (h.jaw_rad < 0.02)
+      std::snprintf(part, sizeof part, "  jaws closed");
+    else
+      std::snprintf(part, sizeof part, "  jaws %.2f of %.2f rad", h.jaw_rad, h.jaw_max_rad);
+    l.append(part);
+  }
+  if (h.has_pedal) l.append(h.pedal ? "  pedal DOWN" : "  pedal up");
+  if (h.has_tissue) {
+    if (h.tissue_distance_m <= 5e-4)
+      std::snprintf(part, sizeof part, "  touching");
+    else
+      std::snprintf(part, sizeof part, "  tissue %.0f mm", 1e3 * h.tissue_distance_m);
+    l.append(part);
+  }
+  return l;
+}
+
 }  // namespace
+
+const std::vector<std::string>& overlay_help_lines() {
+  static const std::vector<std::string> lines = {
+      "Controls (H or F1 shows and hides this)",
+      "drag (left button)  move the active instrument's tip",
+      "                    the way the pointer goes",
+      "W / S, wheel        push it in / pull it back",
+      "Q / E               roll it",
+      "J                   tap: open or close the jaws",
+      "                    hold: close them slowly (bite)",
+      "P                   cautery pedal down / up (hook)",
+      "Home                bring it back into view",
+      "Tab                 switch hands (the active one: > and a collar)",
+      "drag (right button) turn the endoscope; I / K in / out",
+      ", / .               rotate the endoscope; O 0/30 degree optic",
+      "Space               pause       V  views       F2  overlay",
+      "Esc                 end the session and see the score",
+      "The ring on the tissue under a tip closes in as it comes near",
+      "and lights up when it touches.",
+  };
+  return lines;
+}
 
 OverlayText overlay_text(const OverlayData& data) {
   OverlayText t;
@@ -103,6 +147,7 @@ OverlayText overlay_text(const OverlayData& data) {
     if (!m.unit.empty()) l.append(" ").append(m.unit);
     t.stats.push_back(std::move(l));
   }
+  for (const OverlayHand& h : data.hands) t.hands.push_back(hand_line(h));
   if (data.replay) {
     char now[32];
     char total[32];
@@ -205,7 +250,7 @@ Overlay::~Overlay() {
 OverlayResult Overlay::draw(const OverlayData& data, const SnapshotOptions& options, int width,
                             int height, const OverlayInput& input) {
   OverlayResult result;
-  if (!data.visible || width <= 0 || height <= 0) return result;
+  if ((!data.visible && !data.help) || width <= 0 || height <= 0) return result;
   ImGui::SetCurrentContext(imgui_);
   ImGuiIO& io = ImGui::GetIO();
   io.DisplaySize = ImVec2(static_cast<float>(width), static_cast<float>(height));
@@ -246,6 +291,9 @@ OverlayResult Overlay::layout(const OverlayData& data, const SnapshotOptions& op
                                  ImGuiWindowFlags_AlwaysAutoResize |
                                  ImGuiWindowFlags_NoSavedSettings |
                                  ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav;
+  if (data.help) layout_help(panel, width, height);
+  if (!data.visible) return result;
+  if (!data.hands.empty()) layout_hands(data, panel, width);
   // Statistics, top left.
   ImGui::SetNextWindowPos(ImVec2(10.0f, 10.0f), ImGuiCond_Always);
   ImGui::SetNextWindowBgAlpha(0.55f);
@@ -307,6 +355,37 @@ OverlayResult Overlay::layout(const OverlayData& data, const SnapshotOptions& op
     ImGui::End();
   }
   return result;
+}
+
+void Overlay::layout_hands(const OverlayData& data, int panel, int width) {
+  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(width) - 10.0f, 10.0f), ImGuiCond_Always,
+                          ImVec2(1.0f, 0.0f));
+  ImGui::SetNextWindowBgAlpha(0.6f);
+  if (ImGui::Begin("Instruments", nullptr, panel)) {
+    const OverlayText text = overlay_text(data);
+    for (std::size_t i = 0; i < text.hands.size(); ++i) {
+      if (data.hands[i].active)
+        ImGui::TextColored(ImVec4(0.45f, 1.0f, 0.55f, 1.0f), "%s", text.hands[i].c_str());
+      else
+        ImGui::TextUnformatted(text.hands[i].c_str());
+    }
+    ImGui::TextDisabled("H: controls");
+  }
+  ImGui::End();
+}
+
+void Overlay::layout_help(int panel, int width, int height) {
+  ImGui::SetNextWindowPos(
+      ImVec2(0.5f * static_cast<float>(width), 0.5f * static_cast<float>(height)), ImGuiCond_Always,
+      ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowBgAlpha(0.8f);
+  if (ImGui::Begin("Controls", nullptr, panel)) {
+    const std::vector<std::string>& lines = overlay_help_lines();
+    ImGui::TextColored(ImVec4(1.0f, 0.9f, 0.5f, 1.0f), "%s", lines.front().c_str());
+    ImGui::Separator();
+    for (std::size_t i = 1; i < lines.size(); ++i) ImGui::TextUnformatted(lines[i].c_str());
+  }
+  ImGui::End();
 }
 
 void Overlay::render_draw_data() {

@@ -64,6 +64,8 @@ class Overlay {
  private:
   OverlayResult layout(const OverlayData& data, const SnapshotOptions& options, int width,
                        int height);
+  void layout_hands(const OverlayData& data, int panel, int width);
+  void layout_help(int panel, int width, int height);
   void render_draw_data();
 
   ImGuiContext* imgui_ = nullptr;
@@ -89,8 +91,14 @@ struct OverlayText {
   /// The errors line under it: "errors 3 (N: next)" ("errors 0", "errors 1 so far" while the
   /// timeline is being computed), then the mark last jumped to, "  2/3 0:03.2 grasper over 5 N".
   std::string errors;
+  /// The instruments panel, a line per hand: "> right: scissors  jaws 1.20 of 1.20 rad  tissue
+  /// 4 mm" ('>' marks the active one; "jaws closed", "pedal down", "touching" as they are).
+  std::vector<std::string> hands;
 };
 [[nodiscard]] OverlayText overlay_text(const OverlayData& data);
+
+/// The controls panel (H or F1), line by line: every key and mouse action of the trainee session.
+[[nodiscard]] const std::vector<std::string>& overlay_help_lines();
 
 /// The views' names as the overlay and the window title show them: "visual", "collision",
 /// "mechanical".

@@ -38,7 +38,16 @@ struct RenderTool {
   /// Trocar (port in the abdominal wall), m: when given, the shaft runs from outside the body
   /// through this point to the jaws' hinge, and the tool's axis is the line trocar -> tip.
   std::array<float, 3> trocar{0.0f, 0.0f, 0.0f};
-  float jaw_rad = 0.0f;  ///< jaw opening angle between the two jaws, rad, [0, pi]
+  float jaw_rad = 0.0f;          ///< jaw opening angle between the two jaws, rad, [0, pi]
+  std::uint32_t scene_tool = 0;  ///< index of the scene tool it draws (scene order)
+  bool active = false;           ///< the trainee's active instrument: drawn with a coloured collar
+  /// The depth cue: the organ surface point nearest the tip (the contact stage's), m, and the
+  /// tip's signed distance from it along the surface's outward normal, m (< 0: pressed in).
+  /// A ring drawn on the tissue there closes in as the tip comes near and lights up at contact.
+  bool has_tissue = false;
+  std::array<float, 3> tissue_point{0.0f, 0.0f, 0.0f};
+  std::array<float, 3> tissue_normal{0.0f, 0.0f, 1.0f};  ///< unit
+  float tissue_distance_m = 0.0f;
 };
 
 /// A placed ligature (plain data, world coordinates, m): a clip's two legs along its centre
@@ -85,8 +94,25 @@ struct OverlayTimeline {
 
 /// What the overlay shows (plain data; drawn by Overlay, render/overlay.h). Negative or zero
 /// rates mean "not running" and are shown as such.
+/// One instrument in the trainee's hands, as the session's overlay lists it.
+struct OverlayHand {
+  std::string hand;                ///< "left", "right"
+  std::string tool;                ///< the instrument's name in the scene
+  bool active = false;             ///< the one the mouse steers now
+  double jaw_rad = 0.0;            ///< its jaw opening, rad
+  double jaw_max_rad = 0.0;        ///< how far it opens, rad (0: no jaws)
+  bool pedal = false;              ///< its cautery pedal is down
+  bool has_pedal = false;          ///< it has one (a hook)
+  bool has_tissue = false;         ///< tissue_distance_m is known
+  double tissue_distance_m = 0.0;  ///< the tip's distance to the nearest tissue, m (< 0: in it)
+};
+
 struct OverlayData {
   bool visible = true;
+  /// The trainee's instruments (the session): named, the active one marked, with their jaws,
+  /// pedal and distance to tissue; empty: not shown.
+  std::vector<OverlayHand> hands;
+  bool help = false;             ///< the controls panel (overlay_help_lines) is shown
   double sim_time_s = 0.0;       ///< simulated time, s
   double fem_ms_per_step = 0.0;  ///< wall time of the last solver steps (mean), ms
   double solver_rate_hz = 0.0;   ///< solver steps per wall second, Hz

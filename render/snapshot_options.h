@@ -21,6 +21,8 @@ struct SnapshotOptions {
   /// Phong tessellation shape factor alpha in [0, 1]: 0 = flat, 0.75 = the paper's choice.
   float shape_factor = 0.75f;
   View view = View::kVisual;
+  /// Draw the depth cue under each tool's tip (render/tool_mesh.h append_depth_cue).
+  bool depth_cue = true;
   /// Use auto_camera(frame) instead of frame.camera.
   bool fit_camera = false;
   /// Background colour (sRGB, [0, 1]): a dark abdominal cavity.

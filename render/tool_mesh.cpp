@@ -26,7 +26,10 @@ constexpr std::array<float, 4> kClipMaterial{0.78f, 0.76f, 0.70f, 0.9f};    // t
 constexpr std::array<float, 4> kSutureMaterial{0.55f, 0.42f, 0.75f, 0.5f};  // violet polydioxanone
 constexpr std::array<float, 4> kBloodMaterial{0.42f, 0.02f, 0.03f, 0.9f};   // fresh arterial blood
 constexpr float kSutureRadius = 3e-4f;  // a 2-0 suture with some slack, m
-constexpr std::array<float, 4> kGuideMaterial{0.45f, 0.18f, 0.78f, 0.2f};  // marker violet
+constexpr std::array<float, 4> kGuideMaterial{0.45f, 0.18f, 0.78f, 0.2f};   // marker violet
+constexpr std::array<float, 4> kActiveMaterial{0.20f, 0.95f, 0.35f, 0.3f};  // the active collar
+constexpr std::array<float, 4> kCueMaterial{0.05f, 0.05f, 0.06f, 0.0f};     // a shadow's dark
+constexpr std::array<float, 4> kTouchMaterial{1.0f, 0.85f, 0.10f, 0.3f};    // contact: amber
 
 std::uint32_t add_vertex(ToolMesh& m, const V3& p, const V3& n, const std::array<float, 4>& mat) {
   const auto id = static_cast<std::uint32_t>(m.num_vertices());
@@ -166,7 +169,42 @@ void add_ring(ToolMesh& m, const V3& centre, const V3& axis, const V3& u, float 
   }
 }
 
+// A flat annulus about `centre` facing `normal`, inner and outer radius, m (culling is off: seen
+// from both sides).
+void add_annulus(ToolMesh& m, const V3& centre, const V3& normal, float inner, float outer,
+                 const std::array<float, 4>& mat) {
+  const V3 u = normal.unitOrthogonal();
+  const V3 w = normal.cross(u);
+  constexpr int kSegments = 32;
+  constexpr float kTwoPi = 6.28318531f;
+  const auto base = static_cast<std::uint32_t>(m.num_vertices());
+  for (int k = 0; k < kSegments; ++k) {
+    const float a = kTwoPi * static_cast<float>(k) / kSegments;
+    const V3 d = std::cos(a) * u + std::sin(a) * w;
+    add_vertex(m, centre + inner * d, normal, mat);
+    add_vertex(m, centre + outer * d, normal, mat);
+  }
+  const auto seg = static_cast<std::uint32_t>(kSegments);
+  for (std::uint32_t k = 0; k < seg; ++k) {  // u x w = normal: counter-clockwise from +normal
+    const std::uint32_t i0 = base + 2 * k, o0 = i0 + 1;
+    const std::uint32_t i1 = base + 2 * ((k + 1) % seg), o1 = i1 + 1;
+    m.tri.insert(m.tri.end(), {i0, o0, o1, i0, o1, i1});
+  }
+}
+
 }  // namespace
+
+void append_depth_cue(const RenderTool& tool, ToolMesh& out) {
+  if (!tool.has_tissue || !(tool.tissue_distance_m < kDepthCueRange)) return;
+  const V3 n = vec(tool.tissue_normal);
+  if (!(n.norm() > 1e-6f)) return;
+  const float d = std::max(tool.tissue_distance_m, 0.0f);
+  const bool touching = tool.tissue_distance_m <= kTouchDistance;
+  const float outer = kDepthCueMinRadius + kDepthCueSpread * d;
+  const float width = touching ? 1.0e-3f : 0.6e-3f;
+  add_annulus(out, vec(tool.tissue_point) + kDepthCueLift * n.normalized(), n.normalized(),
+              std::max(outer - width, 0.0f), outer, touching ? kTouchMaterial : kCueMaterial);
+}
 
 void append_clip_mesh(const RenderClip& clip, ToolMesh& out) {
   const V3 a = vec(clip.start), b = vec(clip.end);
@@ -249,6 +287,9 @@ void append_tool_mesh(const RenderTool& tool, ToolMesh& out, const ToolDimension
   const float r = dims.shaft_radius;
   // The shaft stops where the jaws begin (the hinge sits just inside its end).
   add_shaft(out, vec(f.shaft_start), hinge + 0.3f * r * axis, side, up, r, dims.shaft_segments);
+  if (tool.active)  // a coloured collar behind the jaws: the instrument the mouse steers
+    add_shaft(out, hinge - 0.022f * axis, hinge - 0.014f * axis, side, up, 1.15f * r,
+              dims.shaft_segments, kActiveMaterial);
 
   if (tool.kind == RenderTool::Kind::kEndoloop) {  // the pusher's end, the knot, the open loop
     const V3 tip = vec(tool.tip);

@@ -51,6 +51,18 @@ struct ToolFrame {
 /// other; grasper jaws are wider and meet on the axis when closed.
 void append_tool_mesh(const RenderTool& tool, ToolMesh& out, const ToolDimensions& dims = {});
 
+/// The depth cue under a tip (RenderTool::has_tissue): a thin ring on the tissue round the surface
+/// point nearest the tip, kDepthCueLift above it, of outer radius kDepthCueMinRadius +
+/// kDepthCueSpread x the tip's distance, dark like a shadow, closing in as the tip comes near;
+/// amber and wider once the tip is within kTouchDistance (touching). Nothing beyond
+/// kDepthCueRange, m.
+inline constexpr float kDepthCueRange = 0.04f;
+inline constexpr float kDepthCueMinRadius = 3e-3f;
+inline constexpr float kDepthCueSpread = 0.4f;
+inline constexpr float kDepthCueLift = 2e-4f;
+inline constexpr float kTouchDistance = 5e-4f;
+void append_depth_cue(const RenderTool& tool, ToolMesh& out);
+
 /// Thickness of a clip's legs across the clip, m.
 inline constexpr float kClipLegThickness = 3e-4f;
 /// Appends a placed clip: two titanium legs along its centre line, one each side of the pressed

@@ -61,6 +61,12 @@ int glfw_key(Key k) {
       return GLFW_KEY_N;
     case Key::kP:
       return GLFW_KEY_P;
+    case Key::kF1:
+      return GLFW_KEY_F1;
+    case Key::kF2:
+      return GLFW_KEY_F2;
+    case Key::kHome:
+      return GLFW_KEY_HOME;
     case Key::kCount:
       break;
   }
@@ -93,6 +99,56 @@ Window::Window(int width, int height, const std::string& title) {
   // A key tapped between two frames (a slow frame, a quick finger) still counts as pressed once.
   glfwSetInputMode(m_window, GLFW_STICKY_KEYS, GLFW_TRUE);
   glfwSwapInterval(1);
+  glfwSetWindowUserPointer(m_window, this);
+  glfwGetCursorPos(m_window, &m_cursor_x, &m_cursor_y);
+  glfwSetKeyCallback(m_window, on_key);
+  glfwSetCursorPosCallback(m_window, on_cursor);
+  glfwSetMouseButtonCallback(m_window, on_button);
+  glfwSetScrollCallback(m_window, on_scroll);
+}
+
+void Window::on_key(GLFWwindow* w, int key, int /*scancode*/, int action, int /*mods*/) {
+  if (action != GLFW_PRESS) return;
+  auto* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
+  for (int k = 0; k < static_cast<int>(Key::kCount); ++k)
+    if (glfw_key(static_cast<Key>(k)) == key) ++self->m_events.presses[static_cast<std::size_t>(k)];
+}
+
+void Window::on_cursor(GLFWwindow* w, double x, double y) {
+  auto* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
+  if (self->m_left_held) {
+    int ww = 0, wh = 0, fw = 0, fh = 0;
+    glfwGetWindowSize(w, &ww, &wh);
+    glfwGetFramebufferSize(w, &fw, &fh);
+    const double sx = ww > 0 ? static_cast<double>(fw) / ww : 1.0;
+    const double sy = wh > 0 ? static_cast<double>(fh) / wh : 1.0;
+    self->m_events.drag_dx_px += static_cast<float>((x - self->m_cursor_x) * sx);
+    self->m_events.drag_dy_px += static_cast<float>((y - self->m_cursor_y) * sy);
+  }
+  self->m_cursor_x = x;
+  self->m_cursor_y = y;
+}
+
+void Window::on_button(GLFWwindow* w, int button, int action, int /*mods*/) {
+  auto* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
+  if (button != GLFW_MOUSE_BUTTON_LEFT) return;
+  self->m_left_held = action == GLFW_PRESS;
+  glfwGetCursorPos(w, &self->m_cursor_x, &self->m_cursor_y);
+}
+
+void Window::on_scroll(GLFWwindow* w, double /*dx*/, double dy) {
+  auto* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
+  self->m_events.scroll_steps += static_cast<float>(dy);
+}
+
+Window::Events Window::take_events() {
+  Events e = m_events;
+  m_events = Events{};
+  return e;
+}
+
+bool Window::key_down(Key key) const {
+  return key != Key::kCount && glfwGetKey(m_window, glfw_key(key)) == GLFW_PRESS;
 }
 
 Window::~Window() {

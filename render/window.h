@@ -2,6 +2,7 @@
 // OffscreenContext. Owns the context; whoever draws into it must be on the thread that made it.
 #pragma once
 
+#include <array>
 #include <string>
 
 #include "render/image.h"
@@ -38,6 +39,9 @@ enum class Key {
   kPeriod,  ///< clockwise
   kN,       ///< replay: jump to the next error on the timeline
   kP,       ///< press/release the active instrument's cautery pedal
+  kF1,      ///< the controls panel (as H)
+  kF2,      ///< the overlay on/off (the session; H there shows the controls)
+  kHome,    ///< bring the active instrument back into view
   kCount
 };
 
@@ -77,9 +81,31 @@ class Window {
   /// Whether the right mouse button is held.
   [[nodiscard]] bool right_mouse_down() const;
 
+  /// Input gathered event by event since the previous take (GLFW callbacks, during
+  /// poll_events): nothing a slow frame would miss between two reads of the pointer and keys.
+  struct Events {
+    float drag_dx_px = 0.0f;    ///< pointer motion with the left button held, framebuffer px
+    float drag_dy_px = 0.0f;    ///< (+ = down)
+    float scroll_steps = 0.0f;  ///< wheel steps (+ = away from the user)
+    std::array<int, static_cast<int>(Key::kCount)> presses{};  ///< times each key went down
+  };
+  /// What was gathered since the previous call, and starts gathering anew.
+  [[nodiscard]] Events take_events();
+  /// Whether `key` is held now.
+  [[nodiscard]] bool key_down(Key key) const;
+
  private:
+  static void on_key(GLFWwindow* w, int key, int scancode, int action, int mods);
+  static void on_cursor(GLFWwindow* w, double x, double y);
+  static void on_button(GLFWwindow* w, int button, int action, int mods);
+  static void on_scroll(GLFWwindow* w, double dx, double dy);
+
   GLFWwindow* m_window = nullptr;
   bool m_down[static_cast<int>(Key::kCount)] = {};
+  Events m_events;
+  bool m_left_held = false;  // the left button, as the callbacks saw it
+  double m_cursor_x = 0.0;   // the pointer when the callbacks saw it last, window coordinates
+  double m_cursor_y = 0.0;
 };
 
 }  // namespace serosa::render

@@ -78,6 +78,52 @@ BENCHMARK(BM_FrameTime)
     ->UseRealTime();
 
 // Sphere of radius 1 from icosphere(subdiv) with radial normals, tessellated at `level`.
+// The trainee's depth cue (render/tool_mesh.h append_depth_cue) and the active instrument's
+// collar: one frame of the 1,280-triangle sphere at level 3 with a grasper and scissors held
+// near it, without (0) and with (1) a ring on the surface under each tip.
+void BM_DepthCue(benchmark::State& state) {
+  OffscreenContext& ctx = context();
+  ctx.make_current();
+  ctx.resize(kWidth, kHeight);
+  RenderFrame f = fixtures::frame_of(fixtures::icosphere(3, 0.02f));
+  f.group_names = {"", "appendix"};
+  for (int k = 0; k < 2; ++k) {
+    RenderTool t;
+    t.kind = k == 0 ? RenderTool::Kind::kGrasper : RenderTool::Kind::kScissors;
+    const float side = k == 0 ? -0.008f : 0.008f;
+    t.tip = {side, 0.0f, 0.026f};
+    t.jaw_rad = 0.8f;
+    t.active = k == 1;
+    t.has_tissue = true;
+    t.tissue_point = {side, 0.0f, 0.0199f};
+    t.tissue_normal = {0.0f, 0.0f, 1.0f};
+    t.tissue_distance_m = 0.006f;
+    f.tools.push_back(t);
+  }
+  SnapshotOptions o;
+  o.width = kWidth;
+  o.height = kHeight;
+  o.tessellation = 3;
+  o.fit_camera = true;
+  o.depth_cue = state.range(0) != 0;
+  FrameRenderer r;
+  ctx.bind_framebuffer();
+  r.draw(f, o, kWidth, kHeight);
+  ctx.finish();
+  for (auto _ : state) {
+    ctx.bind_framebuffer();
+    r.draw(f, o, kWidth, kHeight);
+    ctx.finish();
+  }
+  state.SetLabel(ctx.gl_renderer());
+}
+BENCHMARK(BM_DepthCue)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("cue")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
 void BM_PhongAccuracy(benchmark::State& state) {
   const int level = static_cast<int>(state.range(0));
   const int subdiv = static_cast<int>(state.range(1));

@@ -11,6 +11,8 @@
 #include "app_test_util.h"
 #include "engine/input_error.h"
 #include "engine/scene.h"
+#include "engine/scope_view.h"
+#include "engine/tool_geometry.h"
 #include "engine/tool_path.h"
 #include "haptics/haptics_stage.h"
 #include "haptics/trocar_kinematics.h"
@@ -37,15 +39,22 @@ TEST(InstrumentDevices, TheDefaultSceneGoesToTheMouseWithoutARig) {
   EXPECT_EQ(tool(scene, "scissors").device.kind, DeviceKind::kMouse);
   EXPECT_EQ(tool(scene, "endoscope").device.kind, DeviceKind::kMouse);  // the window's keys
   EXPECT_TRUE(scene.settings.has(Effect::kHaptics));
-  // They start where the script started them (config/paths/appendectomy.csv at t = 0), in the
-  // endoscope's view: each mouse handle's trocar axis points there and its rest pose puts the
-  // tip on it.
-  ASSERT_EQ(given->start_tip_m.size(), scene.tools.size());
+  // They start in the endoscope's view, at the first pose of their script (config/paths/
+  // appendectomy.csv) in which the scope, as the script starts it, sees the tip and the shaft
+  // behind it: each mouse handle's trocar axis points there, its rest pose puts the tip on it
+  // and rolls its jaws into the script's jaw plane there.
+  ASSERT_EQ(given->start_pose.size(), scene.tools.size());
   const ToolPath path = read_tool_path(source("config/paths/appendectomy.csv"));
+  const ScopeView view = scope_view(sample(path, "endoscope", 0.0));
+  const auto seen = [&view](const ToolState& s) {
+    const ToolFrame f = tool_frame(s);
+    return in_view(view, f.tip) && in_view(view, f.tip - 0.02 * f.forward) &&
+           (f.tip - view.eye).norm() >= 0.04;
+  };
   for (std::size_t i = 0; i < scene.tools.size(); ++i) {
     const Tool& t = scene.tools[i];
     if (t.kind == ToolKind::kEndoscope) {
-      EXPECT_FALSE(given->start_tip_m[i].has_value());
+      EXPECT_FALSE(given->start_pose[i].has_value());
       // The scope is the trainee's too, from the script's first pose.
       EXPECT_EQ(t.device.kind, DeviceKind::kMouse);
       ASSERT_TRUE(given->scope_start[i].has_value());
@@ -54,19 +63,26 @@ TEST(InstrumentDevices, TheDefaultSceneGoesToTheMouseWithoutARig) {
       continue;
     }
     EXPECT_FALSE(given->scope_start[i].has_value()) << t.name;
-    ASSERT_TRUE(given->start_tip_m[i].has_value()) << t.name;
-    const ToolState first = sample(path, t.name, 0.0);
-    const Vec3 start = *given->start_tip_m[i];
-    EXPECT_EQ(start, Vec3(first.tip_m[0], first.tip_m[1], first.tip_m[2])) << t.name;
+    ASSERT_TRUE(given->start_pose[i].has_value()) << t.name;
+    const ToolState& start = *given->start_pose[i];
+    EXPECT_TRUE(seen(start)) << t.name;
+    bool earlier = false;
+    for (double s = 0.0; s + 1e-9 < start.time_s; s += 0.05)
+      earlier = earlier || seen(sample(path, t.name, s));
+    EXPECT_FALSE(earlier) << t.name;
+    const Vec3 tip(start.tip_m[0], start.tip_m[1], start.tip_m[2]);
     const haptics::MouseHandle mh = haptics::mouse_handle(t, i % 2, Vec3::Zero(), start);
     const ToolState rest = haptics::forward(mh.trocar, mh.rest);
-    EXPECT_LT((Vec3(rest.tip_m[0], rest.tip_m[1], rest.tip_m[2]) - start).norm(), 1e-12) << t.name;
+    EXPECT_LT((Vec3(rest.tip_m[0], rest.tip_m[1], rest.tip_m[2]) - tip).norm(), 1e-12) << t.name;
+    // The jaw planes' normals agree as far as the shafts do.
+    const ToolFrame want = tool_frame(start), got = tool_frame(rest);
+    EXPECT_GE(want.pin.dot(got.pin), want.forward.dot(got.forward) - 1e-9) << t.name;
   }
   // The scene composes as written: the loop's handles are the grasper and the scissors, driven
   // by the mouse; no script plays (the window poses the endoscope).
   AssembledScene assembled = assemble_state(scene);
   ComposeOptions options;
-  options.mouse_rest_tip_m = given->start_tip_m;
+  options.mouse_rest_pose = given->start_pose;
   const Composition comp = compose(scene, assembled, std::move(options));
   ASSERT_NE(comp.haptics, nullptr);
   EXPECT_EQ(comp.haptics->device_kind(), DeviceKind::kMouse);

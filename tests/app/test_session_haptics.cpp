@@ -18,10 +18,12 @@
 #include "app/compose.h"
 #include "app/headless.h"
 #include "app/mouse_takeover.h"
+#include "app/pointer_control.h"
 #include "app/replay.h"
 #include "app/replay_controller.h"
 #include "app_test_util.h"
 #include "contact/tool_contact_stage.h"
+#include "engine/jaw_range.h"
 #include "engine/recording_reader.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"
@@ -107,26 +109,30 @@ TEST(SessionHaptics, MouseDrivesTheToolThroughTheLoop) {
   EXPECT_LT((mh.trocar.pivot_m - Vec3(0.05, 0.1, 0.0)).norm(), 1e-12);
 
   haptics::PointerInput in;
-  in.dx_px[0] = 100.0;
-  in.scroll_steps[0] = 1.0;
-  in.jaw_open[0] = 1;
+  in.move_m[0] = {0.004, -0.002, 0.0};
+  in.depth_steps[0] = 1.0;
+  in.jaw_fraction[0] = 1.0;
   comp.haptics->feed_pointer(in);
-  haptics::JointState q = mh.rest;
-  q.yaw_rad += 0.2;
-  q.insertion_m += 0.005;
+  const ToolState rest = haptics::forward(mh.trocar, mh.rest);
+  haptics::JointState q = haptics::reach(mh.trocar, tip_of(rest) + Vec3(0.004, -0.002, 0.0),
+                                         mh.rest, haptics::MouseMapping{});
+  q.insertion_m += haptics::MouseMapping{}.m_per_step;
   const ToolState expected = haptics::forward(mh.trocar, q);
 
+  // The loop eases towards the goal (30 ms) and opens the jaws at 4 rad/s: half a second.
   SimState& state = assembled.state;
-  for (int i = 0; i < 40; ++i) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(600);
+  while (std::chrono::steady_clock::now() < until) {
     comp.runner->step(state);
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
+  comp.runner->step(state);
   const std::uint64_t ticks = comp.haptics->status().tick;
-  EXPECT_GT(ticks, 20u);  // 80+ ms of a 1 kHz loop, however loaded the machine
+  EXPECT_GT(ticks, 100u);  // 600 ms of a 1 kHz loop, however loaded the machine
   const ToolState& t = state.tools[0];
   EXPECT_GT(t.tick, 0u);  // the loop's state, not a default
-  EXPECT_LT((tip_of(t) - tip_of(expected)).norm(), 1e-9);
-  EXPECT_NEAR(t.jaw_rad, haptics::MouseMapping{}.jaw_open_rad, 1e-12);
+  EXPECT_LT((tip_of(t) - tip_of(expected)).norm(), 1e-6);
+  EXPECT_NEAR(t.jaw_rad, max_jaw_rad(scene.tools[0].kind), 1e-12);
   const nlohmann::json tel = comp.haptics->telemetry_json();  // stops the loop
   EXPECT_EQ(tel["device"], "mouse");
   EXPECT_GE(tel["ticks"].get<std::uint64_t>(), ticks);
@@ -236,21 +242,22 @@ TEST(SessionHaptics, MouseTakeoverBranchReplaysVerifiedWithTheOriginalPrefix) {
   MouseTakeover take(c.scene(), c.state().tools);
   ASSERT_TRUE(take.handle_tools()[0].has_value());
   haptics::PointerInput in = take.initial_input();
-  EXPECT_EQ(in.jaw_open[0], 1u);  // 0.5 rad recorded: more than half of jaw_open_rad (0.6)
+  const double held = in.jaw_fraction[0];
+  EXPECT_NEAR(held * max_jaw_rad(c.scene().tools[0].kind), 0.5, 1e-12);  // as recorded
   take.apply(in, c);
   ASSERT_TRUE(c.step_forward());
   EXPECT_LT((tip_of(c.state().tools[0]) - tip_of(before)).norm(), 1e-12);  // no jump
   EXPECT_NEAR(c.state().tools[0].jaw_rad, 0.5, 1e-12);
   for (int i = 0; i < 34; ++i) {
-    in.dx_px[0] += 4.0;                          // drag right
-    if (i % 10 == 0) in.scroll_steps[0] -= 1.0;  // retract
-    in.jaw_open[0] = i < 20 ? 1u : 0u;           // held open (as recorded), then closing
+    in.move_m[0][0] += 4.0 * kDragMetresPerPixel;  // drag 4 px right a step
+    if (i % 10 == 0) in.depth_steps[0] -= 1.0;     // retract
+    in.jaw_fraction[0] = i < 20 ? held : 0.0;      // held open (as recorded), then closing
     take.apply(in, c);
     ASSERT_TRUE(c.step_forward());
   }
   EXPECT_EQ(c.steps_taken(), 60u);
   const ToolState after = c.state().tools[0];
-  EXPECT_GT((tip_of(after) - tip_of(before)).norm(), 0.01);  // 136 px = 0.27 rad, 2 cm back
+  EXPECT_GT((tip_of(after) - tip_of(before)).norm(), 0.01);  // 136 px = 14 mm, 12 mm back
   EXPECT_LT(after.jaw_rad, 0.5);
   const std::uint64_t branch_hash = state_hash(c.state());
   c.end_branch();

@@ -1,7 +1,9 @@
 // Script, replay and mouse/keyboard devices, alone and driving the loop.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 #include <stdexcept>
 
 #include "engine/tool_path.h"
@@ -81,29 +83,114 @@ TEST(ReplayDevice, PlaysNewestDueSampleAndSkipsMissedOnes) {
   EXPECT_THROW(ReplayDevice{bad}, std::invalid_argument);
 }
 
-TEST(MouseKeyboardDevice, MapsCumulativeInputToJoints) {
+Vec3 tip_of(const ToolState& t) { return {t.tip_m[0], t.tip_m[1], t.tip_m[2]}; }
+
+// The tip goes where the drag asks, by exactly the drag, wherever the port allows it: random
+// drags of up to 2 cm from random poses, inside the cone and the insertion range.
+TEST(MouseKeyboardDevice, TheTipFollowsTheDragWhereThePortAllows) {
   MouseMapping map;
+  map.ease_s = 0.0;
   map.rest[0].insertion_m = 0.1;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-0.02, 0.02);
+  MouseKeyboardDevice dev(trocars(), map);
+  PointerInput in;
+  DeviceSample s;
+  ASSERT_TRUE(dev.poll(0.0, s));
+  int reachable = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Vec3 before = tip_of(s.pose[0]);
+    const Vec3 move(u(rng), u(rng), u(rng));
+    for (int k = 0; k < 3; ++k) in.move_m[0][static_cast<std::size_t>(k)] += move[k];
+    dev.feed(in);
+    ASSERT_TRUE(dev.poll(0.001 * (i + 1), s));
+    const Vec3 goal = before + move;
+    const Vec3 local = goal - trocars()[0].pivot_m;
+    const double cone = std::acos(std::clamp(local.normalized().z(), -1.0, 1.0));
+    const Vec3 after = tip_of(s.pose[0]);
+    // Never outside what the port allows.
+    const Vec3 now = after - trocars()[0].pivot_m;
+    ASSERT_LE(std::acos(std::clamp(now.normalized().z(), -1.0, 1.0)), map.max_cone_rad + 1e-9);
+    ASSERT_GE(now.norm(), map.min_insertion_m - 1e-12);
+    ASSERT_LE(now.norm(), map.max_insertion_m + 1e-12);
+    if (cone < map.max_cone_rad && local.norm() > map.min_insertion_m &&
+        local.norm() < map.max_insertion_m) {
+      ++reachable;
+      ASSERT_LT((after - goal).norm(), 1e-12) << i;
+    } else {
+      ASSERT_LE((after - goal).norm(), (before - goal).norm() + 1e-12) << i;  // as near as it can
+    }
+  }
+  EXPECT_GT(reachable, 1000);
+}
+
+// Depth steps insert along the shaft, roll steps roll, Home brings the handle back to rest, the
+// jaws open to the share of the instrument's range asked for, and the buttons pass through.
+TEST(MouseKeyboardDevice, DepthRollHomeJawsAndButtons) {
+  MouseMapping map;
+  map.ease_s = 0.0;
+  map.rest[0].insertion_m = 0.1;
+  map.jaw_max_rad = {1.2, 0.7};
   MouseKeyboardDevice dev(trocars(), map);
   DeviceSample s;
   ASSERT_TRUE(dev.poll(0.0, s));
   EXPECT_NEAR(s.joints[0].insertion_m, 0.1, 1e-15);
   PointerInput in;
-  in.dx_px[0] = 100.0;
-  in.dy_px[0] = 1e6;  // far beyond the pitch limit
-  in.scroll_steps[0] = -1000.0;
-  in.jaw_open[1] = 1;
+  in.depth_steps[0] = 5.0;
+  in.roll_steps[0] = -2.0;
+  in.jaw_fraction = {1.0, 0.5};
   in.buttons[1] = 4;
   dev.feed(in);
-  ASSERT_TRUE(dev.poll(0.001, s));
-  EXPECT_NEAR(s.joints[0].yaw_rad, 0.2, 1e-15);
-  EXPECT_NEAR(s.joints[0].pitch_rad, map.max_pitch_rad, 1e-15);
-  EXPECT_EQ(s.joints[0].insertion_m, 0.0);
-  EXPECT_NEAR(s.joints[1].jaw_rad, map.jaw_open_rad, 1e-15);
+  ASSERT_TRUE(dev.poll(10.0, s));  // long enough for the jaws' speed
+  EXPECT_NEAR(s.joints[0].insertion_m, 0.1 + 5.0 * map.m_per_step, 1e-12);
+  EXPECT_NEAR(s.joints[0].roll_rad, -0.2, 1e-12);
+  EXPECT_NEAR(s.joints[0].jaw_rad, 1.2, 1e-12);
+  EXPECT_NEAR(s.joints[1].jaw_rad, 0.35, 1e-12);
   EXPECT_EQ(s.buttons[1], 4u);
+  in.depth_steps[0] = -1e4;  // far beyond the shortest insertion
+  dev.feed(in);
+  ASSERT_TRUE(dev.poll(10.001, s));
+  EXPECT_NEAR(s.joints[0].insertion_m, map.min_insertion_m, 1e-15);
+  in.move_m[0] = {0.03, 0.0, 0.0};
+  dev.feed(in);
+  ASSERT_TRUE(dev.poll(10.002, s));
+  in.homes[0] = 1;
+  dev.feed(in);
+  ASSERT_TRUE(dev.poll(10.003, s));
+  EXPECT_NEAR(s.joints[0].insertion_m, 0.1, 1e-15);
+  EXPECT_NEAR(s.joints[0].roll_rad, 0.0, 1e-15);
+  EXPECT_NEAR(s.joints[0].jaw_rad, 1.2, 1e-12);  // Home leaves the jaws as they are
   // The pose is the forward kinematics of the joints.
   const ToolState f = forward(trocars()[0], s.joints[0]);
   EXPECT_NEAR(f.tip_m[0], s.pose[0].tip_m[0], 1e-15);
+}
+
+// A frame's worth of input arriving at once is spread over the ticks that follow: no tick moves
+// the tip by more than a share of it, and none of it is lost. The jaws move at their speed.
+TEST(MouseKeyboardDevice, EasesAFramesInputOverTheTicks) {
+  MouseMapping map;
+  map.rest[0].insertion_m = 0.1;
+  MouseKeyboardDevice dev(trocars(), map);
+  DeviceSample s;
+  ASSERT_TRUE(dev.poll(0.0, s));
+  const Vec3 start = tip_of(s.pose[0]);
+  PointerInput in;
+  in.move_m[0] = {0.01, 0.0, 0.0};
+  in.jaw_fraction[0] = 1.0;
+  dev.feed(in);
+  double largest = 0.0;
+  Vec3 last = start;
+  for (int i = 1; i <= 500; ++i) {
+    ASSERT_TRUE(dev.poll(0.001 * i, s));
+    largest = std::max(largest, (tip_of(s.pose[0]) - last).norm());
+    last = tip_of(s.pose[0]);
+    if (i == 100) {
+      EXPECT_NEAR(s.joints[0].jaw_rad, 0.4, 1e-9);  // 4 rad/s for 0.1 s
+    }
+  }
+  EXPECT_LT(largest, 0.1 * 0.01);  // the 1 cm frame came in more than ten ticks
+  EXPECT_LT((last - (start + Vec3(0.01, 0.0, 0.0))).norm(), 1e-6);
+  EXPECT_NEAR(s.joints[0].jaw_rad, map.jaw_max_rad[0], 1e-12);
 }
 
 TEST(SoftwareDevices, DriveTheLoop) {
@@ -115,12 +202,12 @@ TEST(SoftwareDevices, DriveTheLoop) {
   MouseKeyboardDevice dev(trocars());
   HapticLoop loop(dev, ch, c);
   PointerInput in;
-  in.scroll_steps[1] = 10.0;  // 5 cm
+  in.depth_steps[1] = 10.0;  // 3 cm in from the port
   dev.feed(in);
-  for (int i = 0; i < 5; ++i) loop.tick(1'000'000'000 + i * 1'000'000);
+  for (int i = 0; i < 500; ++i) loop.tick(1'000'000'000 + i * 1'000'000);
   const ToolState t = loop.tool_state(1).load();
-  EXPECT_NEAR(t.tip_m[2], 0.05, 1e-12);
-  EXPECT_EQ(t.tick, 5u);
+  EXPECT_NEAR(t.tip_m[2], 0.03, 1e-6);
+  EXPECT_EQ(t.tick, 500u);
 }
 
 }  // namespace

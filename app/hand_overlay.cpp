@@ -1,0 +1,40 @@
+#include "app/hand_overlay.h"
+
+#include "engine/hook.h"
+#include "engine/jaw_range.h"
+
+namespace serosa::app {
+
+std::vector<render::OverlayHand> overlay_hands(const Scene& scene, const SimState& state,
+                                               const HandleTools& handles,
+                                               std::size_t active_handle,
+                                               const render::RenderFrame& frame) {
+  std::vector<render::OverlayHand> out;
+  for (std::size_t h = 0; h < handles.size(); ++h) {
+    if (!handles[h] || *handles[h] >= scene.tools.size() || *handles[h] >= state.tools.size())
+      continue;
+    const std::size_t i = *handles[h];
+    const Tool& tool = scene.tools[i];
+    render::OverlayHand o;
+    o.hand = h == 0 ? "left" : "right";
+    o.tool = tool.name;
+    o.active = h == active_handle;
+    o.jaw_rad = state.tools[i].jaw_rad;
+    o.jaw_max_rad = max_jaw_rad(tool.kind);
+    o.has_pedal = tool.kind == ToolKind::kHook;
+    o.pedal = pedal_down(state.tools[i]);
+    for (const render::RenderTool& t : frame.tools) {
+      if (t.scene_tool != i || !t.has_tissue) continue;
+      o.has_tissue = true;
+      o.tissue_distance_m = t.tissue_distance_m;
+    }
+    out.push_back(o);
+  }
+  return out;
+}
+
+void mark_active_tool(render::RenderFrame& frame, std::optional<std::size_t> tool) {
+  for (render::RenderTool& t : frame.tools) t.active = tool && t.scene_tool == *tool;
+}
+
+}  // namespace serosa::app

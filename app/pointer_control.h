@@ -1,0 +1,66 @@
+// The window's pointer and keys as the mouse device's cumulative input (window thread only), in
+// the picture's terms: a drag with the left button moves the active instrument's tip the way the
+// pointer went in the picture, kDragMetresPerPixel per pixel whatever its insertion (the camera's
+// right and up turn pixels into scene metres, haptics/mouse_device.h carries it through the
+// trocar); W/S and the wheel insert and retract it, Q/E roll it, Home brings it back into view,
+// P presses or releases its cautery pedal (a hook's current), Tab makes the other hand active.
+// J works the jaws as a hand does: a tap (shorter than kJawTapS) opens jaws that are at most half
+// open, fully, and closes the others; held longer, it closes them steadily (a bite), from full
+// to closed in kJawCloseS, and they stay where they are when it is let go.
+// Input is gathered event by event between frames (render::Window::Events), so a slow frame
+// loses no drag and no key press.
+#pragma once
+
+#include <array>
+#include <cstddef>
+
+#include "engine/math.h"
+#include "haptics/mouse_device.h"
+
+namespace serosa::app {
+
+/// Tip motion per pixel of drag, m (0.1 mm: the 1280-pixel picture spans 13 cm of motion).
+inline constexpr double kDragMetresPerPixel = 1e-4;
+/// A J press released sooner than this is a tap, s.
+inline constexpr double kJawTapS = 0.25;
+/// Held J closes fully open jaws in this long, s.
+inline constexpr double kJawCloseS = 1.5;
+
+/// The picture's directions in the scene, unit vectors: right and up on the screen.
+struct ScreenAxes {
+  Vec3 right = Vec3::UnitX();
+  Vec3 up = Vec3::UnitY();
+};
+
+/// What the window gathered since the last frame, in plain terms (no GLFW).
+struct PointerEvents {
+  double drag_dx_px = 0.0;  ///< left-button drag, px (+ = right)
+  double drag_dy_px = 0.0;  ///< px (+ = down)
+  double scroll_steps = 0.0;
+  int tab = 0, insert = 0, retract = 0, roll_left = 0, roll_right = 0, pedal = 0, home = 0;
+  int jaw_presses = 0;    ///< times J went down
+  bool jaw_held = false;  ///< J is down now
+};
+
+class PointerControl {
+ public:
+  explicit PointerControl(const haptics::PointerInput& start = {}) : m_input(start) {}
+
+  /// Takes one frame's events at wall time now_s (s, any monotonic origin), the picture's axes
+  /// as the trainee saw it; returns the cumulative input.
+  const haptics::PointerInput& update(const PointerEvents& e, const ScreenAxes& axes, double now_s);
+
+  [[nodiscard]] std::size_t active() const noexcept { return m_active; }
+  [[nodiscard]] const haptics::PointerInput& input() const noexcept { return m_input; }
+
+ private:
+  void update_jaw(const PointerEvents& e, double now_s);
+
+  haptics::PointerInput m_input;
+  std::size_t m_active = 0;
+  bool m_jaw_holding = false;  // J went down and has not been let go (as the frames saw it)
+  double m_jaw_t0 = 0.0;       // when it went down, s
+  double m_jaw_start = 0.0;    // the jaw fraction then
+};
+
+}  // namespace serosa::app

@@ -1,0 +1,224 @@
+#!/usr/bin/env python3
+"""A trainee's hands on the mouse and keyboard, under Xvfb: starts `serosa run SCENE` and does one
+task with xdotool drags and keys only, aiming as a person does by what the window draws (the
+window's view log gives where it drew each instrument, the guide and the organs, in its pixels and
+depth along the view), then ends the session and checks its report.
+
+  trainee_mouse.py SEROSA SCENE OUT_DIR transection       transect the appendix with the scissors
+  trainee_mouse.py SEROSA SCENE OUT_DIR grasp_and_lift    grasp the appendix and lift it (expose)
+
+Each move is closed-loop: look (the newest frame), move the hand part of the way, look again.
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+SEROSA, SCENE, OUT, TASK = sys.argv[1:5]
+os.makedirs(OUT, exist_ok=True)
+REPORT = os.path.join(OUT, "report.json")
+LOG = os.path.join(OUT, "view.jsonl")
+STEP_M = 0.003  # one W/S press, m (haptics/mouse_device.h)
+
+
+def say(*a):
+    print("[trainee]", *a, flush=True)
+
+
+def xdo(*args):
+    subprocess.run(["xdotool", *map(str, args)], check=True)
+
+
+def frames_drawn():
+    try:
+        with open(LOG, "rb") as f:
+            return f.read().count(b"\n")
+    except FileNotFoundError:
+        return 0
+
+
+def look():
+    """The newest frame the window drew."""
+    with open(LOG, "rb") as f:
+        lines = f.read().splitlines()
+    return json.loads(lines[-1])
+
+
+def wait_frames(n=2, at_least_s=0.0, limit_s=30.0):
+    start = time.time()
+    goal = frames_drawn() + n
+    while frames_drawn() < goal or time.time() - start < at_least_s:
+        if time.time() - start > limit_s:
+            raise SystemExit("trainee_mouse.py: the window stopped drawing")
+        time.sleep(0.03)
+
+
+def tool(frame, name):
+    for t in frame["tools"]:
+        if t.get("tool") == name:
+            return t
+    raise SystemExit(f"trainee_mouse.py: {name} is not drawn")
+
+
+def key(k, hold_s=0.0):
+    if hold_s > 0.0:
+        xdo("keydown", k)
+        time.sleep(hold_s)
+        xdo("keyup", k)
+    else:
+        xdo("key", k)
+    wait_frames(2, 0.15)
+
+
+def drag(dx, dy):
+    """A drag with the left button from the middle of the picture, in moves of 25 px at most."""
+    xdo("mousemove", "--window", window, 640, 360)
+    xdo("mousedown", 1)
+    n = max(1, int(math.ceil(max(abs(dx), abs(dy)) / 25.0)))
+    done_x = done_y = 0
+    for i in range(1, n + 1):
+        x, y = round(dx * i / n), round(dy * i / n)
+        xdo("mousemove_relative", "--", x - done_x, y - done_y)
+        done_x, done_y = x, y
+    xdo("mouseup", 1)
+    wait_frames(3, 0.3)
+
+
+def px(p):
+    return p["px"]
+
+
+def aim(name, target_of, within_px=3.0, within_m=0.0015, tries=40):
+    """Brings the middle of `name`'s jaws onto the target, in the picture and in depth."""
+    gain = 0.6  # picture px per drag px; learnt from each move
+    for _ in range(tries):
+        f = look()
+        t = tool(f, name)
+        target = target_of(f)
+        mid = t["jaw_mid"]
+        ex = target["px"][0] - mid["px"][0]
+        ey = target["px"][1] - mid["px"][1]
+        dz = target["depth_m"] - mid["depth_m"]
+        if math.hypot(ex, ey) < within_px and abs(dz) < within_m:
+            say(f"{name} on target: {ex:+.1f} {ey:+.1f} px, {1e3 * dz:+.1f} mm deep")
+            return True
+        if abs(dz) >= within_m:
+            # W pushes the tip along the shaft: its share along the view is what the picture's
+            # depth shows between the jaws' middle and a point on the shaft behind them.
+            along = (mid["depth_m"] - t["shaft"]["depth_m"]) / 0.038
+            along = math.copysign(max(abs(along), 0.2), along)
+            presses = max(-6, min(6, round(dz / (STEP_M * along))))
+            if presses != 0:
+                key("w" if presses > 0 else "s")
+                for _ in range(abs(presses) - 1):
+                    key("w" if presses > 0 else "s")
+                continue
+        before = mid["px"]
+        mx, my = ex / gain, ey / gain
+        scale = min(1.0, 250.0 / max(1e-9, math.hypot(mx, my)))
+        drag(round(mx * scale), round(my * scale))
+        after = tool(look(), name)["jaw_mid"]["px"]
+        moved = math.hypot(after[0] - before[0], after[1] - before[1])
+        asked = math.hypot(mx * scale, my * scale)
+        if asked > 10 and moved > 1:
+            gain = min(3.0, max(0.1, moved / asked))
+    say(f"{name} not on target after {tries} tries")
+    return False
+
+
+def line_angle(a, b):
+    return math.atan2(b[1] - a[1], b[0] - a[0])
+
+
+def align_blades(name, tries=20):
+    """Rolls the instrument until its open jaws' tips lie along the guide in the picture."""
+    last_err = None
+    for _ in range(tries):
+        f = look()
+        t = tool(f, name)
+        g = f["guide"]
+        want = line_angle(px(g[0]), px(g[-1]))
+        got = line_angle(px(t["jaw_tips"][0]), px(t["jaw_tips"][1]))
+        err = (got - want + math.pi / 2) % math.pi - math.pi / 2
+        if abs(err) < math.radians(12):
+            say(f"blades along the guide ({math.degrees(err):+.0f} deg)")
+            return
+        k = "e" if (last_err is None or abs(err) < abs(last_err)) == (err > 0) else "q"
+        key(k)
+        last_err = err
+
+
+def end_session():
+    xdo("keydown", "Escape")
+    subprocess.run(["xdotool", "search", "--sync", "--name", "session summary"], check=True,
+                   timeout=60, stdout=subprocess.DEVNULL)
+    xdo("keyup", "Escape")
+    xdo("keydown", "space")
+    proc.wait(timeout=120)
+    xdo("keyup", "space")
+
+
+env = dict(os.environ, SEROSA_PROGRESS_DB=os.path.join(OUT, "progress.sqlite"))
+proc = subprocess.Popen([SEROSA, "run", SCENE, "--seconds", "400", "--report", REPORT,
+                         "--view-log", LOG], env=env)
+try:
+    window = subprocess.run(["xdotool", "search", "--sync", "--name", "^Serosa"], check=True,
+                            timeout=90, capture_output=True, text=True).stdout.split()[0]
+    wait_frames(5, 1.0, limit_s=90)
+    xdo("windowfocus", "--sync", window)
+    first = look()
+    names = [h["tool"] for h in first["hands"]]  # what each hand holds, as the overlay says
+    say("hands:", names, "active:", first["active_hand"])
+    if TASK == "transection":
+        if first["active_hand"] != names.index("scissors"):
+            key("Tab")
+        assert look()["active_hand"] == names.index("scissors"), "Tab did not give the scissors"
+        key("j")  # open the scissors
+        wait_frames(3, 0.5)
+        say("scissors open to", round(tool(look(), "scissors")["jaw_rad"], 2), "rad")
+        centre = lambda f: {"px": [(f["guide"][0]["px"][i] + f["guide"][-1]["px"][i]) / 2
+                                   for i in range(2)],
+                            "depth_m": (f["guide"][0]["depth_m"] + f["guide"][-1]["depth_m"]) / 2}
+        align_blades("scissors")
+        aim("scissors", centre)
+        align_blades("scissors")
+        aim("scissors", centre)
+        key("j")  # close: the blades cut
+        wait_frames(5, 1.5)
+    elif TASK == "grasp_and_lift":
+        if first["active_hand"] != names.index("grasper"):
+            key("Tab")
+        key("j")  # open the grasper
+        wait_frames(3, 0.5)
+        aim("grasper", lambda f: f["groups"]["appendix"])
+        key("j")  # close on the appendix
+        wait_frames(3, 1.0)
+        for _ in range(5):
+            key("s")  # pull it back towards the port: lifting what it holds
+        drag(0, -120)
+        wait_frames(5, 1.0)
+    else:
+        raise SystemExit(f"trainee_mouse.py: unknown task {TASK}")
+    end_session()
+except BaseException:
+    proc.kill()
+    raise
+
+with open(REPORT) as f:
+    report = json.load(f)
+metrics = report.get("assessment", {}).get("metrics", {})
+say("report: assessment", json.dumps(metrics)[:2000])
+if TASK == "transection":
+    pieces = None
+    for k, v in (metrics.items() if isinstance(metrics, dict) else []):
+        if k == "pieces.appendix":
+            pieces = v.get("value", v) if isinstance(v, dict) else v
+    say("appendix in", pieces, "pieces;", report.get("cutting", {}).get("strokes"), "strokes")
+    sys.exit(0 if pieces == 2 else 1)
+else:
+    steps = report["metrics"]["procedure"]["steps"]
+    say("procedure steps:", json.dumps(steps))
+    expose = [s for s in steps if s.get("name") == "expose"] if isinstance(steps, list) else [steps.get("expose")]
+    sys.exit(0 if expose and expose[0] and expose[0].get("done") else 1)
