@@ -126,6 +126,7 @@ HapticsStage::HapticsStage(const Scene& scene, const HapticsStageOptions& option
       script = t.device.script;
     }
     m_tool[h] = i;
+    m_jaw_max[h] = max_jaw_rad(t.kind);
   }
   if (!kind)
     throw InputError(scene.file.string(), 0, "\"haptics\" needs an instrument to drive",
@@ -303,7 +304,9 @@ void HapticsStage::step(const StepContext& ctx, SimState& state) {
   // starts it (not at the scene origin, inside the organs).
   for (std::size_t h = 0; h < haptics::kHandles; ++h) {
     if (!m_tool[h] || *m_tool[h] >= state.tools.size()) continue;
-    const ToolState t = m_loop->tool_state(h).load();
+    ToolState t = m_loop->tool_state(h).load();
+    // A rig handle opens its instrument as far as the mouse and the scripts do, no further.
+    if (is_rig(m_kind)) t.jaw_rad = std::clamp(t.jaw_rad, 0.0, m_jaw_max[h]);
     if (t.tick > 0)
       state.tools[*m_tool[h]] = t;
     else if (m_rest_pose[h])

@@ -132,6 +132,8 @@ class HapticsStage final : public Stage {
   std::uint32_t m_cut_events = 0;      // cuts seen so far (solver thread)
   std::uint32_t m_contact_events = 0;  // handles' touching-or-not changes so far
   std::array<bool, haptics::kHandles> m_touching{};
+  // Each handle's instrument's jaw range (engine/jaw_range.h), rad: a rig handle is held to it.
+  std::array<double, haptics::kHandles> m_jaw_max{};
   // Mouse and rig handles: the pose before the device's first sample (script handles: none).
   std::array<std::optional<ToolState>, haptics::kHandles> m_rest_pose{};
 

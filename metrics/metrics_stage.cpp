@@ -143,6 +143,8 @@ bool MetricsStage::add_use(const std::vector<double>& moved, const std::vector<d
   const std::size_t slot = static_cast<std::size_t>(m_recent_at++ % m_window);
   m_recent.resize(m_window * n, 0.0);
   std::copy(moved.begin(), moved.end(), m_recent.begin() + static_cast<std::ptrdiff_t>(slot * n));
+  // Early on the window holds only the steps taken so far.
+  const auto filled = static_cast<std::size_t>(std::min<std::uint64_t>(m_recent_at, m_window));
   bool any_moving = false, all_at_work = true, over = false;
   std::size_t hands = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -152,7 +154,7 @@ bool MetricsStage::add_use(const std::vector<double>& moved, const std::vector<d
     ++hands;
     double path = 0.0;
     for (std::size_t k = 0; k < m_window; ++k) path += m_recent[k * n + i];
-    const bool moving = path > kIdleSpeed * static_cast<double>(m_window) * dt_s;
+    const bool moving = path > kIdleSpeed * static_cast<double>(filled) * dt_s;
     any_moving = any_moving || moving;
     all_at_work = all_at_work && (moving || f > 0.0);
   }

@@ -6,6 +6,8 @@ depth along the view), then ends the session and checks its report.
 
   trainee_mouse.py SEROSA SCENE OUT_DIR transection       transect the appendix with the scissors
   trainee_mouse.py SEROSA SCENE OUT_DIR grasp_and_lift    grasp the appendix and lift it (expose)
+  trainee_mouse.py SEROSA SCENE OUT_DIR keep_moving       circle the active instrument for 20 s:
+                                                          the session must not read as idle
 
 Each move is closed-loop: look (the newest frame), move the hand part of the way, look again.
 """
@@ -166,7 +168,7 @@ proc = subprocess.Popen([SEROSA, "run", SCENE, "--seconds", "400", "--report", R
 try:
     window = subprocess.run(["xdotool", "search", "--sync", "--name", "^Serosa"], check=True,
                             timeout=90, capture_output=True, text=True).stdout.split()[0]
-    wait_frames(5, 1.0, limit_s=90)
+    wait_frames(1, 0.0, limit_s=90)
     xdo("windowfocus", "--sync", window)
     first = look()
     names = [h["tool"] for h in first["hands"]]  # what each hand holds, as the overlay says
@@ -199,6 +201,17 @@ try:
             key("s")  # pull it back towards the port: lifting what it holds
         drag(0, -120)
         wait_frames(5, 1.0)
+    elif TASK == "keep_moving":
+        xdo("mousemove", "--window", window, 640, 360)
+        xdo("mousedown", 1)
+        start, k = time.time(), 0
+        while time.time() - start < 20.0:  # a 60 px circle every 2 s, never still
+            a, b = 2 * math.pi * k / 40, 2 * math.pi * (k + 1) / 40
+            xdo("mousemove_relative", "--", round(60 * (math.cos(b) - math.cos(a))),
+                round(60 * (math.sin(b) - math.sin(a))))
+            k += 1
+            time.sleep(0.05)
+        xdo("mouseup", 1)
     else:
         raise SystemExit(f"trainee_mouse.py: unknown task {TASK}")
     end_session()
@@ -210,6 +223,10 @@ with open(REPORT) as f:
     report = json.load(f)
 metrics = report.get("assessment", {}).get("metrics", {})
 say("report: assessment", json.dumps(metrics)[:2000])
+if TASK == "keep_moving":
+    m = report["metrics"]
+    say(f"idle {m['idle_time_s']:.2f} s of {m['time_s']:.2f} s")
+    sys.exit(0 if m["idle_time_s"] < 0.1 * m["time_s"] else 1)
 if TASK == "transection":
     pieces = None
     for k, v in (metrics.items() if isinstance(metrics, dict) else []):
