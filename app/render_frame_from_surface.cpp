@@ -166,7 +166,7 @@ void fill_render_tools(const Scene& scene, const SimState& state, render::Render
     t.quat_wxyz = to_float(in.quat_wxyz);
     t.jaw_rad = std::clamp(static_cast<float>(in.jaw_rad), 0.0f, 3.14159265f);
     t.scene_tool = static_cast<std::uint32_t>(i);
-    const auto& planes = state.handoff.contact_planes;
+    const auto& planes = state.handoff.tissue_near;
     if (i < planes.size() && planes[i]) {
       const Vec3 p(planes[i]->point_m[0], planes[i]->point_m[1], planes[i]->point_m[2]);
       const Vec3 n(planes[i]->normal[0], planes[i]->normal[1], planes[i]->normal[2]);

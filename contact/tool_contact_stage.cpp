@@ -32,6 +32,7 @@ ToolContactStage::ToolContactStage(const Scene& scene, LameTable lame, ContactOu
   m_grasps.resize(scene.tools.size());
   m_tool_force.assign(scene.tools.size(), Vec3::Zero());
   m_planes.resize(scene.tools.size());
+  m_near.resize(scene.tools.size());
   m_reactions.resize(scene.tools.size());
 }
 
@@ -46,9 +47,10 @@ void ToolContactStage::update_planes(SimState& state) {
   }
   for (std::size_t i = 0; i < m_kinds.size() && i < state.tools.size(); ++i) {
     m_planes[i].reset();
+    m_near[i].reset();
     if (m_kinds[i] == ToolKind::kEndoscope) continue;
     const Vec3 tip = tool_frame(state.tools[i]).tip;
-    const std::optional<geometry::ClosestHit> hit = m_bvh.closest_point(mesh.x, tip, kHapticRange);
+    const std::optional<geometry::ClosestHit> hit = m_bvh.closest_point(mesh.x, tip, kCueRange);
     if (!hit) continue;
     const Tri& f = s.faces[static_cast<std::size_t>(hit->face)];
     const Vec3& a = mesh.x[static_cast<std::size_t>(f[0])];
@@ -61,9 +63,11 @@ void ToolContactStage::update_planes(SimState& state) {
     p.point_m = {hit->point.x(), hit->point.y(), hit->point.z()};
     p.normal = {un.x(), un.y(), un.z()};
     p.stiffness_Npm = kHapticStiffness;
-    m_planes[i] = p;
+    m_near[i] = p;
+    if (hit->distance <= kHapticRange) m_planes[i] = p;
   }
   state.handoff.contact_planes = m_planes;
+  state.handoff.tissue_near = m_near;
 }
 
 // A scissors stroke begins where the jaws last opened (the widest opening since, kept in the

@@ -27,7 +27,9 @@
 //   face's outward normal and kHapticStiffness: the local contact plane the 1 kHz loop renders
 //   (haptics/contact_model.h), handed on in SimState::handoff.contact_planes. A tip pressed into
 //   the tissue is below that plane and feels a force along the outward normal, opposing the
-//   penetration.
+//   penetration. The same query out to kCueRange gives each tool's nearest tissue for the
+//   picture's depth cue (SimState::handoff.tissue_near): a plane that far from the tip would
+//   stand for the wrong part of a curved organ, so only the nearer ones reach the hand.
 // The boundary is the surface stage's (SimState::handoff.surface): app builds a surface stage
 // wherever it builds this one, and the assembled state carries the first surface.
 #pragma once
@@ -56,6 +58,7 @@ inline constexpr double kGraspCloseRad = 0.2;        ///< rad
 inline constexpr double kGraspHysteresisRad = 0.05;  ///< rad
 inline constexpr double kGraspHalfWidth = 0.003;     ///< m
 inline constexpr double kHapticRange = 0.01;         ///< tip to surface, m: farther, no plane
+inline constexpr double kCueRange = 0.05;            ///< tip to surface, m: the depth cue's reach
 inline constexpr double kHapticStiffness = 500.0;    ///< rendered contact stiffness, N/m
 
 /// What the stage computes besides the forces it applies (nothing it is not asked for).
@@ -121,6 +124,7 @@ class ToolContactStage final : public Stage {
   geometry::SurfaceBvh m_bvh;
   std::uint64_t m_bvh_version = ~0ull;
   std::vector<std::optional<ContactPlane>> m_planes;  // (tools), none: endoscope, out of range
+  std::vector<std::optional<ContactPlane>> m_near;    // (tools) the same out to kCueRange
   std::vector<ToolReaction> m_reactions;              // (tools) this step's
   BladeResistance m_blades;                           // node volumes and strengths
   std::int64_t m_blade_nodes = -1;                    // node count m_blades was updated for

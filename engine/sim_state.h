@@ -56,6 +56,10 @@ struct StepHandoff {
   /// contact -> haptics: each tool's local contact plane; (tools), or empty when no haptic loop
   /// asked for planes.
   std::vector<std::optional<ContactPlane>> contact_planes;
+  /// contact -> render: each tool's nearest organ surface point and its outward normal out to a
+  /// longer reach than the contact planes' (the picture's depth cue); (tools), or empty like
+  /// contact_planes.
+  std::vector<std::optional<ContactPlane>> tissue_near;
   /// contact -> haptics: what each tool feels from the tissue besides its tip's contact plane;
   /// (tools), or empty when no haptic loop asked for it.
   std::vector<ToolReaction> tool_reactions;

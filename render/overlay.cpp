@@ -78,7 +78,9 @@ std::string hand_line(const OverlayHand& h) {
     l.append(part);
   }
   if (h.has_pedal) l.append(h.pedal ? "  pedal DOWN" : "  pedal up");
-  if (h.has_tissue) {
+  if (!h.has_tissue) {
+    l.append("  tissue far");
+  } else {
     if (h.tissue_distance_m <= 5e-4)
       std::snprintf(part, sizeof part, "  touching");
     else

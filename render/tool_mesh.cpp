@@ -288,7 +288,7 @@ void append_tool_mesh(const RenderTool& tool, ToolMesh& out, const ToolDimension
   // The shaft stops where the jaws begin (the hinge sits just inside its end).
   add_shaft(out, vec(f.shaft_start), hinge + 0.3f * r * axis, side, up, r, dims.shaft_segments);
   if (tool.active)  // a coloured collar behind the jaws: the instrument the mouse steers
-    add_shaft(out, hinge - 0.022f * axis, hinge - 0.014f * axis, side, up, 1.15f * r,
+    add_shaft(out, hinge - 0.014f * axis, hinge - 0.006f * axis, side, up, 1.15f * r,
               dims.shaft_segments, kActiveMaterial);
 
   if (tool.kind == RenderTool::Kind::kEndoloop) {  // the pusher's end, the knot, the open loop

@@ -56,9 +56,9 @@ void append_tool_mesh(const RenderTool& tool, ToolMesh& out, const ToolDimension
 /// kDepthCueSpread x the tip's distance, dark like a shadow, closing in as the tip comes near;
 /// amber and wider once the tip is within kTouchDistance (touching). Nothing beyond
 /// kDepthCueRange, m.
-inline constexpr float kDepthCueRange = 0.04f;
+inline constexpr float kDepthCueRange = 0.05f;
 inline constexpr float kDepthCueMinRadius = 3e-3f;
-inline constexpr float kDepthCueSpread = 0.4f;
+inline constexpr float kDepthCueSpread = 0.3f;
 inline constexpr float kDepthCueLift = 2e-4f;
 inline constexpr float kTouchDistance = 5e-4f;
 void append_depth_cue(const RenderTool& tool, ToolMesh& out);
