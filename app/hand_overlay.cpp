@@ -27,6 +27,7 @@ std::vector<render::OverlayHand> overlay_hands(const Scene& scene, const SimStat
       if (t.scene_tool != i || !t.has_tissue) continue;
       o.has_tissue = true;
       o.tissue_distance_m = t.tissue_distance_m;
+      o.tissue_in_jaws_m = t.tissue_in_jaws_m;
     }
     out.push_back(o);
   }

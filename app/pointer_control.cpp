@@ -10,9 +10,10 @@ const haptics::PointerInput& PointerControl::update(const PointerEvents& e, cons
                                                     double now_s) {
   if (e.tab % 2 != 0) m_active = (m_active + 1) % haptics::kHandles;
   const std::size_t h = m_active;
-  const Vec3 move = kDragMetresPerPixel * (e.drag_dx_px * axes.right - e.drag_dy_px * axes.up);
+  const Vec3 move = kDragMetresPerPixel * (e.drag_dx_px * axes.right - e.drag_dy_px * axes.up) +
+                    kDepthMetresPerStep * (e.insert - e.retract) * axes.forward;
   for (int k = 0; k < 3; ++k) m_input.move_m[h][static_cast<std::size_t>(k)] += move[k];
-  m_input.depth_steps[h] += e.scroll_steps + e.insert - e.retract;
+  m_input.depth_steps[h] += e.scroll_steps;
   m_input.roll_steps[h] += e.roll_right - e.roll_left;
   if (e.pedal % 2 != 0) m_input.buttons[h] ^= kPedalButton;
   m_input.homes[h] += static_cast<std::uint32_t>(std::max(e.home, 0));

@@ -2,7 +2,9 @@
 // the picture's terms: a drag with the left button moves the active instrument's tip the way the
 // pointer went in the picture, kDragMetresPerPixel per pixel whatever its insertion (the camera's
 // right and up turn pixels into scene metres, haptics/mouse_device.h carries it through the
-// trocar); W/S and the wheel insert and retract it, Q/E roll it, Home brings it back into view,
+// trocar); W/S move it into and out of the picture by kDepthMetresPerStep (along the view, so
+// that depth in the picture is one key whichever way the shaft points), the wheel pushes it in
+// and pulls it back along its shaft, Q/E roll it, Home brings it back into view,
 // P presses or releases its cautery pedal (a hook's current), Tab makes the other hand active.
 // J works the jaws as a hand does: a tap (shorter than kJawTapS) opens jaws that are at most half
 // open, fully, and closes the others; held longer, it closes them steadily (a bite), from full
@@ -21,15 +23,18 @@ namespace serosa::app {
 
 /// Tip motion per pixel of drag, m (0.1 mm: the 1280-pixel picture spans 13 cm of motion).
 inline constexpr double kDragMetresPerPixel = 1e-4;
+/// W/S: tip motion into (W) or out of (S) the picture per press, m.
+inline constexpr double kDepthMetresPerStep = 0.003;
 /// A J press released sooner than this is a tap, s.
 inline constexpr double kJawTapS = 0.25;
 /// Held J closes fully open jaws in this long, s.
 inline constexpr double kJawCloseS = 1.5;
 
-/// The picture's directions in the scene, unit vectors: right and up on the screen.
+/// The picture's directions in the scene, unit vectors: right and up on the screen, and into it.
 struct ScreenAxes {
   Vec3 right = Vec3::UnitX();
   Vec3 up = Vec3::UnitY();
+  Vec3 forward = -Vec3::UnitZ();
 };
 
 /// What the window gathered since the last frame, in plain terms (no GLFW).

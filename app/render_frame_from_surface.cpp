@@ -5,6 +5,7 @@
 
 #include "engine/board_normal.h"
 #include "engine/scope_view.h"
+#include "engine/tool_geometry.h"
 #include "render/camera.h"
 #include "surface/surface_normals.h"
 
@@ -119,6 +120,33 @@ constexpr double kBleedRadius = 0.005;         ///< m: the pool a cut artery mak
 constexpr double kBleedGrowS = 2.0;            ///< s: ... in this long
 }  // namespace
 
+namespace {
+
+// The tissue between a tool's open jaws: the surface corners within kJawSlabM of the jaws' plane
+// between them, and the diagonal of their box in that plane, m (0 with fewer than two).
+constexpr double kJawSlabM = 0.0015;
+constexpr double kJawsOpenRad = 0.2;
+
+float tissue_in_jaws(const SimState& state, const ToolState& tool) {
+  if (tool.jaw_rad < kJawsOpenRad) return 0.0f;
+  const ToolFrame f = tool_frame(tool);
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e9), hi = -lo;
+  int n = 0;
+  for (const Tri& face : state.handoff.surface.faces) {
+    for (const std::int32_t v : face) {
+      const Vec3& p = state.mesh.x[static_cast<std::size_t>(v)];
+      if (!between_jaws(f, tool.jaw_rad, p, kJawSlabM)) continue;
+      const Eigen::Vector2d q((p - f.hinge).dot(f.forward), (p - f.hinge).dot(f.side));
+      lo = lo.cwiseMin(q);
+      hi = hi.cwiseMax(q);
+      ++n;
+    }
+  }
+  return n >= 2 ? static_cast<float>((hi - lo).norm()) : 0.0f;
+}
+
+}  // namespace
+
 void fill_render_tools(const Scene& scene, const SimState& state, render::RenderFrame& frame) {
   frame.tools.clear();
   frame.guide.clear();
@@ -166,6 +194,7 @@ void fill_render_tools(const Scene& scene, const SimState& state, render::Render
     t.quat_wxyz = to_float(in.quat_wxyz);
     t.jaw_rad = std::clamp(static_cast<float>(in.jaw_rad), 0.0f, 3.14159265f);
     t.scene_tool = static_cast<std::uint32_t>(i);
+    t.tissue_in_jaws_m = tissue_in_jaws(state, in);
     const auto& planes = state.handoff.tissue_near;
     if (i < planes.size() && planes[i]) {
       const Vec3 p(planes[i]->point_m[0], planes[i]->point_m[1], planes[i]->point_m[2]);

@@ -53,12 +53,12 @@ struct SessionOptions {
 /// time a trainee drives), F2 hide/show the overlay, Esc end the session (then the summary of
 /// its assessment, when the scene scores it; Esc again to leave). With mouse-driven instruments
 /// (app/pointer_control.h): drag with the left button to move the active one's tip the way the
-/// pointer goes in the picture (it pivots about its trocar), W/S or the wheel insert and
-/// retract, Q/E roll, J taps open/close the jaws and held closes them steadily, P the pedal,
-/// Home back into view, Tab the other hand. The overlay names what each hand holds, its jaws,
-/// pedal and distance to tissue; the active instrument wears a coloured collar and a ring on the
-/// tissue under each tip closes in as it comes near. The overlay's view and tessellation
-/// controls work with the mouse.
+/// pointer goes in the picture (it pivots about its trocar), W/S into and out of the picture,
+/// the wheel in and out along the shaft, Q/E roll, J taps open/close the jaws and held closes them
+/// steadily, P the pedal, Home back into view, Tab the other hand. The overlay names what each hand
+/// holds, its jaws, pedal and distance to tissue; the active instrument wears a coloured collar and
+/// a ring on the tissue under each tip closes in as it comes near. The overlay's view and
+/// tessellation controls work with the mouse.
 int run_session(const std::filesystem::path& scene, const SessionOptions& options);
 
 /// The instructor's replay of a .lapr recording in a window (`serosa replay REC.lapr`), driven

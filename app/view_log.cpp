@@ -65,6 +65,7 @@ Json tool_json(const render::RenderTool& t, const Projector& p) {
            p.at(hinge + length * (std::cos(a) * axis - std::sin(a) * side))}},
          {"shaft", p.at(hinge - 0.03f * axis)}};
   if (t.has_tissue) j["tissue_distance_m"] = t.tissue_distance_m;
+  j["tissue_in_jaws_m"] = t.tissue_in_jaws_m;
   return j;
 }
 

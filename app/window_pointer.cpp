@@ -30,7 +30,8 @@ ScreenAxes screen_axes(const render::Camera& camera) {
   const Vec3 right = forward.cross(up);
   if (forward.norm() < 1e-12 || right.norm() < 1e-12) return a;
   a.right = right.normalized();
-  a.up = a.right.cross(forward.normalized());
+  a.forward = forward.normalized();
+  a.up = a.right.cross(a.forward);
   return a;
 }
 

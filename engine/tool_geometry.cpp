@@ -32,4 +32,13 @@ double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
   return (p - (a + t * ab)).norm();
 }
 
+bool between_jaws(const ToolFrame& frame, double jaw_rad, const Vec3& p, double half_thickness_m,
+                  double jaw_length_m) {
+  const Vec3 d = p - frame.hinge;
+  if (std::abs(d.dot(frame.pin)) > half_thickness_m) return false;
+  const double a = d.dot(frame.forward), b = d.dot(frame.side);
+  if (!(a > 0.0) || a * a + b * b > jaw_length_m * jaw_length_m) return false;
+  return std::abs(std::atan2(b, a)) <= 0.5 * jaw_rad;
+}
+
 }  // namespace serosa

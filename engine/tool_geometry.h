@@ -36,6 +36,11 @@ struct ToolFrame {
 [[nodiscard]] Vec3 jaw_tip(const ToolFrame& frame, double jaw_rad, int k,
                            double jaw_length_m = kJawLength);
 
+/// Whether p lies between the open jaws: within the wedge the two jaws span about the hinge (out
+/// to jaw_length_m), no farther than half_thickness_m from the jaw plane, m.
+[[nodiscard]] bool between_jaws(const ToolFrame& frame, double jaw_rad, const Vec3& p,
+                                double half_thickness_m, double jaw_length_m = kJawLength);
+
 /// Distance from p to segment [a, b], m.
 [[nodiscard]] double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b);
 

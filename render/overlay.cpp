@@ -78,6 +78,10 @@ std::string hand_line(const OverlayHand& h) {
     l.append(part);
   }
   if (h.has_pedal) l.append(h.pedal ? "  pedal DOWN" : "  pedal up");
+  if (h.tissue_in_jaws_m > 0.0) {
+    std::snprintf(part, sizeof part, "  %.0f mm IN JAWS", 1e3 * h.tissue_in_jaws_m);
+    l.append(part);
+  }
   if (!h.has_tissue) {
     l.append("  tissue far");
   } else {
@@ -97,9 +101,11 @@ const std::vector<std::string>& overlay_help_lines() {
       "Controls (H or F1 shows and hides this)",
       "drag (left button)  move the active instrument's tip",
       "                    the way the pointer goes",
-      "W / S, wheel        push it in / pull it back",
+      "W / S               move it into / out of the picture",
+      "wheel               push it in / pull it back along its shaft",
       "Q / E               roll it",
-      "J                   tap: open or close the jaws",
+      "J                   tap: open or close the jaws (the instruments",
+      "                    panel says how many mm of tissue are IN JAWS)",
       "                    hold: close them slowly (bite)",
       "P                   cautery pedal down / up (hook)",
       "Home                bring it back into view",

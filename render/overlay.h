@@ -92,8 +92,8 @@ struct OverlayText {
   /// timeline is being computed), then the mark last jumped to, "  2/3 0:03.2 grasper over 5 N".
   std::string errors;
   /// The instruments panel, a line per hand: "> right: scissors  jaws 1.20 of 1.20 rad  tissue
-  /// 4 mm" ('>' marks the active one; "jaws closed", "pedal DOWN", "touching", "tissue far" as
-  /// they are).
+  /// 4 mm" ('>' marks the active one; "jaws closed", "pedal DOWN", "6 mm IN JAWS", "touching",
+  /// "tissue far" as they are).
   std::vector<std::string> hands;
 };
 [[nodiscard]] OverlayText overlay_text(const OverlayData& data);

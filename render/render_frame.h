@@ -48,6 +48,10 @@ struct RenderTool {
   std::array<float, 3> tissue_point{0.0f, 0.0f, 0.0f};
   std::array<float, 3> tissue_normal{0.0f, 0.0f, 1.0f};  ///< unit
   float tissue_distance_m = 0.0f;
+  /// How much tissue lies between its open jaws, m: the extent, in the jaws' plane, of the organ
+  /// surface crossing it between them (what a surgeon checks before closing: a 7 mm appendix
+  /// between the blades reads about 7 mm, one they only graze much less); 0: none.
+  float tissue_in_jaws_m = 0.0f;
 };
 
 /// A placed ligature (plain data, world coordinates, m): a clip's two legs along its centre
@@ -105,6 +109,7 @@ struct OverlayHand {
   bool has_pedal = false;          ///< it has one (a hook)
   bool has_tissue = false;         ///< tissue_distance_m is known
   double tissue_distance_m = 0.0;  ///< the tip's distance to the nearest tissue, m (< 0: in it)
+  double tissue_in_jaws_m = 0.0;   ///< how much tissue lies between its open jaws, m
 };
 
 struct OverlayData {

@@ -78,8 +78,7 @@ TEST(PointerControl, ADragRightMovesEveryTipRightOnScreenAtOneGain) {
       ASSERT_TRUE(dev.poll(now, s));
       for (const double depth : {0.0, -10.0, 20.0}) {  // as it rests, 3 cm out, 3 cm in
         PointerEvents e;
-        e.insert = depth > 0.0 ? static_cast<int>(depth) : 0;
-        e.retract = depth < 0.0 ? static_cast<int>(-depth) : 0;
+        e.scroll_steps = depth;  // the wheel: along the shaft
         dev.feed(pointer.update(e, axes, now += 0.1));
         ASSERT_TRUE(dev.poll(now, s));
         const Vec3 before = tip_of(s.pose[0]);
@@ -150,7 +149,8 @@ TEST(PointerControl, TabSwitchesHandsAndEveryEventCounts) {
   haptics::PointerInput in = p.update(e, axes, 0.0);
   EXPECT_NEAR(in.move_m[0][0], 30.0 * kDragMetresPerPixel, 1e-15);
   EXPECT_NEAR(in.move_m[0][1], -10.0 * kDragMetresPerPixel, 1e-15);  // down the picture
-  EXPECT_EQ(in.depth_steps[0], 4.0);
+  EXPECT_EQ(in.depth_steps[0], 2.0);                                 // the wheel
+  EXPECT_NEAR(in.move_m[0][2], -2.0 * kDepthMetresPerStep, 1e-15);   // W/S: into the picture
   EXPECT_EQ(in.roll_steps[0], 2.0);
   EXPECT_NE(in.buttons[0], 0u);
   EXPECT_EQ(in.homes[0], 1u);

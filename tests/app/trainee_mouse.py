@@ -22,7 +22,7 @@ SEROSA, SCENE, OUT, TASK = sys.argv[1:5]
 os.makedirs(OUT, exist_ok=True)
 REPORT = os.path.join(OUT, "report.json")
 LOG = os.path.join(OUT, "view.jsonl")
-STEP_M = 0.003  # one W/S press, m (haptics/mouse_device.h)
+STEP_M = 0.003  # one W/S press into or out of the picture, m (app/pointer_control.h)
 
 
 def say(*a):
@@ -107,14 +107,10 @@ def aim(name, target_of, within_px=3.0, within_m=0.0015, tries=40):
             say(f"{name} on target: {ex:+.1f} {ey:+.1f} px, {1e3 * dz:+.1f} mm deep")
             return True
         if abs(dz) >= within_m:
-            # W pushes the tip along the shaft: its share along the view is what the picture's
-            # depth shows between the jaws' middle and a point on the shaft behind them.
-            along = (mid["depth_m"] - t["shaft"]["depth_m"]) / 0.038
-            along = math.copysign(max(abs(along), 0.2), along)
-            presses = max(-6, min(6, round(dz / (STEP_M * along))))
+            # W and S move the tip 3 mm into and out of the picture.
+            presses = max(-6, min(6, round(dz / STEP_M)))
             if presses != 0:
-                key("w" if presses > 0 else "s")
-                for _ in range(abs(presses) - 1):
+                for _ in range(abs(presses)):
                     key("w" if presses > 0 else "s")
                 continue
         before = mid["px"]
@@ -197,8 +193,8 @@ try:
         aim("grasper", lambda f: f["groups"]["appendix"])
         key("j")  # close on the appendix
         wait_frames(3, 1.0)
-        for _ in range(5):
-            key("s")  # pull it back towards the port: lifting what it holds
+        for _ in range(4):
+            key("s")  # out of the picture, towards the scope: lifting what it holds
         drag(0, -120)
         wait_frames(5, 1.0)
     elif TASK == "keep_moving":

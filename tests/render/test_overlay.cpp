@@ -218,5 +218,43 @@ TEST(OverlayText, ReplayTimelineShowsPositionDurationSpeedAndPause) {
   EXPECT_EQ(overlay_text(d).timeline, "0:00.0 / 2:10.0  x2  [paused]");
 }
 
+// The instruments panel names what each hand holds and marks the active one, with its jaws, its
+// pedal, the tissue between its jaws and its tip's distance to tissue; the controls panel lists
+// every key the session reads.
+TEST(OverlayText, TheInstrumentsPanelSaysWhatEachHandHolds) {
+  OverlayData d;
+  OverlayHand scissors;
+  scissors.hand = "right";
+  scissors.tool = "scissors";
+  scissors.active = true;
+  scissors.jaw_rad = 1.2;
+  scissors.jaw_max_rad = 1.2;
+  scissors.has_tissue = true;
+  scissors.tissue_distance_m = 0.004;
+  scissors.tissue_in_jaws_m = 0.007;
+  OverlayHand grasper;
+  grasper.hand = "left";
+  grasper.tool = "grasper";
+  grasper.jaw_max_rad = 1.0;
+  OverlayHand hook;
+  hook.hand = "left";
+  hook.tool = "hook";
+  hook.has_pedal = true;
+  hook.pedal = true;
+  hook.has_tissue = true;
+  hook.tissue_distance_m = -0.001;
+  d.hands = {grasper, scissors, hook};
+  const OverlayText t = overlay_text(d);
+  ASSERT_EQ(t.hands.size(), 3u);
+  EXPECT_EQ(t.hands[0], "  left: grasper  jaws closed  tissue far");
+  EXPECT_EQ(t.hands[1], "> right: scissors  jaws 1.20 of 1.20 rad  7 mm IN JAWS  tissue 4 mm");
+  EXPECT_EQ(t.hands[2], "  left: hook  pedal DOWN  touching");
+  std::string help;
+  for (const std::string& l : overlay_help_lines()) help += l + "\n";
+  for (const char* key : {"drag (left button)", "W / S", "wheel", "Q / E", "J ", "P ", "Home",
+                          "Tab", "drag (right button)", "Space", "Esc", "F2"})
+    EXPECT_NE(help.find(key), std::string::npos) << key;
+}
+
 }  // namespace
 }  // namespace serosa::render
