@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <optional>
 
 #include "app/assemble_state.h"
 #include "app/compose.h"
@@ -89,6 +91,39 @@ TEST(InstrumentDevices, TheDefaultSceneGoesToTheMouseWithoutARig) {
   ASSERT_TRUE(comp.haptics->handle_tools()[0].has_value());
   ASSERT_TRUE(comp.haptics->handle_tools()[1].has_value());
   EXPECT_EQ(comp.tools, nullptr);
+}
+
+// Every shipped scene hands its instruments over where the endoscope sees them: each starts at a
+// pose its script reaches in which the scope, as its script starts it, sees the tip and the
+// shaft behind it, 4 cm or more from the lens (every shipped script brings each instrument into
+// view at some time).
+TEST(InstrumentDevices, EveryShippedSceneStartsItsInstrumentsInView) {
+  int checked = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(source("config"))) {
+    if (entry.path().extension() != ".toml") continue;
+    Scene scene;
+    try {
+      scene = load_scene(entry.path());
+    } catch (const InputError&) {
+      continue;  // a manifest or curriculum, not a scene
+    }
+    const auto given = give_instruments_to_trainee(scene, false);
+    if (!given) continue;
+    std::optional<ToolState> scope;
+    for (const auto& st : given->scope_start)
+      if (st) scope = st;
+    if (!scope) continue;
+    const ScopeView view = scope_view(*scope);
+    for (std::size_t i = 0; i < scene.tools.size(); ++i) {
+      if (!given->start_pose[i]) continue;
+      const ToolFrame f = tool_frame(*given->start_pose[i]);
+      EXPECT_TRUE(in_view(view, f.tip) && in_view(view, f.tip - 0.02 * f.forward) &&
+                  (f.tip - view.eye).norm() >= 0.04)
+          << entry.path().filename() << " " << scene.tools[i].name;
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 10);
 }
 
 TEST(InstrumentDevices, ARigPluggedInTakesTheInstruments) {

@@ -167,6 +167,9 @@ try:
     wait_frames(1, 0.0, limit_s=90)
     xdo("windowfocus", "--sync", window)
     first = look()
+    while not first["hands"]:  # the solver has not published a frame yet
+        wait_frames(1, 0.0, limit_s=60)
+        first = look()
     names = [h["tool"] for h in first["hands"]]  # what each hand holds, as the overlay says
     say("hands:", names, "active:", first["active_hand"])
     if TASK == "transection":
