@@ -3,8 +3,12 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "app/shell_command.h"
+#include "engine/input_error.h"
+#include "engine/scene.h"
 #include "support/test_paths.h"
 
 namespace serosa::app::testing {
@@ -20,6 +24,20 @@ inline fs::path out_dir(const std::string& name) {
 
 inline fs::path source(const std::string& rel) {
   return fs::path(::serosa::test_paths::source_dir()) / rel;
+}
+
+/// Every shipped scene (config/*.toml that loads as one; the manifests and the curriculum do
+/// not), with its file name.
+inline std::vector<std::pair<std::string, Scene>> shipped_scenes() {
+  std::vector<std::pair<std::string, Scene>> out;
+  for (const auto& entry : fs::directory_iterator(source("config"))) {
+    if (entry.path().extension() != ".toml") continue;
+    try {
+      out.emplace_back(entry.path().filename().string(), load_scene(entry.path()));
+    } catch (const InputError&) {
+    }
+  }
+  return out;
 }
 
 inline fs::path serosa_exe() {

@@ -99,14 +99,7 @@ TEST(InstrumentDevices, TheDefaultSceneGoesToTheMouseWithoutARig) {
 // view at some time).
 TEST(InstrumentDevices, EveryShippedSceneStartsItsInstrumentsInView) {
   int checked = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(source("config"))) {
-    if (entry.path().extension() != ".toml") continue;
-    Scene scene;
-    try {
-      scene = load_scene(entry.path());
-    } catch (const InputError&) {
-      continue;  // a manifest or curriculum, not a scene
-    }
+  for (auto& [file, scene] : testing::shipped_scenes()) {
     const auto given = give_instruments_to_trainee(scene, false);
     if (!given) continue;
     std::optional<ToolState> scope;
@@ -119,7 +112,7 @@ TEST(InstrumentDevices, EveryShippedSceneStartsItsInstrumentsInView) {
       const ToolFrame f = tool_frame(*given->start_pose[i]);
       EXPECT_TRUE(in_view(view, f.tip) && in_view(view, f.tip - 0.02 * f.forward) &&
                   (f.tip - view.eye).norm() >= 0.04)
-          << entry.path().filename() << " " << scene.tools[i].name;
+          << file << " " << scene.tools[i].name;
       ++checked;
     }
   }

@@ -21,14 +21,7 @@ using testing::source;
 TEST(JawRange, TheScriptsOpenEachInstrumentExactlyAsWideAsItsRange) {
   std::map<ToolKind, double> widest;
   int scenes = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(source("config"))) {
-    if (entry.path().extension() != ".toml") continue;
-    Scene scene;
-    try {
-      scene = load_scene(entry.path());
-    } catch (const InputError&) {
-      continue;  // a manifest or curriculum, not a scene
-    }
+  for (const auto& [file, scene] : testing::shipped_scenes()) {
     ++scenes;
     for (const Tool& t : scene.tools) {
       if (t.device.script.empty()) continue;
@@ -37,7 +30,7 @@ TEST(JawRange, TheScriptsOpenEachInstrumentExactlyAsWideAsItsRange) {
       if (!k) continue;
       for (const ToolState& s : path.samples[*k]) {
         EXPECT_LE(s.jaw_rad, max_jaw_rad(t.kind) + 1e-12)
-            << entry.path().filename() << " " << t.name << " at " << s.time_s << " s";
+            << file << " " << t.name << " at " << s.time_s << " s";
         widest[t.kind] = std::max(widest[t.kind], s.jaw_rad);
       }
     }
