@@ -23,6 +23,7 @@ std::vector<render::OverlayHand> overlay_hands(const Scene& scene, const SimStat
     o.jaw_max_rad = max_jaw_rad(tool.kind);
     o.has_pedal = tool.kind == ToolKind::kHook;
     o.pedal = pedal_down(state.tools[i]);
+    if (i < state.handoff.grasped.size()) o.holding_nodes = state.handoff.grasped[i].size();
     for (const render::RenderTool& t : frame.tools) {
       if (t.scene_tool != i || !t.has_tissue) continue;
       o.has_tissue = true;

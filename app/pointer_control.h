@@ -45,27 +45,30 @@ struct PointerEvents {
   int tab = 0, insert = 0, retract = 0, roll_left = 0, roll_right = 0, pedal = 0, home = 0;
   int jaw_presses = 0;    ///< times J went down
   bool jaw_held = false;  ///< J is down now
+  double jaw_held_s = 0.0;  ///< how long J has been down, s (when jaw_held)
+  /// J was let go since the last frame after being down this long, s; < 0: it was not. Timed
+  /// by the key events themselves, so a slow frame between press and release is still a tap.
+  double jaw_released_after_s = -1.0;
 };
 
 class PointerControl {
  public:
   explicit PointerControl(const haptics::PointerInput& start = {}) : m_input(start) {}
 
-  /// Takes one frame's events at wall time now_s (s, any monotonic origin), the picture's axes
-  /// as the trainee saw it; returns the cumulative input.
-  const haptics::PointerInput& update(const PointerEvents& e, const ScreenAxes& axes, double now_s);
+  /// Takes one frame's events and the picture's axes as the trainee saw it; returns the
+  /// cumulative input.
+  const haptics::PointerInput& update(const PointerEvents& e, const ScreenAxes& axes);
 
   [[nodiscard]] std::size_t active() const noexcept { return m_active; }
   [[nodiscard]] const haptics::PointerInput& input() const noexcept { return m_input; }
 
  private:
-  void update_jaw(const PointerEvents& e, double now_s);
+  void update_jaw(const PointerEvents& e);
 
   haptics::PointerInput m_input;
   std::size_t m_active = 0;
   bool m_jaw_holding = false;  // J went down and has not been let go (as the frames saw it)
-  double m_jaw_t0 = 0.0;       // when it went down, s
-  double m_jaw_start = 0.0;    // the jaw fraction then
+  double m_jaw_start = 0.0;    // the jaw fraction when it went down
 };
 
 }  // namespace serosa::app

@@ -347,9 +347,7 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
       if (window.pressed(render::Key::kF2)) show_overlay = !show_overlay;
       const PointerEvents events = pointer_events(window);
       if (mouse) {
-        const double now_s = std::chrono::duration<double>(Clock::now() - start).count();
-        comp.haptics->feed_pointer(
-            pointer.update(events, screen_axes(frames.front().camera), now_s));
+        comp.haptics->feed_pointer(pointer.update(events, screen_axes(frames.front().camera)));
         control.active_handle.store(pointer.active());
       }
       if (scope) scope->update(window);
@@ -525,9 +523,7 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
     if (window.pressed(render::Key::kB) && !replay.branched()) branch_here();
     const PointerEvents events = pointer_events(window);  // taken every frame: none pile up
     if (takeover)
-      takeover->apply(pointer.update(events, screen_axes(frame.camera),
-                                     std::chrono::duration<double>(Clock::now() - start).count()),
-                      replay);
+      takeover->apply(pointer.update(events, screen_axes(frame.camera)), replay);
     const TimelineData known = timeline.data();
     if (window.pressed(render::Key::kN)) jump_to_next_error(known.marks);
 

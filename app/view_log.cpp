@@ -120,7 +120,8 @@ void ViewLog::write(const render::RenderFrame& frame, int width, int height, dou
                              {"active", h.active},
                              {"jaw_rad", h.jaw_rad},
                              {"jaw_max_rad", h.jaw_max_rad},
-                             {"pedal", h.pedal}});
+                             {"pedal", h.pedal},
+                             {"holding_nodes", h.holding_nodes}});
   m_out << line.dump() << '\n' << std::flush;
   if (!m_out) throw InputError(m_file.string(), 0, "cannot write the view log", "a writable path");
 }

@@ -17,7 +17,9 @@ PointerEvents pointer_events(render::Window& window) {
   e.pedal = n(render::Key::kP);
   e.home = n(render::Key::kHome);
   e.jaw_presses = n(render::Key::kJ);
-  e.jaw_held = window.key_down(render::Key::kJ);
+  e.jaw_held_s = window.key_held_s(render::Key::kJ);
+  e.jaw_held = e.jaw_held_s >= 0.0;
+  e.jaw_released_after_s = w.released_after_s[static_cast<std::size_t>(render::Key::kJ)];
   return e;
 }
 

@@ -78,6 +78,7 @@ std::string hand_line(const OverlayHand& h) {
     l.append(part);
   }
   if (h.has_pedal) l.append(h.pedal ? "  pedal DOWN" : "  pedal up");
+  if (h.holding_nodes > 0) l.append("  HOLDING");
   if (h.tissue_in_jaws_m > 0.0) {
     std::snprintf(part, sizeof part, "  %.0f mm IN JAWS", 1e3 * h.tissue_in_jaws_m);
     l.append(part);

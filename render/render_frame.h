@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -110,6 +111,7 @@ struct OverlayHand {
   bool has_tissue = false;         ///< tissue_distance_m is known
   double tissue_distance_m = 0.0;  ///< the tip's distance to the nearest tissue, m (< 0: in it)
   double tissue_in_jaws_m = 0.0;   ///< how much tissue lies between its open jaws, m
+  std::size_t holding_nodes = 0;   ///< surface nodes its closed jaws hold (a grasper), count
 };
 
 struct OverlayData {

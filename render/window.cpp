@@ -108,10 +108,21 @@ Window::Window(int width, int height, const std::string& title) {
 }
 
 void Window::on_key(GLFWwindow* w, int key, int /*scancode*/, int action, int /*mods*/) {
-  if (action != GLFW_PRESS) return;
+  if (action == GLFW_REPEAT) return;
   auto* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
-  for (int k = 0; k < static_cast<int>(Key::kCount); ++k)
-    if (glfw_key(static_cast<Key>(k)) == key) ++self->m_events.presses[static_cast<std::size_t>(k)];
+  const double now_s = glfwGetTime();
+  for (int k = 0; k < static_cast<int>(Key::kCount); ++k) {
+    if (glfw_key(static_cast<Key>(k)) != key) continue;
+    const auto i = static_cast<std::size_t>(k);
+    if (action == GLFW_PRESS) {
+      ++self->m_events.presses[i];
+      self->m_down_at_s[i] = now_s;
+      self->m_key_held[i] = true;
+    } else if (self->m_key_held[i]) {
+      self->m_events.released_after_s[i] = now_s - self->m_down_at_s[i];
+      self->m_key_held[i] = false;
+    }
+  }
 }
 
 void Window::on_cursor(GLFWwindow* w, double x, double y) {
@@ -132,8 +143,10 @@ void Window::on_cursor(GLFWwindow* w, double x, double y) {
 void Window::on_button(GLFWwindow* w, int button, int action, int /*mods*/) {
   auto* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
   if (button != GLFW_MOUSE_BUTTON_LEFT) return;
+  // The drag starts where the last motion event left the pointer, not where glfwGetCursorPos
+  // says it is now: events still queued behind a slow frame would otherwise be measured from a
+  // later position, and a quick drag would lose all but its last moves.
   self->m_left_held = action == GLFW_PRESS;
-  glfwGetCursorPos(w, &self->m_cursor_x, &self->m_cursor_y);
 }
 
 void Window::on_scroll(GLFWwindow* w, double /*dx*/, double dy) {
@@ -149,6 +162,11 @@ Window::Events Window::take_events() {
 
 bool Window::key_down(Key key) const {
   return key != Key::kCount && glfwGetKey(m_window, glfw_key(key)) == GLFW_PRESS;
+}
+
+double Window::key_held_s(Key key) const {
+  if (key == Key::kCount || !m_key_held[static_cast<std::size_t>(key)]) return -1.0;
+  return glfwGetTime() - m_down_at_s[static_cast<std::size_t>(key)];
 }
 
 Window::~Window() {

@@ -79,13 +79,13 @@ TEST(PointerControl, ADragRightMovesEveryTipRightOnScreenAtOneGain) {
       for (const double depth : {0.0, -10.0, 20.0}) {  // as it rests, 3 cm out, 3 cm in
         PointerEvents e;
         e.scroll_steps = depth;  // the wheel: along the shaft
-        dev.feed(pointer.update(e, axes, now += 0.1));
-        ASSERT_TRUE(dev.poll(now, s));
+        dev.feed(pointer.update(e, axes));
+        ASSERT_TRUE(dev.poll(now += 0.1, s));
         const Vec3 before = tip_of(s.pose[0]);
         PointerEvents drag;
         drag.drag_dx_px = 100.0;
-        dev.feed(pointer.update(drag, axes, now += 0.1));
-        ASSERT_TRUE(dev.poll(now, s));
+        dev.feed(pointer.update(drag, axes));
+        ASSERT_TRUE(dev.poll(now += 0.1, s));
         const Vec3 moved = tip_of(s.pose[0]) - before;
         EXPECT_NEAR(moved.norm(), 100.0 * kDragMetresPerPixel, 1e-9) << t.name << " " << depth;
         EXPECT_NEAR(moved.normalized().dot(axes.right), 1.0, 1e-9) << t.name << " " << depth;
@@ -101,35 +101,51 @@ TEST(PointerControl, ADragRightMovesEveryTipRightOnScreenAtOneGain) {
 }
 
 // J: a tap opens closed jaws fully and closes open ones; held, it closes them steadily from
-// where they were, and they stay where they are when let go. A tap that went down and up
-// between two frames still counts.
+// where they were, and they stay where they are when let go. A tap is told by the key events'
+// own times: one that went down and up between two frames, or across a frame however slow,
+// still counts as a tap.
 TEST(PointerControl, JawsTapToToggleHoldToBite) {
   PointerControl p;
   const ScreenAxes axes;
   PointerEvents tap;
   tap.jaw_presses = 1;  // down and up between two frames
-  EXPECT_EQ(p.update(tap, axes, 1.0).jaw_fraction[0], 1.0);
-  EXPECT_EQ(p.update(tap, axes, 2.0).jaw_fraction[0], 0.0);
-  EXPECT_EQ(p.update(tap, axes, 3.0).jaw_fraction[0], 1.0);
-  // Down at 4 s, held over frames, let go at 5.15 s: closing from 4.25 s at 1 / kJawCloseS.
+  tap.jaw_released_after_s = 0.02;
+  EXPECT_EQ(p.update(tap, axes).jaw_fraction[0], 1.0);
+  EXPECT_EQ(p.update(tap, axes).jaw_fraction[0], 0.0);
+  EXPECT_EQ(p.update(tap, axes).jaw_fraction[0], 1.0);
+  // Down for 1.15 s over frames, then let go: closing from 0.25 s on at 1 / kJawCloseS.
   PointerEvents down;
   down.jaw_presses = 1;
   down.jaw_held = true;
+  down.jaw_held_s = 0.01;
   PointerEvents held;
   held.jaw_held = true;
-  EXPECT_EQ(p.update(down, axes, 4.0).jaw_fraction[0], 1.0);
-  EXPECT_EQ(p.update(held, axes, 4.2).jaw_fraction[0], 1.0);  // could still be a tap
-  EXPECT_NEAR(p.update(held, axes, 4.85).jaw_fraction[0], 1.0 - 0.6 / kJawCloseS, 1e-12);
+  const auto held_for = [&](double s) {
+    held.jaw_held_s = s;
+    return held;
+  };
+  PointerEvents up;
+  up.jaw_released_after_s = 1.15;
+  EXPECT_EQ(p.update(down, axes).jaw_fraction[0], 1.0);
+  EXPECT_EQ(p.update(held_for(0.2), axes).jaw_fraction[0], 1.0);  // could still be a tap
+  EXPECT_NEAR(p.update(held_for(0.85), axes).jaw_fraction[0], 1.0 - 0.6 / kJawCloseS, 1e-12);
   const double bitten = 1.0 - 0.9 / kJawCloseS;
-  EXPECT_NEAR(p.update(held, axes, 5.15).jaw_fraction[0], bitten, 1e-12);
-  EXPECT_NEAR(p.update(PointerEvents{}, axes, 5.2).jaw_fraction[0], bitten, 1e-12);
-  EXPECT_NEAR(p.update(PointerEvents{}, axes, 9.0).jaw_fraction[0], bitten, 1e-12);
+  EXPECT_NEAR(p.update(up, axes).jaw_fraction[0], bitten, 1e-12);  // at the release's time
+  EXPECT_NEAR(p.update(PointerEvents{}, axes).jaw_fraction[0], bitten, 1e-12);
   // Held long enough, they close fully and no further.
-  EXPECT_NEAR(p.update(down, axes, 10.0).jaw_fraction[0], bitten, 1e-12);
-  EXPECT_EQ(p.update(held, axes, 20.0).jaw_fraction[0], 0.0);
+  EXPECT_NEAR(p.update(down, axes).jaw_fraction[0], bitten, 1e-12);
+  EXPECT_EQ(p.update(held_for(10.0), axes).jaw_fraction[0], 0.0);
+  up.jaw_released_after_s = 10.1;
+  EXPECT_EQ(p.update(up, axes).jaw_fraction[0], 0.0);
   // A tap on jaws at most half open opens them.
-  EXPECT_EQ(p.update(PointerEvents{}, axes, 20.1).jaw_fraction[0], 0.0);
-  EXPECT_EQ(p.update(tap, axes, 21.0).jaw_fraction[0], 1.0);
+  EXPECT_EQ(p.update(PointerEvents{}, axes).jaw_fraction[0], 0.0);
+  EXPECT_EQ(p.update(tap, axes).jaw_fraction[0], 1.0);
+  // A tap whose press a frame saw and whose release came after a 0.5 s frame is still a tap:
+  // the frames' times do not stretch it into a bite.
+  down.jaw_held_s = 0.05;
+  EXPECT_EQ(p.update(down, axes).jaw_fraction[0], 1.0);
+  up.jaw_released_after_s = 0.08;
+  EXPECT_EQ(p.update(up, axes).jaw_fraction[0], 0.0);
 }
 
 // Each hand keeps its own input; Tab changes which one the events go to, and nothing the window
@@ -146,7 +162,7 @@ TEST(PointerControl, TabSwitchesHandsAndEveryEventCounts) {
   e.roll_right = 2;
   e.pedal = 1;
   e.home = 1;
-  haptics::PointerInput in = p.update(e, axes, 0.0);
+  haptics::PointerInput in = p.update(e, axes);
   EXPECT_NEAR(in.move_m[0][0], 30.0 * kDragMetresPerPixel, 1e-15);
   EXPECT_NEAR(in.move_m[0][1], -10.0 * kDragMetresPerPixel, 1e-15);  // down the picture
   EXPECT_EQ(in.depth_steps[0], 2.0);                                 // the wheel
@@ -157,13 +173,13 @@ TEST(PointerControl, TabSwitchesHandsAndEveryEventCounts) {
   PointerEvents tab;
   tab.tab = 1;
   tab.drag_dx_px = 5.0;
-  in = p.update(tab, axes, 0.1);
+  in = p.update(tab, axes);
   EXPECT_EQ(p.active(), 1u);
   EXPECT_NEAR(in.move_m[1][0], 5.0 * kDragMetresPerPixel, 1e-15);
   EXPECT_NEAR(in.move_m[0][0], 30.0 * kDragMetresPerPixel, 1e-15);
   tab.drag_dx_px = 0.0;
   tab.tab = 2;  // two presses in one frame: back where it was
-  (void)p.update(tab, axes, 0.2);
+  (void)p.update(tab, axes);
   EXPECT_EQ(p.active(), 1u);
 }
 

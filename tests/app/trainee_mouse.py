@@ -191,15 +191,24 @@ try:
     elif TASK == "grasp_and_lift":
         if first["active_hand"] != names.index("grasper"):
             key("Tab")
-        key("j")  # open the grasper
-        wait_frames(3, 0.5)
-        aim("grasper", lambda f: f["groups"]["appendix"])
-        key("j")  # close on the appendix
-        wait_frames(3, 1.0)
+        g = look()["active_hand"]
+        for attempt in range(3):  # as a trainee does: closed on nothing, open and try again
+            key("j")  # open the grasper
+            wait_frames(3, 0.5)
+            aim("grasper", lambda f: f["groups"]["appendix"])
+            key("j")  # close on the appendix
+            wait_frames(3, 1.0)
+            hand = look()["hands"][g]
+            say(f"jaws {hand['jaw_rad']:.2f} rad, holding {hand['holding_nodes']} nodes")
+            if hand["holding_nodes"] > 0:
+                break
         for _ in range(4):
             key("s")  # out of the picture, towards the scope: lifting what it holds
+        before = tool(look(), "grasper")["jaw_mid"]["px"]
         drag(0, -120)
         wait_frames(5, 1.0)
+        after = tool(look(), "grasper")["jaw_mid"]["px"]
+        say(f"lifted: the jaws moved {after[0] - before[0]:+.0f} {after[1] - before[1]:+.0f} px")
     elif TASK == "keep_moving":
         xdo("mousemove", "--window", window, 640, 360)
         xdo("mousedown", 1)

@@ -243,12 +243,18 @@ TEST(OverlayText, TheInstrumentsPanelSaysWhatEachHandHolds) {
   hook.pedal = true;
   hook.has_tissue = true;
   hook.tissue_distance_m = -0.001;
-  d.hands = {grasper, scissors, hook};
+  OverlayHand holding = grasper;
+  holding.hand = "right";
+  holding.holding_nodes = 12;
+  holding.has_tissue = true;
+  holding.tissue_distance_m = -0.002;
+  d.hands = {grasper, scissors, hook, holding};
   const OverlayText t = overlay_text(d);
-  ASSERT_EQ(t.hands.size(), 3u);
+  ASSERT_EQ(t.hands.size(), 4u);
   EXPECT_EQ(t.hands[0], "  left: grasper  jaws closed  tissue far");
   EXPECT_EQ(t.hands[1], "> right: scissors  jaws 1.20 of 1.20 rad  7 mm IN JAWS  tissue 4 mm");
   EXPECT_EQ(t.hands[2], "  left: hook  pedal DOWN  touching");
+  EXPECT_EQ(t.hands[3], "  right: grasper  jaws closed  HOLDING  touching");
   std::string help;
   for (const std::string& l : overlay_help_lines()) help += l + "\n";
   for (const char* key : {"drag (left button)", "W / S", "wheel", "Q / E", "J ", "P ", "Home",
