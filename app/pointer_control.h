@@ -43,8 +43,8 @@ struct PointerEvents {
   double drag_dy_px = 0.0;  ///< px (+ = down)
   double scroll_steps = 0.0;
   int tab = 0, insert = 0, retract = 0, roll_left = 0, roll_right = 0, pedal = 0, home = 0;
-  int jaw_presses = 0;    ///< times J went down
-  bool jaw_held = false;  ///< J is down now
+  int jaw_presses = 0;      ///< times J went down
+  bool jaw_held = false;    ///< J is down now
   double jaw_held_s = 0.0;  ///< how long J has been down, s (when jaw_held)
   /// J was let go since the last frame after being down this long, s; < 0: it was not. Timed
   /// by the key events themselves, so a slow frame between press and release is still a tap.

@@ -522,8 +522,7 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
     if (window.pressed(render::Key::kH)) show_overlay = !show_overlay;
     if (window.pressed(render::Key::kB) && !replay.branched()) branch_here();
     const PointerEvents events = pointer_events(window);  // taken every frame: none pile up
-    if (takeover)
-      takeover->apply(pointer.update(events, screen_axes(frame.camera)), replay);
+    if (takeover) takeover->apply(pointer.update(events, screen_axes(frame.camera)), replay);
     const TimelineData known = timeline.data();
     if (window.pressed(render::Key::kN)) jump_to_next_error(known.marks);
 
