@@ -131,8 +131,9 @@ def line_angle(a, b):
 
 
 def align_blades(name, tries=20):
-    """Rolls the instrument until its open jaws' tips lie along the guide in the picture."""
-    last_err = None
+    """Rolls the instrument until its open jaws' tips lie along the guide in the picture: one key
+    while the error shrinks, the other once a press made it grow."""
+    last_err, k = None, "e"
     for _ in range(tries):
         f = look()
         t = tool(f, name)
@@ -142,10 +143,13 @@ def align_blades(name, tries=20):
         err = (got - want + math.pi / 2) % math.pi - math.pi / 2
         if abs(err) < math.radians(12):
             say(f"blades along the guide ({math.degrees(err):+.0f} deg)")
-            return
-        k = "e" if (last_err is None or abs(err) < abs(last_err)) == (err > 0) else "q"
+            return True
+        if last_err is not None and abs(err) > abs(last_err):
+            k = "q" if k == "e" else "e"
         key(k)
         last_err = err
+    say(f"blades not along the guide after {tries} presses ({math.degrees(err):+.0f} deg)")
+    return False
 
 
 def end_session():
@@ -186,6 +190,12 @@ try:
         aim("scissors", centre)
         align_blades("scissors")
         aim("scissors", centre)
+        for _ in range(4):  # as the overlay says: the appendix (7 mm) wholly between the blades
+            in_jaws = tool(look(), "scissors")["tissue_in_jaws_m"]
+            say(f"{1e3 * in_jaws:.0f} mm in the jaws")
+            if in_jaws >= 0.006:
+                break
+            key("w")
         key("j")  # close: the blades cut
         wait_frames(5, 1.5)
     elif TASK == "grasp_and_lift":
