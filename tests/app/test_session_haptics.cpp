@@ -370,7 +370,8 @@ TEST(SessionHaptics, TheDefaultSceneInAWindowIsDrivenByTheTrainee) {
       run_serosa("replay '" + (dir / "s.lapr").string() + "' --headless --verify");
   EXPECT_EQ(verify.code, 0) << verify.out;
 
-  const Shell scripted = shell(xvfb + "run " + scene + " --seconds 1 --path '" +
+  // 5 s: a sanitizer build under load takes its first steps only after a second or more.
+  const Shell scripted = shell(xvfb + "run " + scene + " --seconds 5 --path '" +
                                source("config/paths/appendix_transection.csv").string() +
                                "' --report '" + (dir / "p.json").string() + "'");
   ASSERT_EQ(scripted.code, 0) << scripted.out;
