@@ -110,17 +110,14 @@ Window::Window(int width, int height, const std::string& title) {
 void Window::on_key(GLFWwindow* w, int key, int /*scancode*/, int action, int /*mods*/) {
   if (action == GLFW_REPEAT) return;
   auto* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
-  const double now_s = glfwGetTime();
   for (int k = 0; k < static_cast<int>(Key::kCount); ++k) {
     if (glfw_key(static_cast<Key>(k)) != key) continue;
     const auto i = static_cast<std::size_t>(k);
     if (action == GLFW_PRESS) {
       ++self->m_events.presses[i];
-      self->m_down_at_s[i] = now_s;
-      self->m_key_held[i] = true;
-    } else if (self->m_key_held[i]) {
-      self->m_events.released_after_s[i] = now_s - self->m_down_at_s[i];
-      self->m_key_held[i] = false;
+      self->m_keys.press(i);
+    } else if (const double held = self->m_keys.release(i); held >= 0.0) {
+      self->m_events.released_after_s[i] = held;
     }
   }
 }
@@ -165,8 +162,7 @@ bool Window::key_down(Key key) const {
 }
 
 double Window::key_held_s(Key key) const {
-  if (key == Key::kCount || !m_key_held[static_cast<std::size_t>(key)]) return -1.0;
-  return glfwGetTime() - m_down_at_s[static_cast<std::size_t>(key)];
+  return m_keys.held_s(static_cast<std::size_t>(key), glfwGetTime());
 }
 
 Window::~Window() {
@@ -176,7 +172,10 @@ Window::~Window() {
 
 bool Window::should_close() const { return glfwWindowShouldClose(m_window) != 0; }
 void Window::close() { glfwSetWindowShouldClose(m_window, GLFW_TRUE); }
-void Window::poll_events() { glfwPollEvents(); }
+void Window::poll_events() {
+  m_keys.poll(glfwGetTime());
+  glfwPollEvents();
+}
 void Window::swap_buffers() { glfwSwapBuffers(m_window); }
 
 void Window::bind_framebuffer() {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "render/image.h"
+#include "render/key_clock.h"
 
 struct GLFWwindow;
 
@@ -88,8 +89,8 @@ class Window {
     float drag_dy_px = 0.0f;    ///< (+ = down)
     float scroll_steps = 0.0f;  ///< wheel steps (+ = away from the user)
     std::array<int, static_cast<int>(Key::kCount)> presses{};  ///< times each key went down
-    /// For each key let go since the previous take, how long it had been down, s (the
-    /// callbacks' own times, so a slow frame does not stretch a tap); < 0: not let go.
+    /// For each key let go since the previous take, how long it had surely been down, s
+    /// (KeyClock: a slow frame does not stretch a tap); < 0: not let go.
     std::array<double, static_cast<int>(Key::kCount)> released_after_s{};
     Events() { released_after_s.fill(-1.0); }
   };
@@ -97,7 +98,7 @@ class Window {
   [[nodiscard]] Events take_events();
   /// Whether `key` is held now.
   [[nodiscard]] bool key_down(Key key) const;
-  /// How long `key` has been held, s, by the time of its press event; < 0 when it is up.
+  /// How long `key` has been held, s, since the poll that delivered its press; < 0 when it is up.
   [[nodiscard]] double key_held_s(Key key) const;
 
  private:
@@ -109,9 +110,7 @@ class Window {
   GLFWwindow* m_window = nullptr;
   bool m_down[static_cast<int>(Key::kCount)] = {};
   Events m_events;
-  // When each key last went down (glfwGetTime, s) and whether it is down, as the callbacks saw it.
-  std::array<double, static_cast<int>(Key::kCount)> m_down_at_s{};
-  std::array<bool, static_cast<int>(Key::kCount)> m_key_held{};
+  KeyClock m_keys{static_cast<std::size_t>(Key::kCount)};  // as the callbacks saw the keys
   bool m_left_held = false;  // the left button, as the callbacks saw it
   double m_cursor_x = 0.0;   // the pointer when the callbacks saw it last, window coordinates
   double m_cursor_y = 0.0;

@@ -101,9 +101,9 @@ TEST(PointerControl, ADragRightMovesEveryTipRightOnScreenAtOneGain) {
 }
 
 // J: a tap opens closed jaws fully and closes open ones; held, it closes them steadily from
-// where they were, and they stay where they are when let go. A tap is told by the key events'
-// own times: one that went down and up between two frames, or across a frame however slow,
-// still counts as a tap.
+// where they were, and they stay where they are when let go. A tap is told by how long the key
+// was surely down (render/key_clock.h): one that went down and up between two frames, or across
+// a frame however slow, still counts as a tap.
 TEST(PointerControl, JawsTapToToggleHoldToBite) {
   PointerControl p;
   const ScreenAxes axes;

@@ -74,6 +74,20 @@ def key(k, hold_s=0.0):
     wait_frames(2, 0.15)
 
 
+def set_jaws(want_open, what):
+    """Taps J, as a trainee does, until the overlay shows the active instrument's jaws open (or
+    closed); says so when a tap did not do what it should."""
+    for tap in range(3):
+        key("j")
+        wait_frames(3, 0.6)
+        h = look()["hands"][look()["active_hand"]]
+        if (h["jaw_rad"] > 0.5 * h["jaw_max_rad"]) == want_open:
+            return
+        say(f"{what}: after tap {tap + 1} the overlay shows the jaws at {h['jaw_rad']:.2f} of "
+            f"{h['jaw_max_rad']:.2f} rad")
+    raise SystemExit(f"trainee_mouse.py: J did not {'open' if want_open else 'close'} the jaws")
+
+
 def drag(dx, dy):
     """A drag with the left button from the middle of the picture, in moves of 25 px at most."""
     xdo("mousemove", "--window", window, 640, 360)
@@ -180,8 +194,7 @@ try:
         if first["active_hand"] != names.index("scissors"):
             key("Tab")
         assert look()["active_hand"] == names.index("scissors"), "Tab did not give the scissors"
-        key("j")  # open the scissors
-        wait_frames(3, 0.5)
+        set_jaws(True, "open the scissors")
         say("scissors open to", round(tool(look(), "scissors")["jaw_rad"], 2), "rad")
         centre = lambda f: {"px": [(f["guide"][0]["px"][i] + f["guide"][-1]["px"][i]) / 2
                                    for i in range(2)],
@@ -203,8 +216,7 @@ try:
             key("Tab")
         g = look()["active_hand"]
         for attempt in range(3):  # as a trainee does: closed on nothing, open and try again
-            key("j")  # open the grasper
-            wait_frames(3, 0.5)
+            set_jaws(True, "open the grasper")
             aim("grasper", lambda f: f["groups"]["appendix"])
             key("j")  # close on the appendix
             wait_frames(3, 1.0)
