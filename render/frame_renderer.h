@@ -39,6 +39,12 @@ class FrameRenderer {
   /// @throws std::invalid_argument when validate(frame) reports a problem
   void draw(const RenderFrame& frame, const SnapshotOptions& options, int width, int height);
 
+  /// How many patches (surface triangles) one tessellated draw call takes at most; 0: all in one.
+  /// Mesa's software renderers get kSoftwarePatchesPerDraw, a GPU 0. The picture is the same.
+  void set_patches_per_draw(std::size_t n) { patches_per_draw_ = n; }
+  [[nodiscard]] std::size_t patches_per_draw() const { return patches_per_draw_; }
+  static constexpr std::size_t kSoftwarePatchesPerDraw = 64;
+
   /// How many times indices and materials were uploaded so far (statistics and tests).
   [[nodiscard]] std::uint64_t topology_uploads() const { return topology_uploads_; }
   /// How many times the scenery was uploaded so far (statistics and tests).
@@ -101,7 +107,8 @@ class FrameRenderer {
   Eigen::Vector3f scenery_lo_{1.0f, 1.0f, 1.0f};
   Eigen::Vector3f scenery_hi_{0.0f, 0.0f, 0.0f};
   int max_tess_level_ = 64;
-  int max_texture_buffer_ = 65536;  // texels
+  std::size_t patches_per_draw_ = 0;  // see set_patches_per_draw
+  int max_texture_buffer_ = 65536;    // texels
   // What the index buffers hold now.
   bool uploaded_ = false;
   std::uint64_t topology_uploads_ = 0;

@@ -281,6 +281,31 @@ TEST_F(Snapshot, RendererReuploadsPositionsEveryFrame) {
   EXPECT_THROW(r.draw(f, o, o.width, o.height), std::invalid_argument);
 }
 
+// The tessellated surface drawn in batches of patches (as on Mesa's software renderers) is the
+// same picture, byte for byte, as drawn in one call, whatever the batch and however it divides
+// the triangle count.
+TEST_F(Snapshot, PatchesDrawnInBatchesGiveTheSamePicture) {
+  auto f = fixtures::frame_of(fixtures::icosphere(2, 0.5f));  // 320 triangles
+  SnapshotOptions o;
+  o.width = 200;
+  o.height = 160;
+  o.tessellation = 3;
+  ctx_->resize(o.width, o.height);
+  FrameRenderer r;
+  const auto picture = [&](std::size_t batch) {
+    r.set_patches_per_draw(batch);
+    ctx_->bind_framebuffer();
+    r.draw(f, o, o.width, o.height);
+    return ctx_->read_image();
+  };
+  const Image whole = picture(0);
+  ASSERT_GT(coverage_fraction(whole), 0.05);
+  for (const std::size_t batch :
+       {std::size_t{1}, std::size_t{7}, FrameRenderer::kSoftwarePatchesPerDraw, std::size_t{1279},
+        std::size_t{1280}, std::size_t{5000}})
+    EXPECT_TRUE(picture(batch).rgba == whole.rgba) << batch << " patches a draw";
+}
+
 }  // namespace
 }  // namespace serosa::render
 
