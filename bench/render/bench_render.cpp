@@ -3,6 +3,8 @@
 //    EGL, against the tessellation level (1..6) and the surface size (icospheres of 20 * 4^k
 //    triangles). The GL renderer is whatever EGL gives: Mesa llvmpipe (CPU) on the dev VM; the
 //    benchmark's label names it.
+//  - BM_PatchesPerDraw: the same frame (5,120 triangles, level 3) with the tessellated surface
+//    split into draws of at most N patches (0: one draw), FrameRenderer::set_patches_per_draw.
 //  - BM_PhongAccuracy: how far the tessellated surface is from the true sphere that a coarse
 //    icosphere with exact (radial) normals approximates, against the level; computed on the CPU
 //    with the shader's formula (render/phong_tessellation.h). BM_RefinedAccuracy gives the same
@@ -74,6 +76,42 @@ void BM_FrameTime(benchmark::State& state) {
 BENCHMARK(BM_FrameTime)
     ->ArgsProduct({{1, 2, 3, 4, 5, 6}, {0, 1, 2, 3, 4}})
     ->ArgNames({"level", "subdiv"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// One frame of the 5,120-triangle sphere at level 3, the tessellated surface in draws of at most
+// range(0) patches (0: one draw for all).
+void BM_PatchesPerDraw(benchmark::State& state) {
+  OffscreenContext& ctx = context();
+  ctx.make_current();
+  ctx.resize(kWidth, kHeight);
+  RenderFrame f = fixtures::frame_of(fixtures::icosphere(4, 0.02f));
+  f.group_names = {"", "appendix"};
+  SnapshotOptions o;
+  o.width = kWidth;
+  o.height = kHeight;
+  o.tessellation = 3;
+  o.fit_camera = true;
+  FrameRenderer r;
+  r.set_patches_per_draw(static_cast<std::size_t>(state.range(0)));
+  ctx.bind_framebuffer();
+  r.draw(f, o, kWidth, kHeight);
+  ctx.finish();
+  for (auto _ : state) {
+    ctx.bind_framebuffer();
+    r.draw(f, o, kWidth, kHeight);
+    ctx.finish();
+  }
+  state.counters["draws"] = state.range(0) == 0 ? 1.0 : std::ceil(5120.0 / state.range(0));
+  state.SetLabel(ctx.gl_renderer());
+}
+BENCHMARK(BM_PatchesPerDraw)
+    ->Arg(0)
+    ->Arg(16)
+    ->Arg(64)
+    ->Arg(256)
+    ->Arg(1024)
+    ->ArgName("patches")
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
