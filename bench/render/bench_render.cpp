@@ -46,6 +46,20 @@ OffscreenContext& context() {
   return *ctx;
 }
 
+// Draws `f` once (uploads indices, compiles the pipeline), then once per iteration, each frame
+// finished before the next.
+void time_frames(benchmark::State& state, OffscreenContext& ctx, FrameRenderer& r,
+                 const RenderFrame& f, const SnapshotOptions& o) {
+  ctx.bind_framebuffer();
+  r.draw(f, o, kWidth, kHeight);
+  ctx.finish();
+  for (auto _ : state) {
+    ctx.bind_framebuffer();
+    r.draw(f, o, kWidth, kHeight);
+    ctx.finish();
+  }
+}
+
 void BM_FrameTime(benchmark::State& state) {
   const int level = static_cast<int>(state.range(0));
   const int subdiv = static_cast<int>(state.range(1));
@@ -60,14 +74,7 @@ void BM_FrameTime(benchmark::State& state) {
   o.tessellation = level;
   o.fit_camera = true;
   FrameRenderer r;
-  ctx.bind_framebuffer();
-  r.draw(f, o, kWidth, kHeight);  // warm-up: uploads indices, compiles the pipeline
-  ctx.finish();
-  for (auto _ : state) {
-    ctx.bind_framebuffer();
-    r.draw(f, o, kWidth, kHeight);
-    ctx.finish();
-  }
+  time_frames(state, ctx, r, f, o);
   const double t = static_cast<double>(f.num_triangles());
   state.counters["triangles"] = t;
   state.counters["drawn_triangles"] = t * level * level;
@@ -94,14 +101,7 @@ void BM_PatchesPerDraw(benchmark::State& state) {
   o.fit_camera = true;
   FrameRenderer r;
   r.set_patches_per_draw(static_cast<std::size_t>(state.range(0)));
-  ctx.bind_framebuffer();
-  r.draw(f, o, kWidth, kHeight);
-  ctx.finish();
-  for (auto _ : state) {
-    ctx.bind_framebuffer();
-    r.draw(f, o, kWidth, kHeight);
-    ctx.finish();
-  }
+  time_frames(state, ctx, r, f, o);
   state.counters["draws"] = state.range(0) == 0 ? 1.0 : std::ceil(5120.0 / state.range(0));
   state.SetLabel(ctx.gl_renderer());
 }
@@ -145,14 +145,7 @@ void BM_DepthCue(benchmark::State& state) {
   o.fit_camera = true;
   o.depth_cue = state.range(0) != 0;
   FrameRenderer r;
-  ctx.bind_framebuffer();
-  r.draw(f, o, kWidth, kHeight);
-  ctx.finish();
-  for (auto _ : state) {
-    ctx.bind_framebuffer();
-    r.draw(f, o, kWidth, kHeight);
-    ctx.finish();
-  }
+  time_frames(state, ctx, r, f, o);
   state.SetLabel(ctx.gl_renderer());
 }
 BENCHMARK(BM_DepthCue)
