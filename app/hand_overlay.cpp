@@ -1,6 +1,9 @@
 #include "app/hand_overlay.h"
 
+#include <algorithm>
+
 #include "engine/hook.h"
+#include "engine/instrument_hold.h"
 #include "engine/jaw_range.h"
 
 namespace serosa::app {
@@ -24,6 +27,7 @@ std::vector<render::OverlayHand> overlay_hands(const Scene& scene, const SimStat
     o.has_pedal = tool.kind == ToolKind::kHook;
     o.pedal = pedal_down(state.tools[i]);
     if (i < state.handoff.grasped.size()) o.holding_nodes = state.handoff.grasped[i].size();
+    o.entering = in_port(state.tools[i]);
     for (const render::RenderTool& t : frame.tools) {
       if (t.scene_tool != i || !t.has_tissue) continue;
       o.has_tissue = true;
@@ -31,6 +35,17 @@ std::vector<render::OverlayHand> overlay_hands(const Scene& scene, const SimStat
       o.tissue_in_jaws_m = t.tissue_in_jaws_m;
     }
     out.push_back(o);
+  }
+  return out;
+}
+
+std::vector<std::string> waiting_instruments(const Scene& scene, const SimState& state,
+                                             const HandleTools& handles) {
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < scene.tools.size() && i < state.tools.size(); ++i) {
+    const bool held = std::find(handles.begin(), handles.end(), i) != handles.end();
+    if (!held && scene.tools[i].kind != ToolKind::kEndoscope && in_port(state.tools[i]))
+      out.push_back(scene.tools[i].name);
   }
   return out;
 }

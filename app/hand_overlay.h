@@ -6,6 +6,7 @@
 #include <array>
 #include <cstddef>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "engine/scene.h"
@@ -25,6 +26,11 @@ using HandleTools = std::array<std::optional<std::size_t>, haptics::kHandles>;
                                                              const HandleTools& handles,
                                                              std::size_t active_handle,
                                                              const render::RenderFrame& frame);
+
+/// The instruments waiting in their ports (no handle holds them), by name, in scene order.
+[[nodiscard]] std::vector<std::string> waiting_instruments(const Scene& scene,
+                                                           const SimState& state,
+                                                           const HandleTools& handles);
 
 /// Marks the drawn tool of `tool` (a scene tool index) active, every other one not.
 void mark_active_tool(render::RenderFrame& frame, std::optional<std::size_t> tool);

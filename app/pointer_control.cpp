@@ -16,6 +16,10 @@ const haptics::PointerInput& PointerControl::update(const PointerEvents& e,
   m_input.depth_steps[h] += e.scroll_steps;
   m_input.roll_steps[h] += e.roll_right - e.roll_left;
   if (e.pedal % 2 != 0) m_input.buttons[h] ^= kPedalButton;
+  if (e.exchange > 0) {
+    m_input.exchanges[h] += static_cast<std::uint32_t>(e.exchange);
+    m_input.buttons[h] &= ~kPedalButton;  // the next instrument comes in with its pedal up
+  }
   m_input.homes[h] += static_cast<std::uint32_t>(std::max(e.home, 0));
   update_jaw(e);
   return m_input;

@@ -5,7 +5,8 @@
 // trocar); W/S move it into and out of the picture by kDepthMetresPerStep (along the view, so
 // that depth in the picture is one key whichever way the shaft points), the wheel pushes it in
 // and pulls it back along its shaft, Q/E roll it, Home brings it back into view,
-// P presses or releases its cautery pedal (a hook's current), Tab makes the other hand active.
+// P presses or releases its cautery pedal (a hook's current), Tab makes the other hand active,
+// X exchanges the active hand's instrument (haptics/hand_rack.h).
 // J works the jaws as a hand does: a tap (shorter than kJawTapS) opens jaws that are at most half
 // open, fully, and closes the others; held longer, it closes them steadily (a bite), from full
 // to closed in kJawCloseS, and they stay where they are when it is let go.
@@ -43,6 +44,7 @@ struct PointerEvents {
   double drag_dy_px = 0.0;  ///< px (+ = down)
   double scroll_steps = 0.0;
   int tab = 0, insert = 0, retract = 0, roll_left = 0, roll_right = 0, pedal = 0, home = 0;
+  int exchange = 0;  ///< presses of X: the active hand's instrument exchange
   int jaw_presses = 0;      ///< times J went down
   bool jaw_held = false;    ///< J is down now
   double jaw_held_s = 0.0;  ///< how long J has been down, s (when jaw_held)

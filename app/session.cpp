@@ -227,6 +227,7 @@ class SolverLoop {
       mark_active_tool(f, mouse && active < handles.size() ? handles[active] : std::nullopt);
       f.overlay.hands =
           overlay_hands(m_scene, m_state, handles, mouse ? active : handles.size(), f);
+      f.overlay.waiting = waiting_instruments(m_scene, m_state, handles);
     }
     m_frames.publish();
   }

@@ -16,6 +16,7 @@ PointerEvents pointer_events(render::Window& window) {
   e.roll_right = n(render::Key::kE);
   e.pedal = n(render::Key::kP);
   e.home = n(render::Key::kHome);
+  e.exchange = n(render::Key::kX);
   e.jaw_presses = n(render::Key::kJ);
   e.jaw_held_s = window.key_held_s(render::Key::kJ);
   e.jaw_held = e.jaw_held_s >= 0.0;

@@ -5,6 +5,7 @@
 
 #include "engine/endoloop.h"
 #include "engine/geometry/rigid_fit.h"
+#include "engine/instrument_hold.h"
 #include "engine/sim_state.h"
 #include "engine/state_codec.h"
 #include "engine/tool_geometry.h"
@@ -41,6 +42,10 @@ void ClipStage::step(const StepContext& ctx, SimState& state) {
   for (std::size_t i = 0; i < m_role.size() && i < state.tools.size(); ++i) {
     if (m_role[i] == Role::kNone) continue;
     const ToolState& ts = state.tools[i];
+    if (in_port(ts)) {  // withdrawn: an open clip or loop goes out unplaced
+      m_widest[i] = 0.0;
+      continue;
+    }
     const bool loop = m_role[i] == Role::kLoop;
     m_widest[i] = std::max(m_widest[i], ts.jaw_rad);
     if (ts.jaw_rad <= (loop ? kLoopCloseRad : kClipCloseRad) &&

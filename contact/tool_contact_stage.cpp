@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "engine/geometry/point_triangle.h"
+#include "engine/instrument_hold.h"
 #include "engine/sim_state.h"
 #include "engine/state_codec.h"
 #include "engine/tool_geometry.h"
@@ -48,7 +49,7 @@ void ToolContactStage::update_planes(SimState& state) {
   for (std::size_t i = 0; i < m_kinds.size() && i < state.tools.size(); ++i) {
     m_planes[i].reset();
     m_near[i].reset();
-    if (m_kinds[i] == ToolKind::kEndoscope) continue;
+    if (m_kinds[i] == ToolKind::kEndoscope || in_port(state.tools[i])) continue;
     const Vec3 tip = tool_frame(state.tools[i]).tip;
     const std::optional<geometry::ClosestHit> hit = m_bvh.closest_point(mesh.x, tip, kCueRange);
     if (!hit) continue;
@@ -176,8 +177,12 @@ void ToolContactStage::step(const StepContext& ctx, SimState& state) {
     m_tool_force[i].setZero();
     m_reactions[i] = ToolReaction{};
     if (m_kinds[i] == ToolKind::kEndoscope) continue;
-    const ToolFrame f = tool_frame(ts);
     Grasp& g = m_grasps[i];
+    if (in_port(ts)) {  // withdrawn: it lets go and touches nothing
+      withdraw(state, g);
+      continue;
+    }
+    const ToolFrame f = tool_frame(ts);
     if (m_kinds[i] == ToolKind::kScissors) resist_blades(state, i, g);
 
     // Grasping: grab on closing past the threshold, let go on opening past it.
@@ -268,6 +273,14 @@ void ToolContactStage::step(const StepContext& ctx, SimState& state) {
     state.handoff.external_force_n = m_force;
   else
     state.handoff.external_force_n.clear();
+}
+
+void ToolContactStage::withdraw(SimState& state, Grasp& g) {
+  if (g.holding) {
+    release(state, g);
+    publish_grasps(state);
+  }
+  g.widest_rad = 0.0;  // inserted again, its jaws must open before they grasp
 }
 
 void ToolContactStage::save(StateWriter& out) const {

@@ -104,6 +104,8 @@ class ToolContactStage final : public Stage {
   void resist_blades(const SimState& state, std::size_t tool, Grasp& g);
   void grab(SimState& state, std::size_t tool, Grasp& g);
   void release(SimState& state, Grasp& g);
+  /// An instrument withdrawn into its port: lets go of what it held.
+  void withdraw(SimState& state, Grasp& g);
   /// What each grasper holds, for the metrics (SimState::handoff.grasped).
   void publish_grasps(SimState& state) const;
   void update_planes(SimState& state);

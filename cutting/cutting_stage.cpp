@@ -9,6 +9,7 @@
 #include "cutting/tet_bvh.h"
 #include "cutting/validate.h"
 #include "engine/hook.h"
+#include "engine/instrument_hold.h"
 #include "engine/sim_state.h"
 #include "engine/state_codec.h"
 #include "engine/tool_geometry.h"
@@ -66,6 +67,10 @@ void CuttingStage::step(const StepContext& ctx, SimState& state) {
   for (Scissors& s : m_scissors) {
     if (s.tool >= state.tools.size()) continue;
     const ToolState now = state.tools[s.tool];
+    if (in_port(now)) {  // withdrawn: the blades left the tissue; what they closed on stays whole
+      s = Scissors{s.tool, {}, {}, {}, 0};
+      continue;
+    }
     const std::optional<ToolState> before = s.before;
     s.before = now;
     if (before) follow(ctx, state, s, *before, now);
@@ -73,10 +78,20 @@ void CuttingStage::step(const StepContext& ctx, SimState& state) {
   if (m_hooks.empty()) return;
   m_coagulated.resize(static_cast<std::size_t>(state.mesh.num_nodes()), 0);
   for (Hook& h : m_hooks)
-    if (h.tool < state.tools.size()) follow_hook(ctx, state, h, state.tools[h.tool]);
+    if (h.tool < state.tools.size()) follow_hook(ctx, state, h, live_hook(h, state.tools[h.tool]));
   inherit_coagulation(state, 0);
   state.handoff.coagulated = m_coagulated;  // (no allocation once it has its size)
   state.handoff.coagulated_version = m_coagulated_version;
+}
+
+// A hook withdrawn into its port: the current goes off where it left the tissue (what it burnt
+// through opens), and it burns nothing out there.
+ToolState CuttingStage::live_hook(const Hook& h, const ToolState& now) {
+  if (!in_port(now)) return now;
+  ToolState off = h.before && !in_port(*h.before) ? *h.before : now;
+  off.buttons &= ~kPedalButton;
+  set_in_port(off, true);
+  return off;
 }
 
 void CuttingStage::follow_hook(const StepContext& ctx, SimState& state, Hook& h,

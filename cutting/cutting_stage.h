@@ -171,6 +171,9 @@ class CuttingStage final : public Stage {
     std::uint64_t first_step = 0;
   };
 
+  /// What a hook's electrode does this step: `now`, or with the current off where it left the
+  /// tissue when it was withdrawn into its port.
+  static ToolState live_hook(const Hook& h, const ToolState& now);
   /// Follows one hook: coagulates around its live crook, extends its stroke, cuts it when the
   /// pedal comes up.
   void follow_hook(const StepContext& ctx, SimState& state, Hook& h, const ToolState& now);

@@ -10,6 +10,7 @@
 #include <system_error>
 
 #include "engine/input_error.h"
+#include "engine/instrument_hold.h"
 #include "engine/math.h"
 
 namespace serosa {
@@ -19,9 +20,39 @@ constexpr std::string_view kHeader = "t,tool,px,py,pz,qw,qx,qy,qz,jaw";
 // The same with the buttons a rig's handle reports (bit 0 clutch, 1 cautery pedal, 2 handle
 // button: docs/rig-protocol.md), for the emulated rig's handles.
 constexpr std::string_view kHeaderWithButtons = "t,tool,px,py,pz,qw,qx,qy,qz,jaw,buttons";
-constexpr std::size_t kMaxColumns = 11;
-constexpr const char* kColumnNames[kMaxColumns] = {"t",  "tool", "px", "py",  "pz",     "qw",
-                                                   "qx", "qy",   "qz", "jaw", "buttons"};
+// The same with the hand that holds the tool at each row (left, right), or port when it waits in
+// its port (engine/instrument_hold.h); empty: none, the script plays it directly.
+constexpr std::string_view kHeaderWithHand = "t,tool,px,py,pz,qw,qx,qy,qz,jaw,buttons,hand";
+constexpr std::size_t kMaxColumns = 12;
+constexpr std::size_t kHandColumn = 11;
+constexpr const char* kColumnNames[kMaxColumns] = {
+    "t", "tool", "px", "py", "pz", "qw", "qx", "qy", "qz", "jaw", "buttons", "hand"};
+
+std::size_t columns_of(const std::string& header) {
+  if (header == kHeader) return 10;
+  if (header == kHeaderWithButtons) return 11;
+  if (header == kHeaderWithHand) return kMaxColumns;
+  return 0;
+}
+
+std::string_view header_of(std::size_t columns) {
+  return columns == 10 ? kHeader : columns == 11 ? kHeaderWithButtons : kHeaderWithHand;
+}
+
+// The hand column's word into the holder bits of ToolState::buttons.
+std::uint32_t parse_hand(std::string_view field, const std::string& file, std::int64_t line) {
+  ToolState s;
+  if (field == "left")
+    set_holder(s, Hand::kLeft);
+  else if (field == "right")
+    set_holder(s, Hand::kRight);
+  else if (field == "port")
+    set_in_port(s, true);
+  else if (!field.empty())
+    throw InputError(file, line, "column 'hand': '" + std::string(field) + "' is not a hand",
+                     "left, right, port, or empty (played directly)");
+  return s.buttons;
+}
 
 std::string_view trim(std::string_view s) {
   const auto first = s.find_first_not_of(" \t\r");
@@ -88,7 +119,7 @@ ToolPath parse_tool_path_text(const std::string& text, const std::string& name) 
   std::string raw;
   std::int64_t line = 0;
   bool have_header = false;
-  std::size_t columns = 10;             // 11 with buttons
+  std::size_t columns = 10;             // 11 with buttons, 12 with the hand
   std::vector<std::int64_t> last_line;  // (k) line of each tool's previous row
 
   while (std::getline(in, raw)) {
@@ -103,11 +134,11 @@ ToolPath parse_tool_path_text(const std::string& text, const std::string& name) 
         if (!header.empty()) header += ',';
         header += f;
       }
-      if (header != kHeader && header != kHeaderWithButtons) {
+      columns = columns_of(header);
+      if (columns == 0) {
         throw InputError(name, line, "bad tool path header '" + std::string(content) + "'",
-                         "the header " + std::string(kHeader) + " (or with ,buttons)");
+                         "the header " + std::string(kHeader) + " (or with ,buttons or ,buttons,hand)");
       }
-      columns = header == kHeader ? 10 : 11;
       have_header = true;
       continue;
     }
@@ -115,12 +146,11 @@ ToolPath parse_tool_path_text(const std::string& text, const std::string& name) 
     const auto fields = split_commas(content);
     if (fields.size() != columns) {
       throw InputError(name, line, "row has " + std::to_string(fields.size()) + " columns",
-                       std::to_string(columns) + " columns: " +
-                           std::string(columns == 10 ? kHeader : kHeaderWithButtons));
+                       std::to_string(columns) + " columns: " + std::string(header_of(columns)));
     }
     double v[kMaxColumns] = {};
     for (std::size_t c = 0; c < columns; ++c) {
-      if (c != 1) v[c] = parse_number(fields[c], name, line, c);
+      if (c != 1 && c != kHandColumn) v[c] = parse_number(fields[c], name, line, c);
     }
     const std::string tool(fields[1]);
     if (tool.empty()) {
@@ -178,6 +208,7 @@ ToolPath parse_tool_path_text(const std::string& text, const std::string& name) 
     s.quat_wxyz = {v[5] / norm, v[6] / norm, v[7] / norm, v[8] / norm};
     s.jaw_rad = jaw;
     s.buttons = static_cast<std::uint32_t>(buttons);
+    if (columns == kMaxColumns) s.buttons |= parse_hand(fields[kHandColumn], name, line);
     rows.push_back(s);
     last_line[k] = line;
   }

@@ -10,6 +10,9 @@
 // Rows of different tools may interleave. The header may end in ",buttons", a column of button
 // masks (an integer 0..65535: bit 0 clutch, bit 1 cautery pedal, bit 2 handle button, as the rig
 // reports them), held from their row to the next: how the emulated rig's handles press them.
+// After it may come ",hand": the hand that holds the tool from that row on (left, right), port
+// when it waits in its port out of the body, or empty when the script plays it directly
+// (engine/instrument_hold.h: the upper bits of ToolState::buttons carry it).
 #pragma once
 
 #include <cstddef>

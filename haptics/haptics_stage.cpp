@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "engine/input_error.h"
+#include "engine/instrument_hold.h"
 #include "engine/jaw_range.h"
 #include "engine/sim_state.h"
 #include "engine/tool_path.h"
@@ -99,19 +100,24 @@ HapticsStage::HapticsStage(const Scene& scene, const HapticsStageOptions& option
     const Tool& t = scene.tools[i];
     if (t.kind == ToolKind::kEndoscope) continue;
     const bool rig = is_rig(t.device.kind);
-    // A rig tool with a hand takes that handle; any other tool the next free one.
+    // A rig tool with a hand starts in that handle; any other tool in the next free one.
     std::size_t h = 0;
-    if (rig && t.hand) {
+    if (rig && t.hand)
       h = *t.hand == Hand::kLeft ? 0 : 1;
-      if (m_tool[h]) {
-        std::string what = "tools '";
-        what.append(scene.tools[*m_tool[h]].name).append("' and '").append(t.name);
-        what.append("' both take the rig's ").append(hand_name(*t.hand)).append(" handle");
-        throw InputError(scene.file.string(), 0, what, "one tool per hand");
-      }
-    } else {
+    else
       while (h < haptics::kHandles && m_tool[h]) ++h;
-      if (h >= haptics::kHandles) continue;  // both handles taken: this tool is not driven
+    if (h >= haptics::kHandles || m_tool[h]) {
+      // Its handle is taken: a mouse or rig instrument waits in its port for an exchange (a
+      // scripted one is not driven).
+      if (!rig && t.device.kind != DeviceKind::kMouse) continue;
+      if (kind && *kind != t.device.kind)
+        throw InputError(scene.file.string(), 0,
+                         "the haptic handles' instruments must share one device kind: tool '" +
+                             t.name + "' is driven by " +
+                             std::string(device_kind_name(t.device.kind)),
+                         std::string(device_kind_name(*kind)));
+      m_waiting.push_back(i);
+      continue;
     }
     if (kind && *kind != t.device.kind)
       throw InputError(scene.file.string(), 0,
@@ -189,6 +195,7 @@ HapticsStage::HapticsStage(const Scene& scene, const HapticsStageOptions& option
     m_mouse = mouse.get();
     m_device = std::move(mouse);
   }
+  if (m_kind != DeviceKind::kScript) build_rack(scene, options);
   haptics::HapticLoopConfig c;
   c.trocars = trocars;
   c.realtime = options.realtime;
@@ -199,6 +206,68 @@ HapticsStage::HapticsStage(const Scene& scene, const HapticsStageOptions& option
 }
 
 HapticsStage::~HapticsStage() { stop(); }
+
+// Every instrument of the handles' device, in scene order: the handles' first two and those
+// waiting in their ports. Each gets its port (a mouse handle's or a rig's, as its first handle
+// would give it) and its rest.
+void HapticsStage::build_rack(const Scene& scene, const HapticsStageOptions& options) {
+  std::vector<std::size_t> tools(m_waiting);
+  for (const auto& t : m_tool)
+    if (t) tools.push_back(*t);
+  std::sort(tools.begin(), tools.end());
+  std::vector<haptics::RackInstrument> items;
+  std::array<std::optional<std::size_t>, haptics::kHandles> held{};
+  for (std::size_t k = 0; k < tools.size(); ++k) {
+    const std::size_t i = tools[k];
+    std::size_t h = i == m_tool[1] ? 1 : 0;
+    if (m_tool[h] == i) held[h] = k;
+    const Tool& tool = scene.tools[i];
+    haptics::RackInstrument r;
+    r.tool = i;
+    r.jaw_max_rad = max_jaw_rad(tool.kind);
+    if (is_rig(m_kind)) {
+      r.trocar = rig_trocar(tool, h, options.aim_m);
+    } else {
+      const MouseHandle mh = mouse_handle(
+          tool, h, options.aim_m, i < options.rest_pose.size() ? options.rest_pose[i] : std::nullopt);
+      r.trocar = mh.trocar;
+      r.rest = mh.rest;
+    }
+    items.push_back(r);
+    m_port.push_back(port_pose(r.trocar.pivot_m, r.trocar.rotation * Vec3::UnitZ()));
+    m_names.push_back(tool.name);
+  }
+  m_rack = std::make_unique<haptics::HandRack>(std::move(items), held);
+}
+
+// Handle h's button went down: it puts its instrument into its port and takes the next waiting.
+void HapticsStage::exchange(std::size_t h, SimState& state) {
+  const std::optional<std::size_t> from = m_rack->held(h);
+  const std::optional<std::size_t> to = m_rack->exchange(h);
+  if (!from || !to) {
+    spdlog::info("haptics: {} hand: no other instrument waits in its port", h == 0 ? "left" : "right");
+    return;
+  }
+  const haptics::RackInstrument& next = m_rack->instruments()[*to];
+  state.tools[m_rack->instruments()[*from].tool] = m_port[*from];
+  m_tool[h] = next.tool;
+  m_jaw_max[h] = next.jaw_max_rad;
+  if (m_mouse != nullptr)
+    m_mouse->reseat(h, next.rest, next.jaw_max_rad,
+                    haptics::trocar_map(next.trocar, m_rack->handle_trocar(h)).rotation);
+  spdlog::info("haptics: {} hand: {} -> {}", h == 0 ? "left" : "right", m_names[*from],
+               m_names[*to]);
+}
+
+// Loop -> solver for a handle with a rack: its instrument's pose (in its port while it enters),
+// held by the hand; the instruments no handle holds wait in their ports.
+void HapticsStage::place_rack(SimState& state, std::size_t h, const ToolState& handle_pose) {
+  const std::size_t k = *m_rack->held(h);
+  ToolState t = m_rack->entering(h) ? m_port[k] : m_rack->to_instrument(h, handle_pose);
+  if (!m_rack->entering(h)) t.buttons = handle_pose.buttons & kDeviceButtons;
+  set_holder(t, h == 0 ? Hand::kLeft : Hand::kRight);
+  state.tools[m_rack->instruments()[k].tool] = t;
+}
 
 void HapticsStage::emulate_rig(const Scene& scene, const std::filesystem::path& script,
                                const std::array<haptics::Trocar, haptics::kHandles>& trocars) {
@@ -281,6 +350,7 @@ void HapticsStage::step(const StepContext& ctx, SimState& state) {
       const Vec3 at_tip = shaft_push_at_tip(r, state.tools[*m_tool[h]]);
       tc.shaft_push_N = {at_tip.x(), at_tip.y(), at_tip.z()};
     }
+    if (m_rack) tc = m_rack->to_handle(h, tc);
   }
   if (m_emulated) m_emulated->follow(ctx.time_s, ctx.dt_s);
   count_events(state);
@@ -302,15 +372,27 @@ void HapticsStage::step(const StepContext& ctx, SimState& state) {
   // Loop -> solver: the newest state of each handle. Until the loop's first tick a scripted
   // handle keeps what the tools stage gave it; a mouse or rig handle rests where its device
   // starts it (not at the scene origin, inside the organs).
+  if (m_rack)
+    for (std::size_t k = 0; k < m_port.size(); ++k)
+      state.tools[m_rack->instruments()[k].tool] = m_port[k];
   for (std::size_t h = 0; h < haptics::kHandles; ++h) {
     if (!m_tool[h] || *m_tool[h] >= state.tools.size()) continue;
     ToolState t = m_loop->tool_state(h).load();
     // A rig handle opens its instrument as far as the mouse and the scripts do, no further.
     if (is_rig(m_kind)) t.jaw_rad = std::clamp(t.jaw_rad, 0.0, m_jaw_max[h]);
-    if (t.tick > 0)
+    if (t.tick == 0) {
+      if (!m_rest_pose[h]) continue;
+      t = *m_rest_pose[h];
+    }
+    const bool pressed = (t.buttons & kExchangeButton) != 0;
+    if (m_rack && pressed && !m_pressed[h] && t.tick > 0) exchange(h, state);
+    m_pressed[h] = pressed;
+    if (!m_rack) {
       state.tools[*m_tool[h]] = t;
-    else if (m_rest_pose[h])
-      state.tools[*m_tool[h]] = *m_rest_pose[h];
+      continue;
+    }
+    m_rack->follow(h, t);
+    place_rack(state, h, t);
   }
 }
 

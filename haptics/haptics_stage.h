@@ -51,6 +51,7 @@
 #include "engine/sim_state.h"
 #include "engine/stage.h"
 #include "haptics/contact_model.h"
+#include "haptics/hand_rack.h"
 #include "haptics/mouse_device.h"
 
 namespace serosa::haptics {
@@ -99,6 +100,8 @@ class HapticsStage final : public Stage {
       const noexcept {
     return m_tool;
   }
+  /// The instruments the handles take in turn (null for scripted handles).
+  [[nodiscard]] const haptics::HandRack* rack() const noexcept { return m_rack.get(); }
   /// The device kind driving the handles.
   [[nodiscard]] DeviceKind device_kind() const noexcept { return m_kind; }
   /// Mouse handles: the window's cumulative input (any one thread; no-op for a script device).
@@ -136,6 +139,17 @@ class HapticsStage final : public Stage {
   std::array<double, haptics::kHandles> m_jaw_max{};
   // Mouse and rig handles: the pose before the device's first sample (script handles: none).
   std::array<std::optional<ToolState>, haptics::kHandles> m_rest_pose{};
+  // Mouse and rig: every instrument the handles take in turn (haptics/hand_rack.h); script
+  // handles keep theirs (null).
+  std::unique_ptr<haptics::HandRack> m_rack;
+  std::vector<std::size_t> m_waiting;      // tools beyond the handles, waiting in their ports
+  std::vector<ToolState> m_port;           // (rack instruments) each one's pose in its port
+  std::vector<std::string> m_names;        // (rack instruments) their names, for the log
+  std::array<bool, haptics::kHandles> m_pressed{};  // each handle button at the last step
+
+  void build_rack(const Scene& scene, const HapticsStageOptions& options);
+  void exchange(std::size_t h, SimState& state);
+  void place_rack(SimState& state, std::size_t h, const ToolState& handle_pose);
 
   void emulate_rig(const Scene& scene, const std::filesystem::path& script,
                    const std::array<haptics::Trocar, haptics::kHandles>& trocars);

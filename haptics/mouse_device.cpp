@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/instrument_hold.h"
+
 namespace serosa::haptics {
 
 JointState reach(const Trocar& t, const Vec3& goal_tip_m, const JointState& previous,
@@ -34,6 +36,39 @@ MouseKeyboardDevice::MouseKeyboardDevice(std::array<Trocar, kHandles> trocars,
   for (std::size_t h = 0; h < kHandles; ++h)
     m_seen.jaw_fraction[h] = m.jaw_max_rad[h] > 0.0 ? m.rest[h].jaw_rad / m.jaw_max_rad[h] : 0.0;
   m_input.store(m_seen);
+  m_seat_out.rest = m.rest;
+  m_seat_out.jaw_max_rad = m.jaw_max_rad;
+  m_seat.store(m_seat_out);
+}
+
+void MouseKeyboardDevice::reseat(std::size_t h, const JointState& rest, double jaw_max_rad,
+                                 const Quat& to_handle) {
+  ++m_seat_out.generation[h];
+  m_seat_out.rest[h] = rest;
+  m_seat_out.jaw_max_rad[h] = jaw_max_rad;
+  m_seat_out.to_handle[h] = {to_handle.w(), to_handle.x(), to_handle.y(), to_handle.z()};
+  m_seat.store(m_seat_out);
+}
+
+// The handle draws back to its port and heads for the new instrument's rest, jaws closed.
+void MouseKeyboardDevice::take_seat(std::size_t h, const MouseSeat& seat) {
+  if (seat.generation[h] == m_generation[h]) return;
+  m_generation[h] = seat.generation[h];
+  m_map.rest[h] = seat.rest[h];
+  m_map.jaw_max_rad[h] = seat.jaw_max_rad[h];
+  const auto& q = seat.to_handle[h];
+  m_to_handle[h] = Quat(q[0], q[1], q[2], q[3]).normalized();
+  m_goal[h] = seat.rest[h];
+  m_goal[h].jaw_rad = 0.0;
+  m_q[h] = m_goal[h];
+  m_q[h].insertion_m = m_map.min_insertion_m;
+  m_entering[h] = true;
+}
+
+// The handle button: held for kPressS after each press of X.
+std::uint32_t MouseKeyboardDevice::press(std::size_t h, const PointerInput& in, double now_s) {
+  if (in.exchanges[h] != m_seen.exchanges[h]) m_pressed_until[h] = now_s + kPressS;
+  return now_s < m_pressed_until[h] ? kExchangeButton : 0u;
 }
 
 void MouseKeyboardDevice::follow_input(std::size_t h, const PointerInput& in) {
@@ -43,8 +78,10 @@ void MouseKeyboardDevice::follow_input(std::size_t h, const PointerInput& in) {
     g = m_map.rest[h];
     g.jaw_rad = jaw;
   }
-  const Vec3 move(in.move_m[h][0] - m_seen.move_m[h][0], in.move_m[h][1] - m_seen.move_m[h][1],
-                  in.move_m[h][2] - m_seen.move_m[h][2]);
+  const Vec3 move =
+      m_to_handle[h] * Vec3(in.move_m[h][0] - m_seen.move_m[h][0],
+                            in.move_m[h][1] - m_seen.move_m[h][1],
+                            in.move_m[h][2] - m_seen.move_m[h][2]);
   if (move.squaredNorm() > 0.0) {
     const ToolState now = forward(m_trocars[h], g);
     g = reach(m_trocars[h], Vec3(now.tip_m[0], now.tip_m[1], now.tip_m[2]) + move, g, m_map);
@@ -64,25 +101,34 @@ void MouseKeyboardDevice::ease(std::size_t h, double dt_s) {
   q.pitch_rad += a * (g.pitch_rad - q.pitch_rad);
   q.yaw_rad += a * (g.yaw_rad - q.yaw_rad);
   q.roll_rad += a * (g.roll_rad - q.roll_rad);
-  q.insertion_m += a * (g.insertion_m - q.insertion_m);
-  if (a >= 1.0) q = g;  // exact, not within rounding
+  if (m_entering[h]) {  // along the port's axis at the entry speed
+    const double step = m_map.entry_speed_m_s * dt_s;
+    m_entering[h] = std::abs(g.insertion_m - q.insertion_m) > step;
+    q.insertion_m = m_entering[h] ? q.insertion_m + std::copysign(step, g.insertion_m - q.insertion_m)
+                                  : g.insertion_m;
+  } else {
+    q.insertion_m += a * (g.insertion_m - q.insertion_m);
+    if (a >= 1.0) q = g;  // exact, not within rounding
+  }
   const double jaw_step = m_map.jaw_speed_rad_s * dt_s;
   q.jaw_rad = jaw + std::clamp(g.jaw_rad - jaw, -jaw_step, jaw_step);
 }
 
 bool MouseKeyboardDevice::poll(double now_s, DeviceSample& out) noexcept {
   const PointerInput in = m_input.load();
+  const MouseSeat seat = m_seat.load();
   const double dt = m_seq == 0 ? 0.0 : std::max(now_s - m_last_s, 0.0);
   m_last_s = now_s;
   DeviceSample s;
   s.sequence = ++m_seq;
   s.time_s = now_s;
   for (std::size_t h = 0; h < kHandles; ++h) {
+    take_seat(h, seat);
     follow_input(h, in);
     ease(h, dt);
     s.joints[h] = m_q[h];
     s.pose[h] = forward(m_trocars[h], m_q[h]);
-    s.buttons[h] = in.buttons[h];
+    s.buttons[h] = in.buttons[h] | press(h, in, now_s);
   }
   m_seen = in;
   out = s;

@@ -16,6 +16,12 @@
 //  - the joints follow the goal with time constant ease_s, so a frame's worth of motion that
 //    arrives at once (the window reads its input once a frame) is spread over the loop's ticks
 //    instead of jumping; ease_s = 0 follows at once.
+//  - each press of X (exchanges) presses the handle button (kExchangeButton) for kPressS: the
+//    haptics stage's exchange (haptics/hand_rack.h);
+//  - after an exchange the haptics stage reseats the handle (reseat(), from the solver thread):
+//    the handle is drawn back to its port and inserts the new instrument towards its rest joints
+//    at entry_speed_m_s along the port's axis; drags then move through the rotation that carries
+//    the scene's directions into the handle's own trocar frame.
 // Cumulative values mean no motion is lost between polls.
 #pragma once
 
@@ -36,7 +42,21 @@ struct PointerInput {
   std::array<double, kHandles> jaw_fraction{};           ///< jaws: 0 closed .. 1 fully open
   std::array<std::uint32_t, kHandles> buttons{};         ///< button bits (protocol layout)
   std::array<std::uint32_t, kHandles> homes{};           ///< times Home was pressed
+  std::array<std::uint32_t, kHandles> exchanges{};       ///< times X was pressed
 };
+
+/// A handle's new instrument, from the solver thread (HapticsStage).
+struct MouseSeat {
+  std::array<std::uint32_t, kHandles> generation{};  ///< changes at each reseat of the handle
+  std::array<JointState, kHandles> rest{};           ///< the instrument's rest joints
+  std::array<double, kHandles> jaw_max_rad{1.0, 1.0};
+  /// Scene directions -> the handle's trocar frame (w, x, y, z): the drag's rotation.
+  std::array<std::array<double, 4>, kHandles> to_handle{{{1.0, 0.0, 0.0, 0.0},
+                                                          {1.0, 0.0, 0.0, 0.0}}};
+};
+
+/// How long X holds the handle button down, s: a few solver steps, so the step sees it.
+inline constexpr double kPressS = 0.05;
 
 struct MouseMapping {
   double m_per_step = 0.003;      ///< insertion per depth step, m
@@ -46,6 +66,7 @@ struct MouseMapping {
   double max_insertion_m = 0.3;   ///< longest, m
   double ease_s = 0.03;           ///< time constant of the joints following the goal, s (>= 0)
   double jaw_speed_rad_s = 4.0;   ///< fastest jaw motion, rad/s
+  double entry_speed_m_s = 0.15;  ///< how fast a reseated handle inserts its instrument, m/s
   std::array<double, kHandles> jaw_max_rad{1.0, 1.0};  ///< each handle's instrument's range, rad
   std::array<JointState, kHandles> rest{};             ///< joints with no input (and after Home)
 };
@@ -56,6 +77,8 @@ class MouseKeyboardDevice final : public Device {
 
   /// Window thread (single writer): the current cumulative input.
   void feed(const PointerInput& in) noexcept { m_input.store(in); }
+  /// Solver thread (single writer): handle h's new instrument (see the header comment).
+  void reseat(std::size_t h, const JointState& rest, double jaw_max_rad, const Quat& to_handle);
 
   bool poll(double now_s, DeviceSample& out) noexcept override;
   [[nodiscard]] bool connected() const noexcept override { return true; }
@@ -66,14 +89,22 @@ class MouseKeyboardDevice final : public Device {
  private:
   void follow_input(std::size_t h, const PointerInput& in);
   void ease(std::size_t h, double dt_s);
+  void take_seat(std::size_t h, const MouseSeat& seat);
+  std::uint32_t press(std::size_t h, const PointerInput& in, double now_s);
 
   std::array<Trocar, kHandles> m_trocars;
   MouseMapping m_map;
   Seqlock<PointerInput> m_input{};
+  Seqlock<MouseSeat> m_seat{};
+  MouseSeat m_seat_out{};  // solver thread: the last seat stored
   // Loop thread only: the input last taken in, each handle's goal and joints, the last poll.
   PointerInput m_seen{};
   std::array<JointState, kHandles> m_goal{};
   std::array<JointState, kHandles> m_q{};
+  std::array<std::uint32_t, kHandles> m_generation{};  // the seat each handle took
+  std::array<bool, kHandles> m_entering{};             // inserting a new instrument
+  std::array<Quat, kHandles> m_to_handle{Quat::Identity(), Quat::Identity()};
+  std::array<double, kHandles> m_pressed_until{};      // the handle button's release, s
   double m_last_s = 0.0;
   std::uint64_t m_seq = 0;
   DeviceCommand m_last{};

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "engine/board_normal.h"
+#include "engine/instrument_hold.h"
 #include "engine/scope_view.h"
 #include "engine/sim_state.h"
 #include "engine/state_codec.h"
@@ -69,6 +70,7 @@ MetricsStage::MetricsStage(const Scene& scene, LameTable lame, std::int64_t stre
   const std::size_t k = m_names.size();
   m_path.assign(k, 0.0);
   m_last_tip.assign(k, Vec3::Zero());
+  m_last_in_port.assign(k, 0);
   m_force_max.assign(k, 0.0);
   m_force_sum.assign(k, 0.0);
   m_force_steps.assign(k, 0);
@@ -94,9 +96,13 @@ MetricsStage::MetricsStage(const Scene& scene, LameTable lame, std::int64_t stre
 void MetricsStage::step(const StepContext& ctx, SimState& state) {
   m_time = ctx.time_s + ctx.dt_s;
   const std::size_t k = std::min(m_names.size(), state.tools.size());
+  m_exchanges.step(m_time, ctx.dt_s, state.tools);
   for (std::size_t i = 0; i < k; ++i) {
     const Vec3 tip(state.tools[i].tip_m[0], state.tools[i].tip_m[1], state.tools[i].tip_m[2]);
-    m_moved[i] = m_have_last ? (tip - m_last_tip[i]).norm() : 0.0;
+    // Into or out of its port an exchange moves an instrument at once: no hand's travel.
+    const bool port = in_port(state.tools[i]) != m_last_in_port[i];
+    m_last_in_port[i] = in_port(state.tools[i]);
+    m_moved[i] = m_have_last && !port ? (tip - m_last_tip[i]).norm() : 0.0;
     m_path[i] += m_moved[i];
     m_last_tip[i] = tip;
   }
@@ -150,7 +156,7 @@ bool MetricsStage::add_use(const std::vector<double>& moved, const std::vector<d
   for (std::size_t i = 0; i < n; ++i) {
     const double f = i < load.size() ? load[i] : 0.0;
     over = over || f > m_force_limit;
-    if (m_hand[i] == 0) continue;
+    if (!at_hand(i)) continue;
     ++hands;
     double path = 0.0;
     for (std::size_t k = 0; k < m_window; ++k) path += m_recent[k * n + i];
@@ -166,6 +172,13 @@ bool MetricsStage::add_use(const std::vector<double>& moved, const std::vector<d
   }
   if (over) m_force_over_s += dt_s;
   return !any_moving;
+}
+
+// With hands (the inputs name them) the instruments the two hands hold now; else every
+// instrument but the endoscope.
+bool MetricsStage::at_hand(std::size_t tool) const {
+  if (!m_exchanges.hands_seen()) return m_hand[tool] != 0;
+  return m_exchanges.held(0) == tool || m_exchanges.held(1) == tool;
 }
 
 void MetricsStage::add_stress(double now_pa) {
@@ -198,7 +211,7 @@ void MetricsStage::add_view(const std::vector<ToolState>& tools, double dt_s) {
   }
   for (std::size_t i = 0; i < tools.size() && i < m_hand.size(); ++i) {
     const ToolState& t = tools[i];
-    if (m_hand[i] == 0 || !scope_posed(t)) continue;  // not in the scene yet
+    if (m_hand[i] == 0 || !scope_posed(t) || in_port(t)) continue;  // not in the body
     if (!in_view(view, Vec3(t.tip_m[0], t.tip_m[1], t.tip_m[2]))) m_out_of_view_s[i] += dt_s;
   }
 }
@@ -261,6 +274,7 @@ nlohmann::json MetricsStage::report() const {
     j["cut"]["collateral_m3"] = m_collateral;
     j["cut"]["band_m"] = m_band;
   }
+  m_exchanges.report(j, m_names);
   m_errors.report(j, m_steps.active());
   m_steps.report(j);
   m_splits.report(j);
@@ -288,6 +302,8 @@ void MetricsStage::save(StateWriter& out) const {
   out.u64(static_cast<std::uint64_t>(m_cut_tets));
   out.u8(m_over_tear ? 1 : 0);
   out.array(m_tear_times);
+  out.array(m_last_in_port);
+  m_exchanges.save(out);
   m_errors.save(out);  // (nothing when no errors are watched for)
   m_steps.save(out);   // (nothing when no procedure is followed)
   m_splits.save(out);  // (likewise)
@@ -323,6 +339,9 @@ void MetricsStage::restore(StateReader& in, SimState& state) {
   m_cut_tets = static_cast<std::int64_t>(in.u64());
   m_over_tear = in.u8() != 0;
   in.array(m_tear_times);
+  in.array(m_last_in_port);
+  if (m_last_in_port.size() != tools) in.fail("another number of tools than the scene's");
+  m_exchanges.restore(in);
   m_errors.restore(in);
   m_steps.restore(in);
   m_splits.restore(in);

@@ -17,7 +17,10 @@
 //                           tip slower than kIdleSpeed over the last kIdleWindowS, s
 //   bimanual_fraction       of the time some hand instrument moved, the part in which every hand
 //                           instrument was at work: moving or holding tissue (1: both hands
-//                           worked together throughout; 0 with fewer than two)
+//                           worked together throughout; 0 with fewer than two). With hands, the
+//                           hand instruments are the two the hands hold at the time.
+//   exchanges, out_of_body_s  with hands (inputs that name them): the instrument exchanges
+//                           (metrics/hand_exchanges.h)
 //   force_over_s            time in which some tool pressed on the tissue harder than the
 //                           scene's force_limit, s
 //   view_targets            with [metrics] view_targets: how many the endoscope centred (each
@@ -56,6 +59,7 @@
 #include "engine/stage.h"
 #include "engine/tissue_stress.h"
 #include "metrics/clip_placement.h"
+#include "metrics/hand_exchanges.h"
 #include "metrics/procedure_errors.h"
 #include "metrics/procedure_steps.h"
 #include "metrics/step_splits.h"
@@ -130,6 +134,8 @@ class MetricsStage final : public Stage {
   [[nodiscard]] const ProcedureSteps& procedure_steps() const noexcept { return m_steps; }
   [[nodiscard]] const ClipPlacement& clip_placement() const noexcept { return m_clips; }
   [[nodiscard]] const TransferWatch& transfer() const noexcept { return m_transfer; }
+  /// The hands' instrument exchanges (empty without hands).
+  [[nodiscard]] const HandExchanges& exchanges() const noexcept { return m_exchanges; }
   /// What each of the procedure's steps cost (inactive without [metrics] procedure).
   [[nodiscard]] const StepSplits& step_splits() const noexcept { return m_splits; }
   [[nodiscard]] double deviation_mean_m() const noexcept {
@@ -149,6 +155,8 @@ class MetricsStage final : public Stage {
   /// Idle, active and bimanual time and time over the force limit, from this step's moves (m,
   /// (tools)) and forces. Returns whether every hand instrument was idle.
   bool add_use(const std::vector<double>& moved, const std::vector<double>& load, double dt_s);
+  /// Whether the tool counts as a hand's instrument now (idle time, bimanual use).
+  [[nodiscard]] bool at_hand(std::size_t tool) const;
   /// Accounts a sample of the mesh's largest von Mises stress (Pa): the peak, and a tear when it
   /// rises above the tear stress.
   void add_stress(double now_pa);
@@ -161,6 +169,8 @@ class MetricsStage final : public Stage {
   double m_time = 0.0;
   std::vector<double> m_path;    // (tools)
   std::vector<Vec3> m_last_tip;  // (tools)
+  std::vector<std::uint8_t> m_last_in_port;  // (tools) 1: it waited in its port last step
+  HandExchanges m_exchanges;
   bool m_have_last = false;
   std::vector<double> m_force_max, m_force_sum;  // (tools)
   std::vector<std::int64_t> m_force_steps;       // (tools)

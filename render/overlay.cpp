@@ -79,6 +79,10 @@ std::string hand_line(const OverlayHand& h) {
   }
   if (h.has_pedal) l.append(h.pedal ? "  pedal DOWN" : "  pedal up");
   if (h.holding_nodes > 0) l.append("  HOLDING");
+  if (h.entering) {
+    l.append("  in its port: draw the handle back");
+    return l;
+  }
   if (h.tissue_in_jaws_m > 0.0) {
     std::snprintf(part, sizeof part, "  %.0f mm IN JAWS", 1e3 * h.tissue_in_jaws_m);
     l.append(part);
@@ -111,6 +115,8 @@ const std::vector<std::string>& overlay_help_lines() {
       "P                   cautery pedal down / up (hook)",
       "Home                bring it back into view",
       "Tab                 switch hands (the active one: > and a collar)",
+      "X                   exchange the active hand's instrument for the",
+      "                    next one waiting in its port",
       "drag (right button) turn the endoscope; I / K in / out",
       ", / .               rotate the endoscope; O 0/30 degree optic",
       "Space               pause       V  views       F2  overlay",
@@ -157,6 +163,11 @@ OverlayText overlay_text(const OverlayData& data) {
     t.stats.push_back(std::move(l));
   }
   for (const OverlayHand& h : data.hands) t.hands.push_back(hand_line(h));
+  if (!data.waiting.empty()) {
+    std::string l = "waiting in ports (X):";
+    for (const std::string& w : data.waiting) l.append(" ").append(w);
+    t.hands.push_back(std::move(l));
+  }
   if (data.replay) {
     char now[32];
     char total[32];
@@ -373,7 +384,7 @@ void Overlay::layout_hands(const OverlayData& data, int panel, int width) {
   if (ImGui::Begin("Instruments", nullptr, panel)) {
     const OverlayText text = overlay_text(data);
     for (std::size_t i = 0; i < text.hands.size(); ++i) {
-      if (data.hands[i].active)
+      if (i < data.hands.size() && data.hands[i].active)
         ImGui::TextColored(ImVec4(0.45f, 1.0f, 0.55f, 1.0f), "%s", text.hands[i].c_str());
       else
         ImGui::TextUnformatted(text.hands[i].c_str());

@@ -112,6 +112,7 @@ struct OverlayHand {
   double tissue_distance_m = 0.0;  ///< the tip's distance to the nearest tissue, m (< 0: in it)
   double tissue_in_jaws_m = 0.0;   ///< how much tissue lies between its open jaws, m
   std::size_t holding_nodes = 0;   ///< surface nodes its closed jaws hold (a grasper), count
+  bool entering = false;           ///< just taken: it waits in its port for the handle
 };
 
 struct OverlayData {
@@ -119,6 +120,8 @@ struct OverlayData {
   /// The trainee's instruments (the session): named, the active one marked, with their jaws,
   /// pedal and distance to tissue; empty: not shown.
   std::vector<OverlayHand> hands;
+  /// The instruments waiting in their ports for an exchange, by name (the session).
+  std::vector<std::string> waiting;
   bool help = false;             ///< the controls panel (overlay_help_lines) is shown
   double sim_time_s = 0.0;       ///< simulated time, s
   double fem_ms_per_step = 0.0;  ///< wall time of the last solver steps (mean), ms

@@ -67,6 +67,8 @@ int glfw_key(Key k) {
       return GLFW_KEY_F2;
     case Key::kHome:
       return GLFW_KEY_HOME;
+    case Key::kX:
+      return GLFW_KEY_X;
     case Key::kCount:
       break;
   }

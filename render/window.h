@@ -43,6 +43,7 @@ enum class Key {
   kF1,      ///< the controls panel (as H)
   kF2,      ///< the overlay on/off (the session; H there shows the controls)
   kHome,    ///< bring the active instrument back into view
+  kX,       ///< exchange the active hand's instrument for the next waiting in its port
   kCount
 };
 
