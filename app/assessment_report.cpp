@@ -48,6 +48,10 @@ std::map<std::string, double> session_values(const Scene& scene,
   v["time_s"] = metrics.time_s();
   v["idle_time_s"] = metrics.idle_time_s();
   v["bimanual_fraction"] = metrics.bimanual_fraction();
+  if (metrics.exchanges().hands_seen()) {
+    v["exchanges"] = static_cast<double>(metrics.exchanges().exchanges().size());
+    v["out_of_body_s"] = metrics.exchanges().out_of_body_s();
+  }
   v["force_over_s"] = metrics.force_over_s();
   v["peak_stress_pa"] = metrics.peak_stress_pa();
   if (scene.metrics.tear_stress_pa) v["tears"] = static_cast<double>(metrics.tears());

@@ -13,9 +13,11 @@ namespace serosa {
 namespace {
 
 // Values the session reports under a fixed name, and families with a tool's or a group's name.
-constexpr std::array<std::string_view, 26> kFixed = {"time_s",
+constexpr std::array<std::string_view, 28> kFixed = {"time_s",
                                                      "idle_time_s",
                                                      "bimanual_fraction",
+                                                     "exchanges",
+                                                     "out_of_body_s",
                                                      "path_length_m",
                                                      "force_over_s",
                                                      "peak_stress_pa",

@@ -21,13 +21,12 @@ std::int32_t holder_of(std::size_t h, std::int32_t before, const std::vector<Too
 }  // namespace
 
 void HandExchanges::step(double t_s, double dt_s, const std::vector<ToolState>& tools) {
+  const bool first = !m_seen;  // the first holds are where the session starts, not exchanges
   for (std::size_t h = 0; h < m_held.size(); ++h) {
     const std::int32_t now = holder_of(h, m_held[h], tools);
-    if (now >= 0 && !m_seen) {  // the first hold is where the session starts, not an exchange
-      m_seen = true;
-    } else if (now != m_held[h] && m_seen) {
+    m_seen = m_seen || now >= 0;
+    if (!first && now != m_held[h])
       m_exchanges.push_back({t_s, static_cast<std::uint8_t>(h), m_held[h], now});
-    }
     m_held[h] = now;
     if (now >= 0 && in_port(tools[static_cast<std::size_t>(now)])) m_out_s += dt_s;
   }

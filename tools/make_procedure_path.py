@@ -69,6 +69,7 @@ class Tool:
         self.trocar = add(work, self.forward, -reach)
         self.side_hint = side_hint
         self.rows = []
+        self.hands = [(0.0, "port")]  # (time, hand): who holds it from then on
 
     def frame(self, tip, roll=None):
         f = unit(sub(tip, self.trocar))
@@ -79,6 +80,27 @@ class Tool:
     def at(self, t, tip, jaw=0.0, buttons=0, roll=None):
         """A row: the tip (m) at time t (s); roll: where the jaws open (else the tool's way)."""
         self.rows.append((t * self.slower, list(tip), jaw, buttons, roll))
+
+    def held(self, t, hand):
+        """From time t (s) `hand` (left, right) holds it, or it waits in its port (port)."""
+        self.hands.append((t * self.slower, hand))
+
+    def hand_at(self, t):
+        return [h for s, h in self.hands if s <= t][-1]
+
+    def rows_with_hands(self):
+        """The rows, with a row added where the hand changes between two, and each row's hand."""
+        rows = list(self.rows)
+        times = {r[0] for r in rows}
+        for s, _ in self.hands:
+            if s in times or s <= rows[0][0] or s >= rows[-1][0]:
+                continue
+            b = next(k for k, r in enumerate(rows) if r[0] > s)
+            (ta, pa, ja, ba, ra), (tb, pb, jb, _, _) = rows[b - 1], rows[b]
+            u = (s - ta) / (tb - ta)
+            rows.insert(b, (s, [pa[i] + u * (pb[i] - pa[i]) for i in range(3)],
+                            ja + u * (jb - ja), ba, ra))
+        return [r + (self.hand_at(r[0]),) for r in rows]
 
     def parked(self, depth=0.05):
         """Tip `depth` in from the trocar along the working line: out of the way and of view."""
@@ -104,6 +126,14 @@ def procedure(novice=False):
     tools = [grasper, clip, hook, loop, scissors]
     for tool in tools:
         tool.at(0.0, tool.parked())
+    # Two hands: the left holds the grasper throughout; the right takes the clip applier, the
+    # hook, the endoloop and the scissors in turn, each exchange as the last one leaves its work.
+    grasper.held(0.0, "left")
+    for tool, start, end in ((clip, 2.0, 3.6), (hook, 3.6, 6.0), (loop, 6.0, 7.1),
+                             (scissors, 7.1, None)):
+        tool.held(start, "right")
+        if end is not None:
+            tool.held(end, "port")
 
     # expose: take the appendix 14 mm from its tip and lift it 15 mm towards the wall above
     g = grasper
@@ -191,17 +221,17 @@ SCOPE = ([0.0450, -0.0320, 0.0600], [0.0, 0.0, 1.0, 0.0])
 def write(path, tools, end, scope=SCOPE):
     rows = []
     for tool in tools:
-        for t, tip, jaw, buttons, roll in tool.rows:
+        for t, tip, jaw, buttons, roll, hand in tool.rows_with_hands():
             q = quaternion(*tool.frame(tip, roll))
-            rows.append((t, tool.name, tip, q, jaw, buttons))
-    rows.append((0.0, "endoscope", scope[0], scope[1], 0.0, 0))
-    rows.append((end, "endoscope", scope[0], scope[1], 0.0, 0))
+            rows.append((t, tool.name, tip, q, jaw, buttons, hand))
+    rows.append((0.0, "endoscope", scope[0], scope[1], 0.0, 0, ""))
+    rows.append((end, "endoscope", scope[0], scope[1], 0.0, 0, ""))
     rows.sort(key=lambda r: (r[0], r[1]))
     with open(path, "w") as f:
-        f.write("t,tool,px,py,pz,qw,qx,qy,qz,jaw,buttons\n")
-        for t, name, p, q, jaw, buttons in rows:
+        f.write("t,tool,px,py,pz,qw,qx,qy,qz,jaw,buttons,hand\n")
+        for t, name, p, q, jaw, buttons, hand in rows:
             f.write(f"{t:.3f},{name},{p[0]:.5f},{p[1]:.5f},{p[2]:.5f},"
-                    f"{q[0]:.6f},{q[1]:.6f},{q[2]:.6f},{q[3]:.6f},{jaw:.2f},{buttons}\n")
+                    f"{q[0]:.6f},{q[1]:.6f},{q[2]:.6f},{q[3]:.6f},{jaw:.2f},{buttons},{hand}\n")
 
 
 def main():
