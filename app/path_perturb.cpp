@@ -8,6 +8,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "engine/instrument_hold.h"
+
 namespace serosa::app {
 namespace {
 
@@ -48,17 +50,28 @@ ToolPath perturb_path(const ToolPath& path, std::uint64_t seed, double amplitude
   return out;
 }
 
+namespace {
+
+// The hand column's word for a row (engine/instrument_hold.h).
+const char* hand_word(const ToolState& s) {
+  if (in_port(s)) return "port";
+  const std::optional<Hand> h = holder(s);
+  return !h ? "" : *h == Hand::kLeft ? "left" : "right";
+}
+
+}  // namespace
+
 void write_tool_path(const ToolPath& path, const std::filesystem::path& file) {
   std::ofstream out(file);
-  out << "t,tool,px,py,pz,qw,qx,qy,qz,jaw,buttons\n";
+  out << "t,tool,px,py,pz,qw,qx,qy,qz,jaw,buttons,hand\n";
   char line[512];
   for (std::size_t i = 0; i < path.tools.size(); ++i)
     for (const ToolState& s : path.samples[i]) {
       std::snprintf(line, sizeof line,
-                    "%.17g,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%u\n", s.time_s,
+                    "%.17g,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%u,%s\n", s.time_s,
                     path.tools[i].c_str(), s.tip_m[0], s.tip_m[1], s.tip_m[2], s.quat_wxyz[0],
                     s.quat_wxyz[1], s.quat_wxyz[2], s.quat_wxyz[3], s.jaw_rad,
-                    static_cast<unsigned>(s.buttons));
+                    static_cast<unsigned>(s.buttons & kDeviceButtons), hand_word(s));
       out << line;
     }
   if (!out) throw std::runtime_error("cannot write " + file.string());

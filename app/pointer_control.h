@@ -44,7 +44,7 @@ struct PointerEvents {
   double drag_dy_px = 0.0;  ///< px (+ = down)
   double scroll_steps = 0.0;
   int tab = 0, insert = 0, retract = 0, roll_left = 0, roll_right = 0, pedal = 0, home = 0;
-  int exchange = 0;  ///< presses of X: the active hand's instrument exchange
+  int exchange = 0;         ///< presses of X: the active hand's instrument exchange
   int jaw_presses = 0;      ///< times J went down
   bool jaw_held = false;    ///< J is down now
   double jaw_held_s = 0.0;  ///< how long J has been down, s (when jaw_held)

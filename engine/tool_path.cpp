@@ -25,8 +25,8 @@ constexpr std::string_view kHeaderWithButtons = "t,tool,px,py,pz,qw,qx,qy,qz,jaw
 constexpr std::string_view kHeaderWithHand = "t,tool,px,py,pz,qw,qx,qy,qz,jaw,buttons,hand";
 constexpr std::size_t kMaxColumns = 12;
 constexpr std::size_t kHandColumn = 11;
-constexpr const char* kColumnNames[kMaxColumns] = {
-    "t", "tool", "px", "py", "pz", "qw", "qx", "qy", "qz", "jaw", "buttons", "hand"};
+constexpr const char* kColumnNames[kMaxColumns] = {"t",  "tool", "px", "py",  "pz",      "qw",
+                                                   "qx", "qy",   "qz", "jaw", "buttons", "hand"};
 
 std::size_t columns_of(const std::string& header) {
   if (header == kHeader) return 10;
@@ -136,8 +136,9 @@ ToolPath parse_tool_path_text(const std::string& text, const std::string& name) 
       }
       columns = columns_of(header);
       if (columns == 0) {
-        throw InputError(name, line, "bad tool path header '" + std::string(content) + "'",
-                         "the header " + std::string(kHeader) + " (or with ,buttons or ,buttons,hand)");
+        throw InputError(
+            name, line, "bad tool path header '" + std::string(content) + "'",
+            "the header " + std::string(kHeader) + " (or with ,buttons or ,buttons,hand)");
       }
       have_header = true;
       continue;

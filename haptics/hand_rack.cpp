@@ -11,9 +11,8 @@ std::array<double, 3> arr(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 ToolState TrocarMap::pose(const ToolState& s) const {
   ToolState out = s;
   out.tip_m = arr(point(vec(s.tip_m)));
-  const Quat q =
-      (rotation * Quat(s.quat_wxyz[0], s.quat_wxyz[1], s.quat_wxyz[2], s.quat_wxyz[3]))
-          .normalized();
+  const Quat q = (rotation * Quat(s.quat_wxyz[0], s.quat_wxyz[1], s.quat_wxyz[2], s.quat_wxyz[3]))
+                     .normalized();
   out.quat_wxyz = {q.w(), q.x(), q.y(), q.z()};
   return out;
 }

@@ -34,9 +34,9 @@ inline constexpr double kEntryDepthM = 0.02;
 
 /// One instrument the handles can take.
 struct RackInstrument {
-  std::size_t tool = 0;  ///< index into Scene::tools
-  Trocar trocar;         ///< its port
-  JointState rest;       ///< where it rests once inserted (the mouse device takes it there)
+  std::size_t tool = 0;      ///< index into Scene::tools
+  Trocar trocar;             ///< its port
+  JointState rest;           ///< where it rests once inserted (the mouse device takes it there)
   double jaw_max_rad = 1.0;  ///< its jaws' range (engine/jaw_range.h), rad
 };
 

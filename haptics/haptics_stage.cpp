@@ -228,8 +228,9 @@ void HapticsStage::build_rack(const Scene& scene, const HapticsStageOptions& opt
     if (is_rig(m_kind)) {
       r.trocar = rig_trocar(tool, h, options.aim_m);
     } else {
-      const MouseHandle mh = mouse_handle(
-          tool, h, options.aim_m, i < options.rest_pose.size() ? options.rest_pose[i] : std::nullopt);
+      const MouseHandle mh =
+          mouse_handle(tool, h, options.aim_m,
+                       i < options.rest_pose.size() ? options.rest_pose[i] : std::nullopt);
       r.trocar = mh.trocar;
       r.rest = mh.rest;
     }
@@ -245,7 +246,8 @@ void HapticsStage::exchange(std::size_t h, SimState& state) {
   const std::optional<std::size_t> from = m_rack->held(h);
   const std::optional<std::size_t> to = m_rack->exchange(h);
   if (!from || !to) {
-    spdlog::info("haptics: {} hand: no other instrument waits in its port", h == 0 ? "left" : "right");
+    spdlog::info("haptics: {} hand: no other instrument waits in its port",
+                 h == 0 ? "left" : "right");
     return;
   }
   const haptics::RackInstrument& next = m_rack->instruments()[*to];

@@ -78,10 +78,9 @@ void MouseKeyboardDevice::follow_input(std::size_t h, const PointerInput& in) {
     g = m_map.rest[h];
     g.jaw_rad = jaw;
   }
-  const Vec3 move =
-      m_to_handle[h] * Vec3(in.move_m[h][0] - m_seen.move_m[h][0],
-                            in.move_m[h][1] - m_seen.move_m[h][1],
-                            in.move_m[h][2] - m_seen.move_m[h][2]);
+  const Vec3 move = m_to_handle[h] * Vec3(in.move_m[h][0] - m_seen.move_m[h][0],
+                                          in.move_m[h][1] - m_seen.move_m[h][1],
+                                          in.move_m[h][2] - m_seen.move_m[h][2]);
   if (move.squaredNorm() > 0.0) {
     const ToolState now = forward(m_trocars[h], g);
     g = reach(m_trocars[h], Vec3(now.tip_m[0], now.tip_m[1], now.tip_m[2]) + move, g, m_map);
@@ -104,8 +103,9 @@ void MouseKeyboardDevice::ease(std::size_t h, double dt_s) {
   if (m_entering[h]) {  // along the port's axis at the entry speed
     const double step = m_map.entry_speed_m_s * dt_s;
     m_entering[h] = std::abs(g.insertion_m - q.insertion_m) > step;
-    q.insertion_m = m_entering[h] ? q.insertion_m + std::copysign(step, g.insertion_m - q.insertion_m)
-                                  : g.insertion_m;
+    q.insertion_m = m_entering[h]
+                        ? q.insertion_m + std::copysign(step, g.insertion_m - q.insertion_m)
+                        : g.insertion_m;
   } else {
     q.insertion_m += a * (g.insertion_m - q.insertion_m);
     if (a >= 1.0) q = g;  // exact, not within rounding

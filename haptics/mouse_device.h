@@ -51,8 +51,8 @@ struct MouseSeat {
   std::array<JointState, kHandles> rest{};           ///< the instrument's rest joints
   std::array<double, kHandles> jaw_max_rad{1.0, 1.0};
   /// Scene directions -> the handle's trocar frame (w, x, y, z): the drag's rotation.
-  std::array<std::array<double, 4>, kHandles> to_handle{{{1.0, 0.0, 0.0, 0.0},
-                                                          {1.0, 0.0, 0.0, 0.0}}};
+  std::array<std::array<double, 4>, kHandles> to_handle{
+      {{1.0, 0.0, 0.0, 0.0}, {1.0, 0.0, 0.0, 0.0}}};
 };
 
 /// How long X holds the handle button down, s: a few solver steps, so the step sees it.
@@ -104,7 +104,7 @@ class MouseKeyboardDevice final : public Device {
   std::array<std::uint32_t, kHandles> m_generation{};  // the seat each handle took
   std::array<bool, kHandles> m_entering{};             // inserting a new instrument
   std::array<Quat, kHandles> m_to_handle{Quat::Identity(), Quat::Identity()};
-  std::array<double, kHandles> m_pressed_until{};      // the handle button's release, s
+  std::array<double, kHandles> m_pressed_until{};  // the handle button's release, s
   double m_last_s = 0.0;
   std::uint64_t m_seq = 0;
   DeviceCommand m_last{};

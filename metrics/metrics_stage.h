@@ -167,8 +167,8 @@ class MetricsStage final : public Stage {
   bool m_forces = false;  // a contact stage hands tool forces over
   std::int64_t m_stress_every;
   double m_time = 0.0;
-  std::vector<double> m_path;    // (tools)
-  std::vector<Vec3> m_last_tip;  // (tools)
+  std::vector<double> m_path;                // (tools)
+  std::vector<Vec3> m_last_tip;              // (tools)
   std::vector<std::uint8_t> m_last_in_port;  // (tools) 1: it waited in its port last step
   HandExchanges m_exchanges;
   bool m_have_last = false;

@@ -4,10 +4,10 @@
 # own port) and then drags the mouse with the left button held (xdotool): the trainee bringing in
 # and moving three instruments in turn. Then it ends the session with Escape and leaves its
 # summary with Space. Keys and drags are read once a frame, so each is held over two frames.
-# Usage: exchange_in_window.sh SEROSA SCENE REPORT
+# Usage: exchange_in_window.sh SEROSA SCENE REPORT RECORDING
 set -eu
-serosa=$1 scene=$2 report=$3
-"$serosa" run "$scene" --seconds 1200 --report "$report" &
+serosa=$1 scene=$2 report=$3 recording=$4
+"$serosa" run "$scene" --seconds 1200 --report "$report" --record "$recording" &
 pid=$!
 window=$(timeout 60 xdotool search --sync --name '^Serosa' | head -n 1)
 [ -n "$window" ] || { echo "exchange_in_window.sh: no Serosa window" >&2; kill $pid; exit 1; }

@@ -84,6 +84,7 @@ fs::path degraded_path(const fs::path& dir, double slow, double off_m) {
     std::vector<std::string> f;
     std::stringstream ss(line);
     for (std::string c; std::getline(ss, c, ',');) f.push_back(c);
+    if (!line.empty() && line.back() == ',') f.emplace_back();  // an empty last field (no hand)
     const double t = std::stod(f[0]);
     if (f[1] == "scissors" && t >= 2.85 && t <= 3.55) {
       f[2] = std::to_string(std::stod(f[2]) - d);

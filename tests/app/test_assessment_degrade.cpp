@@ -36,6 +36,7 @@ std::vector<Row> read_rows(const fs::path& csv, std::string& header) {
     Row r;
     std::stringstream ss(line);
     for (std::string c; std::getline(ss, c, ',');) r.push_back(c);
+    if (line.back() == ',') r.emplace_back();  // an empty last field (no hand)
     rows.push_back(std::move(r));
   }
   return rows;

@@ -415,5 +415,35 @@ TEST(SessionHaptics, DraggingTheMouseInTheWindowMovesTheInstrument) {
   EXPECT_NEAR(scope, 0.01, 1e-9) << dragged["metrics"].dump(1);
 }
 
+// The whole appendectomy by hand needs every instrument: pressing X three times (xdotool, under
+// Xvfb), each followed by a drag, brings in three instruments in turn through their ports and
+// moves each; the report lists the exchanges, and the recording replays them bit for bit.
+TEST(SessionHaptics, PressingXBringsInTheNextInstrument) {
+  const fs::path dir = own_dir("exchange_window");
+  const fs::path report = dir / "x.json", recording = dir / "x.lapr";
+  std::string cmd = "xvfb-run -a -s '-screen 0 1280x720x24' '";
+  cmd.append(source("tests/app/exchange_in_window.sh").string()).append("' '");
+  cmd.append(serosa_exe().string()).append("' '");
+  cmd.append(source("config/appendectomy.toml").string()).append("' '");
+  cmd.append(report.string()).append("' '").append(recording.string()).append("'");
+  const Shell run = shell(cmd);
+  ASSERT_EQ(run.code, 0) << run.out;
+  nlohmann::json rep;
+  std::ifstream(report) >> rep;
+  const nlohmann::json& m = rep["metrics"];
+  ASSERT_TRUE(m.contains("exchanges")) << m.dump(1);
+  EXPECT_GE(m["exchanges"].size(), 2u) << m["exchanges"].dump(1);
+  for (const auto& e : m["exchanges"]) {
+    EXPECT_EQ(e["hand"], "left");  // the active hand, as the session starts
+    EXPECT_NE(e["from"], e["to"]);
+  }
+  int moved = 0;
+  for (const auto& [tool, length] : m["path_length_m"].items())
+    if (tool != "endoscope" && length.get<double>() > 0.005) ++moved;
+  EXPECT_GE(moved, 3) << m["path_length_m"].dump(1);
+  const CliResult verify = run_serosa("replay '" + recording.string() + "' --headless --verify");
+  EXPECT_EQ(verify.code, 0) << verify.out;
+}
+
 }  // namespace
 }  // namespace serosa::app

@@ -13,6 +13,7 @@
 #include "app/compose.h"
 #include "app_test_util.h"
 #include "contact/tool_contact_stage.h"
+#include "engine/instrument_hold.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"
 #include "engine/state_codec.h"
@@ -364,6 +365,33 @@ TEST(Grasper, TheHapticLoopFeelsTheHeldTissuesPull) {
   EXPECT_LT(pull.y(), 0.0);
   EXPECT_LT((pull + copy.handoff.tool_force_n[0]).norm(), 1e-12 * pull.norm());
   EXPECT_EQ(copy.handoff.tool_reactions[0].jaw_torque_nm, 0.0);
+}
+
+// An exchange withdraws a grasper holding tissue into its port: it lets go (the held nodes are
+// free again as they were), and it touches nothing, so no force, no contact plane, no reaction.
+TEST(Grasper, WithdrawnIntoItsPortItLetsGoAndTouchesNothing) {
+  const fs::path dir = out_dir("grasper_withdrawn");
+  auto run = grab_lift_release(dir);
+  SimState& s = run->assembled.state;
+  const std::vector<std::uint8_t> fixed_before = s.mesh.fixed;
+  run->comp.runner->run(s, 30);  // closed and lifted 5 mm
+  ASSERT_GE(run->comp.contact->grasped_counts()[0], 3u);
+  auto probe = reacting_copy(*run, run->comp.contact);
+  SimState copy = s;
+  // Its port far from the beam, and then (a property over placements) anywhere near it: an
+  // instrument in its port ignores where its pose says it is.
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(-0.05, 0.05);
+  for (int k = 0; k < 50; ++k) {
+    copy.tools[0] = port_pose(Vec3(u(rng), u(rng), u(rng)), Vec3(0.0, 0.0, -1.0));
+    probe->step(StepContext{30 + static_cast<std::uint64_t>(k), s.time_s, 0.005}, copy);
+    EXPECT_EQ(probe->grasped_counts()[0], 0u) << k;
+    EXPECT_EQ(copy.handoff.tool_force_n[0].norm(), 0.0) << k;
+    EXPECT_TRUE(copy.handoff.external_force_n.empty()) << k;
+    EXPECT_FALSE(copy.handoff.contact_planes[0]) << k;
+    EXPECT_EQ(copy.handoff.tool_reactions[0].held_pull_n.norm(), 0.0) << k;
+    EXPECT_EQ(copy.mesh.fixed, fixed_before) << k;  // the grasp's Dirichlet nodes are free again
+  }
 }
 
 TEST(Contact, TheHapticLoopFeelsTheTissuePushingOnTheShaft) {

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "engine/input_error.h"
+#include "engine/instrument_hold.h"
 #include "engine/math.h"
 
 namespace serosa {
@@ -160,6 +161,32 @@ TEST(ToolPathErrors, ButtonsMustBeAMask) {
   for (const std::string bad : {"-1", "1.5", "65536", "x"})
     expect_error(h + "0,g,0,0,0,1,0,0,0,0," + bad + "\n", 2, "buttons");
   expect_error(h + "0,g,0,0,0,1,0,0,0,0\n", 2, "11 columns");  // the header promised buttons
+}
+
+TEST(ToolPath, TheHandColumnSaysWhoHoldsTheToolFromItsRowOn) {
+  const ToolPath p = parse_tool_path_text(
+      "t,tool,px,py,pz,qw,qx,qy,qz,jaw,buttons,hand\n"
+      "0,g,0,0,0,1,0,0,0,0,2,port\n"
+      "1,g,1,0,0,1,0,0,0,0,2,right\n"
+      "2,g,2,0,0,1,0,0,0,0,0,left\n"
+      "3,g,3,0,0,1,0,0,0,0,0,\n",
+      "p.csv");
+  const ToolState waiting = sample(p, "g", 0.5);
+  EXPECT_TRUE(in_port(waiting));
+  EXPECT_FALSE(holder(waiting));
+  EXPECT_EQ(waiting.buttons & kDeviceButtons, 2u);  // the device's buttons stay as they were
+  EXPECT_EQ(holder(sample(p, "g", 1.5)), Hand::kRight);
+  EXPECT_FALSE(in_port(sample(p, "g", 1.5)));
+  EXPECT_EQ(holder(sample(p, "g", 2.0)), Hand::kLeft);
+  EXPECT_FALSE(holder(sample(p, "g", 3.0)));  // empty: played directly
+  EXPECT_FALSE(in_port(sample(p, "g", 3.0)));
+}
+
+TEST(ToolPathErrors, TheHandMustBeAHand) {
+  const std::string h = "t,tool,px,py,pz,qw,qx,qy,qz,jaw,buttons,hand\n";
+  for (const std::string bad : {"middle", "LEFT", "1"})
+    expect_error(h + "0,g,0,0,0,1,0,0,0,0,0," + bad + "\n", 2, "hand");
+  expect_error(h + "0,g,0,0,0,1,0,0,0,0,0\n", 2, "12 columns");
 }
 
 TEST(ToolPath, EqualTimesMakeAJump) {
