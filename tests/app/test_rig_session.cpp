@@ -24,6 +24,7 @@
 #include "app/overlay_stats.h"
 #include "app_test_util.h"
 #include "cutting/validate.h"
+#include "engine/instrument_hold.h"
 #include "engine/mesh_io.h"
 #include "engine/recording_reader.h"
 #include "engine/scene.h"
@@ -149,7 +150,9 @@ TEST(RigSession, EmulatedRigDrivesBothToolsAndReceivesForces) {
       EXPECT_LT(off, 5e-4) << "step " << k << " handle " << h;
       EXPECT_GE(s, last[h] - 0.02) << "step " << k << " handle " << h << " went back";
       EXPECT_NEAR(t.jaw_rad, 0.5 * s, 0.02) << "step " << k << " handle " << h;
-      EXPECT_EQ(t.buttons, static_cast<std::uint32_t>(kPedal * h)) << "step " << k;  // pedal too
+      EXPECT_EQ(t.buttons & kDeviceButtons, static_cast<std::uint32_t>(kPedal * h))
+          << "step " << k;  // pedal too
+      EXPECT_EQ(holder(t), h == 0 ? Hand::kLeft : Hand::kRight) << "step " << k;
       last[h] = std::max(last[h], s);
       max_progress = std::max(max_progress, s);
     }
