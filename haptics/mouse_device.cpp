@@ -63,6 +63,7 @@ void MouseKeyboardDevice::take_seat(std::size_t h, const MouseSeat& seat) {
   m_q[h] = m_goal[h];
   m_q[h].insertion_m = m_map.min_insertion_m;
   m_entering[h] = true;
+  m_pressed_until[h] = 0.0;  // the exchange the button asked for is done
 }
 
 // The handle button: held for kPressS after each press of X.

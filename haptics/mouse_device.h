@@ -16,8 +16,8 @@
 //  - the joints follow the goal with time constant ease_s, so a frame's worth of motion that
 //    arrives at once (the window reads its input once a frame) is spread over the loop's ticks
 //    instead of jumping; ease_s = 0 follows at once.
-//  - each press of X (exchanges) presses the handle button (kExchangeButton) for kPressS: the
-//    haptics stage's exchange (haptics/hand_rack.h);
+//  - each press of X (exchanges) presses the handle button (kExchangeButton) until the handle is
+//    reseated, at most kPressS: the haptics stage's exchange (haptics/hand_rack.h);
 //  - after an exchange the haptics stage reseats the handle (reseat(), from the solver thread):
 //    the handle is drawn back to its port and inserts the new instrument towards its rest joints
 //    at entry_speed_m_s along the port's axis; drags then move through the rotation that carries
@@ -55,8 +55,9 @@ struct MouseSeat {
       {{1.0, 0.0, 0.0, 0.0}, {1.0, 0.0, 0.0, 0.0}}};
 };
 
-/// How long X holds the handle button down, s: a few solver steps, so the step sees it.
-inline constexpr double kPressS = 0.05;
+/// X holds the handle button down until the exchange it asks for has reseated the handle, or at
+/// most this long, s: far longer than a solver step, so a step sees it however slow it is.
+inline constexpr double kPressS = 0.5;
 
 struct MouseMapping {
   double m_per_step = 0.003;      ///< insertion per depth step, m
