@@ -236,7 +236,6 @@ void HapticsStage::build_rack(const Scene& scene, const HapticsStageOptions& opt
     }
     items.push_back(r);
     m_port.push_back(port_pose(r.trocar.pivot_m, r.trocar.rotation * Vec3::UnitZ()));
-    m_names.push_back(tool.name);
   }
   m_rack = std::make_unique<haptics::HandRack>(std::move(items), held);
 }
@@ -245,11 +244,7 @@ void HapticsStage::build_rack(const Scene& scene, const HapticsStageOptions& opt
 void HapticsStage::exchange(std::size_t h, SimState& state) {
   const std::optional<std::size_t> from = m_rack->held(h);
   const std::optional<std::size_t> to = m_rack->exchange(h);
-  if (!from || !to) {
-    spdlog::info("haptics: {} hand: no other instrument waits in its port",
-                 h == 0 ? "left" : "right");
-    return;
-  }
+  if (!from || !to) return;  // no other instrument waits: the button does nothing
   const haptics::RackInstrument& next = m_rack->instruments()[*to];
   state.tools[m_rack->instruments()[*from].tool] = m_port[*from];
   m_tool[h] = next.tool;
@@ -257,8 +252,6 @@ void HapticsStage::exchange(std::size_t h, SimState& state) {
   if (m_mouse != nullptr)
     m_mouse->reseat(h, next.rest, next.jaw_max_rad,
                     haptics::trocar_map(next.trocar, m_rack->handle_trocar(h)).rotation);
-  spdlog::info("haptics: {} hand: {} -> {}", h == 0 ? "left" : "right", m_names[*from],
-               m_names[*to]);
 }
 
 // Loop -> solver for a handle with a rack: its instrument's pose (in its port while it enters),

@@ -144,7 +144,6 @@ class HapticsStage final : public Stage {
   std::unique_ptr<haptics::HandRack> m_rack;
   std::vector<std::size_t> m_waiting;  // tools beyond the handles, waiting in their ports
   std::vector<ToolState> m_port;       // (rack instruments) each one's pose in its port
-  std::vector<std::string> m_names;    // (rack instruments) their names, for the log
   std::array<bool, haptics::kHandles> m_pressed{};  // each handle button at the last step
 
   void build_rack(const Scene& scene, const HapticsStageOptions& options);

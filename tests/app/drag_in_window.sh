@@ -16,16 +16,7 @@ pid=$!
 window=$(timeout 60 xdotool search --sync --name '^Serosa' | head -n 1)
 [ -n "$window" ] || { echo "drag_in_window.sh: no Serosa window" >&2; kill $pid; exit 1; }
 
-# Waits until the window has drawn another frame (its title changes with the time), at most 30 s.
-frame() {
-  before=$(xdotool getwindowname "$window")
-  n=0
-  while [ "$(xdotool getwindowname "$window")" = "$before" ] && [ $n -lt 600 ]; do
-    sleep 0.05
-    n=$((n + 1))
-  done
-}
-frames() { k=0; while [ $k -lt "$1" ]; do frame; k=$((k + 1)); done; }
+. "$(dirname "$0")/window_frames.sh"
 act() { if [ "$drag" = 1 ]; then xdotool "$@"; fi; }
 
 frames 3
