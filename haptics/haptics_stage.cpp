@@ -387,6 +387,9 @@ void HapticsStage::step(const StepContext& ctx, SimState& state) {
       continue;
     }
     m_rack->follow(h, t);
+    // The mouse's handle waits drawn back until this step has seen it so: a step slower than
+    // the whole entry would otherwise never see it drawn back, and its instrument would wait.
+    if (m_mouse != nullptr && !m_rack->entering(h)) m_mouse->admit(h);
     place_rack(state, h, t);
   }
 }

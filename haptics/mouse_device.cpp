@@ -50,6 +50,12 @@ void MouseKeyboardDevice::reseat(std::size_t h, const JointState& rest, double j
   m_seat.store(m_seat_out);
 }
 
+void MouseKeyboardDevice::admit(std::size_t h) {
+  if (m_seat_out.admitted[h] == m_seat_out.generation[h]) return;
+  m_seat_out.admitted[h] = m_seat_out.generation[h];
+  m_seat.store(m_seat_out);
+}
+
 // The handle draws back to its port and heads for the new instrument's rest, jaws closed.
 void MouseKeyboardDevice::take_seat(std::size_t h, const MouseSeat& seat) {
   if (seat.generation[h] == m_generation[h]) return;
@@ -93,7 +99,8 @@ void MouseKeyboardDevice::follow_input(std::size_t h, const PointerInput& in) {
   g.jaw_rad = std::clamp(in.jaw_fraction[h], 0.0, 1.0) * m_map.jaw_max_rad[h];
 }
 
-void MouseKeyboardDevice::ease(std::size_t h, double dt_s) {
+// `held`: a reseated handle waits, drawn back, until the stage admits its instrument.
+void MouseKeyboardDevice::ease(std::size_t h, double dt_s, bool held) {
   const JointState& g = m_goal[h];
   JointState& q = m_q[h];
   const double jaw = q.jaw_rad;
@@ -102,8 +109,8 @@ void MouseKeyboardDevice::ease(std::size_t h, double dt_s) {
   q.yaw_rad += a * (g.yaw_rad - q.yaw_rad);
   q.roll_rad += a * (g.roll_rad - q.roll_rad);
   if (m_entering[h]) {  // along the port's axis at the entry speed
-    const double step = m_map.entry_speed_m_s * dt_s;
-    m_entering[h] = std::abs(g.insertion_m - q.insertion_m) > step;
+    const double step = held ? 0.0 : m_map.entry_speed_m_s * dt_s;
+    m_entering[h] = held || std::abs(g.insertion_m - q.insertion_m) > step;
     q.insertion_m = m_entering[h]
                         ? q.insertion_m + std::copysign(step, g.insertion_m - q.insertion_m)
                         : g.insertion_m;
@@ -126,7 +133,7 @@ bool MouseKeyboardDevice::poll(double now_s, DeviceSample& out) noexcept {
   for (std::size_t h = 0; h < kHandles; ++h) {
     take_seat(h, seat);
     follow_input(h, in);
-    ease(h, dt);
+    ease(h, dt, seat.admitted[h] != m_generation[h]);
     s.joints[h] = m_q[h];
     s.pose[h] = forward(m_trocars[h], m_q[h]);
     s.buttons[h] = in.buttons[h] | press(h, in, now_s);

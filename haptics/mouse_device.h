@@ -19,9 +19,10 @@
 //  - each press of X (exchanges) presses the handle button (kExchangeButton) until the handle is
 //    reseated, at most kPressS: the haptics stage's exchange (haptics/hand_rack.h);
 //  - after an exchange the haptics stage reseats the handle (reseat(), from the solver thread):
-//    the handle is drawn back to its port and inserts the new instrument towards its rest joints
-//    at entry_speed_m_s along the port's axis; drags then move through the rotation that carries
-//    the scene's directions into the handle's own trocar frame.
+//    the handle is drawn back to its port and stays there until the stage has seen it drawn back
+//    (admit()), however slow the solver's steps; then it inserts the new instrument towards its
+//    rest joints at entry_speed_m_s along the port's axis. Drags then move through the rotation
+//    that carries the scene's directions into the handle's own trocar frame.
 // Cumulative values mean no motion is lost between polls.
 #pragma once
 
@@ -48,6 +49,7 @@ struct PointerInput {
 /// A handle's new instrument, from the solver thread (HapticsStage).
 struct MouseSeat {
   std::array<std::uint32_t, kHandles> generation{};  ///< changes at each reseat of the handle
+  std::array<std::uint32_t, kHandles> admitted{};    ///< the last generation the stage admitted
   std::array<JointState, kHandles> rest{};           ///< the instrument's rest joints
   std::array<double, kHandles> jaw_max_rad{1.0, 1.0};
   /// Scene directions -> the handle's trocar frame (w, x, y, z): the drag's rotation.
@@ -56,8 +58,9 @@ struct MouseSeat {
 };
 
 /// X holds the handle button down until the exchange it asks for has reseated the handle, or at
-/// most this long, s: far longer than a solver step, so a step sees it however slow it is.
-inline constexpr double kPressS = 0.5;
+/// most this long, s: far longer than a solver step, so a step sees it however slow it is (a
+/// sanitizer build on a busy machine included).
+inline constexpr double kPressS = 2.0;
 
 struct MouseMapping {
   double m_per_step = 0.003;      ///< insertion per depth step, m
@@ -80,6 +83,9 @@ class MouseKeyboardDevice final : public Device {
   void feed(const PointerInput& in) noexcept { m_input.store(in); }
   /// Solver thread (single writer): handle h's new instrument (see the header comment).
   void reseat(std::size_t h, const JointState& rest, double jaw_max_rad, const Quat& to_handle);
+  /// Solver thread: the stage has seen handle h drawn back to its port since its last reseat,
+  /// so the new instrument may go in.
+  void admit(std::size_t h);
 
   bool poll(double now_s, DeviceSample& out) noexcept override;
   [[nodiscard]] bool connected() const noexcept override { return true; }
@@ -89,7 +95,7 @@ class MouseKeyboardDevice final : public Device {
 
  private:
   void follow_input(std::size_t h, const PointerInput& in);
-  void ease(std::size_t h, double dt_s);
+  void ease(std::size_t h, double dt_s, bool held);
   void take_seat(std::size_t h, const MouseSeat& seat);
   std::uint32_t press(std::size_t h, const PointerInput& in, double now_s);
 

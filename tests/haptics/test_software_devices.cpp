@@ -6,6 +6,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "engine/instrument_hold.h"
 #include "engine/tool_path.h"
 #include "haptics/haptic_loop.h"
 #include "haptics/mouse_device.h"
@@ -191,6 +192,50 @@ TEST(MouseKeyboardDevice, EasesAFramesInputOverTheTicks) {
   EXPECT_LT(largest, 0.1 * 0.01);  // the 1 cm frame came in more than ten ticks
   EXPECT_LT((last - (start + Vec3(0.01, 0.0, 0.0))).norm(), 1e-6);
   EXPECT_NEAR(s.joints[0].jaw_rad, map.jaw_max_rad[0], 1e-12);
+}
+
+// After an exchange the handle is drawn back to its port and waits there, jaws closed, for as
+// long as the stage has not seen it so (a slow solver step must not miss it); once admitted it
+// inserts the new instrument at the entry speed to its rest, and X presses the button until the
+// reseat (at most kPressS).
+TEST(MouseKeyboardDevice, AReseatedHandleWaitsDrawnBackUntilAdmittedThenEnters) {
+  MouseMapping map;
+  map.rest[0].insertion_m = 0.1;
+  map.rest[1].insertion_m = 0.1;
+  MouseKeyboardDevice dev(trocars(), map);
+  DeviceSample s;
+  ASSERT_TRUE(dev.poll(0.0, s));
+  PointerInput in;
+  in.exchanges[1] = 1;
+  dev.feed(in);
+  ASSERT_TRUE(dev.poll(0.001, s));
+  EXPECT_EQ(s.buttons[1] & serosa::kExchangeButton, serosa::kExchangeButton);
+  ASSERT_TRUE(dev.poll(0.001 + 0.5 * kPressS, s));
+  EXPECT_EQ(s.buttons[1] & serosa::kExchangeButton,
+            serosa::kExchangeButton);  // no reseat yet: still pressed
+  JointState rest;
+  rest.insertion_m = 0.08;
+  rest.jaw_rad = 0.5;
+  dev.reseat(1, rest, 0.7, Quat::Identity());
+  double t = 0.001 + 0.5 * kPressS;
+  for (int i = 0; i < 10'000; ++i) {  // 10 s unadmitted: it stays drawn back
+    t += 0.001;
+    ASSERT_TRUE(dev.poll(t, s));
+    ASSERT_EQ(s.joints[1].insertion_m, map.min_insertion_m) << i;
+    ASSERT_EQ(s.buttons[1] & serosa::kExchangeButton, 0u) << i;  // the reseat released the button
+  }
+  EXPECT_EQ(s.joints[1].jaw_rad, 0.0);
+  dev.admit(1);
+  const double entry_s = (0.08 - map.min_insertion_m) / map.entry_speed_m_s;
+  double reached = -1.0, last = s.joints[1].insertion_m;
+  for (int i = 1; i <= 2000 && reached < 0.0; ++i) {
+    ASSERT_TRUE(dev.poll(t + 0.001 * i, s));
+    EXPECT_LE(s.joints[1].insertion_m - last, map.entry_speed_m_s * 0.001 + 1e-12);
+    last = s.joints[1].insertion_m;
+    if (s.joints[1].insertion_m == 0.08) reached = 0.001 * i;
+  }
+  EXPECT_NEAR(reached, entry_s, 0.002);
+  EXPECT_EQ(s.joints[0].insertion_m, map.rest[0].insertion_m);  // the other hand stays put
 }
 
 TEST(SoftwareDevices, DriveTheLoop) {
