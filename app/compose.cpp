@@ -134,7 +134,8 @@ Composition compose(const Scene& scene, const AssembledScene& assembled, Compose
     CuttingStageOptions co;
     co.scissors = listed(Effect::kCutting);
     co.hooks = listed(Effect::kCautery);
-    co.validate = options.validate_cuts || kCheckEveryCutByDefault;  // always in debug builds
+    co.staplers = listed(Effect::kCutting) && listed(Effect::kClips);  // its knife and lines
+    co.validate = options.validate_cuts || kCheckEveryCutByDefault;    // always in debug builds
     cutting_stage = std::make_unique<CuttingStage>(scene, co);
   }
   // The haptic loop renders the contact stage's planes (not in a replay: no loop runs there).

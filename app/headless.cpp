@@ -120,17 +120,24 @@ Json clips_json(const Scene& scene, const SimState& state, const Composition& co
     }
     const Vec3 mid = 0.5 * (c.end(0) + c.end(1));
     placed.push_back({{"tool", scene.tools[c.tool].name},
-                      {"kind", c.kind == Clip::Kind::kLoop ? "loop" : "clip"},
+                      {"kind", c.kind == Clip::Kind::kLoop     ? "loop"
+                               : c.kind == Clip::Kind::kStaple ? "staple"
+                                                               : "clip"},
                       {"time_s", c.placed_s},
                       {"nodes", c.nodes},
                       {"groups", std::move(groups)},
                       {"centre_m", {mid.x(), mid.y(), mid.z()}}});
   }
-  Json dropped = Json::object();
-  for (std::size_t i = 0; i < scene.tools.size(); ++i)
-    if (scene.tools[i].kind == ToolKind::kClipApplier || scene.tools[i].kind == ToolKind::kEndoloop)
+  Json dropped = Json::object(), refused = Json::object();
+  for (std::size_t i = 0; i < scene.tools.size(); ++i) {
+    const ToolKind k = scene.tools[i].kind;
+    if (k == ToolKind::kClipApplier || k == ToolKind::kEndoloop || k == ToolKind::kStapler)
       dropped[scene.tools[i].name] = comp.clips->dropped()[i];
-  return {{"placed", std::move(placed)}, {"dropped", std::move(dropped)}};
+    if (k == ToolKind::kStapler) refused[scene.tools[i].name] = comp.clips->refused()[i];
+  }
+  Json j = {{"placed", std::move(placed)}, {"dropped", std::move(dropped)}};
+  if (!refused.empty()) j["refused"] = std::move(refused);  // fires on a ligature, per stapler
+  return j;
 }
 
 Json cutting_json(const Composition& comp) {
@@ -147,6 +154,10 @@ Json cutting_json(const Composition& comp) {
          {"strokes_on_clip", c.strokes_on_clip},
          {"hook_strokes", c.hook_strokes},
          {"coagulated_nodes", c.coagulated_nodes}};
+    if (comp.cutting->num_staplers() > 0) {
+      j["stapler_fires"] = c.stapler_fires;
+      j["stapler_fires_held"] = c.stapler_fires_held;
+    }
     Json strokes = Json::array();
     for (const cutting::StrokeReport& r : c.stroke_reports)
       strokes.push_back({{"first_step", r.first_step},

@@ -157,6 +157,7 @@ void fill_render_tools(const Scene& scene, const SimState& state, render::Render
     rc.end = to_float(c.end(1));
     rc.across = to_float(Vec3(c.frame.col(0)));
     rc.loop = c.kind == Clip::Kind::kLoop;
+    rc.staple = c.kind == Clip::Kind::kStaple;
     rc.radius = static_cast<float>(c.reach_m());
     frame.clips.push_back(rc);
   }
@@ -189,6 +190,7 @@ void fill_render_tools(const Scene& scene, const SimState& state, render::Render
              : tool.kind == ToolKind::kClipApplier ? render::RenderTool::Kind::kClipApplier
              : tool.kind == ToolKind::kHook        ? render::RenderTool::Kind::kHook
              : tool.kind == ToolKind::kEndoloop    ? render::RenderTool::Kind::kEndoloop
+             : tool.kind == ToolKind::kStapler     ? render::RenderTool::Kind::kStapler
                                                    : render::RenderTool::Kind::kGrasper;
     t.tip = to_float(in.tip_m);
     t.quat_wxyz = to_float(in.quat_wxyz);

@@ -1,7 +1,9 @@
 #include "contact/clip_stage.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <optional>
 
 #include "engine/endoloop.h"
 #include "engine/geometry/rigid_fit.h"
@@ -27,12 +29,17 @@ Vec3 read_vec3(StateReader& in) {
 ClipStage::ClipStage(const Scene& scene) {
   const bool clips = scene.settings.has(Effect::kClips);
   const bool loops = scene.settings.has(Effect::kLoops);
-  for (const Tool& t : scene.tools)
+  for (const Tool& t : scene.tools) {
     m_role.push_back(clips && t.kind == ToolKind::kClipApplier ? Role::kApplier
                      : loops && t.kind == ToolKind::kEndoloop  ? Role::kLoop
+                     : clips && t.kind == ToolKind::kStapler   ? Role::kStapler
                                                                : Role::kNone);
+    m_staplers = m_staplers || m_role.back() == Role::kStapler;
+  }
   m_widest.assign(scene.tools.size(), 0.0);
   m_dropped.assign(scene.tools.size(), 0);
+  m_refused.assign(scene.tools.size(), 0);
+  m_triggers.assign(scene.tools.size(), StaplerTrigger{});
 }
 
 void ClipStage::step(const StepContext& ctx, SimState& state) {
@@ -42,8 +49,14 @@ void ClipStage::step(const StepContext& ctx, SimState& state) {
   for (std::size_t i = 0; i < m_role.size() && i < state.tools.size(); ++i) {
     if (m_role[i] == Role::kNone) continue;
     const ToolState& ts = state.tools[i];
-    if (in_port(ts)) {  // withdrawn: an open clip or loop goes out unplaced
+    if (in_port(ts)) {  // withdrawn: an open clip, loop or stapler goes out unplaced, unfired
       m_widest[i] = 0.0;
+      m_triggers[i] = StaplerTrigger{};
+      continue;
+    }
+    if (m_role[i] == Role::kStapler) {
+      if (const std::optional<double> fired = m_triggers[i].update(ts.jaw_rad))
+        staple(ctx, state, i, ts, *fired);
       continue;
     }
     const bool loop = m_role[i] == Role::kLoop;
@@ -78,6 +91,59 @@ void ClipStage::place(const StepContext& ctx, SimState& state, std::size_t tool,
   }
   find_anchors(state.mesh, p);
   m_clips.push_back(std::move(p));
+}
+
+// Jaws closed on a ligature misfire: the staples would meet titanium or suture and the knife
+// would cut what holds the tissue. Otherwise each staple line clamps its band; a stapler closed
+// on nothing lays none.
+void ClipStage::staple(const StepContext& ctx, SimState& state, std::size_t tool,
+                       const ToolState& ts, double opening_rad) {
+  const StaplerJaws jaws = stapler_jaws(ts, opening_rad);
+  const bool on_ligature = std::any_of(m_clips.begin(), m_clips.end(), [&](const Placed& p) {
+    return segment_meets_stapled_region(jaws, p.clip.end(0), p.clip.end(1), p.clip.reach_m());
+  });
+  if (on_ligature) {
+    ++m_refused[tool];
+    return;
+  }
+  std::array<Placed, 2> lines;
+  for (int k = 0; k < 2; ++k) {
+    Placed& p = lines[static_cast<std::size_t>(k)];
+    p.clip.tool = tool;
+    p.clip.placed_s = ctx.time_s;
+    clamp_staple_line(state, jaws, k, p);
+    // Held from now on: neither line takes the other's nodes as its anchors.
+    for (std::int32_t n : p.nodes) state.mesh.fixed[static_cast<std::size_t>(n)] = 1;
+  }
+  if (lines[0].nodes.empty() && lines[1].nodes.empty()) {
+    ++m_dropped[tool];
+    return;
+  }
+  for (Placed& p : lines) {
+    if (p.nodes.empty()) continue;  // tissue on one side of the knife only: one line holds it
+    find_anchors(state.mesh, p);
+    m_clips.push_back(std::move(p));
+  }
+}
+
+void ClipStage::clamp_staple_line(const SimState& state, const StaplerJaws& jaws, int k,
+                                  Placed& p) {
+  p.clip.kind = Clip::Kind::kStaple;
+  p.clip.hinge_m = staple_line_hinge(jaws, k);
+  p.clip.frame = jaws.frame;
+  const Vec3 centre(0.0, k == 0 ? -kStapleLineOffset : kStapleLineOffset, 0.0);
+  const TetMesh& mesh = state.mesh;
+  double widest = 0.0;  // the clamped tissue's half thickness across the jaws, m
+  for (std::int32_t n = 0; n < mesh.num_nodes(); ++n) {
+    const auto un = static_cast<std::size_t>(n);
+    if (mesh.fixed[un] != 0) continue;  // the scene's, a grasper's or a ligature's
+    const Vec3 l = stapler_local(jaws, mesh.x[un]);
+    if (!in_stapled_wedge(jaws, l) || staple_line_of(l) != k) continue;
+    p.nodes.push_back(n);
+    p.local.push_back(l - centre);
+    widest = std::max(widest, std::abs(l.x()));
+  }
+  p.press = widest > 0.5 * kStapleGap ? 0.5 * kStapleGap / widest : 1.0;
 }
 
 void ClipStage::clamp_between_jaws(const SimState& state, std::size_t tool, const ToolState& ts,
@@ -258,6 +324,10 @@ void ClipStage::publish(SimState& state) const {
 void ClipStage::save(StateWriter& out) const {
   out.array(m_widest);
   out.array(m_dropped);
+  if (m_staplers) {  // (a scene without staplers keeps the block it always had)
+    out.array(m_refused);
+    for (const StaplerTrigger& t : m_triggers) out.f64(t.widest_rad);
+  }
   out.u32(static_cast<std::uint32_t>(m_clips.size()));
   for (const Placed& p : m_clips) {
     out.u8(static_cast<std::uint8_t>(p.clip.kind));
@@ -283,12 +353,18 @@ void ClipStage::restore(StateReader& in, SimState& state) {
   in.array(m_dropped);
   if (m_widest.size() != m_role.size() || m_dropped.size() != m_role.size())
     in.fail("another number of tools than the scene's");
+  if (m_staplers) {
+    in.array(m_refused);
+    if (m_refused.size() != m_role.size()) in.fail("another number of tools than the scene's");
+    for (StaplerTrigger& t : m_triggers) t.widest_rad = in.f64();
+  }
   const std::uint32_t count = in.u32();
   m_clips.clear();
   for (std::uint32_t i = 0; i < count; ++i) {
     Placed p;
     const std::uint8_t kind = in.u8();
-    if (kind > 1) in.fail("an unknown kind of ligature");
+    if (kind > static_cast<std::uint8_t>(Clip::Kind::kStaple))
+      in.fail("an unknown kind of ligature");
     p.clip.kind = static_cast<Clip::Kind>(kind);
     p.clip.hinge_m = read_vec3(in);
     for (int c = 0; c < 3; ++c) p.clip.frame.col(c) = read_vec3(in);

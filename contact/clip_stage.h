@@ -20,6 +20,14 @@
 //   best carries its anchors (the free nodes sharing a tet with a clamped node) from where they
 //   were then to where they are now (engine/geometry/rigid_fit.h). A rigid motion of the tissue
 //   moves the clip with it exactly; traction on the tissue drags it along.
+// - Stapling: a stapler (engine/stapler.h) fires when its jaws close from an armed opening: it
+//   lays two staple lines, each a ligature of kind kStaple that clamps every free node in its
+//   band (kStapleLineOffset +- kStapleLineHalfWidth either side of the knife along the pin) inside
+//   the wedge the jaws closed from, over [kStapleStart, kCartridgeLength]; pressed across to
+//   kStapleGap over kStapleSqueezeS. This stage decides whether it fires: jaws closed on a placed
+//   ligature (its centre line within its reach of the stapled region) misfire (refused: counted,
+//   nothing laid), jaws closed on no tissue lay nothing (counted as dropped). The cutting stage,
+//   later in the same step, divides between the lines only when this stage laid them.
 // - A cut's clone of a clamped node is clamped too (closing scissors never cut through a clip:
 //   the cutting stage reads the clips in the hand-off).
 // Every placed clip is handed on each step (SimState::handoff.clips) for the cutting stage, the
@@ -34,6 +42,7 @@
 #include "engine/math.h"
 #include "engine/scene.h"
 #include "engine/stage.h"
+#include "engine/stapler.h"
 #include "engine/tet_mesh.h"
 #include "engine/tool_state.h"
 
@@ -48,12 +57,19 @@ inline constexpr double kClipSettleS = 0.1;    ///< after this the tissue carrie
 /// factor went stale at once (100 CG iterations a step over 40 steps in the default scene).
 inline constexpr double kLoopSqueezeS = 0.25;  ///< time the knot takes to cinch the tissue, s
 inline constexpr double kLoopSettleS = 0.3;    ///< after this the tissue carries the loop, s
+/// Staple lines press a whole cross-section (an appendix's base), so as slowly as a loop.
+inline constexpr double kStapleSqueezeS = 0.25;  ///< time the staples take to close, s
+inline constexpr double kStapleSettleS = 0.3;    ///< after this the tissue carries the lines, s
 
 [[nodiscard]] constexpr double squeeze_s(Clip::Kind kind) {
-  return kind == Clip::Kind::kLoop ? kLoopSqueezeS : kClipSqueezeS;
+  return kind == Clip::Kind::kLoop     ? kLoopSqueezeS
+         : kind == Clip::Kind::kStaple ? kStapleSqueezeS
+                                       : kClipSqueezeS;
 }
 [[nodiscard]] constexpr double settle_s(Clip::Kind kind) {
-  return kind == Clip::Kind::kLoop ? kLoopSettleS : kClipSettleS;
+  return kind == Clip::Kind::kLoop     ? kLoopSettleS
+         : kind == Clip::Kind::kStaple ? kStapleSettleS
+                                       : kClipSettleS;
 }
 
 class ClipStage final : public Stage {
@@ -66,9 +82,11 @@ class ClipStage final : public Stage {
   void save(StateWriter& out) const override;
   void restore(StateReader& in, SimState& state) override;
 
-  /// Clips closed on no tissue and loops cinched round none, per tool (scene tool order; 0 for
-  /// other tools).
+  /// Clips closed on no tissue, loops cinched round none and staplers fired on none, per tool
+  /// (scene tool order; 0 for other tools).
   [[nodiscard]] const std::vector<std::int64_t>& dropped() const noexcept { return m_dropped; }
+  /// Stapler fires refused because the jaws closed on a placed ligature, per tool (scene order).
+  [[nodiscard]] const std::vector<std::int64_t>& refused() const noexcept { return m_refused; }
 
  private:
   struct Placed {
@@ -83,7 +101,7 @@ class ClipStage final : public Stage {
     bool settled = false;
   };
 
-  enum class Role : std::uint8_t { kNone, kApplier, kLoop };
+  enum class Role : std::uint8_t { kNone, kApplier, kLoop, kStapler };
 
   void place(const StepContext& ctx, SimState& state, std::size_t tool, const ToolState& ts);
   /// The free nodes a loop cinched now ligates, in p.nodes and p.local (its frame set).
@@ -91,6 +109,12 @@ class ClipStage final : public Stage {
   /// The free nodes between a closing applier's jaws, in p.nodes and p.local.
   void clamp_between_jaws(const SimState& state, std::size_t tool, const ToolState& ts,
                           Placed& p) const;
+  /// Fires a stapler: refuses on a ligature, else lays the staple lines that clamp tissue.
+  void staple(const StepContext& ctx, SimState& state, std::size_t tool, const ToolState& ts,
+              double opening_rad);
+  /// The free nodes in staple line k's band between the jaws, in p.nodes and p.local (its frame
+  /// set).
+  static void clamp_staple_line(const SimState& state, const StaplerJaws& jaws, int k, Placed& p);
   /// The anchors and the groups around p's nodes.
   static void find_anchors(const TetMesh& mesh, Placed& p);
   void clamp_clones(const SimState& state);
@@ -101,11 +125,14 @@ class ClipStage final : public Stage {
   void hold(Placed& p, SimState& state, double age_s) const;
   void publish(SimState& state) const;
 
-  std::vector<Role> m_role;             // (tools) what it places, if anything
-  std::vector<double> m_widest;         // (tools) widest opening since its last clip, rad
-  std::vector<std::int64_t> m_dropped;  // (tools)
-  std::vector<Placed> m_clips;          // in the order placed
-  std::vector<Vec3> m_to;               // scratch: the anchors now, for the fit
+  std::vector<Role> m_role;                // (tools) what it places, if anything
+  std::vector<double> m_widest;            // (tools) widest opening since its last clip, rad
+  std::vector<std::int64_t> m_dropped;     // (tools)
+  std::vector<std::int64_t> m_refused;     // (tools) stapler fires on a ligature
+  std::vector<StaplerTrigger> m_triggers;  // (tools) each stapler's jaw channel
+  bool m_staplers = false;                 // the scene has a stapler (its state is saved)
+  std::vector<Placed> m_clips;             // in the order placed
+  std::vector<Vec3> m_to;                  // scratch: the anchors now, for the fit
 };
 
 }  // namespace serosa::contact

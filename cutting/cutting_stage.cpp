@@ -1,6 +1,7 @@
 #include "cutting/cutting_stage.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "cutting/clip_guard.h"
@@ -22,6 +23,8 @@ CuttingStage::CuttingStage(const Scene& scene, CuttingStageOptions options) : m_
       m_scissors.push_back(Scissors{i, std::nullopt, std::nullopt, std::nullopt, 0});
     if (options.hooks && scene.tools[i].kind == ToolKind::kHook)
       m_hooks.push_back(Hook{i, std::nullopt, std::nullopt, 0});
+    if (options.staplers && scene.tools[i].kind == ToolKind::kStapler)
+      m_staplers.push_back(Stapler{i, StaplerTrigger{}});
   }
   m_cut_options.classify_rel = scene.cutting.tolerance;
   m_swept_strokes = scene.cutting.strokes == StrokeSurfaceKind::kSwept;
@@ -62,7 +65,7 @@ double hinge_distance(const ToolState& a, const ToolState& b) {
 
 void CuttingStage::step(const StepContext& ctx, SimState& state) {
   state.handoff.cuts.clear();  // the FEM stage of this step has taken the last step's
-  if (!m_scissors.empty() || !m_hooks.empty())
+  if (!m_scissors.empty() || !m_hooks.empty() || !m_staplers.empty())
     cutting::reserve_for_cuts(state.mesh);  // no realloc in the first cut
   for (Scissors& s : m_scissors) {
     if (s.tool >= state.tools.size()) continue;
@@ -74,6 +77,12 @@ void CuttingStage::step(const StepContext& ctx, SimState& state) {
     const std::optional<ToolState> before = s.before;
     s.before = now;
     if (before) follow(ctx, state, s, *before, now);
+  }
+  for (Stapler& st : m_staplers) {
+    if (st.tool >= state.tools.size()) continue;
+    const ToolState now = state.tools[st.tool];
+    if (const std::optional<double> fired = st.trigger.update(now.jaw_rad))
+      fire(ctx, state, st.tool, now, *fired);
   }
   if (m_hooks.empty()) return;
   m_coagulated.resize(static_cast<std::size_t>(state.mesh.num_nodes()), 0);
@@ -233,6 +242,35 @@ void CuttingStage::end_stroke(const StepContext& ctx, SimState& state, Scissors&
   cut_stroke(ctx, state, s.tool, cut_with_these, report);
 }
 
+void CuttingStage::fire(const StepContext& ctx, SimState& state, std::size_t tool,
+                        const ToolState& ts, double opening_rad) {
+  const bool laid =
+      std::any_of(state.handoff.clips.begin(), state.handoff.clips.end(), [&](const Clip& c) {
+        return c.kind == Clip::Kind::kStaple && c.tool == tool && c.placed_s == ctx.time_s;
+      });
+  if (!laid) {
+    ++m_stats.stapler_fires_held;
+    return;
+  }
+  const std::array<Vec3, 4> corners = knife_polygon(stapler_jaws(ts, opening_rad));
+  const std::optional<ConvexPolygon> knife =
+      ConvexPolygon::make(std::vector<Vec3>(corners.begin(), corners.end()));
+  if (!knife) {  // a non-finite pose: nothing to cut along
+    ++m_stats.degenerate_sweeps;
+    return;
+  }
+  StrokeReport report;
+  report.first_step = ctx.step;
+  report.last_step = ctx.step;
+  report.steps = 1;
+  report.polygons = 1;
+  ++m_stats.strokes;
+  ++m_stats.stapler_fires;
+  ++m_stats.sweeps;
+  cut(ctx, state, tool, 0, *knife, nullptr, report);
+  if (m_stats.stroke_reports.size() < kMaxStrokeReports) m_stats.stroke_reports.push_back(report);
+}
+
 void CuttingStage::cut_stroke(const StepContext& ctx, SimState& state, std::size_t tool,
                               const StrokePolygons& polygons, StrokeReport& report) {
   // Blades that closed on a clip met titanium: the tissue they hold is not divided.
@@ -386,7 +424,9 @@ void CuttingStage::save(StateWriter& out) const {
     out.u8(s.stroke ? 1 : 0);
     if (s.stroke) s.stroke->save(out);
   }
-  if (m_hooks.empty()) return;  // (a scene without hooks keeps the block it always had)
+  // (a scene without staplers, or hooks, keeps the block it always had)
+  for (const Stapler& st : m_staplers) out.f64(st.trigger.widest_rad);
+  if (m_hooks.empty()) return;
   for (const Hook& h : m_hooks) {
     write_pose(out, h.before);
     out.u64(h.first_step);
@@ -406,6 +446,7 @@ void CuttingStage::restore(StateReader& in, SimState& state) {
     s.stroke.reset();
     if (in.u8() != 0) s.stroke = ScissorsStroke::load(in);
   }
+  for (Stapler& st : m_staplers) st.trigger.widest_rad = in.f64();
   if (!m_hooks.empty()) {
     for (Hook& h : m_hooks) {
       h.before = read_pose(in);

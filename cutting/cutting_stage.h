@@ -33,6 +33,14 @@
 // ends rather than while the jaws close, and where the swept region is not convex (a blade
 // drawn back while it closes), its hull is cut.
 //
+// A stapler (engine/stapler.h) divides with its knife when it fires (its jaws close from an armed
+// opening): one cut, the knife's trapezoid in the jaws' closing plane between the two staple
+// lines, across the wedge the jaws closed from, through cutting::cut_mesh like a scissors stroke.
+// The clips stage, earlier in the same step, decides whether it fires (contact/clip_stage.h): the
+// knife runs only when that stage laid this fire's staple lines, so a stapler closed on a
+// ligature (refused) or on nothing cuts nothing. Its own lines lie beside the knife, never across
+// it, so the clip guard is not asked about them.
+//
 // A hook (effect "cautery", engine/hook.h) divides the same way: while its pedal is down, its
 // crook's path is one stroke (the same pinned samples), cut as one polygon when the pedal comes
 // up. The nodes within kCoagulationRadius of the live crook and the nodes its cut creates are
@@ -56,6 +64,7 @@
 #include "cutting/scissors_stroke.h"
 #include "engine/scene.h"
 #include "engine/stage.h"
+#include "engine/stapler.h"
 #include "engine/tool_geometry.h"
 #include "engine/tool_state.h"
 #include "engine/topology_delta.h"
@@ -91,6 +100,9 @@ struct CuttingStageOptions {
   /// path is one stroke, cut when the pedal comes up, and the nodes within kCoagulationRadius of
   /// the live crook are coagulated (SimState::handoff.coagulated).
   bool hooks = false;
+  /// Follow the staplers (the scene lists "cutting"; a stapler needs "clips" too): each fire's
+  /// knife cut.
+  bool staplers = true;
   /// Check every cut with cutting::check_cut (costly: copies the mesh). On in debug builds; tests
   /// and `serosa headless --validate-cuts` turn it on in the others.
   bool validate = kCheckEveryCutByDefault;
@@ -126,8 +138,12 @@ struct CuttingStageStats {
   std::uint64_t degenerate_sweeps = 0;  ///< strokes that gave no polygon (no motion, NaN)
   std::uint64_t strokes_on_clip = 0;    ///< strokes left uncut: their blades closed on a clip
   std::uint64_t hook_strokes = 0;       ///< of the strokes, a hook's (pedal down to pedal up)
-  std::int64_t coagulated_nodes = 0;    ///< nodes a live hook coagulated (clones included)
-  std::uint64_t cuts = 0;               ///< polygons that changed the mesh
+  std::uint64_t stapler_fires = 0;      ///< of the strokes, a stapler's knife between its lines
+  /// Stapler fires that laid no staple lines, so the knife did not run: jaws closed on a ligature
+  /// (refused) or on no tissue (the clips stage counts which: refused, dropped).
+  std::uint64_t stapler_fires_held = 0;
+  std::int64_t coagulated_nodes = 0;  ///< nodes a live hook coagulated (clones included)
+  std::uint64_t cuts = 0;             ///< polygons that changed the mesh
   std::int64_t tets_removed = 0;
   std::int64_t tets_added = 0;
   std::int64_t nodes_added = 0;
@@ -154,6 +170,7 @@ class CuttingStage final : public Stage {
 
   [[nodiscard]] const CuttingStageStats& stats() const noexcept { return m_stats; }
   [[nodiscard]] std::size_t num_scissors() const noexcept { return m_scissors.size(); }
+  [[nodiscard]] std::size_t num_staplers() const noexcept { return m_staplers.size(); }
 
  private:
   struct Scissors {
@@ -162,6 +179,11 @@ class CuttingStage final : public Stage {
     std::optional<ScissorsStroke> stroke;  // the closing stroke in progress
     std::optional<ToolState> paused;       // pose where its jaws last closed
     std::uint64_t first_step = 0;          // step of the stroke's first sweep
+  };
+
+  struct Stapler {
+    std::size_t tool = 0;    // index into Scene::tools / SimState::tools
+    StaplerTrigger trigger;  // its jaw channel, as the clips stage follows it
   };
 
   struct Hook {
@@ -183,6 +205,9 @@ class CuttingStage final : public Stage {
   void coagulate_cut(const SimState& state, std::size_t first_cut);
   /// Gives the new nodes of this step's cuts the marks of their parents.
   void inherit_coagulation(const SimState& state, std::size_t first_cut);
+  /// A stapler fired from `opening_rad`: its knife cuts between the lines laid this step.
+  void fire(const StepContext& ctx, SimState& state, std::size_t tool, const ToolState& ts,
+            double opening_rad);
   /// Cuts a finished stroke's polygons, unless they meet a clip; reports it.
   void cut_stroke(const StepContext& ctx, SimState& state, std::size_t tool,
                   const StrokePolygons& polygons, StrokeReport& report);
@@ -207,6 +232,7 @@ class CuttingStage final : public Stage {
   void refresh_bvh(const StepContext& ctx, const TetMesh& mesh);
   std::vector<Scissors> m_scissors;
   std::vector<Hook> m_hooks;
+  std::vector<Stapler> m_staplers;
   std::vector<std::int32_t> m_near;        // scratch: tets near a live crook
   std::vector<std::uint8_t> m_coagulated;  // (n) 1: coagulated by a live hook (hooks only)
   std::uint64_t m_coagulated_version = 0;  // bumped with every mark added

@@ -1,6 +1,7 @@
-// A ligature: a titanium clip a clip applier closes across tissue (a vessel, the mesoappendix), or
-// an endoloop's suture cinched around it (the appendix's base). It clamps the tissue it closes on
-// and is carried by that tissue from then on (contact/clip_stage.h); closing scissors never cut
+// A ligature: a titanium clip a clip applier closes across tissue (a vessel, the mesoappendix), an
+// endoloop's suture cinched around it (the appendix's base), or one of the two staple lines a
+// cutter-stapler lays either side of its knife (engine/stapler.h). It clamps the tissue it closes
+// on and is carried by that tissue from then on (contact/clip_stage.h); closing scissors never cut
 // through one (cutting/cutting_stage.h), and the renderer draws it. Placed ligatures are part of
 // the step's hand-off, for those readers.
 #pragma once
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "engine/math.h"
+#include "engine/stapler.h"
 
 namespace serosa {
 
@@ -32,13 +34,17 @@ struct Clip {
   enum class Kind : std::uint8_t {
     kClip,  ///< a clip: two legs over [kClipStart, kClipStart + kClipLength] beyond the hinge
     kLoop,  ///< a cinched endoloop: a ring of radius kLoopTightRadius about its centre
+    /// a staple line: rows of staples over [kStapleStart, kCartridgeLength] beyond the stapler's
+    /// hinge, kStapleLineHalfWidth either side of its centre line along the pin
+    kStaple,
   };
   Kind kind = Kind::kClip;
-  /// A clip: the applier's jaw hinge when it closed; a loop: the ring's centre; carried along, m.
+  /// A clip: the applier's jaw hinge when it closed; a loop: the ring's centre; a staple line: the
+  /// stapler's hinge moved to the line's centre along the pin; carried along, m.
   Vec3 hinge_m = Vec3::Zero();
-  /// A clip's columns: across (the direction its legs pressed the tissue), pin (its width) and
-  /// along (its length, away from the hinge). A loop's: two directions in its plane and its
-  /// axis. Orthonormal, right-handed.
+  /// A clip's (and a staple line's) columns: across (the direction its legs pressed the tissue),
+  /// pin (its width) and along (its length, away from the hinge). A loop's: two directions in its
+  /// plane and its axis. Orthonormal, right-handed.
   Mat3 frame = Mat3::Identity();
   std::size_t tool = 0;     ///< the applier that placed it (index into Scene::tools)
   double placed_s = 0.0;    ///< simulated time it closed, s
@@ -47,18 +53,21 @@ struct Clip {
   std::int32_t node = -1;   ///< one of them (the first), id: which piece it is on after a cut
   Vec3 rest_centre_m = Vec3::Zero();  ///< the mean rest position of the nodes it clamps, m
 
-  /// End k of a clip's centre line (0: nearer the hinge, 1: the far end), m; of a loop's axis
-  /// across its suture (kLoopHalfWidth either side of its centre).
+  /// End k of a clip's (a staple line's) centre line (0: nearer the hinge, 1: the far end), m; of
+  /// a loop's axis across its suture (kLoopHalfWidth either side of its centre).
   [[nodiscard]] Vec3 end(int k) const {
     if (kind == Kind::kLoop) return hinge_m + (k == 0 ? -1.0 : 1.0) * kLoopHalfWidth * axis();
+    if (kind == Kind::kStaple) return hinge_m + (k == 0 ? kStapleStart : kCartridgeLength) * axis();
     return hinge_m + (kClipStart + (k == 0 ? 0.0 : kClipLength)) * axis();
   }
   /// Unit: a clip's length, away from its hinge; a loop's axis.
   [[nodiscard]] Vec3 axis() const { return frame.col(2); }
   /// How far beyond its centre line a ligature reaches, m: a clip's legs' half width, a loop's
-  /// cinched radius.
+  /// cinched radius, a staple line's half width.
   [[nodiscard]] double reach_m() const {
-    return kind == Kind::kLoop ? kLoopTightRadius : kClipHalfWidth;
+    return kind == Kind::kLoop     ? kLoopTightRadius
+           : kind == Kind::kStaple ? kStapleLineHalfWidth
+                                   : kClipHalfWidth;
   }
 };
 

@@ -1,8 +1,8 @@
 // An endoloop: a pre-tied suture loop with a sliding knot at the end of a knot-pusher tube. The
 // loop is passed over the appendix and cinched at its base, where it ligates the tissue it
-// encircles (contact/clip_stage.h). Of the two ways to secure the base, a loop rather than a
-// stapler: it is what most trainers teach and what costs least, and it needs no staple line or
-// second cut: the scissors transect beyond it.
+// encircles (contact/clip_stage.h). Of the two ways to secure the base, the default scene takes a
+// loop rather than a stapler: it is what most trainers teach and what costs least, and it needs
+// no staple line: the scissors transect beyond it (the stapler variant: engine/stapler.h).
 //
 // The tool's jaw channel is the loop's size: open (jaw_rad >= kLoopArmRad) it is a ring of
 // radius kLoopRadius in the plane normal to the shaft through the tool's tip, its knot at the tip

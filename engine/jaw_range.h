@@ -20,6 +20,8 @@ namespace serosa {
       return 0.7;
     case ToolKind::kEndoloop:
       return 0.6;
+    case ToolKind::kStapler:  // 35 mm jaws: 21 mm apart at the tips, 12 mm at 20 mm
+      return 0.6;
     case ToolKind::kHook:
     case ToolKind::kEndoscope:
       break;

@@ -32,12 +32,13 @@ constexpr NameTable<SolverKind, 4> kSolverNames{{{SolverKind::kPcg, "pcg"},
                                                  {SolverKind::kCholmod, "cholmod"},
                                                  {SolverKind::kPcgCholmod, "pcg-cholmod"},
                                                  {SolverKind::kPcgLagged, "pcg-lagged"}}};
-constexpr NameTable<ToolKind, 6> kToolKindNames{{{ToolKind::kScissors, "scissors"},
+constexpr NameTable<ToolKind, 7> kToolKindNames{{{ToolKind::kScissors, "scissors"},
                                                  {ToolKind::kGrasper, "grasper"},
                                                  {ToolKind::kEndoscope, "endoscope"},
                                                  {ToolKind::kClipApplier, "clip-applier"},
                                                  {ToolKind::kHook, "hook"},
-                                                 {ToolKind::kEndoloop, "endoloop"}}};
+                                                 {ToolKind::kEndoloop, "endoloop"},
+                                                 {ToolKind::kStapler, "stapler"}}};
 constexpr NameTable<DeviceKind, 4> kDeviceNames{{{DeviceKind::kRig, "rig"},
                                                  {DeviceKind::kRigEmulated, "rig-emulated"},
                                                  {DeviceKind::kMouse, "mouse"},

@@ -64,7 +64,8 @@ enum class ToolKind : std::uint8_t {
   kEndoscope,
   kClipApplier,
   kHook,
-  kEndoloop
+  kEndoloop,
+  kStapler  ///< a linear cutter-stapler (engine/stapler.h)
 };
 enum class DeviceKind : std::uint8_t { kRig, kRigEmulated, kMouse, kScript };
 enum class Hand : std::uint8_t { kLeft, kRight };

@@ -1026,6 +1026,14 @@ class Loader {
              "an endoloop ligates tissue, but effect \"loops\" is not listed",
              "\"loops\" in scene.effects (with \"contact\", \"surface\" and \"fem\")");
       }
+      if (scene.tools[i].kind == ToolKind::kStapler &&
+          (!s.has(Effect::kClips) || !s.has(Effect::kCutting))) {
+        fail(m_kind_lines[i], at("tool", i) + ".kind",
+             "a stapler lays staple lines (effect \"clips\") and divides between them (effect "
+             "\"cutting\"), but they are not both listed",
+             "\"clips\" and \"cutting\" in scene.effects (with \"contact\", \"surface\" and "
+             "\"fem\")");
+      }
       if (scene.tools[i].kind == ToolKind::kHook && !s.has(Effect::kCautery)) {
         fail(m_kind_lines[i], at("tool", i) + ".kind",
              "a hook divides and coagulates tissue, but effect \"cautery\" is not listed",

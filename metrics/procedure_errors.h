@@ -1,6 +1,7 @@
 // Errors the scene detects in a procedure (the metrics stage keeps them):
-// - bleeding: a cut (scissors or hook) through the artery's group while no clip clamps that
-//   group (a clipped artery counts as secured);
+// - bleeding: a cut (scissors, hook or a stapler's knife) through the artery's group while no
+//   ligature clamps that group (a clipped or stapled artery counts as secured: a stapler lays its
+//   lines in the step its knife cuts);
 // - thermal injury: a live hook coagulating tissue of a protected group (the cecum wall): one
 //   per press of the pedal in which it does.
 // Each is counted and kept with its time, for the report, the assessment and the replay.

@@ -13,6 +13,11 @@ namespace {
 constexpr std::uint8_t kSpecimenNode = 1;
 constexpr std::uint8_t kBaseNode = 2;
 
+// What secures the base: an endoloop cinched round it or a stapler's line across it.
+bool secures_base(const Clip& c) {
+  return c.kind == Clip::Kind::kLoop || c.kind == Clip::Kind::kStaple;
+}
+
 }  // namespace
 
 ProcedureSteps::ProcedureSteps(ProcedureGroupIds ids, std::vector<std::string> tools)
@@ -120,7 +125,7 @@ void ProcedureSteps::divide(const SimState& state) {
 
 void ProcedureSteps::secure(const SimState& state) {
   for (const Clip& c : state.handoff.clips) {
-    if (c.kind != Clip::Kind::kLoop) continue;
+    if (!secures_base(c)) continue;
     if (std::find(c.groups.begin(), c.groups.end(), m_ids.specimen) == c.groups.end()) continue;
     if ((c.rest_centre_m - m_origin).norm() > kBaseZone) continue;
     mark(kSecure, m_time, static_cast<std::int64_t>(c.tool));
@@ -128,8 +133,9 @@ void ProcedureSteps::secure(const SimState& state) {
   }
 }
 
-// Transected when the specimen's far end is in a piece without the base. A loop must then be on
-// a piece with the base (the stump): else the cut went above the securing.
+// Transected when the specimen's far end is in a piece without the base. A loop or a staple line
+// must then be on a piece with the base (the stump): else the cut went above the securing. A
+// stapler's knife runs between its two lines, so its stump-side line is there.
 void ProcedureSteps::transect(const SimState& state, double time_s, ProcedureErrors& errors) {
   const TetMesh& mesh = state.mesh;
   if (m_far < 0 || m_far >= mesh.num_nodes()) return;
@@ -157,7 +163,7 @@ void ProcedureSteps::transect(const SimState& state, double time_s, ProcedureErr
   m_fraction = m_volume > 0.0 ? volume / m_volume : 0.0;
   const bool secured =
       std::any_of(state.handoff.clips.begin(), state.handoff.clips.end(), [&](const Clip& c) {
-        if (c.kind != Clip::Kind::kLoop || c.node < 0 || c.node >= mesh.num_nodes()) return false;
+        if (!secures_base(c) || c.node < 0 || c.node >= mesh.num_nodes()) return false;
         const std::int32_t k = comp[static_cast<std::size_t>(c.node)];
         return k >= 0 && static_cast<std::size_t>(k) < stump.size() &&
                stump[static_cast<std::size_t>(k)] != 0;

@@ -5,13 +5,16 @@
 //                        base (the cecum) to the specimen beyond kBaseZone from the base: the
 //                        fold is divided down to the base (the artery's clip is judged by the
 //                        bleeding error, metrics/procedure_errors.h)
-//   secure_base          a loop ligates the specimen within kBaseZone of the base (at rest)
-//   transect             a cut leaves the specimen's far end in a piece without the base
+//   secure_base          a loop or a staple line ligates the specimen within kBaseZone of the
+//                        base (at rest)
+//   transect             a cut leaves the specimen's far end in a piece without the base (a
+//                        stapler secures and transects in one fire: its lines are laid in the
+//                        step its knife cuts between them)
 //   extract              that piece, the freed specimen, was carried kExtractDistance from where
 //                        it was freed
 // Each step is done once, with when and by which tool. The errors the steps can make go to the
-// procedure's error list: a transection with no loop on the stump's side of it (above the
-// securing), and a freed specimen no grasper holds before it is extracted (dropped).
+// procedure's error list: a transection with no loop or staple line on the stump's side of it
+// (above the securing), and a freed specimen no grasper holds before it is extracted (dropped).
 #pragma once
 
 #include <array>

@@ -31,6 +31,9 @@ struct RenderTool {
     /// a knot pusher with its suture loop: a ring normal to the shaft through the tip, centred
     /// along +side, its radius engine/endoloop.h's open radius scaled by the jaw channel
     kEndoloop,
+    /// a linear cutter-stapler: a deep cartridge jaw and a thin anvil jaw, kCartridgeLength long
+    /// (engine/stapler.h), hinged where the other instruments' jaws are
+    kStapler,
   };
   Kind kind = Kind::kGrasper;
   std::array<float, 3> tip{0.0f, 0.0f, 0.0f};              ///< tip of the closed jaws, m
@@ -56,13 +59,14 @@ struct RenderTool {
 };
 
 /// A placed ligature (plain data, world coordinates, m): a clip's two legs along its centre
-/// line, pressed together across it; or a cinched loop, a suture ring round the middle of its
-/// axis.
+/// line, pressed together across it; a cinched loop, a suture ring round the middle of its axis;
+/// or a staple line, a row of closed staples along its centre line.
 struct RenderClip {
   std::array<float, 3> start{0.0f, 0.0f, 0.0f};   ///< clip: centre line, hinge end; loop: axis, m
   std::array<float, 3> end{0.0f, 0.0f, 1.0f};     ///< clip: centre line, far end; loop: axis, m
   std::array<float, 3> across{1.0f, 0.0f, 0.0f};  ///< unit: the direction the legs pressed
   bool loop = false;                              ///< a cinched endoloop
+  bool staple = false;                            ///< a stapler's staple line
   float radius = 0.0f;                            ///< a loop's ring radius, m
 };
 

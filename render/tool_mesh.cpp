@@ -10,6 +10,8 @@
 #include "engine/clip.h"
 #include "engine/endoloop.h"
 #include "engine/hook.h"
+#include "engine/stapler.h"
+#include "engine/tool_geometry.h"
 #include "render/icosphere.h"
 
 namespace serosa::render {
@@ -26,10 +28,11 @@ constexpr std::array<float, 4> kClipMaterial{0.78f, 0.76f, 0.70f, 0.9f};    // t
 constexpr std::array<float, 4> kSutureMaterial{0.55f, 0.42f, 0.75f, 0.5f};  // violet polydioxanone
 constexpr std::array<float, 4> kBloodMaterial{0.42f, 0.02f, 0.03f, 0.9f};   // fresh arterial blood
 constexpr float kSutureRadius = 3e-4f;  // a 2-0 suture with some slack, m
-constexpr std::array<float, 4> kGuideMaterial{0.45f, 0.18f, 0.78f, 0.2f};   // marker violet
-constexpr std::array<float, 4> kActiveMaterial{0.20f, 0.95f, 0.35f, 0.3f};  // the active collar
-constexpr std::array<float, 4> kCueMaterial{0.05f, 0.05f, 0.06f, 0.0f};     // a shadow's dark
-constexpr std::array<float, 4> kTouchMaterial{1.0f, 0.85f, 0.10f, 0.3f};    // contact: amber
+constexpr std::array<float, 4> kCartridgeMaterial{0.22f, 0.36f, 0.62f, 0.4f};  // a blue reload
+constexpr std::array<float, 4> kGuideMaterial{0.45f, 0.18f, 0.78f, 0.2f};      // marker violet
+constexpr std::array<float, 4> kActiveMaterial{0.20f, 0.95f, 0.35f, 0.3f};     // the active collar
+constexpr std::array<float, 4> kCueMaterial{0.05f, 0.05f, 0.06f, 0.0f};        // a shadow's dark
+constexpr std::array<float, 4> kTouchMaterial{1.0f, 0.85f, 0.10f, 0.3f};       // contact: amber
 
 std::uint32_t add_vertex(ToolMesh& m, const V3& p, const V3& n, const std::array<float, 4>& mat) {
   const auto id = static_cast<std::uint32_t>(m.num_vertices());
@@ -206,9 +209,41 @@ void append_depth_cue(const RenderTool& tool, ToolMesh& out) {
               std::max(outer - width, 0.0f), outer, touching ? kTouchMaterial : kCueMaterial);
 }
 
+namespace {
+
+// A staple line: kStapleRows staggered rows of closed staples along a -> b, each staple a crown
+// and its clinched legs, one each side of the pressed tissue (kStapleGap apart).
+void add_staple_line(ToolMesh& m, const V3& a, const V3& b, const V3& across_hint) {
+  const V3 along = (b - a).normalized();
+  V3 across = across_hint - across_hint.dot(along) * along;
+  if (!(across.norm() > 1e-6f)) across = along.unitOrthogonal();
+  across.normalize();
+  const V3 pin = along.cross(across);
+  const float length = (b - a).norm();
+  const float ht = 0.5f * kStapleWireThickness;
+  const float off = static_cast<float>(0.5 * kStapleGap) + ht;  // crown and clinch off the line
+  const float row = static_cast<float>(kStapleLineHalfWidth) * 2.0f / 3.0f;
+  for (int r = -1; r <= 1; ++r) {
+    const float stagger = r == 0 ? 0.5f * kStaplePitch : 0.0f;
+    for (float u = stagger + 0.5f * kStapleCrown; u + 0.5f * kStapleCrown <= length;
+         u += kStaplePitch) {
+      const V3 c = a + u * along + static_cast<float>(r) * row * pin;
+      for (int s = -1; s <= 1; s += 2)
+        add_box(m, c + static_cast<float>(s) * off * across, along, pin, across,
+                0.5f * kStapleCrown, ht, ht, kClipMaterial);
+    }
+  }
+}
+
+}  // namespace
+
 void append_clip_mesh(const RenderClip& clip, ToolMesh& out) {
   const V3 a = vec(clip.start), b = vec(clip.end);
   if (!((b - a).norm() > 1e-9f)) return;
+  if (clip.staple) {
+    add_staple_line(out, a, b, vec(clip.across));
+    return;
+  }
   if (clip.loop) {
     const V3 axis = (b - a).normalized();
     V3 u = vec(clip.across) - vec(clip.across).dot(axis) * axis;
@@ -267,8 +302,11 @@ ToolFrame tool_frame(const RenderTool& tool, const ToolDimensions& dims) {
   if (up.norm() < 1e-4f) up = axis.unitOrthogonal();
   up.normalize();
   const V3 side = up.cross(axis);
-  const float jaw =
-      tool.kind == RenderTool::Kind::kScissors ? dims.scissors_blade : dims.grasper_jaw;
+  // A stapler pivots where the simulation has it (engine/stapler.h): its jaws reach on past
+  // the tip.
+  const float jaw = tool.kind == RenderTool::Kind::kScissors  ? dims.scissors_blade
+                    : tool.kind == RenderTool::Kind::kStapler ? static_cast<float>(kJawLength)
+                                                              : dims.grasper_jaw;
   const V3 hinge = tip - jaw * axis;
   const V3 start = tool.has_trocar ? V3(vec(tool.trocar) - dims.shaft_outside * axis)
                                    : V3(hinge - dims.shaft_no_trocar * axis);
@@ -311,7 +349,21 @@ void append_tool_mesh(const RenderTool& tool, ToolMesh& out, const ToolDimension
   // Jaw A opens towards +side, jaw B towards -side; wdir points away from the other jaw.
   const V3 dir_a = ca * axis + sa * side, w_a = ca * side - sa * axis;
   const V3 dir_b = ca * axis - sa * side, w_b = -(ca * side + sa * axis);
-  if (tool.kind == RenderTool::Kind::kScissors) {
+  if (tool.kind == RenderTool::Kind::kStapler) {
+    // The cartridge (jaw A) is deep, the anvil (jaw B) thin; both span the staple lines along up
+    // and meet on the axis when closed.
+    const float len = static_cast<float>(kCartridgeLength);
+    const auto wide = [](float) { return 3.5e-3f; };
+    const auto deep = [](float) { return 1.4e-3f; };
+    const auto thin = [](float) { return 0.7e-3f; };
+    const V3 oa = 1.5e-3f * w_a, ob = 0.8e-3f * w_b;
+    add_jaw(
+        out, hinge, dir_a, w_a, up, len, [&](float) -> V3 { return oa; }, deep, wide,
+        kCartridgeMaterial);
+    add_jaw(
+        out, hinge, dir_b, w_b, up, len, [&](float) -> V3 { return ob; }, thin, wide,
+        kSteelMaterial);
+  } else if (tool.kind == RenderTool::Kind::kScissors) {
     const float len = dims.scissors_blade;
     const float off = 0.45e-3f;  // blades side by side along `up`, 0.9 mm apart
     const auto half_w = [](float s) { return 1.3e-3f + (0.35e-3f - 1.3e-3f) * s; };

@@ -48,7 +48,8 @@ struct ToolFrame {
 /// Appends the instrument to `out`: the shaft (a capped cylinder, dark) from shaft_start to the
 /// hinge, and two jaws (steel) rotated by +-jaw_rad/2 about the hinge's `up` axis. Scissors
 /// blades are thin, tapered, slightly curved and offset along `up` so that they shear past each
-/// other; grasper jaws are wider and meet on the axis when closed.
+/// other; grasper jaws are wider and meet on the axis when closed; a stapler's cartridge and
+/// anvil are kCartridgeLength long and wide enough to carry its staple lines.
 void append_tool_mesh(const RenderTool& tool, ToolMesh& out, const ToolDimensions& dims = {});
 
 /// The depth cue under a tip (RenderTool::has_tissue): a thin ring on the tissue round the surface
@@ -65,8 +66,15 @@ void append_depth_cue(const RenderTool& tool, ToolMesh& out);
 
 /// Thickness of a clip's legs across the clip, m.
 inline constexpr float kClipLegThickness = 3e-4f;
+/// A staple line's drawing, m: the wire's thickness, each staple's crown length and the pitch of
+/// the staples along a row (three staggered rows across the line's width).
+inline constexpr float kStapleWireThickness = 2.5e-4f;
+inline constexpr float kStapleCrown = 3e-3f;
+inline constexpr float kStaplePitch = 3.5e-3f;
 /// Appends a placed clip: two titanium legs along its centre line, one each side of the pressed
-/// tissue (kClipGap apart, engine/clip.h), joined at the far end.
+/// tissue (kClipGap apart, engine/clip.h), joined at the far end; a staple line: its rows of
+/// closed titanium staples, crowns and clinched legs either side of the tissue (kStapleGap
+/// apart, engine/stapler.h).
 void append_clip_mesh(const RenderClip& clip, ToolMesh& out);
 
 /// Appends a pool of blood: a sphere of bleed.radius about bleed.at, glossy dark red.

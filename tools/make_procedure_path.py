@@ -3,14 +3,17 @@
 appendectomy_procedure.csv) and a novice's (appendectomy_procedure_novice.csv: every motion 1.5
 times slower, and the clip applier closed 12 mm above the fold, so the clip falls away and the
 hook then divides an unsecured artery), and prints each instrument's trocar for
-config/appendectomy.toml.
+config/appendectomy.toml. With --stapler it writes the stapler variant instead
+(appendectomy_stapler.csv, for config/appendectomy_stapler.toml): the same exposure, clip and
+fold division, then a linear cutter-stapler secures and divides the base in one fire in place of
+the endoloop and the scissors.
 
 Each instrument pivots about its trocar: every row's orientation points the shaft (local +z) from
 the trocar through the row's tip, rolled so the jaws open towards a chosen direction (local +x,
 engine/tool_geometry.h). Instruments come in and go out along their shaft. Frame and anatomy:
 config/appendectomy.toml, docs/procedure.md. Times in s, positions in m, jaw angles in rad.
 
-usage: make_procedure_path.py [FOLDER]     (default: config/paths)
+usage: make_procedure_path.py [--stapler] [FOLDER]     (default: config/paths)
 """
 import math
 import os
@@ -107,7 +110,28 @@ class Tool:
         return add(self.trocar, self.forward, depth)
 
 
-def procedure(novice=False):
+def staple_base(stapler, x_knife):
+    """The stapler's part: its jaws opened wide come down the shaft round the appendix's base, the
+    knife's plane across the appendix at x = x_knife (the jaws' pin along +x), the appendix's axis
+    20 mm beyond the hinge, where the jaws are 12 mm apart; they close (the stapler fires: two
+    staple lines, the knife between them), stay closed while the staples press, open a little to
+    let go (less than the arming angle, engine/stapler.h, so closing them to leave fires nothing)
+    and leave."""
+    st = stapler
+    axis = [x_knife, -0.0240, 0.0]
+    tip = add(axis, st.forward, -(0.020 - 0.015))  # the hinge 15 mm behind the tip
+    st.at(6.0, st.parked(), 0.0)
+    st.at(6.2, st.parked(), 0.6)
+    st.at(6.6, add(tip, st.forward, -0.012), 0.6)
+    st.at(6.9, tip, 0.6)
+    st.at(7.2, tip, 0.0)
+    st.at(7.6, tip, 0.0)
+    st.at(7.8, tip, 0.15)
+    st.at(8.1, add(tip, st.forward, -0.012), 0.15)
+    st.at(8.5, st.parked(), 0.0)
+
+
+def procedure(novice=False, stapler=False):
     # Where the anatomy is (rest, m): the appendix's axis runs along +x at y = -0.022, z = 0 from
     # the cecum wall (x = 0.017) to x = 0.040, then down along (1, -1, 0)/sqrt(2) to its tip near
     # (0.080, -0.057, 0); the fold hangs below it in z = 0 with its free edge from (0.004, -0.027)
@@ -124,13 +148,21 @@ def procedure(novice=False):
     cut = [x_transect, -0.0232, -0.0071]
     scissors = Tool("scissors", cut, [0.0, 0.30, -0.95], [0.0, 1.0, 0.0], slower=k)
     tools = [grasper, clip, hook, loop, scissors]
+    # the stapler comes in as the scissors do, its knife 0.5 mm short of where they cut: in the
+    # strip the hook freed from the fold, clear of the hook's first cut at x_divide
+    x_knife = 0.0295
+    stapler_tool = Tool("stapler", [x_knife, -0.0240, 0.0], [0.0, 0.30, -0.95], [0.0, 1.0, 0.0])
+    if stapler:
+        tools = [grasper, clip, hook, stapler_tool]
     for tool in tools:
         tool.at(0.0, tool.parked())
     # Two hands: the left holds the grasper throughout; the right takes the clip applier, the
     # hook, the endoloop and the scissors in turn, each exchange as the last one leaves its work.
+    # With the stapler the right hand takes it after the hook, in place of the endoloop and the
+    # scissors.
     grasper.held(0.0, "left")
-    for tool, start, end in ((clip, 2.0, 3.6), (hook, 3.6, 6.0), (loop, 6.0, 7.1),
-                             (scissors, 7.1, None)):
+    last = ((stapler_tool, 6.0, None),) if stapler else ((loop, 6.0, 7.1), (scissors, 7.1, None))
+    for tool, start, end in ((clip, 2.0, 3.6), (hook, 3.6, 6.0)) + last:
         tool.held(start, "right")
         if end is not None:
             tool.held(end, "port")
@@ -181,6 +213,10 @@ def procedure(novice=False):
     h.at(6.0, add(under, [0, 0, z_lo - z_hi]), 0.0, 0, roll=[1.0, 0.0, 0.0])
     h.at(6.4, h.parked(), 0.0, 0, roll=[1.0, 0.0, 0.0])
 
+    if stapler:
+        staple_base(stapler_tool, x_knife)
+        return finish(grasper, lifted, tools)
+
     # secure the base: the open ring slid up to the base, round the appendix, then cinched
     lp = loop
     # the pusher's tip; the ring's centre is 10 mm along +y from it, 0.5 mm below the
@@ -203,7 +239,12 @@ def procedure(novice=False):
     s.at(8.3, cut, 0.0)
     s.at(8.6, s.parked(), 0.0)
 
-    # extract: carry the freed appendix away, towards the port it will leave by
+    return finish(grasper, lifted, tools)
+
+
+def finish(grasper, lifted, tools):
+    """extract: carry the freed appendix away, towards the port it will leave by"""
+    g = grasper
     g.at(8.6, lifted, 0.0)
     g.at(9.2, add(lifted, [0.045, -0.010, 0.015]), 0.0)
     g.at(END, add(lifted, [0.045, -0.010, 0.015]), 0.0)
@@ -236,11 +277,18 @@ def write(path, tools, end, scope=SCOPE):
 
 def main():
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    folder = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "config/paths")
-    tools = procedure()
-    write(os.path.join(folder, "appendectomy_procedure.csv"), tools, END)
-    write(os.path.join(folder, "appendectomy_procedure_novice.csv"), procedure(novice=True),
-          END * NOVICE_SLOWER)
+    args = sys.argv[1:]
+    stapler = "--stapler" in args
+    args = [a for a in args if a != "--stapler"]
+    folder = args[0] if args else os.path.join(root, "config/paths")
+    if stapler:
+        tools = procedure(stapler=True)
+        write(os.path.join(folder, "appendectomy_stapler.csv"), tools, END)
+    else:
+        tools = procedure()
+        write(os.path.join(folder, "appendectomy_procedure.csv"), tools, END)
+        write(os.path.join(folder, "appendectomy_procedure_novice.csv"), procedure(novice=True),
+              END * NOVICE_SLOWER)
     for tool in tools:
         print(f"{tool.name}: trocar = [{tool.trocar[0]:.4f}, {tool.trocar[1]:.4f}, {tool.trocar[2]:.4f}]")
 

@@ -657,7 +657,7 @@ TEST_F(SceneTest, DuplicateToolName) {
 
 TEST_F(SceneTest, BadToolKindDeviceHandTrocar) {
   const std::string head = kOrgan + "[[tool]]\nname = \"g\"\n";
-  expect_error(head + "kind = \"stapler\"\ndevice = \"mouse\"\n", 6, "tool[0].kind",
+  expect_error(head + "kind = \"morcellator\"\ndevice = \"mouse\"\n", 6, "tool[0].kind",
                "scissors, grasper, endoscope");
   expect_error(head + "kind = \"grasper\"\ndevice = \"joystick\"\n", 7, "tool[0].device",
                "unknown device");
