@@ -102,7 +102,7 @@ struct EmulatedRig::Impl {
     for (std::size_t h = 0; h < kHandles; ++h) {
       const double t = path_time(now);
       p.handles[h] = to_counts(c.calibration, joints_at(h, t));
-      if (c.tool_of_handle[h]) p.handles[h].buttons = buttons_at(h, t);
+      p.handles[h].buttons = buttons_at(h, t);
     }
     update_watchdog(now);
     p.status = static_cast<std::uint16_t>(
@@ -119,12 +119,28 @@ struct EmulatedRig::Impl {
 
   // The clutch, pedal and handle buttons the path holds down (docs/rig-protocol.md).
   std::uint16_t buttons_at(std::size_t h, double t) const {
-    return static_cast<std::uint16_t>(sample(c.path, *c.tool_of_handle[h], t).buttons);
+    return hand_buttons(c.path, *c.hands[h], t);
   }
 
   JointState joints_at(std::size_t h, double t) const {
-    if (!c.tool_of_handle[h]) return JointState{};
-    return inverse(c.trocars[h], sample(c.path, *c.tool_of_handle[h], t));
+    return hand_joints(c.path, *c.hands[h], t);
+  }
+
+  // The efforts commanded to each handle, counted against the instrument it holds now.
+  void note_efforts(const ForcePacket& fp, double now) {
+    if ((fp.flags & kForceEnable) == 0) return;
+    const double t = path_time(now);
+    for (std::size_t h = 0; h < kHandles; ++h) {
+      const std::optional<std::size_t> k = held_tool(*c.hands[h], t);
+      if (!k) continue;
+      const HandleEffort& e = fp.handles[h];
+      const double torque =
+          std::max(std::abs(e.pitch_torque), std::abs(e.yaw_torque)) * kTorqueScaleNm;
+      auto& tq = st.peak_torque_nm[*k][h];
+      auto& in = st.peak_insertion_n[*k][h];
+      tq = std::max(tq, torque);
+      in = std::max(in, std::abs(e.insertion_force) * kForceScaleN);
+    }
   }
 
   static void complete_reap(UMockdevIoctlClient* client, UMockdevIoctlData* arg,
@@ -213,6 +229,7 @@ struct EmulatedRig::Impl {
             st.last_force = fp;
             st.last_force_time_s = now;
             enable_flag = (fp.flags & kForceEnable) != 0;
+            note_efforts(fp, now);
             const auto& d = delivered[fp.state_sequence % delivered.size()];
             if (d.first == fp.state_sequence && fp.state_sequence != last_answered) {
               latencies.push_back(now - d.second);
@@ -366,6 +383,11 @@ EmulatedRig::EmulatedRig(EmulatedRigConfig c) : m(std::make_unique<Impl>()) {
                               " is not a tool of " + c.path.file);
     }
   }
+  for (std::size_t h = 0; h < kHandles; ++h)
+    if (!c.hands[h]) c.hands[h] = RigHand{c.tool_of_handle[h], c.trocars[h], {}, {}};
+  for (auto& hand : c.hands) hand->to_handle.resize(c.path.tools.size());
+  m->st.peak_torque_nm.assign(c.path.tools.size(), {});
+  m->st.peak_insertion_n.assign(c.path.tools.size(), {});
   m->c = std::move(c);
   m->t0 = monotonic_s();
   m->path_t0 = m->t0;
@@ -435,6 +457,8 @@ std::vector<double> EmulatedRig::latencies() const {
   std::lock_guard<std::mutex> lock(m->mu);
   return m->latencies;
 }
+
+const EmulatedRigConfig& EmulatedRig::config() const { return m->c; }
 
 JointState EmulatedRig::joints_at(std::size_t h, double t_s) const { return m->joints_at(h, t_s); }
 

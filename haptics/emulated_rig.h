@@ -22,6 +22,7 @@
 
 #include "engine/tool_path.h"
 #include "haptics/rig_calibration.h"
+#include "haptics/rig_hand_script.h"
 #include "haptics/rig_protocol.h"
 
 namespace serosa::haptics {
@@ -30,6 +31,9 @@ struct EmulatedRigConfig {
   ToolPath path;  ///< drives the handles (time 0 = construction; or follow())
   std::array<std::optional<std::size_t>, kHandles> tool_of_handle{};  ///< path tool per handle
   std::array<Trocar, kHandles> trocars{};
+  /// Per handle, a scripted hand that exchanges instruments (haptics/rig_hand_script.h); where
+  /// none is given the handle follows tool_of_handle's path through trocars[h] throughout.
+  std::array<std::optional<RigHand>, kHandles> hands{};
   RigCalibration calibration{};
   double packet_period_s = 1e-3;  ///< state packet interval
   double watchdog_s = 2e-3;       ///< motors off when no valid force packet for this long
@@ -51,6 +55,11 @@ struct EmulatedRigStats {
   bool motors_on = false;            ///< firmware output enabled (watchdog fed and enable flag)
   ForcePacket last_force{};          ///< last valid force packet
   double last_force_time_s = 0.0;    ///< when it arrived (monotonic)
+  /// (path tools) per handle: the largest pitch or yaw torque commanded (motors enabled) while
+  /// that handle held that tool, N*m; the forces each instrument in turn sent to the hand
+  std::vector<std::array<double, kHandles>> peak_torque_nm;
+  /// (path tools) per handle: the same for the insertion force, N
+  std::vector<std::array<double, kHandles>> peak_insertion_n;
 };
 
 class EmulatedRig {
@@ -79,6 +88,8 @@ class EmulatedRig {
   /// Latencies from a state packet's delivery to the arrival of the force packet answering it, s
   /// (the first answer to each state packet only).
   [[nodiscard]] std::vector<double> latencies() const;
+  /// What it was built with (its hands completed: one per handle).
+  [[nodiscard]] const EmulatedRigConfig& config() const;
   /// Joints the firmware reports for handle h at path time t (for checks).
   [[nodiscard]] JointState joints_at(std::size_t h, double t_s) const;
 

@@ -15,6 +15,7 @@
 #include "engine/jaw_range.h"
 #include "engine/sim_state.h"
 #include "engine/tool_path.h"
+#include "haptics/emulated_hands.h"
 #include "haptics/emulated_rig.h"
 #include "haptics/haptic_loop.h"
 #include "haptics/script_device.h"
@@ -74,6 +75,23 @@ class NoRig final : public haptics::Device {
   [[nodiscard]] const char* name() const noexcept override { return "no-rig"; }
 };
 
+// Per hand, each instrument it held and the largest efforts the firmware was sent meanwhile.
+nlohmann::json efforts_json(const haptics::EmulatedRigConfig& c,
+                            const haptics::EmulatedRigStats& st) {
+  nlohmann::json j = nlohmann::json::object();
+  for (std::size_t h = 0; h < haptics::kHandles; ++h) {
+    const auto& hand = c.hands[h];
+    if (!hand || !hand->first_tool) continue;
+    std::vector<std::size_t> held{*hand->first_tool};
+    for (const haptics::HandChange& e : hand->exchanges) held.push_back(e.tool);
+    nlohmann::json& out = j[h == 0 ? "left" : "right"];
+    for (const std::size_t k : held)
+      out[c.path.tools[k]] = {{"peak_torque_nm", st.peak_torque_nm[k][h]},
+                              {"peak_insertion_n", st.peak_insertion_n[k][h]}};
+  }
+  return j;
+}
+
 // What the emulated rig's firmware saw: the state packets it sent, the force packets it decoded,
 // and how long each state packet took to be answered (ms).
 nlohmann::json emulated_rig_json(const haptics::EmulatedRig& rig) {
@@ -86,9 +104,11 @@ nlohmann::json emulated_rig_json(const haptics::EmulatedRig& rig) {
                : 1e3 * lat[std::min(lat.size() - 1,
                                     static_cast<std::size_t>(q * static_cast<double>(lat.size())))];
   };
-  return {{"packets_sent", st.packets_sent}, {"forces_ok", st.forces_ok},
-          {"forces_bad", st.forces_bad},     {"watchdog_trips", st.watchdog_trips},
-          {"latency_p50_ms", at(0.5)},       {"latency_p99_ms", at(0.99)}};
+  nlohmann::json j = {{"packets_sent", st.packets_sent}, {"forces_ok", st.forces_ok},
+                      {"forces_bad", st.forces_bad},     {"watchdog_trips", st.watchdog_trips},
+                      {"latency_p50_ms", at(0.5)},       {"latency_p99_ms", at(0.99)}};
+  j["efforts"] = efforts_json(rig.config(), st);
+  return j;
 }
 
 }  // namespace
@@ -139,6 +159,7 @@ HapticsStage::HapticsStage(const Scene& scene, const HapticsStageOptions& option
                      "a grasper or scissors with device = \"rig\", \"rig-emulated\", "
                      "\"mouse\" or \"script:FILE\"");
   m_kind = *kind;
+  if (m_kind != DeviceKind::kScript) build_rack(scene, options);
   std::array<haptics::Trocar, haptics::kHandles> trocars{};
   if (m_kind == DeviceKind::kScript) {
     ToolPath path = read_tool_path(*script);
@@ -195,7 +216,6 @@ HapticsStage::HapticsStage(const Scene& scene, const HapticsStageOptions& option
     m_mouse = mouse.get();
     m_device = std::move(mouse);
   }
-  if (m_kind != DeviceKind::kScript) build_rack(scene, options);
   haptics::HapticLoopConfig c;
   c.trocars = trocars;
   c.realtime = options.realtime;
@@ -277,6 +297,8 @@ void HapticsStage::emulate_rig(const Scene& scene, const std::filesystem::path& 
     c.tool_of_handle[h] = c.path.index_of(scene.tools[*m_tool[h]].name);  // the loader checked
   }
   c.trocars = trocars;
+  // The path's hand column plays each handle's exchanges as a trainee's hand would.
+  c.hands = haptics::emulated_hands(scene, *m_rack, c.path);
   m_emulated = std::make_unique<haptics::EmulatedRig>(std::move(c));  // before the driver's libusb
 }
 

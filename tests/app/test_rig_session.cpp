@@ -162,15 +162,15 @@ TEST(RigSession, EmulatedRigDrivesBothToolsAndReceivesForces) {
 }
 
 // The whole rig path from the command line, as CI runs it: `serosa headless` on the bundled rig
-// scene re-runs itself under umockdev-wrapper, emulates the rig playing the procedure on its
-// handles, steps in real time, and the scissors driven through USB transect the appendix.
-TEST(RigSession, TheRigSceneTransectsTheAppendixThroughTheEmulatedRig) {
+// scene re-runs itself under umockdev-wrapper, emulates the rig whose two handles play the whole
+// appendectomy as a trainee's hands would (the right hand exchanging its instrument four times
+// through the handle button), steps in real time, and completes the procedure.
+TEST(RigSession, TheRigScenePerformsTheWholeAppendectomyThroughTheEmulatedRig) {
   const fs::path dir = out_dir("rig_scene");
-  // 3.6 s: the scissors close at 3.0-3.3 s of the procedure.
   const CliResult r =
-      run_serosa("headless '" + source("config/appendectomy_rig.toml").string() +
-                 "' --steps 720 --report '" + (dir / "report.json").string() +
-                 "' --export-final '" + (dir / "final.msh").string() + "' > /dev/null");
+      run_serosa("headless '" + source("config/appendectomy_rig.toml").string() + "' --report '" +
+                 (dir / "report.json").string() + "' --export-final '" +
+                 (dir / "final.msh").string() + "' > /dev/null");
   ASSERT_EQ(r.code, 0) << r.out;
   std::ifstream in(dir / "report.json");
   const nlohmann::json report = nlohmann::json::parse(in);
@@ -181,49 +181,52 @@ TEST(RigSession, TheRigSceneTransectsTheAppendixThroughTheEmulatedRig) {
   const auto& rig = hj["rig"];
   EXPECT_EQ(rig["rejected"].get<std::uint64_t>(), 0u);
   EXPECT_EQ(rig["lost"].get<std::uint64_t>(), 0u);
-  // The rig streams a packet each millisecond from when it is opened, a little before the first
-  // step; on a loaded two-core machine some periods pass without one (969 per simulated second
-  // measured on an idle one).
+  // A packet each millisecond of wall time, and the run never gets ahead of real time.
   const double packets = rig["packets"].get<double>();
-  EXPECT_GT(packets, 500.0 * report["simulated_time_s"].get<double>()) << rig.dump(1);
+  EXPECT_GE(packets, 900.0 * report["simulated_time_s"].get<double>()) << rig.dump(1);
   EXPECT_LT(packets, 1000.0 * report["wall_time_s"].get<double>() + 50.0) << rig.dump(1);
   // The force commands reached the emulated firmware, none malformed.
-  EXPECT_GT(rig["emulated"]["forces_ok"].get<double>(), 0.5 * rig["packets"].get<double>());
+  EXPECT_GT(rig["emulated"]["forces_ok"].get<double>(), 0.5 * packets);
   EXPECT_EQ(rig["emulated"]["forces_bad"].get<std::uint64_t>(), 0u);
-  // The grasper held the appendix and the scissors cut it in one stroke. (On a loaded machine
-  // the handle's jaw can flicker by an encoder count as the closing starts: a one-step stroke
-  // that crosses no tissue and cuts nothing may come first.)
-  EXPECT_GT(report["contact"]["held_nodes"]["grasper"].get<int>(), 0);
-  int cutting_strokes = 0;
-  for (const auto& st : report["cutting"]["per_stroke"]) {
-    if (st["cuts"].get<int>() > 0)
-      ++cutting_strokes;
-    else
-      EXPECT_EQ(st["tets_crossed"].get<int>(), 0) << st.dump();
+  // The procedure, done by the two handles: five steps, the right hand's four exchanges.
+  const auto& proc = report["procedure"];
+  EXPECT_TRUE(proc["completed"].get<bool>()) << proc.dump(1);
+  for (const auto& step : proc["steps"]) EXPECT_TRUE(step["done"].get<bool>()) << step.dump();
+  EXPECT_EQ(proc["steps"].size(), 5u);
+  EXPECT_GE(proc["specimen_volume_fraction"].get<double>(), 0.8);
+  const auto& exchanges = report["metrics"]["exchanges"];
+  const std::vector<std::string> taken = {"clip-applier", "hook", "endoloop", "scissors"};
+  ASSERT_EQ(exchanges.size(), taken.size()) << exchanges.dump(1);
+  for (std::size_t k = 0; k < taken.size(); ++k) {
+    EXPECT_EQ(exchanges[k]["hand"], "right");
+    EXPECT_EQ(exchanges[k]["to"], taken[k]);
+    EXPECT_EQ(exchanges[k]["from"], k == 0 ? "scissors" : taken[k - 1]);
   }
-  EXPECT_EQ(cutting_strokes, 1) << report["cutting"].dump(1);
-  EXPECT_EQ(report["cutting"]["cuts"].get<int>(), 1) << report["cutting"].dump(1);
-  // The loop saw the cut: the scissors' jaw torque (the appendix between the blades) dropped
-  // there, and the grasper's pull changed, each step within the slew limits.
-  bool cut_event = false;
+  // Each instrument's forces went to the handle that held it: every instrument that loaded the
+  // tissue (its tip force in the report) turned its hand's handle.
+  const auto& efforts = rig["emulated"]["efforts"];
+  EXPECT_TRUE(efforts["left"].contains("grasper")) << efforts.dump(1);
+  for (const std::string& tool : taken)
+    EXPECT_TRUE(efforts["right"].contains(tool)) << efforts.dump(1);
+  for (const auto& [tool, force] : report["metrics"]["force_max_n"].items()) {
+    if (force.get<double>() < 0.1) continue;
+    const char* hand = tool == "grasper" ? "left" : "right";
+    EXPECT_GT(efforts[hand][tool]["peak_torque_nm"].get<double>(), 1e-3) << tool;
+  }
+  // Every cut reached the loop as a force event within the slew limits; the transection's also
+  // in the scissors' jaw torque (the appendix between the blades).
+  int cut_events = 0;
+  double last_jaw_step = 0.0;
   for (const auto& e : hj["force_events"]) {
     if (!(e["kind"].get<int>() & 1)) continue;
-    cut_event = true;
-    // Reported by the model of the step after the one the stroke was cut in.
-    const double cut_s = report["cutting"]["per_stroke"].back()["last_step"].get<double>() * 0.005;
-    EXPECT_NEAR(e["sim_time_s"].get<double>(), cut_s, 0.0101) << e.dump();
-    EXPECT_GT(e["max_jaw_step_Nm"].get<double>(), 0.0) << e.dump();
+    ++cut_events;
+    last_jaw_step = e["max_jaw_step_Nm"].get<double>();
     EXPECT_LE(e["max_jaw_step_Nm"].get<double>(),
               haptics::ForceRendererParams{}.jaw_slew_Nm_per_s * 2e-3);
     EXPECT_LE(e["max_step_N"].get<double>(), haptics::ForceRendererParams{}.slew_N_per_s * 2e-3);
   }
-  EXPECT_TRUE(cut_event) << hj["force_events"].dump(1);
-  // Pieces are topology; on a loaded machine the stroke is sampled coarser and a few of the
-  // cut's slivers can end inverted in the exported current positions, which the reader would
-  // otherwise refuse.
-  MeshReadOptions read;
-  read.repair_inverted = true;
-  EXPECT_EQ(cutting::count_components(read_mesh(dir / "final.msh", read), 1), 2);
+  EXPECT_GE(cut_events, 1) << hj["force_events"].dump(1);
+  EXPECT_GT(last_jaw_step, 0.0) << hj["force_events"].dump(1);
   EXPECT_TRUE(report["mesh_final"]["valid"].get<bool>());
 }
 
