@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
+#include <limits>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
@@ -93,6 +95,52 @@ double parse_number(std::string_view field, const std::string& file, std::int64_
                      "a finite number");
   }
   return value;
+}
+
+// One span of time a hand holds a tool: from a row to the tool's next row.
+struct Held {
+  double from_s, to_s;
+  std::size_t tool;
+};
+
+std::vector<Held> held_spans(const ToolPath& path, Hand hand) {
+  std::vector<Held> out;
+  for (std::size_t k = 0; k < path.samples.size(); ++k) {
+    const auto& rows = path.samples[k];
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      if (holder(rows[i]) != hand) continue;
+      const double to =
+          i + 1 < rows.size() ? rows[i + 1].time_s : std::numeric_limits<double>::infinity();
+      if (to > rows[i].time_s) out.push_back({rows[i].time_s, to, k});
+    }
+  }
+  std::sort(out.begin(), out.end(),
+            [](const Held& a, const Held& b) { return a.from_s < b.from_s; });
+  return out;
+}
+
+// A hand holds one instrument at a time.
+void check_hands(const ToolPath& path) {
+  for (const Hand hand : {Hand::kLeft, Hand::kRight}) {
+    const std::vector<Held> spans = held_spans(path, hand);
+    double until = -1.0;  // the latest end of the spans so far, and whose
+    std::size_t whose = 0;
+    for (const Held& b : spans) {
+      if (b.from_s < until && b.tool != whose) {
+        char at[32];
+        std::snprintf(at, sizeof at, "%.3f s", b.from_s);
+        throw InputError(
+            path.file, 0,
+            "the " + std::string(hand == Hand::kLeft ? "left" : "right") + " hand holds both \"" +
+                path.tools[whose] + "\" and \"" + path.tools[b.tool] + "\" at " + at,
+            "one tool per hand at a time, the other in its port (hand column \"port\")");
+      }
+      if (b.to_s > until) {
+        until = b.to_s;
+        whose = b.tool;
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -221,6 +269,7 @@ ToolPath parse_tool_path_text(const std::string& text, const std::string& name) 
     throw InputError(name, line, "tool path has a header but no rows",
                      "at least one row t,tool,px,py,pz,qw,qx,qy,qz,jaw");
   }
+  check_hands(path);
   return path;
 }
 

@@ -189,6 +189,28 @@ TEST(ToolPathErrors, TheHandMustBeAHand) {
   expect_error(h + "0,g,0,0,0,1,0,0,0,0,0\n", 2, "12 columns");
 }
 
+// A hand holds one instrument at a time: a second taken before the first is put in its port is
+// an error naming the hand, both tools and the time; an exchange at one instant (the first's
+// row saying port at the time the second's says the hand) is not.
+TEST(ToolPathErrors, AHandHoldsOneToolAtATime) {
+  const std::string h = "t,tool,px,py,pz,qw,qx,qy,qz,jaw,buttons,hand\n";
+  expect_error(h + "0,a,0,0,0,1,0,0,0,0,0,right\n"
+                   "2,a,0,0,0,1,0,0,0,0,0,port\n"
+                   "1.5,b,0,0,0,1,0,0,0,0,0,right\n",
+               0, "the right hand holds both \"a\" and \"b\" at 1.500 s");
+  expect_error(h + "0,a,0,0,0,1,0,0,0,0,0,left\n"
+                   "3,b,0,0,0,1,0,0,0,0,0,left\n",
+               0, "the left hand holds both");  // a never put down
+  const ToolPath ok = parse_tool_path_text(h + "0,a,0,0,0,1,0,0,0,0,0,right\n"
+                                               "1,a,0,0,0,1,0,0,0,0,0,right\n"
+                                               "2,a,0,0,0,1,0,0,0,0,0,port\n"
+                                               "0,b,0,0,0,1,0,0,0,0,0,port\n"
+                                               "2,b,0,0,0,1,0,0,0,0,0,right\n"
+                                               "0,c,0,0,0,1,0,0,0,0,0,left\n",
+                                           "p.csv");
+  EXPECT_EQ(holder(sample(ok, "b", 2.0)), Hand::kRight);
+}
+
 TEST(ToolPath, EqualTimesMakeAJump) {
   const ToolPath p = parse_tool_path_text(kHeader +
                                               "0,g,0,0,0,1,0,0,0,0\n"
