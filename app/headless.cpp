@@ -372,7 +372,9 @@ Json run_headless(const HeadlessOptions& options) {
                      {"energy_gains", st.energy_gains},
                      {"energy_removed_j", st.energy_removed_j},
                      {"last_iterations", comp.fem->last_status().iterations},
-                     {"last_residual", comp.fem->last_status().residual}};
+                     {"last_residual", comp.fem->last_status().residual},
+                     {"debris_tets", comp.fem->integrator().elements().debris_tets},
+                     {"debris_volume_m3", comp.fem->integrator().elements().debris_volume_m3}};
   }
   if (options.export_final) {
     write_gmsh22(*options.export_final, state.mesh, /*current=*/true, assembled.group_names());

@@ -2,6 +2,7 @@
 #include "fem/parallel.h"
 
 #include <stdexcept>
+#include <vector>
 
 namespace serosa::fem {
 namespace {
@@ -23,6 +24,48 @@ void lump(const Tet& nodes, const TetElement& e, double sign, FemElements& out) 
   }
 }
 
+// Pieces connected through shared nodes: a component id per node (union-find roots).
+std::vector<std::int32_t> node_components(const TetMesh& mesh) {
+  std::vector<std::int32_t> parent(static_cast<std::size_t>(mesh.num_nodes()));
+  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<std::int32_t>(i);
+  const auto find = [&](std::int32_t a) {
+    while (parent[static_cast<std::size_t>(a)] != a)
+      a = parent[static_cast<std::size_t>(a)] =
+          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(a)])];
+    return a;
+  };
+  for (const Tet& t : mesh.tets)
+    for (int k = 1; k < 4; ++k) parent[static_cast<std::size_t>(find(t[k]))] = find(t[0]);
+  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = find(static_cast<std::int32_t>(i));
+  return parent;
+}
+
+// Leaves the elements of every piece lighter than kDebrisVolumeM3 inactive, its nodes massless.
+void deactivate_debris(const TetMesh& mesh, FemElements& out) {
+  const std::vector<std::int32_t> comp = node_components(mesh);
+  std::vector<double> volume(comp.size(), 0.0);  // per root
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t)
+    volume[static_cast<std::size_t>(comp[static_cast<std::size_t>(mesh.tets[t][0])])] +=
+        mesh.rest_volume(static_cast<std::int32_t>(t));
+  out.debris_tets = 0;
+  out.debris_volume_m3 = 0.0;
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    const auto root = static_cast<std::size_t>(comp[static_cast<std::size_t>(mesh.tets[t][0])]);
+    if (volume[root] >= kDebrisVolumeM3) continue;
+    TetElement& e = out.elements[t];
+    ++out.debris_tets;
+    out.debris_volume_m3 += mesh.rest_volume(static_cast<std::int32_t>(t));
+    if (!e.active()) continue;
+    lump(e.nodes, e, -1.0, out);
+    e.volume_m3 = 0.0;
+    e.mass_kg = 0.0;
+    for (std::int32_t i : e.nodes) {  // exactly massless, not round-off
+      out.node_mass[static_cast<std::size_t>(i)] = 0.0;
+      out.node_damping[static_cast<std::size_t>(i)] = 0.0;
+    }
+  }
+}
+
 }  // namespace
 
 void build_elements(const TetMesh& mesh, const FemConfig& config, FemElements& out) {
@@ -34,6 +77,7 @@ void build_elements(const TetMesh& mesh, const FemConfig& config, FemElements& o
   out.node_mass.assign(static_cast<std::size_t>(mesh.num_nodes()), 0.0);
   out.node_damping.assign(static_cast<std::size_t>(mesh.num_nodes()), 0.0);
   for (std::size_t t = 0; t < m; ++t) lump(mesh.tets[t], out.elements[t], 1.0, out);
+  deactivate_debris(mesh, out);
   out.topology_version = mesh.topology_version;
 }
 
@@ -71,6 +115,7 @@ void update_elements(const TetMesh& mesh, const TopologyDelta& delta, const FemC
       out.node_damping[static_cast<std::size_t>(i)] = 0.0;
     }
   }
+  deactivate_debris(mesh, out);
   out.topology_version = mesh.topology_version;
 }
 

@@ -104,8 +104,10 @@ void ImplicitIntegrator::update(TetMesh& mesh, const TopologyDelta& delta) {
   m_removed.clear();
   for (std::int32_t r : delta.removed_tets)
     m_removed.push_back(m_el.elements[static_cast<std::size_t>(r)].nodes);
+  const std::int64_t debris_before = m_el.debris_tets;
   update_elements(mesh, delta, m_config, m_el);
-  // Masses of touched nodes only (new nodes appended).
+  // Masses of touched nodes only (new nodes appended); all of them when the cut left debris.
+  if (m_el.debris_tets != debris_before) mesh.mass = m_el.node_mass;
   mesh.mass.resize(m_el.node_mass.size());
   for (const Tet& t : m_removed)
     for (std::int32_t i : t)

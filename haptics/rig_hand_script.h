@@ -31,10 +31,12 @@ namespace serosa::haptics {
 
 /// Insertion the hand draws a handle back to for an exchange, m (< kEntryDepthM).
 inline constexpr double kDrawnBackM = 0.015;
-/// How long the hand holds the handle button down, s: several solver steps.
-inline constexpr double kPressHoldS = 0.03;
-/// How long it holds the handle drawn back, s: several solver steps.
-inline constexpr double kDrawnBackHoldS = 0.03;
+/// How long the hand holds the handle button down, s of the path's time: thirty solver steps,
+/// so that a step sees it even when the machine is so loaded that the loop or the emulated
+/// firmware misses a tenth of a second (each step sees only the newest packet).
+inline constexpr double kPressHoldS = 0.15;
+/// How long it holds the handle drawn back, s of the path's time: as long, for the same reason.
+inline constexpr double kDrawnBackHoldS = 0.15;
 /// How fast the hand draws a handle back, m/s (a quick pull: the trocar's drag about 2 N).
 inline constexpr double kHandWithdrawSpeedMS = 1.0;
 /// How fast the hand pushes a new instrument in through its port, m/s.

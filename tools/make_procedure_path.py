@@ -145,7 +145,7 @@ def procedure(novice=False, stapler=False):
                 slower=k)
     hook = Tool("hook", [x_divide, -0.0300, 0.0], [0.0, -0.35, -0.94], [0.0, 1.0, 0.0], slower=k)
     loop = Tool("endoloop", [x_loop, -0.0330, 0.0], [-1.0, 0.0, -0.10], [0.0, 1.0, 0.0], slower=k)
-    cut = [x_transect, -0.02356, -0.00596]
+    cut = [x_transect, -0.02280, -0.00572]
     scissors = Tool("scissors", cut, [0.0, 0.30, -0.95], [0.0, 1.0, 0.0], slower=k)
     tools = [grasper, clip, hook, loop, scissors]
     # the stapler comes in as the scissors do, its knife 0.5 mm short of where they cut: in the
@@ -230,9 +230,10 @@ def procedure(novice=False, stapler=False):
     lp.at(7.3, lp.parked(0.1), 0.0)
 
     # transect between the loop and the specimen: the blades open wide, their tips 6 mm beyond
-    # the lifted appendix's axis (9 mm from the hinge, where the blades are 12 mm apart), so the
-    # whole appendix lies between them however the fold held it up (the tissue nearest the hinge
-    # is cut too; 1 mm deeper, a path perturbed by 0.5 mm left it joined in 5 runs of 8)
+    # the lifted appendix's axis (9 mm from the hinge, where the blades are 12 mm apart) and their
+    # plane 0.8 mm off it towards the cecum, so the whole appendix lies between them however the
+    # fold held it up (with the tips 1 mm deeper and on the axis, a path perturbed by 0.5 mm left
+    # the appendix joined in 5 runs of 8; so, 1 in 8)
     s = scissors
     s.at(7.1, s.parked(), 0.0)
     s.at(7.3, s.parked(), 1.2)

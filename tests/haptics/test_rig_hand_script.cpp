@@ -111,7 +111,7 @@ TEST(RigHandScript, AnExchangeDrawsTheHandleBackAndPushesTheNextInWithoutAJump) 
       const bool pressed = (hand_buttons(c.path, plan, t) & kExchangeButton) != 0;
       ASSERT_EQ(pressed, since < kPressHoldS) << trial << " t " << t;
       if (e < 2 && q.insertion_m <= kEntryDepthM) back_s[e] += 1e-4;
-      if (since >= 0.6) {  // long after the exchange: the instrument's own joints, carried
+      if (since >= 0.8) {  // long after the exchange: the instrument's own joints, carried
         const std::size_t k = *held_tool(plan, t);
         const JointState own = inverse(c.trocar[k], sample(c.path, k, t));
         ASSERT_NEAR(q.insertion_m, own.insertion_m, 1e-9) << trial << " t " << t;
