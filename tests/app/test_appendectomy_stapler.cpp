@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/app_test_util.h"
+#include "procedure_checks.h"
 
 namespace serosa::app {
 namespace {
@@ -21,9 +22,7 @@ namespace {
 using testing::out_dir;
 using testing::source;
 
-bool lists(const nlohmann::json& names, const std::string& name) {
-  return std::find(names.begin(), names.end(), name) != names.end();
-}
+using testing::lists;
 
 TEST(StaplerAppendectomy, TheStaplerSecuresAndTransectsTheBaseInOneFire) {
   const std::filesystem::path dir = out_dir("stapler_appendectomy");
@@ -71,18 +70,8 @@ TEST(StaplerAppendectomy, TheStaplerSecuresAndTransectsTheBaseInOneFire) {
   EXPECT_EQ(r["cutting"]["stapler_fires"], 1);
   EXPECT_EQ(r["cutting"]["stapler_fires_held"], 0);
 
-  // No error: nothing bled, nothing burnt, nothing cut above the staples, nothing dropped.
-  const auto& m = r["metrics"];
-  EXPECT_TRUE(m["errors"].empty()) << m["errors"].dump();
-  for (const char* count :
-       {"bleeding_events", "thermal_injuries", "transections_above_securing", "specimens_dropped"})
-    EXPECT_EQ(m[count].get<int>(), 0) << count;
-
-  // The final mesh: valid (welded, no face shared by three tets), its rest volume the initial one.
-  EXPECT_TRUE(r["mesh_final"]["valid"].get<bool>());
-  EXPECT_NEAR(r["mesh_final"]["rest_volume_m3"].get<double>(),
-              r["mesh_initial"]["rest_volume_m3"].get<double>(),
-              1e-9 * r["mesh_initial"]["rest_volume_m3"].get<double>());
+  // No error, and cutting conserved the volume of a valid (welded) mesh.
+  testing::expect_clean_procedure(r);
   ASSERT_TRUE(std::filesystem::exists(final_mesh));
 
   // Scored on the procedure's rubric: every step done, a pass.

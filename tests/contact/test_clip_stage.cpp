@@ -13,6 +13,7 @@
 #include "engine/sim_state.h"
 #include "engine/tool_geometry.h"
 #include "support/test_meshes.h"
+#include "support/tool_pose.h"
 
 namespace serosa::contact {
 namespace {
@@ -27,13 +28,7 @@ Scene applier_scene() {
   return scene;
 }
 
-ToolState pose(const Vec3& tip, const Eigen::Quaterniond& q, double jaw) {
-  ToolState ts;
-  ts.tip_m = {tip.x(), tip.y(), tip.z()};
-  ts.quat_wxyz = {q.w(), q.x(), q.y(), q.z()};
-  ts.jaw_rad = jaw;
-  return ts;
-}
+using test_support::pose;
 
 // Nodes in the jaws' region of `ts` opened to `open` rad (the clip's clamp region).
 std::vector<std::int32_t> in_jaws(const TetMesh& m, const ToolState& ts, double open) {

@@ -14,6 +14,7 @@
 #include "engine/sim_state.h"
 #include "engine/stapler.h"
 #include "support/test_meshes.h"
+#include "support/tool_pose.h"
 
 namespace serosa::contact {
 namespace {
@@ -32,13 +33,7 @@ Scene stapler_scene() {
   return scene;
 }
 
-ToolState pose(const Vec3& tip, const Eigen::Quaterniond& q, double jaw) {
-  ToolState ts;
-  ts.tip_m = {tip.x(), tip.y(), tip.z()};
-  ts.quat_wxyz = {q.w(), q.x(), q.y(), q.z()};
-  ts.jaw_rad = jaw;
-  return ts;
-}
+using test_support::pose;
 
 // The free nodes of staple line k for jaws closed from `open` (the reference, from the header's
 // definition of the band).

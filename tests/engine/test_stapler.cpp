@@ -10,17 +10,12 @@
 #include <random>
 
 #include "engine/stapler.h"
+#include "support/tool_pose.h"
 
 namespace serosa {
 namespace {
 
-ToolState pose(const Vec3& tip, const Eigen::Quaterniond& q, double jaw) {
-  ToolState ts;
-  ts.tip_m = {tip.x(), tip.y(), tip.z()};
-  ts.quat_wxyz = {q.w(), q.x(), q.y(), q.z()};
-  ts.jaw_rad = jaw;
-  return ts;
-}
+using test_support::pose;
 
 TEST(StaplerTrigger, FiresOncePerClosureFromAnArmedOpeningWithTheWidestOpening) {
   std::mt19937 rng(7);
