@@ -185,7 +185,7 @@ Json cutting_json(const Composition& comp) {
   return j;
 }
 
-Json step_time_json(const std::vector<double>& ms) {
+Json step_time_json(const std::vector<double>& ms, const std::vector<StepDetail>& details) {
   if (ms.empty()) return {{"p50", 0.0}, {"p99", 0.0}, {"max", 0.0}, {"slowest", Json::array()}};
   std::vector<std::size_t> order(ms.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
@@ -198,10 +198,35 @@ Json step_time_json(const std::vector<double>& ms) {
     return ms[order[ms.size() - 1 - k]];
   };
   Json slowest = Json::array();
-  for (std::size_t i = 0; i < std::min<std::size_t>(8, order.size()); ++i)
-    slowest.push_back({{"step", order[i]}, {"ms", ms[order[i]]}});
+  for (std::size_t i = 0; i < std::min<std::size_t>(8, order.size()); ++i) {
+    Json s = {{"step", order[i]}, {"ms", ms[order[i]]}};
+    if (order[i] < details.size()) {
+      const StepDetail& d = details[order[i]];
+      s["fem_ms"] = d.fem_ms;
+      s["cg_iterations"] = d.cg_iterations;
+      s["factor_refresh"] = d.factor_refresh;
+      s["factor_patch"] = d.factor_patch;
+    }
+    slowest.push_back(std::move(s));
+  }
   return {{"p50", at(0.5)}, {"p99", at(0.99)}, {"max", ms[order[0]]}, {"slowest", slowest}};
 }
+
+namespace {
+
+StepDetail step_detail(const Runner& runner, const fem::FemStage* fem) {
+  StepDetail d;
+  d.fem_ms = 1e3 * runner.last_stage_s("fem");
+  if (fem != nullptr) {
+    const fem::StepStatus& st = fem->last_status();
+    d.cg_iterations = st.iterations;
+    d.factor_refresh = st.factor_refresh;
+    d.factor_patch = st.factor_patch;
+  }
+  return d;
+}
+
+}  // namespace
 
 std::string hash_hex(std::uint64_t hash) {
   char buf[17];
@@ -275,6 +300,8 @@ Json run_headless(const HeadlessOptions& options) {
   std::int64_t taken = 0;
   std::vector<double> step_ms;  // wall time of each solver step (all stages), ms
   step_ms.reserve(static_cast<std::size_t>(steps));
+  std::vector<StepDetail> details;  // where each step's time went
+  details.reserve(static_cast<std::size_t>(steps));
   // A rig's hand moves in wall-clock time: step no faster than real time, or the run would end
   // before the hand got anywhere (slower is slow motion, as in the window).
   const bool paced = comp.haptics && comp.haptics->driven_by_rig();
@@ -289,6 +316,7 @@ Json run_headless(const HeadlessOptions& options) {
     comp.runner->step(state);
     step_ms.push_back(
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - s0).count());
+    details.push_back(step_detail(*comp.runner, comp.fem));
     ++taken;
     maybe_picture(i + 1);
     if (bar && ((i + 1) % 10 == 0 || i + 1 == steps)) progress_bar(i + 1, steps);
@@ -313,7 +341,7 @@ Json run_headless(const HeadlessOptions& options) {
   report["wall_time_s"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   report["stepping_time_s"] = sim_s;
-  report["step_time_ms"] = step_time_json(step_ms);
+  report["step_time_ms"] = step_time_json(step_ms, details);
   report["prepare_ms"] = prepare_ms;  // load time before the first step (Runner::prepare)
   // Simulated over wall time of the solver steps: >= 1 runs ahead of the clock.
   double stepped_s = 0.0;

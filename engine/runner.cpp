@@ -19,7 +19,7 @@ void Runner::add(Slot slot, std::unique_ptr<Stage> stage) {
   if (!stage) throw std::invalid_argument("Runner: null stage");
   const auto after = std::upper_bound(m_entries.begin(), m_entries.end(), slot,
                                       [](Slot s, const Entry& e) { return s < e.slot; });
-  StageTiming timing{std::string(stage->name()), 0.0, 0};
+  StageTiming timing{std::string(stage->name()), 0.0, 0, 0.0};
   m_entries.insert(after, Entry{slot, std::move(stage), std::move(timing)});
 }
 
@@ -28,8 +28,8 @@ void Runner::run_slot(Slot slot, const StepContext& ctx, SimState& state) {
     if (e.slot != slot) continue;
     const auto t0 = std::chrono::steady_clock::now();
     e.stage->step(ctx, state);
-    e.timing.total_s +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    e.timing.last_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    e.timing.total_s += e.timing.last_s;
     ++e.timing.calls;
   }
 }
@@ -147,6 +147,13 @@ void Runner::prepare(SimState& state) {
 
 void Runner::run(SimState& state, std::uint64_t n) {
   for (std::uint64_t i = 0; i < n; ++i) step(state);
+}
+
+double Runner::last_stage_s(std::string_view name) const {
+  double s = 0.0;
+  for (const Entry& e : m_entries)
+    if (e.timing.name == name) s += e.timing.last_s;
+  return s;
 }
 
 std::vector<StageTiming> Runner::timings() const {

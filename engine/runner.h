@@ -11,6 +11,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "engine/stage.h"
@@ -49,6 +50,7 @@ struct StageTiming {
   std::string name;
   double total_s = 0.0;  ///< wall time spent in this stage over all steps, s
   std::uint64_t calls = 0;
+  double last_s = 0.0;  ///< wall time of this stage in the last step, s
 };
 
 class Runner {
@@ -80,6 +82,8 @@ class Runner {
   /// Each stage's timing, in the order the step runs them.
   [[nodiscard]] std::vector<StageTiming> timings() const;
   [[nodiscard]] std::size_t num_stages() const noexcept { return m_entries.size(); }
+  /// Wall time of the stages named `name` in the last step, s (0 when there is none).
+  [[nodiscard]] double last_stage_s(std::string_view name) const;
 
  private:
   struct Entry {

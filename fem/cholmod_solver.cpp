@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace serosa::fem {
 
@@ -16,6 +17,7 @@ struct CholmodSolver::Impl {
   cholmod_dense* e = nullptr;
   std::int32_t rows = 0;
   bool ok_factor = false;
+  bool node_blocks = false;
 
   Impl() {
     cholmod_start(&common);
@@ -58,8 +60,52 @@ struct CholmodSolver::Impl {
 };
 
 CholmodSolver::CholmodSolver(Layout layout) : m_impl(std::make_unique<Impl>()) {
-  if (layout == Layout::simplicial) m_impl->common.supernodal = CHOLMOD_SIMPLICIAL;
+  if (layout != Layout::automatic) m_impl->common.supernodal = CHOLMOD_SIMPLICIAL;
+  m_impl->node_blocks = layout == Layout::node_blocks;
 }
+
+namespace {
+
+// A fill-reducing ordering of a's node graph (AMD on the pattern of its 3x3 blocks), expanded to
+// each node's three rows in order; empty if a is not 3n x 3n or AMD fails.
+std::vector<std::int32_t> node_ordering(const CsrMatrix& a, cholmod_common& common) {
+  if (a.rows % 3 != 0) return {};
+  const std::int32_t n = a.rows / 3;
+  // The upper triangle of the node pattern, by columns: column J's rows are the nodes I <= J
+  // coupled to it, read off row 3J of a (symmetric: a row is a column).
+  std::vector<std::int32_t> p(static_cast<std::size_t>(n) + 1, 0), i;
+  for (std::int32_t j = 0; j < n; ++j) {
+    const auto r = static_cast<std::size_t>(3 * j);
+    const auto begin = static_cast<std::size_t>(a.row_start[r]);
+    for (std::size_t e = begin; e < begin + static_cast<std::size_t>(a.row_nz[r]); ++e) {
+      const std::int32_t node = a.col[e] / 3;
+      if (node <= j && (i.size() == static_cast<std::size_t>(p[static_cast<std::size_t>(j)]) ||
+                        i.back() != node))
+        i.push_back(node);
+    }
+    p[static_cast<std::size_t>(j) + 1] = static_cast<std::int32_t>(i.size());
+  }
+  cholmod_sparse g{};
+  g.nrow = g.ncol = static_cast<std::size_t>(n);
+  g.nzmax = std::max<std::size_t>(i.size(), 1);
+  g.p = p.data();
+  g.i = i.data();
+  g.stype = 1;
+  g.itype = CHOLMOD_INT;
+  g.xtype = CHOLMOD_PATTERN;
+  g.dtype = CHOLMOD_DOUBLE;
+  g.sorted = 1;
+  g.packed = 1;
+  std::vector<std::int32_t> order(static_cast<std::size_t>(n));
+  if (n > 0 && cholmod_amd(&g, nullptr, 0, order.data(), &common) == 0) return {};
+  std::vector<std::int32_t> perm(static_cast<std::size_t>(a.rows));
+  for (std::size_t k = 0; k < order.size(); ++k)
+    for (std::int32_t c = 0; c < 3; ++c)
+      perm[3 * k + static_cast<std::size_t>(c)] = 3 * order[k] + c;
+  return perm;
+}
+
+}  // namespace
 CholmodSolver::~CholmodSolver() = default;
 
 bool CholmodSolver::analyze(const CsrMatrix& a) {
@@ -67,7 +113,18 @@ bool CholmodSolver::analyze(const CsrMatrix& a) {
   m.free_all();
   m.rows = a.rows;
   cholmod_sparse s = Impl::view(a);
-  m.factor = cholmod_analyze(&s, &m.common);
+  if (m.node_blocks) {
+    std::vector<std::int32_t> perm = node_ordering(a, m.common);
+    if (perm.empty()) return false;
+    // The given ordering as it is: no method search, no postordering (which could interleave
+    // the nodes' rows).
+    m.common.nmethods = 1;
+    m.common.method[0].ordering = CHOLMOD_GIVEN;
+    m.common.postorder = 0;
+    m.factor = cholmod_analyze_p(&s, perm.data(), nullptr, 0, &m.common);
+  } else {
+    m.factor = cholmod_analyze(&s, &m.common);
+  }
   if (m.factor == nullptr) return false;
   m.b = cholmod_zeros(static_cast<std::size_t>(a.rows), 1, CHOLMOD_REAL, &m.common);
   return m.b != nullptr;
@@ -104,6 +161,39 @@ SolveStatus CholmodSolver::solve(std::span<const double> b, std::span<double> x)
   st.finite = std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); });
   st.converged = ok != 0 && st.finite;
   return st;
+}
+
+bool CholmodSolver::export_ldl(LdlFactor& out) const {
+  const Impl& m = *m_impl;
+  const cholmod_factor* f = m.factor;
+  if (!m.ok_factor || f == nullptr || f->is_super != 0 || f->is_ll != 0 ||
+      f->itype != CHOLMOD_INT || f->xtype != CHOLMOD_REAL)
+    return false;
+  const auto n = static_cast<std::size_t>(f->n);
+  const auto* perm = static_cast<const std::int32_t*>(f->Perm);
+  const auto* lp = static_cast<const std::int32_t*>(f->p);
+  const auto* li = static_cast<const std::int32_t*>(f->i);
+  const auto* lnz = static_cast<const std::int32_t*>(f->nz);
+  const auto* lx = static_cast<const double*>(f->x);
+  out.perm.assign(perm, perm + n);
+  out.col_start.assign(n + 1, 0);
+  out.row.clear();
+  out.val.clear();
+  out.d.assign(n, 0.0);
+  // Column j: its diagonal entry (D_j in LDL^T) first, then the rows below it.
+  for (std::size_t j = 0; j < n; ++j) {
+    const auto begin = static_cast<std::size_t>(lp[j]);
+    for (std::size_t e = begin; e < begin + static_cast<std::size_t>(lnz[j]); ++e) {
+      if (static_cast<std::size_t>(li[e]) == j) {
+        out.d[j] = lx[e];
+      } else {
+        out.row.push_back(li[e]);
+        out.val.push_back(lx[e]);
+      }
+    }
+    out.col_start[j + 1] = static_cast<std::int32_t>(out.row.size());
+  }
+  return true;
 }
 
 bool CholmodSolver::analyzed() const { return m_impl->factor != nullptr; }

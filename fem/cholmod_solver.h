@@ -10,6 +10,7 @@
 #include <memory>
 #include <span>
 
+#include "fem/block_factor.h"
 #include "fem/csr_matrix.h"
 #include "fem/solve_status.h"
 
@@ -21,7 +22,10 @@ class CholmodSolver {
   /// blocks), or simplicial (column by column, no BLAS): on meshes of a few thousand nodes its
   /// triangular solves are cheaper, which is what a preconditioner applied every CG iteration
   /// needs (docs/BENCHMARKS.md "FEM").
-  enum class Layout : std::uint8_t { automatic, simplicial };
+  /// node_blocks: simplicial LDL^T under an ordering of the node graph (AMD), so that each
+  /// node's three rows stay together and the factor can be exported as 3x3 blocks
+  /// (export_ldl, fem/block_factor.h).
+  enum class Layout : std::uint8_t { automatic, simplicial, node_blocks };
 
   explicit CholmodSolver(Layout layout = Layout::automatic);
   ~CholmodSolver();
@@ -34,6 +38,10 @@ class CholmodSolver {
   [[nodiscard]] bool factorize(const CsrMatrix& a);
   /// x = A^{-1} b with the last factorization; b and x: (rows). Status: converged = factor ok.
   SolveStatus solve(std::span<const double> b, std::span<double> x);
+
+  /// The factor as plain arrays (fem/block_factor.h LdlFactor); false unless the layout is
+  /// simplicial or node_blocks and a factorization succeeded.
+  bool export_ldl(LdlFactor& out) const;
 
   [[nodiscard]] bool analyzed() const;
   [[nodiscard]] bool factorized() const;

@@ -239,6 +239,7 @@ StepStatus ImplicitIntegrator::step_from(TetMesh& mesh, double dt_s, std::span<c
   if (m_config.plasticity.on) m_plastic.resize(mesh.tets.size(), Mat3::Zero());
   const ElementPass pass = element_pass(mesh, dt_s);
   st.inverted_tets = pass.inverted;
+  st.turned_tets = pass.turned;
   const double kinetic_j = assemble_rhs(mesh, dt_s, f_ext);
   check_energy_balance(pass, kinetic_j, st);
   if (st.energy_gain && may_remove && kinetic_j > 0.0) {
@@ -288,9 +289,10 @@ ImplicitIntegrator::ElementPass ImplicitIntegrator::element_pass(const TetMesh& 
   const bool plastic = m_config.plasticity.on;
   m_scale.resize(static_cast<std::size_t>(m));
   int inverted = 0;
+  int turned = 0;
   double elastic = 0.0;
   double stiffness_volume = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : inverted, elastic, stiffness_volume) if (m >= kParallelMin)
+#pragma omp parallel for schedule(static) reduction(+ : inverted, turned, elastic, stiffness_volume) if (m >= kParallelMin)
   for (std::int32_t t = 0; t < m; ++t) {
     const auto ut = static_cast<std::size_t>(t);
     const TetElement& e = m_el.elements[ut];
@@ -309,14 +311,12 @@ ImplicitIntegrator::ElementPass ImplicitIntegrator::element_pass(const TetMesh& 
     const Mat3 f = nodal_gradient(e, mesh.x[nd[0]], mesh.x[nd[1]], mesh.x[nd[2]], mesh.x[nd[3]]);
     if (f.determinant() <= 0.0) ++inverted;
     if (m_config.corotational) {
-      // Warm start extrapolated from the last two steps' rotations, q (q_prev^* q): half the
-      // Newton iterations of starting from q on a moving body (fem/rotation.h).
+      // Warm-started from the last steps' rotations (fem/rotation.h step_rotation).
       Quat& q = m_q[ut];
       const Quat last = q;
-      q = (q * m_q_prev[ut].conjugate()) * q;
-      q.normalize();
+      m_rot[ut] = step_rotation(f, q, m_q_prev[ut], kStepRotationTolerance);
       m_q_prev[ut] = last;
-      m_rot[ut] = robust_rotation(f, q, kRotationMaxIterations, kStepRotationTolerance);
+      if (std::abs(q.dot(last)) < kTurnedCosHalf) ++turned;
     } else {
       m_rot[ut].setIdentity();
     }
@@ -326,7 +326,7 @@ ImplicitIntegrator::ElementPass ImplicitIntegrator::element_pass(const TetMesh& 
     elastic += element_forces_energy(e, m_rot[ut], f, fv, e.beta_s + dt_s, out,
                                      plastic ? &m_plastic[ut] : nullptr);
   }
-  return {inverted, elastic, stiffness_volume};
+  return {inverted, turned, elastic, stiffness_volume};
 }
 
 double ImplicitIntegrator::assemble_rhs(const TetMesh& mesh, double dt_s,

@@ -22,6 +22,7 @@
 // reported as converged = false: capping iterations is how real-time runs trade accuracy.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -46,6 +47,9 @@ struct StepStatus {
   int iterations = 0;      ///< CG iterations (0 for CHOLMOD)
   double residual = 0.0;   ///< relative residual ||b - A dv|| / ||b|| of the linear solve
   int inverted_tets = 0;   ///< tets with det F <= 0 at the start of the step
+  /// Tets whose rotation turned by more than kTurnedRad since the last step: tissue in flux (a
+  /// cut's fresh pieces recoiling), whose matrix a lagged factor would not fit for long.
+  int turned_tets = 0;
   /// pcg_cholmod: the rest-state factor for this topology was not ready yet (being computed in
   /// the background), so CG ran with Jacobi instead; the step did not wait.
   bool factor_pending = false;
@@ -74,6 +78,11 @@ struct StepStatus {
   /// factor of their own this step.
   bool factor_patch = false;
 };
+
+/// A tet's rotation turned by more than this in one step counts in StepStatus::turned_tets, rad.
+inline constexpr double kTurnedRad = 0.3;
+/// cos(kTurnedRad / 2): the bound on |q_last . q| (unit quaternions) of a tet not turned.
+inline const double kTurnedCosHalf = std::cos(0.5 * kTurnedRad);
 
 /// Relative tolerance of StepStatus::energy_gain: gain > tol * (E_before + E_after + |W_ext|)
 /// + the floor below.
@@ -142,6 +151,7 @@ class ImplicitIntegrator {
   /// What the per-tet pass of a step sums up.
   struct ElementPass {
     int inverted = 0;               ///< tets with det F <= 0
+    int turned = 0;                 ///< tets turned by more than kTurnedRad since the last step
     double elastic_j = 0.0;         ///< corotated elastic energy at x, J
     double stiffness_volume = 0.0;  ///< sum of (lambda + 2 mu) V over active tets, J
   };

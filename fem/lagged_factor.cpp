@@ -12,12 +12,14 @@ LaggedFactor::~LaggedFactor() {
 void LaggedFactor::run(Job& job) {
   if (!job.analyzed) job.analyzed = job.solver->analyze(job.a);
   job.ok = job.analyzed && job.solver->factorize(job.a);
+  // The block copy the solves use (CHOLMOD's own solve stands in when it cannot be made).
+  if (!job.ok || !job.solver->export_ldl(job.ldl) || !job.blocks.build(job.ldl)) job.blocks.clear();
 }
 
 std::unique_ptr<CholmodSolver> LaggedFactor::take_spare(std::uint64_t structure, bool& analyzed) {
   analyzed = m_spare != nullptr && m_spare_structure == structure && m_spare->analyzed();
   if (m_spare) return std::move(m_spare);
-  return std::make_unique<CholmodSolver>(CholmodSolver::Layout::simplicial);
+  return std::make_unique<CholmodSolver>(CholmodSolver::Layout::node_blocks);
 }
 
 void LaggedFactor::install() {
@@ -27,6 +29,7 @@ void LaggedFactor::install() {
     m_spare_structure = m_installed_structure;
     m_installed = std::move(m_job->solver);
     m_installed_rows = m_job->a.rows;
+    std::swap(m_installed_blocks, m_job->blocks);
     // Swapped, not moved: the job keeps the replaced buffers for the next request to copy into.
     std::swap(m_installed_a, m_job->a);
     std::swap(m_installed_rot, m_job->node_rot);
@@ -146,7 +149,7 @@ bool LaggedFactor::factor_now(const CsrMatrix& a, std::uint64_t structure,
                               std::span<const Quat> node_rot, std::span<const std::uint8_t> free) {
   clear();
   std::unique_ptr<Job> job = new_job(a, structure, node_rot, free);
-  job->solver = std::make_unique<CholmodSolver>(CholmodSolver::Layout::simplicial);
+  job->solver = std::make_unique<CholmodSolver>(CholmodSolver::Layout::node_blocks);
   run(*job);
   m_job = std::move(job);
   const bool ok = m_job->ok;
@@ -173,6 +176,7 @@ void LaggedFactor::clear() {
   if (m_job && m_job->thread.joinable()) m_job->thread.join();
   m_job.reset();
   m_installed.reset();
+  m_installed_blocks.clear();
   m_installed_a = CsrMatrix{};
   m_installed_free.clear();
   m_spare.reset();
@@ -386,7 +390,10 @@ void LaggedFactor::factor_solve(std::span<const double> r, std::span<double> z,
                         : Vec3::Zero();
     for (std::size_t c = 0; c < 3; ++c) m_r[3 * i + c] = ri[static_cast<Eigen::Index>(c)];
   }
-  m_installed->solve(m_r, m_z);
+  if (m_installed_blocks.rows() == m_installed_rows)
+    m_installed_blocks.solve(m_r, m_z);
+  else
+    m_installed->solve(m_r, m_z);
   for (std::size_t i = 0; 3 * i < nf; ++i) {
     const Vec3 zi = warp[i] * Vec3(m_z[3 * i], m_z[3 * i + 1], m_z[3 * i + 2]);
     for (std::size_t c = 0; c < 3; ++c)

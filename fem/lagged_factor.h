@@ -47,6 +47,7 @@
 
 #include "engine/math.h"
 #include "engine/state_codec.h"
+#include "fem/block_factor.h"
 #include "fem/cholmod_solver.h"
 #include "fem/csr_matrix.h"
 
@@ -131,6 +132,8 @@ class LaggedFactor {
     std::vector<Quat> node_rot;      // (n) the nodes' rotations at a's step
     std::vector<std::uint8_t> free;  // (n) 1 where the node took part in a's solve
     std::unique_ptr<CholmodSolver> solver;
+    LdlFactor ldl;          // the factor as exported, kept for its buffers
+    BlockFactor blocks;     // its 3x3 float blocks (fem/block_factor.h), empty if not node-blocked
     bool analyzed = false;  // solver already holds the analysis of a's pattern
     bool ok = false;
     std::thread thread;
@@ -145,7 +148,8 @@ class LaggedFactor {
   std::unique_ptr<Job> m_job;
   std::unique_ptr<Job> m_recycled;  // the last job done, its buffers kept for the next
   std::unique_ptr<CholmodSolver> m_installed;
-  CsrMatrix m_installed_a;  // the matrix the installed factor was computed from (snapshots)
+  BlockFactor m_installed_blocks;  // the installed factor's solves (empty: CHOLMOD's)
+  CsrMatrix m_installed_a;         // the matrix the installed factor was computed from (snapshots)
   std::int32_t m_installed_rows = 0;
   std::vector<Quat> m_installed_rot;           // (rows / 3) R0 of the installed factor
   std::vector<std::uint8_t> m_installed_free;  // (rows / 3) its matrix's free mask

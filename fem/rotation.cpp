@@ -109,3 +109,17 @@ Mat3 robust_rotation(const Mat3& f, Quat& q, int max_iter, double tolerance) {
 }
 
 }  // namespace serosa::fem
+
+namespace serosa::fem {
+
+Mat3 step_rotation(const Mat3& f, Quat& q, const Quat& q_prev, double tolerance) {
+  if (f.determinant() <= 0.0) {
+    (void)newton_rotation(f, q, kInvertedRotationIterations, tolerance);
+    return q.toRotationMatrix();
+  }
+  q = (q * q_prev.conjugate()) * q;
+  q.normalize();
+  return robust_rotation(f, q, kRotationMaxIterations, tolerance);
+}
+
+}  // namespace serosa::fem

@@ -123,6 +123,11 @@ TEST(Headless, ReportHasEveryFieldWithPlausibleValues) {
   EXPECT_LE(st["p50"].get<double>(), st["p99"].get<double>());
   EXPECT_LE(st["p99"].get<double>(), st["max"].get<double>());
   EXPECT_GT(r["real_time_factor"].get<double>(), 0.0);
+  // Each of the slowest steps says how much of it was the FEM's and what its solve did.
+  for (const auto& s : st["slowest"]) {
+    EXPECT_LE(s["fem_ms"].get<double>(), s["ms"].get<double>());
+    EXPECT_GE(s["cg_iterations"].get<int>(), 0);
+  }
 }
 
 TEST(Headless, StepTimesGiveQuantilesAndTheSlowestStepsByIndex) {
@@ -153,6 +158,28 @@ TEST(Headless, StepTimesGiveQuantilesAndTheSlowestStepsByIndex) {
     }
   }
   EXPECT_TRUE(step_time_json({})["slowest"].empty());
+}
+
+TEST(Headless, EachSlowestStepSaysWhereItsTimeWent) {
+  std::mt19937 rng(8);
+  std::uniform_int_distribution<int> its(0, 200);
+  std::vector<double> ms(300);
+  std::vector<StepDetail> details(ms.size());
+  for (std::size_t i = 0; i < ms.size(); ++i) {
+    ms[i] = 0.01 * static_cast<double>(i % 97) + 1.0;
+    details[i] = {0.5 * ms[i], its(rng), i % 5 == 0, i % 7 == 0};
+  }
+  const auto j = step_time_json(ms, details);
+  ASSERT_EQ(j["slowest"].size(), 8u);
+  for (const auto& s : j["slowest"]) {
+    const auto& d = details[s["step"].get<std::size_t>()];
+    EXPECT_EQ(s["fem_ms"].get<double>(), d.fem_ms);
+    EXPECT_EQ(s["cg_iterations"].get<int>(), d.cg_iterations);
+    EXPECT_EQ(s["factor_refresh"].get<bool>(), d.factor_refresh);
+    EXPECT_EQ(s["factor_patch"].get<bool>(), d.factor_patch);
+  }
+  // Without details, steps and times only.
+  EXPECT_FALSE(step_time_json(ms)["slowest"][0].contains("cg_iterations"));
 }
 
 TEST(Headless, DefaultSceneRunsWithoutAWarning) {
