@@ -114,7 +114,7 @@ namespace serosa::fem {
 
 Mat3 step_rotation(const Mat3& f, Quat& q, const Quat& q_prev, double tolerance) {
   if (f.determinant() <= 0.0) {
-    (void)newton_rotation(f, q, kInvertedRotationIterations, tolerance);
+    (void)newton_rotation(f, q, kRotationMaxIterations, tolerance);
     return q.toRotationMatrix();
   }
   q = (q * q_prev.conjugate()) * q;

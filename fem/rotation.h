@@ -53,15 +53,12 @@ bool newton_rotation(const Mat3& f, Quat& q, int max_iter = kRotationMaxIteratio
 Mat3 robust_rotation(const Mat3& f, Quat& q, int max_iter = kRotationMaxIterations,
                      double tolerance = 1e-9);
 
-/// Iterations an inverted tet's rotation takes at most per solver step (step_rotation).
-inline constexpr int kInvertedRotationIterations = 3;
-
 /// The rotation of one tet for one solver step. q: in, the rotation of the last step; out, this
 /// step's. q_prev: the rotation a step before that.
 /// - Upright tets (det F > 0): robust_rotation() from the rotation extrapolated from the last two
 ///   steps, q (q_prev^* q), which halves the Newton iterations on a moving body.
-/// - Inverted tets (det F <= 0): newton_rotation() from the last rotation as it is, at most
-///   kInvertedRotationIterations, no SVD fallback. Inside out, the maximizer of tr(R^T F) is
+/// - Inverted tets (det F <= 0): newton_rotation() from the last rotation as it is, with no SVD
+///   fallback. Inside out, the maximizer of tr(R^T F) is
 ///   ill-determined where the two smaller signed singular values nearly cancel (a crushed or a
 ///   cut sliver): the extrapolated start and the SVD's global answer flipped such tets by up to
 ///   70 degrees every step, back and forth, and each flip changes the system matrix, which the
