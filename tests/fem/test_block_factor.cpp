@@ -60,6 +60,11 @@ double max_abs(const std::vector<double>& v) {
   return m;
 }
 
+// CHOLMOD's node-blocked factor of a, exported.
+bool factor(const CsrMatrix& a, CholmodSolver& chol, LdlFactor& ldl) {
+  return chol.analyze(a) && chol.factorize(a) && chol.export_ldl(ldl);
+}
+
 TEST(BlockFactor, SolvesAsCholmodDoesToSinglePrecision) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -67,10 +72,8 @@ TEST(BlockFactor, SolvesAsCholmodDoesToSinglePrecision) {
     const int nodes = 2 + trial % 60;
     const CsrMatrix a = random_system(rng, nodes, 3 * nodes, trial % 3 == 0 ? 4.0 : 1.0);
     CholmodSolver chol(CholmodSolver::Layout::node_blocks);
-    ASSERT_TRUE(chol.analyze(a));
-    ASSERT_TRUE(chol.factorize(a));
     LdlFactor ldl;
-    ASSERT_TRUE(chol.export_ldl(ldl));
+    ASSERT_TRUE(factor(a, chol, ldl));
     BlockFactor blocks;
     ASSERT_TRUE(blocks.build(ldl)) << "trial " << trial;
     ASSERT_EQ(blocks.rows(), a.rows);
@@ -95,10 +98,8 @@ TEST(BlockFactor, RefusesAFactorThatSplitsANodeOrHasNoPositivePivot) {
   std::mt19937 rng(9);
   const CsrMatrix a = random_system(rng, 20, 60, 1.0);
   CholmodSolver chol(CholmodSolver::Layout::node_blocks);
-  ASSERT_TRUE(chol.analyze(a));
-  ASSERT_TRUE(chol.factorize(a));
   LdlFactor ldl;
-  ASSERT_TRUE(chol.export_ldl(ldl));
+  ASSERT_TRUE(factor(a, chol, ldl));
   BlockFactor blocks;
   LdlFactor split = ldl;
   std::swap(split.perm[0], split.perm[split.perm.size() - 1]);  // node 0's rows apart
@@ -120,10 +121,8 @@ TEST(BlockFactor, TheNodeOrderingKeepsEachNodesRowsTogether) {
   for (int trial = 0; trial < 50; ++trial) {
     const CsrMatrix a = random_system(rng, 10 + trial, 40 + 3 * trial, 2.0);
     CholmodSolver chol(CholmodSolver::Layout::node_blocks);
-    ASSERT_TRUE(chol.analyze(a));
-    ASSERT_TRUE(chol.factorize(a));
     LdlFactor ldl;
-    ASSERT_TRUE(chol.export_ldl(ldl));
+    ASSERT_TRUE(factor(a, chol, ldl));
     for (std::size_t k = 0; k < ldl.perm.size(); k += 3) {
       ASSERT_EQ(ldl.perm[k] % 3, 0);
       ASSERT_EQ(ldl.perm[k + 1], ldl.perm[k] + 1);
