@@ -205,6 +205,9 @@ struct SolverSettings {
   int factor_lag_steps = 12;           ///< pcg-lagged: steps a refresh may take; >= 1
   int urgent_lag_steps = 6;            ///< pcg-lagged: the same for urgent refreshes; >= 1
   int cut_lag_steps = 20;  ///< pcg-lagged: the same after a cut, when more than factor_lag_steps
+  /// pcg-lagged: patch the rows of nodes whose tets turned otherwise than they did since the
+  /// factor's step by more than this, rad; 0: never; within [0, pi].
+  double misfit_rad = 0.2;
   /// pcg-lagged after a cut: patch the factor on the touched rows until a refresh is in (true:
   /// "patch"), or factor the new matrix on the step after the cut (false: "factor").
   bool patch_after_cut = true;

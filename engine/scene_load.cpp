@@ -13,6 +13,7 @@
 #include <initializer_list>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <sstream>
 #include <system_error>
 #include <utility>
@@ -553,7 +554,7 @@ class Loader {
     const std::string p = "solver";
     check_keys(t, p,
                {"kind", "tolerance", "max_iterations", "refresh_iterations", "factor_lag_steps",
-                "threads", "after_cut", "urgent_lag_steps", "cut_lag_steps"});
+                "threads", "after_cut", "urgent_lag_steps", "cut_lag_steps", "misfit_rad"});
     if (const auto* n = t.get("kind")) {
       s.kind = enum_value<SolverKind>(*n, sub(p, "kind"), solver_kind_from_name,
                                       "pcg, cholmod, pcg-cholmod, pcg-lagged");
@@ -581,6 +582,10 @@ class Loader {
     if (const auto* n = t.get("cut_lag_steps")) {
       s.cut_lag_steps = static_cast<int>(
           ranged_int(*n, sub(p, "cut_lag_steps"), 1, 10000, "a number of steps within [1, 10000]"));
+    }
+    if (const auto* n = t.get("misfit_rad")) {
+      s.misfit_rad = ranged(*n, sub(p, "misfit_rad"), 0.0, false, std::numbers::pi, false,
+                            "an angle within [0, pi] rad (0: never)");
     }
     if (const auto* n = t.get("after_cut")) {
       const std::string v = string(*n, sub(p, "after_cut"), "\"patch\" or \"factor\"");

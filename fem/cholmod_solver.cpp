@@ -130,6 +130,18 @@ bool CholmodSolver::analyze(const CsrMatrix& a) {
   return m.b != nullptr;
 }
 
+bool CholmodSolver::copy_analysis(const CholmodSolver& from) {
+  Impl& m = *m_impl;
+  const Impl& f = *from.m_impl;
+  m.free_all();
+  if (f.factor == nullptr) return false;
+  m.rows = f.rows;
+  m.factor = cholmod_copy_factor(f.factor, &m.common);
+  if (m.factor == nullptr) return false;
+  m.b = cholmod_zeros(static_cast<std::size_t>(m.rows), 1, CHOLMOD_REAL, &m.common);
+  return m.b != nullptr;
+}
+
 bool CholmodSolver::factorize(const CsrMatrix& a) {
   Impl& m = *m_impl;
   m.ok_factor = false;

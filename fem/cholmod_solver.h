@@ -36,6 +36,9 @@ class CholmodSolver {
   bool analyze(const CsrMatrix& a);
   /// Numeric factorization of a (same pattern as analyzed). False if a is not positive definite.
   [[nodiscard]] bool factorize(const CsrMatrix& a);
+  /// The analysis of `from` (analyzed, of the same pattern) instead of analyze(): a copy of its
+  /// factor, whose values the next factorize() overwrites. Only reads `from`.
+  bool copy_analysis(const CholmodSolver& from);
   /// x = A^{-1} b with the last factorization; b and x: (rows). Status: converged = factor ok.
   SolveStatus solve(std::span<const double> b, std::span<double> x);
 

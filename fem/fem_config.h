@@ -96,6 +96,11 @@ struct SolverSettings {
   /// the refresh (the default scene, a cut: 10 a step with 1 ring, 8 with 2, 6 with 3; a grasp:
   /// 10, 7-8, 6-7).
   int patch_rings = 2;
+  /// pcg_lagged: a node whose tets turned otherwise than the node itself since the installed
+  /// factor's step, by more than this angle, gets its rows patched on this step like a cut's
+  /// (fem/lagged_factor.h, misfit), rad; 0: never. The factor turned by the node's warp fits while
+  /// the tets around the node turn with it, not while one inverts or a fresh sliver spins.
+  double misfit_rad = 0.2;
 };
 
 /// Plastic flow (Müller & Gross 2004, section 5), the "plasticity" effect. Per tet, the plastic

@@ -88,7 +88,8 @@ void ImplicitIntegrator::prepare(TetMesh& mesh, double dt_s) {
   (void)assemble_system(mesh, dt_s);
   update_node_rotations(mesh);
   update_free_mask(mesh);
-  m_lagged.factor_now(lagged_csr(mesh, dt_s), m_structure, m_node_rot, m_free);
+  m_lagged.factor_now(lagged_csr(mesh, dt_s), m_structure, m_node_rot, m_q, m_free);
+  m_lagged.warm_up();
   m_q = q;
   m_q_prev = q_prev;
 }
@@ -146,6 +147,7 @@ void ImplicitIntegrator::update(TetMesh& mesh, const TopologyDelta& delta) {
       m_plastic[static_cast<std::size_t>(to)] = m_plastic[static_cast<std::size_t>(from)];
     m_plastic.resize(static_cast<std::size_t>(mesh.num_tets()), Mat3::Zero());
   }
+  m_lagged.relabel_tets(delta, static_cast<std::size_t>(mesh.num_tets()));
   // The nodes whose rows of A the cut changed (the lagged factor's patch, fem/lagged_factor.h).
   m_changed.resize(static_cast<std::size_t>(mesh.num_nodes()), 1);
   for (const Tet& t : m_removed)

@@ -195,6 +195,9 @@ class ImplicitIntegrator {
   /// or a release.
   void lagged_preconditioner(const TetMesh& mesh, double dt_s, StepStatus& st,
                              Preconditioner& precond);
+  /// Marks in m_kind_changed the nodes the installed factor's warp no longer fits (a tet of theirs
+  /// turned otherwise than they did since its step, SolverSettings::misfit_rad); returns how many.
+  int mark_misfit_nodes(const TetMesh& mesh);
   /// Patches the lagged factor with the rows of m_kind_changed and their rings (factors the whole
   /// matrix instead if that submatrix is not SPD).
   void patch_lagged_factor(const TetMesh& mesh, double dt_s, StepStatus& st);
@@ -241,10 +244,15 @@ class ImplicitIntegrator {
   std::vector<std::uint8_t> m_free;     // (n) 1 where the node takes part in the solve
   std::vector<Quat> m_node_rot;         // (n) the nodes' rotations this step (factor warping)
   std::vector<Mat3> m_warp;             // (n) each node's turn since the installed factor's step
+  std::vector<Quat> m_node_warp;        // (n) scratch: the same as quaternions (misfit)
   std::vector<std::uint8_t> m_changed;  // (n) 1: a cut since the installed factor touched the node
   std::vector<std::uint8_t> m_kind_changed;  // (n) scratch: held or let go since the factor
   std::vector<std::uint8_t> m_patch_nodes;   // (n) scratch: the changed nodes and their rings
   std::vector<std::uint8_t> m_ring_inner;    // (n) scratch: the patch before its next ring
+  // This step (derived from the state each step, so nothing to save): the patch in use covers a
+  // cut, a grasp or a release (not only misfit nodes), and it was made new on this step for one.
+  bool m_patch_for_change = false;
+  bool m_patch_new = false;
   std::uint64_t m_steps = 0;
   std::vector<Tet> m_removed;  // scratch of update(): nodes of the removed tets
   PatternUpdateStats m_last_update;

@@ -134,6 +134,7 @@ Preconditioner ImplicitIntegrator::cg_preconditioner(const TetMesh& mesh, double
 void ImplicitIntegrator::lagged_preconditioner(const TetMesh& mesh, double dt_s, StepStatus& st,
                                                Preconditioner& precond) {
   m_lagged.begin_step(m_steps);
+  m_patch_for_change = m_patch_new = false;
   update_node_rotations(mesh);
   const auto n = static_cast<std::size_t>(mesh.num_nodes());
   update_free_mask(mesh);
@@ -143,16 +144,19 @@ void ImplicitIntegrator::lagged_preconditioner(const TetMesh& mesh, double dt_s,
   if (!m_lagged.ready() || (stale && !m_config.solver.patch_after_cut)) {
     // The first step, after a full rebuild (or after a cut without patching): factor this
     // step's matrix now.
-    m_lagged.factor_now(lagged_csr(mesh, dt_s), m_structure, m_node_rot, m_free);
+    m_lagged.factor_now(lagged_csr(mesh, dt_s), m_structure, m_node_rot, m_q, m_free);
     st.factor_refresh = true;
   } else {
     // A cut since the installed factor, or nodes held or let go since: their rows get a factor
     // of their own; a refresh is asked for after the solve (schedule_refresh).
     m_kind_changed.resize(n);
     const bool kinds = m_lagged.kinds_changed(m_free, m_kind_changed);
-    if (!stale && !kinds) {
+    m_patch_for_change = stale || kinds;
+    m_patch_new = m_patch_for_change && !m_lagged.patch_fits(m_structure, m_free);
+    const bool misfit = m_config.solver.misfit_rad > 0.0 && mark_misfit_nodes(mesh) > 0;
+    if (!m_patch_for_change && !misfit) {
       m_lagged.drop_patch();  // the installed factor fits again
-    } else if (!m_lagged.patch_fits(m_structure, m_free)) {
+    } else if (misfit || m_patch_new) {
       if (stale)  // the cut's touched nodes too
         for (std::size_t i = 0; i < n; ++i) m_kind_changed[i] |= m_changed[i];
       patch_lagged_factor(mesh, dt_s, st);
@@ -164,6 +168,48 @@ void ImplicitIntegrator::lagged_preconditioner(const TetMesh& mesh, double dt_s,
   precond.apply = [this](std::span<const double> r, std::span<double> z) {
     m_lagged.apply(r, z, m_pcg.inv_diag, m_free, m_warp);
   };
+}
+
+int ImplicitIntegrator::mark_misfit_nodes(const TetMesh& mesh) {
+  const double cos_half = std::cos(0.5 * m_config.solver.misfit_rad);
+  const std::span<const Quat> tet0 = m_lagged.tet_rotations();
+  const std::span<const Quat> node0 = m_lagged.node_rotations();
+  const std::span<const Quat> patch0 = m_lagged.patch_rotations();
+  int marked = 0;
+  // The patch is not warped: any node of a tet that turned since the patch's step, if the tet
+  // has a node in it (a cut's fresh pieces recoil), calls for a new one.
+  if (m_lagged.has_patch())
+    for (std::size_t t = 0; t < std::min(m_q.size(), patch0.size()); ++t) {
+      if (!m_el.elements[t].active()) continue;
+      const Tet& nodes = mesh.tets[t];
+      if (std::none_of(nodes.begin(), nodes.end(), [&](std::int32_t i) {
+            return m_lagged.patched(static_cast<std::size_t>(i));
+          }))
+        continue;
+      if (std::abs(m_q[t].dot(patch0[t])) >= cos_half) continue;
+      ++marked;
+      for (const std::int32_t i : nodes) m_kind_changed[static_cast<std::size_t>(i)] = 1;
+    }
+  // Each node's warp once (W_i = R_i R0_i^T), not once per corner.
+  const std::size_t nw = std::min(node0.size(), m_node_rot.size());
+  m_node_warp.resize(nw);
+  for (std::size_t i = 0; i < nw; ++i) m_node_warp[i] = m_node_rot[i] * node0[i].conjugate();
+  const std::size_t m = std::min(m_q.size(), tet0.size());
+  for (std::size_t t = 0; t < m; ++t) {
+    // Tets a cut added since the factor's step have no rotation of its (zero): a cut's patch
+    // holds their nodes.
+    if (!m_el.elements[t].active() || tet0[t].coeffs().squaredNorm() == 0.0) continue;
+    const Quat turn = m_q[t] * tet0[t].conjugate();
+    for (const std::int32_t i : mesh.tets[t]) {
+      const auto u = static_cast<std::size_t>(i);
+      if (u >= nw || m_kind_changed[u] != 0) continue;
+      if (std::abs(turn.dot(m_node_warp[u])) < cos_half) {
+        m_kind_changed[u] = 1;
+        ++marked;
+      }
+    }
+  }
+  return marked;
 }
 
 // The patch: the changed nodes (m_kind_changed) and rings of neighbours around them, so that the
@@ -178,9 +224,10 @@ void ImplicitIntegrator::patch_lagged_factor(const TetMesh& mesh, double dt_s, S
         for (const std::int32_t j : m_pattern.nbr.of(i))
           m_patch_nodes[static_cast<std::size_t>(j)] = 1;
   }
-  st.factor_patch = m_lagged.patch(patch_rows_csr(mesh, dt_s), m_structure, m_patch_nodes, m_free);
+  st.factor_patch =
+      m_lagged.patch(patch_rows_csr(mesh, dt_s), m_structure, m_patch_nodes, m_free, m_q);
   if (!st.factor_patch) {
-    m_lagged.factor_now(lagged_csr(mesh, dt_s), m_structure, m_node_rot, m_free);
+    m_lagged.factor_now(lagged_csr(mesh, dt_s), m_structure, m_node_rot, m_q, m_free);
     st.factor_refresh = true;
   }
 }
@@ -242,11 +289,11 @@ void ImplicitIntegrator::schedule_refresh(const TetMesh& mesh, double dt_s, int 
   if (m_lagged.pending()) return;  // one job at a time
   // A step that patched asks on the next one: the refresh takes the whole matrix, filled and
   // copied, which would double the cost of the step that already pays for the cut or the grasp.
-  if (st.factor_patch) return;
+  if (st.factor_patch && m_patch_new) return;
   // After a cut (the installed factor is of an older structure), a grasp or a release (a patch
   // in use) a refresh is due whatever the iterations: the patch only bridges the lag.
   const bool cut = m_lagged.structure() != m_structure;
-  const bool patched = m_lagged.has_patch();
+  const bool patched = m_lagged.has_patch() && m_patch_for_change;
   if (!cut && !patched && iterations <= s.refresh_iterations) return;
   // Urgent: a solve that needed several times the usual iterations (a sudden turn), or a grasp or
   // a release (patched, still a few times the usual while the jaws pull). After a cut the refresh
@@ -259,7 +306,7 @@ void ImplicitIntegrator::schedule_refresh(const TetMesh& mesh, double dt_s, int 
                          : s.factor_lag_steps;
   m_lagged.request(lagged_csr(mesh, dt_s), m_structure,
                    m_steps + static_cast<std::uint64_t>(std::max(lag, 1)), s.background_factor,
-                   m_node_rot, m_free);
+                   m_node_rot, m_q, m_free);
   st.factor_refresh = true;
 }
 

@@ -10,7 +10,9 @@ LaggedFactor::~LaggedFactor() {
 }
 
 void LaggedFactor::run(Job& job) {
-  if (!job.analyzed) job.analyzed = job.solver->analyze(job.a);
+  if (!job.analyzed)
+    job.analyzed = job.analysis_of != nullptr ? job.solver->copy_analysis(*job.analysis_of)
+                                              : job.solver->analyze(job.a);
   job.ok = job.analyzed && job.solver->factorize(job.a);
   // The block copy the solves use (CHOLMOD's own solve stands in when it cannot be made).
   if (!job.ok || !job.solver->export_ldl(job.ldl) || !job.blocks.build(job.ldl)) job.blocks.clear();
@@ -33,6 +35,7 @@ void LaggedFactor::install() {
     // Swapped, not moved: the job keeps the replaced buffers for the next request to copy into.
     std::swap(m_installed_a, m_job->a);
     std::swap(m_installed_rot, m_job->node_rot);
+    std::swap(m_installed_tet_rot, m_job->tet_rot);
     std::swap(m_installed_free, m_job->free);
     m_installed_structure = m_job->structure;
     ++m_refreshes;
@@ -47,12 +50,15 @@ void LaggedFactor::install() {
 std::unique_ptr<LaggedFactor::Job> LaggedFactor::new_job(const CsrMatrix& a,
                                                          std::uint64_t structure,
                                                          std::span<const Quat> node_rot,
+                                                         std::span<const Quat> tet_rot,
                                                          std::span<const std::uint8_t> free) {
   std::unique_ptr<Job> job = m_recycled ? std::move(m_recycled) : std::make_unique<Job>();
   job->ok = false;
   job->analyzed = false;
+  job->analysis_of = nullptr;
   copy_packed(a, job->a);
   job->node_rot.assign(node_rot.begin(), node_rot.end());
+  job->tet_rot.assign(tet_rot.begin(), tet_rot.end());
   job->free.assign(free.begin(), free.end());
   job->structure = structure;
   return job;
@@ -71,8 +77,8 @@ std::int64_t LaggedFactor::rows_needed() const {
 }
 
 bool LaggedFactor::patch(const CsrMatrix& a, std::uint64_t structure,
-                         std::span<const std::uint8_t> in_patch,
-                         std::span<const std::uint8_t> free) {
+                         std::span<const std::uint8_t> in_patch, std::span<const std::uint8_t> free,
+                         std::span<const Quat> tet_rot) {
   std::vector<std::int32_t> nodes;
   for (std::size_t i = 0; i < in_patch.size() && 3 * i < static_cast<std::size_t>(a.rows); ++i)
     if (in_patch[i] != 0 && i < free.size() && free[i] != 0)
@@ -105,7 +111,8 @@ bool LaggedFactor::patch(const CsrMatrix& a, std::uint64_t structure,
       }
     }
   return install_patch(std::move(tt), std::move(tu), std::move(nodes), structure,
-                       std::vector<std::uint8_t>(free.begin(), free.end()));
+                       std::vector<std::uint8_t>(free.begin(), free.end()),
+                       std::vector<Quat>(tet_rot.begin(), tet_rot.end()));
 }
 
 bool LaggedFactor::patch_fits(std::uint64_t structure, std::span<const std::uint8_t> free) const {
@@ -124,17 +131,27 @@ bool LaggedFactor::kinds_changed(std::span<const std::uint8_t> free,
 }
 
 bool LaggedFactor::install_patch(CsrMatrix tt, CsrMatrix tu, std::vector<std::int32_t> nodes,
-                                 std::uint64_t structure, std::vector<std::uint8_t> free) {
+                                 std::uint64_t structure, std::vector<std::uint8_t> free,
+                                 std::vector<Quat> tet_rot) {
+  // The same rows as the patch in use (a misfit's patch, made anew each step while tets turn):
+  // the same pattern, whose analysis is kept (CHOLMOD orders by pattern alone, so the bits are
+  // those of a fresh analysis).
+  const bool same = m_patch != nullptr && m_patch_structure == structure &&
+                    nodes == m_patch_nodes && tt.row_nz == m_patch_a.row_nz &&
+                    tt.col == m_patch_a.col;
+  std::unique_ptr<CholmodSolver> solver =
+      same ? std::move(m_patch)
+           : std::make_unique<CholmodSolver>(CholmodSolver::Layout::simplicial);
   m_patch.reset();
   if (nodes.empty()) return false;
-  auto solver = std::make_unique<CholmodSolver>(CholmodSolver::Layout::simplicial);
-  if (!solver->analyze(tt) || !solver->factorize(tt)) return false;
+  if ((!same && !solver->analyze(tt)) || !solver->factorize(tt)) return false;
   m_patch = std::move(solver);
   m_patch_a = std::move(tt);
   m_patch_tu = std::move(tu);
   m_patch_nodes = std::move(nodes);
   m_patch_structure = structure;
   m_patch_free = std::move(free);
+  m_patch_tet_rot = std::move(tet_rot);
   m_patch_index.assign(static_cast<std::size_t>(m_patch_nodes.back()) + 1, -1);
   for (std::size_t k = 0; k < m_patch_nodes.size(); ++k)
     m_patch_index[static_cast<std::size_t>(m_patch_nodes[k])] = static_cast<std::int32_t>(k);
@@ -146,9 +163,10 @@ void LaggedFactor::begin_step(std::uint64_t step) {
 }
 
 bool LaggedFactor::factor_now(const CsrMatrix& a, std::uint64_t structure,
-                              std::span<const Quat> node_rot, std::span<const std::uint8_t> free) {
+                              std::span<const Quat> node_rot, std::span<const Quat> tet_rot,
+                              std::span<const std::uint8_t> free) {
   clear();
-  std::unique_ptr<Job> job = new_job(a, structure, node_rot, free);
+  std::unique_ptr<Job> job = new_job(a, structure, node_rot, tet_rot, free);
   job->solver = std::make_unique<CholmodSolver>(CholmodSolver::Layout::node_blocks);
   run(*job);
   m_job = std::move(job);
@@ -157,13 +175,32 @@ bool LaggedFactor::factor_now(const CsrMatrix& a, std::uint64_t structure,
   return ok;
 }
 
+void LaggedFactor::warm_up() {
+  if (!ready() || m_job || m_spare) return;
+  std::unique_ptr<Job> job = new_job(m_installed_a, m_installed_structure, m_installed_rot,
+                                     m_installed_tet_rot, m_installed_free);
+  job->solver = std::make_unique<CholmodSolver>(CholmodSolver::Layout::node_blocks);
+  job->analysis_of = m_installed.get();
+  run(*job);
+  if (job->ok) {
+    m_spare = std::move(job->solver);
+    m_spare_structure = m_installed_structure;
+  }
+  job->solver.reset();
+  m_recycled = std::move(job);
+}
+
 void LaggedFactor::request(const CsrMatrix& a, std::uint64_t structure, std::uint64_t ready_step,
                            bool background, std::span<const Quat> node_rot,
-                           std::span<const std::uint8_t> free) {
+                           std::span<const Quat> tet_rot, std::span<const std::uint8_t> free) {
   if (m_job) install();  // one job at a time; callers ask only when none is pending
-  std::unique_ptr<Job> job = new_job(a, structure, node_rot, free);
+  std::unique_ptr<Job> job = new_job(a, structure, node_rot, tet_rot, free);
   job->ready_step = ready_step;
   job->solver = take_spare(structure, job->analyzed);
+  job->analysis_of = !job->analyzed && m_installed != nullptr &&
+                             m_installed_structure == structure && m_installed->analyzed()
+                         ? m_installed.get()
+                         : nullptr;
   Job* j = job.get();
   if (background)
     j->thread = std::thread([j] { run(*j); });
@@ -179,6 +216,8 @@ void LaggedFactor::clear() {
   m_installed_blocks.clear();
   m_installed_a = CsrMatrix{};
   m_installed_free.clear();
+  m_installed_rot.clear();
+  m_installed_tet_rot.clear();
   m_spare.reset();
   m_installed_rows = 0;
   m_patch.reset();
@@ -238,6 +277,7 @@ void LaggedFactor::save(StateWriter& out) const {
   if (ready()) {
     write_csr(out, m_installed_a);
     out.array(m_installed_rot);
+    out.array(m_installed_tet_rot);
     out.array(m_installed_free);
     out.u64(m_installed_structure);
   }
@@ -245,6 +285,7 @@ void LaggedFactor::save(StateWriter& out) const {
   if (m_job) {
     write_csr(out, m_job->a);  // read-only in the job's thread too
     out.array(m_job->node_rot);
+    out.array(m_job->tet_rot);
     out.array(m_job->free);
     out.u64(m_job->structure);
     out.u64(m_job->ready_step);
@@ -255,6 +296,7 @@ void LaggedFactor::save(StateWriter& out) const {
     write_csr(out, m_patch_tu);
     out.array(m_patch_nodes);
     out.array(m_patch_free);
+    out.array(m_patch_tet_rot);
     out.u64(m_patch_structure);
   }
 }
@@ -264,42 +306,65 @@ void LaggedFactor::restore(StateReader& in, bool background) {
   const std::uint64_t refreshes = in.u64();
   if (in.u8() != 0) {
     CsrMatrix a = read_csr(in);
-    std::vector<Quat> rot;
+    std::vector<Quat> rot, tet_rot;
     std::vector<std::uint8_t> free;
     in.array(rot);
+    in.array(tet_rot);
     in.array(free);
     const std::uint64_t structure = in.u64();
     if (3 * free.size() != static_cast<std::size_t>(a.rows))
       in.fail("the installed factor's free mask does not fit its matrix");
-    if (!factor_now(a, structure, rot, free)) in.fail("the installed factor's matrix is not SPD");
+    if (!factor_now(a, structure, rot, tet_rot, free))
+      in.fail("the installed factor's matrix is not SPD");
   }
   if (in.u8() != 0) {
     CsrMatrix a = read_csr(in);
-    std::vector<Quat> rot;
+    std::vector<Quat> rot, tet_rot;
     std::vector<std::uint8_t> free;
     in.array(rot);
+    in.array(tet_rot);
     in.array(free);
     const std::uint64_t structure = in.u64();
     const std::uint64_t ready_step = in.u64();
     if (3 * free.size() != static_cast<std::size_t>(a.rows))
       in.fail("the pending refresh's free mask does not fit its matrix");
-    request(a, structure, ready_step, background, rot, free);
+    request(a, structure, ready_step, background, rot, tet_rot, free);
   }
   if (in.u8() != 0) {
     CsrMatrix a = read_csr(in);
     CsrMatrix tu = read_csr(in, /*square=*/false);
     std::vector<std::int32_t> nodes;
     std::vector<std::uint8_t> free;
+    std::vector<Quat> tet_rot;
     in.array(nodes);
     in.array(free);
+    in.array(tet_rot);
     const std::uint64_t structure = in.u64();
     if (3 * nodes.size() != static_cast<std::size_t>(a.rows) || tu.rows != a.rows ||
         !std::is_sorted(nodes.begin(), nodes.end()) || (!nodes.empty() && nodes.front() < 0))
       in.fail("the patch's nodes do not fit its matrix");
-    if (!install_patch(std::move(a), std::move(tu), std::move(nodes), structure, std::move(free)))
+    if (!install_patch(std::move(a), std::move(tu), std::move(nodes), structure, std::move(free),
+                       std::move(tet_rot)))
       in.fail("the patch's matrix is not SPD");
   }
   m_refreshes = refreshes;
+}
+
+void LaggedFactor::relabel_tets(const TopologyDelta& delta, std::size_t tets) {
+  const Quat none(0.0, 0.0, 0.0, 0.0);
+  const auto relabel = [&](std::vector<Quat>& q) {
+    if (q.empty()) return;
+    for (const std::int32_t slot : delta.slot_of_added) {
+      const auto u = static_cast<std::size_t>(slot);
+      if (u >= q.size()) q.resize(u + 1, none);
+      q[u] = none;
+    }
+    for (const auto& [from, to] : delta.moved_tets)
+      q[static_cast<std::size_t>(to)] = q[static_cast<std::size_t>(from)];
+    q.resize(tets, none);
+  };
+  relabel(m_installed_tet_rot);
+  if (m_job) relabel(m_job->tet_rot);  // the thread reads only the job's matrix
 }
 
 void LaggedFactor::warp(std::span<const Quat> node_rot, std::span<Mat3> warp) const {

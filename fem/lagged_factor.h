@@ -37,6 +37,17 @@
 // bar's) until the refresh came. So the factor keeps the free mask of its matrix, and the nodes
 // whose kind changed since are patched like a cut's, with their rings (5-8 iterations on that
 // grasp, 8-11 on that bar), until a refresh that knows the new mask is installed.
+//
+// Misfit: the warp turns node i's rows as one, which fits while the tets around the node turn with
+// it, not while one inverts (the endoloop's cinch crushes about a hundred), or a cut's fresh
+// pieces recoil. So the factor keeps its tets' rotations too, and a node one of whose tets turned
+// otherwise than the node since the factor's step, by more than SolverSettings::misfit_rad, is
+// patched on this step like a cut's (the patch itself, not warped, is made anew once one of its
+// tets turned that much since it was made). On the default procedure this took the steps after
+// the transection from 110 CG iterations to under 10, and the cinch's from up to 100 to 3-6.
+// The patch keeps its analysis while its rows stay the same (CHOLMOD orders by pattern alone),
+// and a refresh of the installed factor's structure copies its analysis, leaving the background
+// thread only the numeric factorization.
 #pragma once
 
 #include <cstdint>
@@ -47,6 +58,7 @@
 
 #include "engine/math.h"
 #include "engine/state_codec.h"
+#include "engine/topology_delta.h"
 #include "fem/block_factor.h"
 #include "fem/cholmod_solver.h"
 #include "fem/csr_matrix.h"
@@ -65,14 +77,21 @@ class LaggedFactor {
   void begin_step(std::uint64_t step);
   /// Factors `a` now and installs it (the first step, or after a full rebuild). `structure`
   /// identifies a's sparsity pattern (the integrator's structure counter). False if a is not SPD.
-  /// node_rot: (n) the nodes' rotations at a's step (warping, above); free: (n) 1 where the node
-  /// took part in a's solve (a's rows of the others are diagonal).
+  /// node_rot: (n) the nodes' rotations at a's step (warping, above); tet_rot: (m) the tets'
+  /// rotations then (misfit, above); free: (n) 1 where the node took part in a's solve (a's rows
+  /// of the others are diagonal).
   bool factor_now(const CsrMatrix& a, std::uint64_t structure, std::span<const Quat> node_rot,
-                  std::span<const std::uint8_t> free);
+                  std::span<const Quat> tet_rot, std::span<const std::uint8_t> free);
+  /// At load time, after factor_now(): factors the installed factor's matrix once more into the
+  /// spare and the job buffers the refreshes reuse, so that the first refresh, in the background
+  /// while the run steps, finds its analysis done and its memory touched (it took twice as long as
+  /// the later ones, and the step that installed it waited). Changes no result.
+  void warm_up();
   /// Asks for the factor of `a` (copied), to be installed at the start of step `ready_step`.
   /// background: factor in a thread (true) or now (false; the install step is the same).
   void request(const CsrMatrix& a, std::uint64_t structure, std::uint64_t ready_step,
-               bool background, std::span<const Quat> node_rot, std::span<const std::uint8_t> free);
+               bool background, std::span<const Quat> node_rot, std::span<const Quat> tet_rot,
+               std::span<const std::uint8_t> free);
   /// The nodes held or let go since the installed factor's matrix: changed[i] = 1 where free[i]
   /// differs from the factor's mask (nodes beyond the factor: 0, a cut's delta covers them).
   /// True if there is any. free, changed: (n).
@@ -83,11 +102,16 @@ class LaggedFactor {
   /// apply() then solves those rows with it until the integrator drops it (drop_patch) or
   /// replaces it. False if that submatrix is not SPD (no patch then).
   /// in_patch, free: (n).
+  /// tet_rot: (m) the tets' rotations now (the patch's own misfit, patch_rotations()).
   bool patch(const CsrMatrix& a, std::uint64_t structure, std::span<const std::uint8_t> in_patch,
-             std::span<const std::uint8_t> free);
+             std::span<const std::uint8_t> free, std::span<const Quat> tet_rot);
   /// Whether the patch in use was made for this structure and this free mask (free: (n)).
   [[nodiscard]] bool patch_fits(std::uint64_t structure, std::span<const std::uint8_t> free) const;
   [[nodiscard]] bool has_patch() const { return m_patch != nullptr; }
+  /// Whether node i's rows are solved by the patch.
+  [[nodiscard]] bool patched(std::size_t node) const { return in_patch(node); }
+  /// The tets' rotations at the patch's step ((m) of its structure; the patch is not warped).
+  [[nodiscard]] std::span<const Quat> patch_rotations() const { return m_patch_tet_rot; }
   /// Drops the patch (the installed factor fits the matrix again).
   void drop_patch() { m_patch.reset(); }
   /// The most rows any factor it holds (installed, pending, patch) applies to: a restored
@@ -95,6 +119,15 @@ class LaggedFactor {
   [[nodiscard]] std::int64_t rows_needed() const;
   /// Drops every factor and waits for any running job (the mesh was rebuilt from scratch).
   void clear();
+
+  /// After a cut: the tets' rotations of the installed factor and of the pending refresh follow
+  /// the delta's relabels (fem/implicit_integrator.h update()); added tets have none (zero).
+  /// tets: the mesh's tet count after it.
+  void relabel_tets(const TopologyDelta& delta, std::size_t tets);
+  /// The tets' rotations at the installed factor's step ((m) of its structure; empty if none).
+  [[nodiscard]] std::span<const Quat> tet_rotations() const { return m_installed_tet_rot; }
+  /// The nodes' rotations then ((rows / 3)).
+  [[nodiscard]] std::span<const Quat> node_rotations() const { return m_installed_rot; }
 
   /// The turn of each node since the installed factor's step: warp[i] = R_i R0_i^T for the
   /// factor's nodes, the identity beyond. node_rot: (n) the nodes' rotations now; warp: (n) out.
@@ -130,11 +163,15 @@ class LaggedFactor {
     std::uint64_t structure = 0;
     std::uint64_t ready_step = 0;
     std::vector<Quat> node_rot;      // (n) the nodes' rotations at a's step
+    std::vector<Quat> tet_rot;       // (m) the tets' rotations at a's step
     std::vector<std::uint8_t> free;  // (n) 1 where the node took part in a's solve
     std::unique_ptr<CholmodSolver> solver;
     LdlFactor ldl;          // the factor as exported, kept for its buffers
     BlockFactor blocks;     // its 3x3 float blocks (fem/block_factor.h), empty if not node-blocked
     bool analyzed = false;  // solver already holds the analysis of a's pattern
+    // Else the installed factor, when it is of a's pattern: its analysis is copied (only read
+    // meanwhile: install() and clear() join the job first).
+    const CholmodSolver* analysis_of = nullptr;
     bool ok = false;
     std::thread thread;
   };
@@ -143,7 +180,8 @@ class LaggedFactor {
   std::unique_ptr<CholmodSolver> take_spare(std::uint64_t structure, bool& analyzed);
 
   std::unique_ptr<Job> new_job(const CsrMatrix& a, std::uint64_t structure,
-                               std::span<const Quat> node_rot, std::span<const std::uint8_t> free);
+                               std::span<const Quat> node_rot, std::span<const Quat> tet_rot,
+                               std::span<const std::uint8_t> free);
 
   std::unique_ptr<Job> m_job;
   std::unique_ptr<Job> m_recycled;  // the last job done, its buffers kept for the next
@@ -152,6 +190,7 @@ class LaggedFactor {
   CsrMatrix m_installed_a;         // the matrix the installed factor was computed from (snapshots)
   std::int32_t m_installed_rows = 0;
   std::vector<Quat> m_installed_rot;           // (rows / 3) R0 of the installed factor
+  std::vector<Quat> m_installed_tet_rot;       // (m) the tets' rotations at its step
   std::vector<std::uint8_t> m_installed_free;  // (rows / 3) its matrix's free mask
   std::uint64_t m_installed_structure = 0;
   // The factor replaced at the last install, kept with its analysis for the next refresh of the
@@ -168,10 +207,12 @@ class LaggedFactor {
   std::vector<std::int32_t> m_patch_nodes;    // ascending node ids
   std::vector<std::int32_t> m_patch_index;    // node -> index in m_patch_nodes, or -1
   std::vector<std::uint8_t> m_patch_free;     // (n) the free mask the patch was made for
+  std::vector<Quat> m_patch_tet_rot;          // (m) the tets' rotations at its step
   std::vector<double> m_pr, m_pz, m_w, m_ty;  // (3 patch nodes) patch-sized work vectors
   std::vector<double> m_ru;                   // (3n) r_U - A_UT w
   bool install_patch(CsrMatrix tt, CsrMatrix tu, std::vector<std::int32_t> nodes,
-                     std::uint64_t structure, std::vector<std::uint8_t> free);
+                     std::uint64_t structure, std::vector<std::uint8_t> free,
+                     std::vector<Quat> tet_rot);
   void patch_solve(std::span<const double> r, std::span<const std::uint8_t> free,
                    std::vector<double>& w);
   void multiply_ut(std::span<const double> w, double s, std::span<double> out) const;
