@@ -23,6 +23,20 @@ int FramePacer::rungs() const {
   return m_tessellation + static_cast<int>(kScales.size() + kSlowFps.size());
 }
 
+int FramePacer::picture_rungs() const { return m_tessellation + static_cast<int>(kScales.size()); }
+
+bool FramePacer::too_slow_since(int rung, Clock::time_point now) const {
+  const auto& at = m_too_slow[static_cast<std::size_t>(rung)];
+  return at && seconds(now - *at) < kRetryS;
+}
+
+void FramePacer::step_down(Clock::time_point now) {
+  ++m_rung;
+  ++m_downs;
+  m_deepest = std::max(m_deepest, m_rung);
+  m_last_change = now;
+}
+
 float FramePacer::resolution_scale() const {
   const int below = m_rung - (m_tessellation - 1);  // rungs below tessellation 1
   if (below <= 0) return 1.0f;
@@ -54,19 +68,18 @@ void FramePacer::frame_done(Clock::time_point now, bool solver_behind) {
     ++m_behind;
     m_last_behind = now;
   }
-  if (seconds(now - m_window_start) >= kWindowS) {
+  m_too_slow.resize(static_cast<std::size_t>(rungs()));
+  if (const double window = seconds(now - m_window_start); window >= kWindowS) {
     const bool behind = m_behind > kBehindShare * m_frames;
-    if (behind && m_rung + 1 < rungs() && seconds(now - m_last_change) >= kWindowS) {
-      ++m_rung;
-      ++m_downs;
-      m_deepest = std::max(m_deepest, m_rung);
-      m_last_change = now;
-    }
+    const bool slow = m_frames < kMinFps * window && m_rung < picture_rungs();
+    if (slow) m_too_slow[static_cast<std::size_t>(m_rung)] = now;
+    const bool down = behind ? m_rung + 1 < rungs() : slow && m_rung + 1 < picture_rungs();
+    if (down && seconds(now - m_last_change) >= kWindowS) step_down(now);
     m_window_start = now;
     m_frames = m_behind = 0;
   }
   if (m_rung > 0 && seconds(now - m_last_behind) >= kRecoverS &&
-      seconds(now - m_last_change) >= kRecoverS) {
+      seconds(now - m_last_change) >= kRecoverS && !too_slow_since(m_rung - 1, now)) {
     --m_rung;
     m_last_change = now;
   }

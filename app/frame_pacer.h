@@ -4,13 +4,17 @@
 // (its slow-motion flag, published with each frame) it steps down a ladder of cheaper settings:
 // lower tessellation first (the picture's smoothness), then a lower resolution (its sharpness:
 // 3/4, then 1/2 of the window's, render/scaled_target.h), then fewer frames per second (its
-// fluency), down to tessellation 1 at half resolution and 8 frames/s. Once the solver has kept up
-// for a while it steps back up, one rung at a time. The solver never waits for the renderer either
+// fluency), down to tessellation 1 at half resolution and 8 frames/s. A picture too costly to
+// draw kMinFps times a second steps down the tessellation and resolution rungs the same way.
+// Once the solver has kept up for a while it steps back up, one rung at a time, but not to a
+// rung that drew too slowly in the last kRetryS. The solver never waits for the renderer either
 // way: it publishes through a triple buffer (engine/triple_buffer.h).
 #pragma once
 
 #include <chrono>
 #include <cstdint>
+#include <optional>
+#include <vector>
 
 namespace serosa::app {
 
@@ -24,6 +28,12 @@ class FramePacer {
   static constexpr double kWindowS = 0.5;
   /// Up after this long without the solver behind, s.
   static constexpr double kRecoverS = 3.0;
+  /// The least frame rate the picture's cost may take the window to, frames/s: below it over a
+  /// window the pacer steps down the tessellation and resolution rungs (not the frame-rate caps,
+  /// which are the solver's), as if the solver were behind.
+  static constexpr double kMinFps = 15.0;
+  /// A rung found below kMinFps is not stepped back up to for this long, s.
+  static constexpr double kRetryS = 10.0;
 
   /// tessellation: the level asked for (scene or keys), the top of the ladder; max_fps: the cap
   /// at the top.
@@ -50,6 +60,11 @@ class FramePacer {
 
  private:
   [[nodiscard]] int rungs() const;
+  /// Rungs that change the picture (tessellation, resolution), not the frame-rate cap.
+  [[nodiscard]] int picture_rungs() const;
+  void step_down(Clock::time_point now);
+  /// Whether `rung` drew below kMinFps within kRetryS before `now`.
+  [[nodiscard]] bool too_slow_since(int rung, Clock::time_point now) const;
 
   int m_tessellation;
   double m_max_fps;
@@ -60,6 +75,8 @@ class FramePacer {
   Clock::time_point m_window_start{};
   Clock::time_point m_last_change{};
   Clock::time_point m_last_behind{};
+  // (rungs) when each rung last drew below kMinFps, if it did
+  std::vector<std::optional<Clock::time_point>> m_too_slow;
   int m_frames = 0;
   int m_behind = 0;
   bool m_started = false;

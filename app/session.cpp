@@ -50,6 +50,7 @@
 #include "render/frame_renderer.h"
 #include "render/overlay.h"
 #include "render/png_writer.h"
+#include "render/renderer_threads.h"
 #include "render/scaled_target.h"
 #include "render/window.h"
 #include "surface/cut_faces.h"
@@ -61,6 +62,9 @@ namespace {
 constexpr double kMaxFramesPerS = 60.0;
 
 using Clock = std::chrono::steady_clock;
+/// The least time between two frames the solver publishes (the window's frame rate cap).
+constexpr auto kPublishPeriod = std::chrono::duration_cast<Clock::duration>(
+    std::chrono::duration<double>(1.0 / kMaxFramesPerS));
 
 // Set by the SIGINT/SIGTERM handler, read by the window loop. A signal handler can reach no
 // other state, so this one flag is process-wide; run_session clears it on entry.
@@ -161,20 +165,31 @@ class SolverLoop {
         rate_start = now;
         rate_steps = 0;
       }
-      publish();
+      count_cuts();
+      // The window draws at most kMaxFramesPerS: a frame published sooner after the last than
+      // that would be overwritten unseen, and filling one (the surface's split normals) cost the
+      // solver's core more than a tenth of its time at one a step.
+      if (now - m_published >= kPublishPeriod) publish();
       // More than 0.1 s behind, drop the debt (slow motion rather than a catch-up spiral).
       next += dt;
       const auto after = Clock::now();
-      m_slow = after > next;
+      // Slow motion: a whole step behind the clock. A step that ends a little after its time
+      // (the renderer's threads had the core) is made up by the next one's sleep.
+      m_slow = after > next + dt;
       if (after > next + std::chrono::milliseconds(100)) next = after;
     }
   }
 
-  void publish() {
+  void count_cuts() {
     if (m_version != m_state.mesh.topology_version) {
       m_version = m_state.mesh.topology_version;
       ++m_cuts;
     }
+  }
+
+  void publish() {
+    m_published = Clock::now();
+    count_cuts();
     render::RenderFrame& f = m_frames.back();
     fill_render_frame(m_state.mesh, m_drawn->of(m_state), m_names, true, f,
                       &m_state.handoff.coagulated, m_state.handoff.coagulated_version);
@@ -248,6 +263,7 @@ class SolverLoop {
   double m_rate_hz = 0.0;
   std::int64_t m_cuts = 0;
   bool m_slow = false;
+  Clock::time_point m_published{};  // when the last frame was published
   std::int64_t m_steps = 0;
   bool m_hap_started = false;
   Clock::time_point m_hap_t0{};
@@ -300,6 +316,9 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
   const InterruptGuard interrupts;
   render::Window window(scene.render.width, scene.render.height, "Serosa");
   render::FrameRenderer renderer;
+  // Software GL's workers yield to the solver (render/renderer_threads.h).
+  if (const int n = render::lower_software_renderer_threads(10); n > 0)
+    spdlog::debug("session: {} software renderer threads at nice 10", n);
   render::ScaledTarget scaled;  // the pacer's lower resolutions
   render::Overlay overlay;
   render::SnapshotOptions options;

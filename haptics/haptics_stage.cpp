@@ -222,6 +222,11 @@ HapticsStage::HapticsStage(const Scene& scene, const HapticsStageOptions& option
   c.gap_monitor = options.realtime;
   // The emulated link (umockdev, ioctl round trips) delivers packets less regularly than USB.
   if (m_kind == DeviceKind::kRigEmulated) c.device_timeout_s = 50e-3;
+  // Only a rig's handles put force in a hand, where a tick's jitter is felt: the loop spins to
+  // its deadlines for them alone. The mouse's and the script's loop sleeps to them (a tick
+  // about 0.1 ms late at worst): the spin cost a fifth of a core, on two cores shared with the
+  // solver and a software renderer.
+  if (!is_rig(m_kind)) c.spin_s = 0.0;
   m_loop = std::make_unique<haptics::HapticLoop>(*m_device, m_model, c);
 }
 

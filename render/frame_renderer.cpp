@@ -344,6 +344,25 @@ FrameRenderer::View FrameRenderer::view_of(const RenderFrame& frame, const Snaps
   return {view_proj, eye, ref_dist};
 }
 
+namespace {
+
+// The six planes (a, b, c, d; a x + b y + c z + d >= 0 inside, (a, b, c) unit) of the frustum of
+// view_proj (column-major, OpenGL clip space): each is the last row plus or minus another
+// (Gribb and Hartmann).
+std::array<float, 24> frustum_planes(const Eigen::Matrix4f& view_proj) {
+  std::array<float, 24> out{};
+  for (int k = 0; k < 6; ++k) {
+    const float sign = k % 2 == 0 ? 1.0f : -1.0f;
+    Eigen::Vector4f p = (view_proj.row(3) + sign * view_proj.row(k / 2)).transpose();
+    const float n = p.head<3>().norm();
+    if (n > 0.0f) p /= n;
+    for (int c = 0; c < 4; ++c) out[static_cast<std::size_t>(4 * k + c)] = p[c];
+  }
+  return out;
+}
+
+}  // namespace
+
 void FrameRenderer::draw_visual(const View& v, const SnapshotOptions& options) {
   const Eigen::Matrix4f& view_proj = v.view_proj;
   const Eigen::Vector3f& eye = v.eye;
@@ -357,6 +376,8 @@ void FrameRenderer::draw_visual(const View& v, const SnapshotOptions& options) {
   glUniformMatrix4fv(visual_->uniform("u_view_proj"), 1, GL_FALSE, view_proj.data());
   glUniform3f(visual_->uniform("u_eye"), eye.x(), eye.y(), eye.z());
   glUniform1f(visual_->uniform("u_ref_dist"), ref_dist);
+  const std::array<float, 24> planes = frustum_planes(view_proj);
+  glUniform4fv(visual_->uniform("u_planes"), 6, planes.data());
   // Texture units 0..3: positions, normals, indices, materials.
   const std::array<std::pair<GLuint, const char*>, 4> units{{{pos_tex_, "u_pos"},
                                                              {nrm_tex_, "u_nrm"},

@@ -25,6 +25,10 @@ void main() {
 
 // One patch per surface triangle; the same level on every edge and inside, so neighbouring
 // patches agree on their shared edge (no cracks). Level 1 leaves the triangle as it is.
+// A patch wholly outside the view (its corners' bounding sphere, widened for the Phong bulge,
+// beyond one of the frustum's planes) gets level 0, which discards it before it is tessellated
+// and shaded: the endoscope sees a part of the organs, and a software renderer's cost follows
+// the patches it tessellates.
 const char* const kVisualTessControl = R"(#version 410 core
 layout(vertices = 3) out;
 in vec3 v_pos[];
@@ -34,15 +38,24 @@ out vec3 c_pos[];
 out vec3 c_nrm[];
 patch out vec4 c_material;  // rgb: sRGB colour, a: specular strength
 uniform float u_level;
+uniform vec4 u_planes[6];  // the view frustum's planes, world space, unit normals pointing in
+bool outside() {
+  vec3 c = (v_pos[0] + v_pos[1] + v_pos[2]) / 3.0;
+  float r = 1.5 * max(max(distance(c, v_pos[0]), distance(c, v_pos[1])), distance(c, v_pos[2]));
+  for (int k = 0; k < 6; ++k)
+    if (dot(u_planes[k].xyz, c) + u_planes[k].w < -r) return true;
+  return false;
+}
 void main() {
   c_pos[gl_InvocationID] = v_pos[gl_InvocationID];
   c_nrm[gl_InvocationID] = v_nrm[gl_InvocationID];
   if (gl_InvocationID == 0) {
     c_material = v_material[0];  // the same for the three corners
-    gl_TessLevelOuter[0] = u_level;
-    gl_TessLevelOuter[1] = u_level;
-    gl_TessLevelOuter[2] = u_level;
-    gl_TessLevelInner[0] = u_level;
+    float level = outside() ? 0.0 : u_level;
+    gl_TessLevelOuter[0] = level;
+    gl_TessLevelOuter[1] = level;
+    gl_TessLevelOuter[2] = level;
+    gl_TessLevelInner[0] = level;
   }
 }
 )";

@@ -1,6 +1,7 @@
 // FramePacer (app/frame_pacer.h): a solver falling behind makes the window cheaper, rung by rung
 // (tessellation first, then resolution, then frame rate), and a solver keeping up brings it back;
-// the frame rate never exceeds the cap.
+// the frame rate never exceeds the cap; a picture too costly for kMinFps steps down the picture's
+// rungs alone, and the pacer does not climb back to a rung that drew too slowly.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -103,6 +104,32 @@ TEST(FramePacer, ASlowDrawIsNotCaughtUpAndTheUserMovesTheTop) {
   EXPECT_EQ(p.tessellation(), 4);
   p.set_tessellation(1);
   EXPECT_EQ(p.tessellation(), 1);
+}
+
+// Each frame costs what its tessellation and resolution make it (software GL: 11 frames/s at
+// tessellation 3, about 17 at 2): the solver keeps up throughout.
+TEST(FramePacer, ATooCostlyPictureStepsDownTheTessellationAndStaysThere) {
+  FramePacer p(3, 60.0);
+  const auto cost = [&p] {
+    const double by_level[] = {0.0, 0.04, 0.06, 0.09};
+    const auto scale = static_cast<double>(p.resolution_scale());
+    return by_level[p.tessellation()] * scale * scale;
+  };
+  Clock::time_point t{};
+  int frames = 0;
+  for (int k = 0; k < 300; ++k) {  // 30 s of frames, a tenth of a second at a time
+    const Clock::time_point end = t + sec(0.1);
+    while (t < end) {
+      t = std::max(t, p.next_frame()) + sec(cost());
+      p.frame_done(t, false);
+      if (k >= 100) ++frames;
+    }
+    EXPECT_GE(p.max_fps(), 60.0) << "the frame-rate caps are the solver's alone";
+    EXPECT_EQ(p.resolution_scale(), 1.0f) << "tessellation 2 is fast enough";
+  }
+  EXPECT_EQ(p.tessellation(), 2);
+  // From the tenth second on: at least kMinFps on average (a retry of level 3 each kRetryS).
+  EXPECT_GE(frames / 20.0, FramePacer::kMinFps);
 }
 
 }  // namespace
