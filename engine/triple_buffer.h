@@ -1,5 +1,6 @@
 // TripleBuffer: single producer, single consumer, wait-free hand-off of the latest value. The
-// solver publishes a render Frame each step; the renderer takes the newest one whenever it draws.
+// solver publishes a render Frame (at most at the window's frame-rate cap); the renderer takes the
+// newest one whenever it draws.
 // Neither side ever waits for the other; frames the consumer did not take are overwritten.
 // T may own heap memory (vectors): the three slots are reused, so once they have grown to size,
 // publishing allocates nothing.
