@@ -149,7 +149,7 @@ void HapticLoop::tick(std::int64_t now_ns) noexcept {
   DeviceCommand cmd;
   std::array<Vec3, kHandles> force{Vec3::Zero(), Vec3::Zero()};
   const ZeroReason zero = render_force(now, dt, gap, cmd, force);
-  record_event_steps(now, force, cmd);
+  record_event_steps(now, zero, force, cmd);
   m_prev_force = force;
   for (std::size_t h = 0; h < kHandles; ++h) m_prev_jaw_Nm[h] = cmd.effort[h].jaw_Nm;
   send(now, cmd, zero, force);
@@ -312,10 +312,14 @@ ZeroReason HapticLoop::render_force(double now, double dt, bool gap, DeviceComma
 }
 
 // Force steps after contact and cut events.
-void HapticLoop::record_event_steps(double now, const std::array<Vec3, kHandles>& force,
+// A safety stop (a gap, a stale device: zero_ticks counts them) drops the force at once by
+// design; the steps measured here are the rendered ones, which the slew limits bound (the ramp
+// back from zero after a stop is one of them).
+void HapticLoop::record_event_steps(double now, ZeroReason zero,
+                                    const std::array<Vec3, kHandles>& force,
                                     const DeviceCommand& cmd) noexcept {
   LoopTelemetry& tel = *m_tel;
-  if (now > m_event_until_s || tel.n_events == 0) return;
+  if (now > m_event_until_s || tel.n_events == 0 || zero != ZeroReason::kNone) return;
   ForceEvent& e = tel.events[(tel.n_events - 1) % LoopTelemetry::kEvents];
   for (std::size_t h = 0; h < kHandles; ++h) {
     e.max_step_N = std::max(e.max_step_N, (force[h] - m_prev_force[h]).norm());

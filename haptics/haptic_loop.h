@@ -114,7 +114,7 @@ class HapticLoop {
   [[nodiscard]] ZeroReason safety_gate(double now, bool gap) const noexcept;
   ZeroReason render_force(double now, double dt, bool gap, DeviceCommand& cmd,
                           std::array<Vec3, kHandles>& force) noexcept;
-  void record_event_steps(double now, const std::array<Vec3, kHandles>& force,
+  void record_event_steps(double now, ZeroReason zero, const std::array<Vec3, kHandles>& force,
                           const DeviceCommand& cmd) noexcept;
   void send(double now, const DeviceCommand& cmd, ZeroReason zero,
             const std::array<Vec3, kHandles>& force) noexcept;

@@ -22,10 +22,12 @@ enum class ZeroReason : std::uint8_t {
 
 /// A contact or cut event and the largest tick-to-tick force step that followed it.
 struct ForceEvent {
-  double time_s = 0.0;           ///< loop time of the event, s
-  double sim_time_s = 0.0;       ///< simulated time of the model that reported it, s
-  std::uint32_t kind = 0;        ///< 1 = cut, 2 = contact change, 3 = both
-  double max_step_N = 0.0;       ///< largest |F(k) - F(k-1)| over the 20 ms after it, any handle, N
+  double time_s = 0.0;      ///< loop time of the event, s
+  double sim_time_s = 0.0;  ///< simulated time of the model that reported it, s
+  std::uint32_t kind = 0;   ///< 1 = cut, 2 = contact change, 3 = both
+  /// largest |F(k) - F(k-1)| over the 20 ms after it, any handle, rendered ticks only (a safety
+  /// stop's drop to zero is not one: LoopTelemetry::zero_ticks counts those), N
+  double max_step_N = 0.0;
   double max_jaw_step_Nm = 0.0;  ///< same for the jaw torque, N m
 };
 

@@ -17,7 +17,7 @@ Json sample() {
   return Json::parse(R"({
     "steps": 10, "steps_taken": 10, "simulated_time_s": 0.05, "state_hash": "00ff",
     "mesh_final": {"tets": 100, "nodes": 40, "valid": true, "rest_volume_m3": 2.0e-6},
-    "cutting": {"cuts": 3, "tets_added": 30, "degenerate_tets": 0},
+    "cutting": {"cuts": 3, "strokes": 3, "tets_added": 30, "degenerate_tets": 0},
     "metrics": {"time_s": 0.05, "peak_stress_pa": 1000.0,
                 "path_length_m": {"scissors": 0.02},
                 "cut": {"volume_m3": 1.0e-7, "deviation_max_m": 0.001}},
@@ -117,7 +117,7 @@ TEST(Golden, TheHashMustMatchForTheSameBinaryAndThreads) {
 }
 
 // A run paced to real time (the emulated rig in the loop) is compared on what timing cannot
-// change: its steps, validity, cuts and volume.
+// change: its steps, validity, the blades' strokes, whether it passed, and volume.
 TEST(Golden, ARunPacedToRealTimeComparesWhatTimingCannotChange) {
   Json g = sample();
   g["paced_to_real_time"] = true;
@@ -129,7 +129,12 @@ TEST(Golden, ARunPacedToRealTimeComparesWhatTimingCannotChange) {
   EXPECT_TRUE(c.ok());
   ASSERT_EQ(c.notes.size(), 1u);
   EXPECT_NE(c.notes[0].find("paced to real time"), std::string::npos);
-  r["cutting"]["cuts"] = 2;
+  r["cutting"]["cuts"] = 2;  // one stroke's sweep landing as two cuts: timing
+  EXPECT_TRUE(compare_golden(r, g).ok());
+  r["cutting"]["strokes"] = 2;
+  EXPECT_FALSE(compare_golden(r, g).ok());
+  r = g;
+  r["assessment"]["passed"] = false;
   EXPECT_FALSE(compare_golden(r, g).ok());
   r = g;
   r["mesh_final"]["rest_volume_m3"] = 2.1e-6;
