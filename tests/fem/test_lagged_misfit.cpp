@@ -24,11 +24,12 @@ constexpr double kDt = 0.01;
 constexpr int kTwistStep = 20;
 constexpr int kSteps = 45;
 
-FemConfig config(SolverKind kind, double misfit_rad, bool background = false) {
+FemConfig config(SolverKind kind, double misfit_rad, bool background = false,
+                 double tolerance = 1e-8) {
   FemConfig c;
   c.default_material = FemMaterial{5e4, 0.4, 1000.0, 0.1, 0.01};
   c.solver.kind = kind;
-  c.solver.tolerance = 1e-8;
+  c.solver.tolerance = tolerance;
   c.solver.max_iterations = 5000;
   c.solver.background_factor = background;
   c.solver.misfit_rad = misfit_rad;
@@ -66,9 +67,9 @@ void advance(ImplicitIntegrator& integ, Twisted& r, int until) {
   }
 }
 
-Twisted run(SolverKind kind, double misfit_rad, bool background = false) {
+Twisted run(SolverKind kind, double misfit_rad, bool background = false, double tolerance = 1e-8) {
   Twisted r{bar(), {}};
-  ImplicitIntegrator integ(config(kind, misfit_rad, background));
+  ImplicitIntegrator integ(config(kind, misfit_rad, background, tolerance));
   advance(integ, r, kSteps);
   return r;
 }
@@ -95,9 +96,11 @@ TEST(LaggedMisfit, TetsTurnedOtherwiseThanTheirNodesArePatchedAndCostCgLess) {
   EXPECT_LT(iterations(on, 0, kSteps), iterations(off, 0, kSteps));
 }
 
-TEST(LaggedMisfit, StaysWithinTheToleranceOfTheDirectSolver) {
+// The reference is Jacobi CG converged far beyond the lagged solve's tolerance (CHOLMOD's direct
+// solver runs threads of its own, which ThreadSanitizer cannot follow).
+TEST(LaggedMisfit, StaysWithinTheToleranceOfAConvergedSolve) {
   const Twisted lagged = run(SolverKind::pcg_lagged, 0.2);
-  const Twisted direct = run(SolverKind::cholmod, 0.2);
+  const Twisted direct = run(SolverKind::pcg, 0.2, false, 1e-12);
   double max_disp = 0.0, max_diff = 0.0;
   for (std::size_t i = 0; i < direct.mesh.x.size(); ++i) {
     max_disp = std::max(max_disp, (direct.mesh.x[i] - direct.mesh.rest[i]).norm());
@@ -148,7 +151,7 @@ TEST(LaggedMisfit, ASnapshotWhileThePatchIsInUseContinuesBitForBit) {
 // for bit, as a fresh analysis of the same matrix.
 TEST(LaggedMisfit, ACopiedAnalysisFactorsAsAFreshOne) {
   Twisted r{bar(), {}};
-  ImplicitIntegrator integ(config(SolverKind::cholmod, 0.0));
+  ImplicitIntegrator integ(config(SolverKind::pcg, 0.0));
   advance(integ, r, kTwistStep + 2);
   const CsrMatrix a = integ.assembled_matrix();
   CholmodSolver fresh(CholmodSolver::Layout::node_blocks);
