@@ -198,6 +198,9 @@ class ImplicitIntegrator {
   /// Marks in m_kind_changed the nodes the installed factor's warp no longer fits (a tet of theirs
   /// turned otherwise than they did since its step, SolverSettings::misfit_rad); returns how many.
   int mark_misfit_nodes(const TetMesh& mesh);
+  /// Its two parts: the patch's nodes (not warped) and the factor's; cos_half: cos(misfit_rad / 2).
+  int mark_patch_misfit(const TetMesh& mesh, double cos_half);
+  int mark_factor_misfit(const TetMesh& mesh, double cos_half);
   /// Patches the lagged factor with the rows of m_kind_changed and their rings (factors the whole
   /// matrix instead if that submatrix is not SPD).
   void patch_lagged_factor(const TetMesh& mesh, double dt_s, StepStatus& st);

@@ -172,30 +172,37 @@ void ImplicitIntegrator::lagged_preconditioner(const TetMesh& mesh, double dt_s,
 
 int ImplicitIntegrator::mark_misfit_nodes(const TetMesh& mesh) {
   const double cos_half = std::cos(0.5 * m_config.solver.misfit_rad);
-  const std::span<const Quat> tet0 = m_lagged.tet_rotations();
-  const std::span<const Quat> node0 = m_lagged.node_rotations();
+  return mark_patch_misfit(mesh, cos_half) + mark_factor_misfit(mesh, cos_half);
+}
+
+// The patch is not warped: every node of a tet with a node in it that turned since the patch's
+// step (a cut's fresh pieces recoil) calls for a new one.
+int ImplicitIntegrator::mark_patch_misfit(const TetMesh& mesh, double cos_half) {
+  if (!m_lagged.has_patch()) return 0;
   const std::span<const Quat> patch0 = m_lagged.patch_rotations();
   int marked = 0;
-  // The patch is not warped: any node of a tet that turned since the patch's step, if the tet
-  // has a node in it (a cut's fresh pieces recoil), calls for a new one.
-  if (m_lagged.has_patch())
-    for (std::size_t t = 0; t < std::min(m_q.size(), patch0.size()); ++t) {
-      if (!m_el.elements[t].active()) continue;
-      const Tet& nodes = mesh.tets[t];
-      if (std::none_of(nodes.begin(), nodes.end(), [&](std::int32_t i) {
-            return m_lagged.patched(static_cast<std::size_t>(i));
-          }))
-        continue;
-      if (std::abs(m_q[t].dot(patch0[t])) >= cos_half) continue;
-      ++marked;
-      for (const std::int32_t i : nodes) m_kind_changed[static_cast<std::size_t>(i)] = 1;
-    }
-  // Each node's warp once (W_i = R_i R0_i^T), not once per corner.
+  for (std::size_t t = 0; t < std::min(m_q.size(), patch0.size()); ++t) {
+    if (!m_el.elements[t].active()) continue;
+    const Tet& nodes = mesh.tets[t];
+    if (std::none_of(nodes.begin(), nodes.end(),
+                     [&](std::int32_t i) { return m_lagged.patched(static_cast<std::size_t>(i)); }))
+      continue;
+    if (std::abs(m_q[t].dot(patch0[t])) >= cos_half) continue;
+    ++marked;
+    for (const std::int32_t i : nodes) m_kind_changed[static_cast<std::size_t>(i)] = 1;
+  }
+  return marked;
+}
+
+// A node whose tet turned otherwise than the node's warp W_i = R_i R0_i^T since the factor's step.
+int ImplicitIntegrator::mark_factor_misfit(const TetMesh& mesh, double cos_half) {
+  const std::span<const Quat> tet0 = m_lagged.tet_rotations();
+  const std::span<const Quat> node0 = m_lagged.node_rotations();
   const std::size_t nw = std::min(node0.size(), m_node_rot.size());
-  m_node_warp.resize(nw);
+  m_node_warp.resize(nw);  // each node's warp once, not once per corner
   for (std::size_t i = 0; i < nw; ++i) m_node_warp[i] = m_node_rot[i] * node0[i].conjugate();
-  const std::size_t m = std::min(m_q.size(), tet0.size());
-  for (std::size_t t = 0; t < m; ++t) {
+  int marked = 0;
+  for (std::size_t t = 0; t < std::min(m_q.size(), tet0.size()); ++t) {
     // Tets a cut added since the factor's step have no rotation of its (zero): a cut's patch
     // holds their nodes.
     if (!m_el.elements[t].active() || tet0[t].coeffs().squaredNorm() == 0.0) continue;
