@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "app/camera_option.h"
 #include "app/command.h"
 #include "app/emulated_rig_process.h"
 #include "app/golden.h"
@@ -60,6 +61,7 @@ void add_headless_command(CLI::App& app, Action& action) {
                 "Check every cut's invariants (slow; the report lists any problem)");
   cmd->add_option("--frame-count", opts->frame_count, "Pictures over the run (with --frames)")
       ->check(CLI::Range(1, 100000));
+  add_camera_option(*cmd, opts->fitted_camera);
   add_trainee_options(*cmd, *trainee);
   cmd->add_option("--set", *sets,
                   "Override a scene key, KEY=VALUE with a TOML value (solver.tolerance=1e-4); "

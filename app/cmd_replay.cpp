@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <memory>
 
+#include "app/camera_option.h"
 #include "app/command.h"
 #include "app/replay.h"
 #include "app/session.h"
@@ -41,6 +42,7 @@ void add_replay_command(CLI::App& app, Action& action) {
   cmd->add_option("--speed", *speed, "Playback speed in a window (1 = real time)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--frames", *frames, "Write PNG pictures of the replay into this folder");
+  add_camera_option(*cmd, opts->fitted_camera);
   cmd->add_option("--frame-count", opts->frame_count, "Pictures over the replay (with --frames)")
       ->check(CLI::Range(1, 100000));
   cmd->add_option("--report", *report, "Write the JSON report here (also printed)");

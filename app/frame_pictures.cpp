@@ -6,6 +6,7 @@
 #include "app/scenery_from_scene.h"
 #include "render/camera.h"
 #include "render/gl_context.h"
+#include "render/image_stats.h"
 #include "render/overlay.h"
 #include "render/png_writer.h"
 #include "render/snapshot.h"
@@ -35,7 +36,9 @@ const render::RenderFrame& FramePictures::frame(const SimState& state) {
   fill_render_frame(state.mesh, m_drawn.of(state), m_names, /*with_edges=*/true, m_frame,
                     &state.handoff.coagulated, state.handoff.coagulated_version);
   fill_render_tools(m_scene, state, m_frame);
-  if (auto scope = m_endoscope ? endoscope_view(m_scene, state) : std::nullopt) {
+  const auto scope = m_endoscope ? endoscope_view(m_scene, state) : std::nullopt;
+  m_used_scope = scope.has_value();
+  if (scope) {
     m_frame.camera = *scope;
   } else {
     // Fitted once, on the first picture, so that motion shows between pictures.
@@ -66,7 +69,9 @@ std::vector<std::filesystem::path> FramePictures::take(const SimState& state,
     if (i > 0) name.append("_").append(render::view_name(m_views[i]));
     name.append(".png");
     out.push_back(m_dir / name);
-    render::write_png(render::render_image(*m_context, m_frame, o), out.back());
+    const render::Image image = render::render_image(*m_context, m_frame, o);
+    if (i == 0) m_flat = render::flat_block_fraction(image);
+    render::write_png(image, out.back());
   }
   return out;
 }

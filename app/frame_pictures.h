@@ -1,7 +1,8 @@
 // Pictures of a running simulation, drawn offscreen (EGL) for `serosa headless --frames` and
 // `serosa replay --frames`: the organs' boundary surface with its wound (cut faces flagged against
 // the uncut surface, surface/cut_faces.h) and the instruments at their current poses, seen by a
-// camera fitted once to the organs (or, on request, through the scene's endoscope).
+// the scene's endoscope (or, on request or with no posed endoscope, a camera fitted once to the
+// organs).
 #pragma once
 
 #include <filesystem>
@@ -46,9 +47,14 @@ class FramePictures {
   std::vector<std::filesystem::path> take(const SimState& state, const std::string& stem);
 
   [[nodiscard]] const render::SnapshotOptions& options() const { return m_options; }
-  /// Look through the scene's endoscope when a device posed it (default: a camera fitted once to
-  /// the organs, the same for every picture).
+  /// Look through the scene's endoscope while a device poses it (the default), or (false) always
+  /// through a camera fitted once to the organs, the same for every picture.
   void set_endoscope(bool on) { m_endoscope = on; }
+  /// The share of 16 x 16 tiles with no detail in the last take()'s first picture
+  /// (render/image_stats.h flat_block_fraction), [0, 1].
+  [[nodiscard]] double flat_fraction() const { return m_flat; }
+  /// The camera of the last picture: "endoscope" or "fitted".
+  [[nodiscard]] const char* camera_used() const { return m_used_scope ? "endoscope" : "fitted"; }
   /// Look through `camera` from now on instead of the fitted one (a close-up, say).
   void set_camera(const render::Camera& camera) { m_fitted = camera; }
 
@@ -62,7 +68,9 @@ class FramePictures {
   std::unique_ptr<render::OffscreenContext> m_context;
   render::RenderFrame m_frame;
   std::optional<render::Camera> m_fitted;
-  bool m_endoscope = false;
+  bool m_endoscope = true;
+  bool m_used_scope = false;
+  double m_flat = 0.0;
 };
 
 }  // namespace serosa::app

@@ -269,6 +269,7 @@ Json run_headless(const HeadlessOptions& options) {
   if (options.frames) {
     pictures = std::make_unique<FramePictures>(*options.frames, scene, state.mesh,
                                                assembled.group_names());
+    pictures->set_endoscope(!options.fitted_camera);
     const int count = std::max(options.frame_count, 1);
     for (int k = 0; k < count; ++k)
       picture_steps.push_back(count == 1 ? steps : steps * k / std::max(count - 1, 1));
@@ -285,6 +286,8 @@ Json run_headless(const HeadlessOptions& options) {
         std::snprintf(stem, sizeof stem, "step_%06lld", static_cast<long long>(step));
         for (const auto& png : pictures->take(state, stem))
           report["frames"].push_back(png.string());
+        report["frames_camera"] = pictures->camera_used();
+        report["frames_flat"].push_back(pictures->flat_fraction());
         render_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - r0).count();
         break;
       }

@@ -28,8 +28,11 @@ struct HeadlessOptions {
   std::optional<std::filesystem::path> export_final;  ///< Gmsh 2.2 of the final state
   std::optional<std::filesystem::path> report;        ///< JSON report
   std::optional<std::filesystem::path> frames;        ///< folder for PNG pictures
-  int frame_count = 5;   ///< pictures spread over the run (first and last included), with --frames
-  bool progress = true;  ///< progress bar on stderr when it is a terminal
+  int frame_count = 5;  ///< pictures spread over the run (first and last included), with --frames
+  /// The pictures' camera: the scene's endoscope (while a device poses it), else one fitted to
+  /// the organs; true: always the fitted one.
+  bool fitted_camera = false;
+  bool progress = true;                         ///< progress bar on stderr when it is a terminal
   std::optional<std::filesystem::path> record;  ///< .lapr recording of the run
   bool validate_cuts = false;  ///< check every cut's invariants (cutting/validate.h); costly
   /// The final node positions in the report ("nodes_final_m"), for a golden comparison.

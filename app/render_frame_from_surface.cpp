@@ -45,6 +45,30 @@ void tet_edges(const TetMesh& mesh, std::vector<std::uint32_t>& out) {
   }
 }
 
+// The pattern's rest positions of the render vertices (after the n node prefix, which takes its
+// nodes' own), and the wound's rim: a cut face's corner whose node also lies on an uncut face.
+void fill_rest_and_rim(const TetMesh& mesh, const surface::SurfaceMesh& surface,
+                       const surface::RenderVertices& rv, const std::vector<std::uint8_t>& marks,
+                       std::size_t n, render::RenderFrame& frame) {
+  const std::size_t v = rv.node.size();
+  frame.rest.resize(3 * (n + v));
+  for (std::size_t i = 0; i < n + v; ++i) {
+    const auto node = i < n ? i : static_cast<std::size_t>(rv.node[i - n]);
+    for (int k = 0; k < 3; ++k) frame.rest[3 * i + k] = static_cast<float>(mesh.rest[node][k]);
+  }
+  std::vector<std::uint8_t> on_uncut(mesh.x.size(), 0);
+  for (std::size_t i = 0; i < surface.faces.size(); ++i)
+    if (marks[i] != 1)
+      for (const std::int32_t node : surface.faces[i]) on_uncut[static_cast<std::size_t>(node)] = 1;
+  frame.rim.assign(n + v, 0.0f);
+  for (std::size_t i = 0; i < surface.faces.size(); ++i) {
+    if (marks[i] != 1) continue;
+    for (const std::int32_t r : rv.tris[i])
+      if (on_uncut[static_cast<std::size_t>(rv.node[static_cast<std::size_t>(r)])] != 0)
+        frame.rim[n + static_cast<std::size_t>(r)] = 1.0f;
+  }
+}
+
 }  // namespace
 
 void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
@@ -91,6 +115,7 @@ void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
       frame.nrm[3 * (n + i) + k] = static_cast<float>(rv.normal[i][k]);
     }
   }
+  fill_rest_and_rim(mesh, surface, rv, marks, n, frame);
   frame.tri.resize(3 * f);
   for (std::size_t i = 0; i < f; ++i)
     for (int k = 0; k < 3; ++k)
@@ -221,6 +246,12 @@ std::optional<render::Camera> endoscope_view(const Scene& scene, const SimState&
     if (scene.tools[i].kind != ToolKind::kEndoscope) continue;
     const ToolState& in = state.tools[i];
     if (!scope_posed(in)) return std::nullopt;
+    // Still waiting in its port (assemble_state puts it there until a device drives it): it sees
+    // the inside of the port, so the caller's own camera serves better.
+    const auto& port = scene.tools[i].trocar_m;
+    if (port && in.tip_m == std::array<double, 3>{port->x(), port->y(), port->z()} &&
+        in.quat_wxyz == std::array<double, 4>{1.0, 0.0, 0.0, 0.0})
+      return std::nullopt;
     return render::endoscope_camera(to_float(in.tip_m), to_float(in.quat_wxyz),
                                     static_cast<float>(scope_angle_deg(in)),
                                     static_cast<float>(kScopeFovDeg));

@@ -42,7 +42,8 @@ void fill_render_tools(const Scene& scene, const SimState& state, render::Render
 
 /// The camera of the scene's first endoscope tool, posed by its latest input, with the optic its
 /// input chose (engine/scope_view.h), or nullopt when the scene has no endoscope or no device has
-/// posed it yet (its input still the default: tip at the origin, identity rotation).
+/// posed it yet (its input still the default: tip at the origin, identity rotation, or at its
+/// trocar with the identity rotation, where the scene's start leaves it).
 [[nodiscard]] std::optional<render::Camera> endoscope_view(const Scene& scene,
                                                            const SimState& state);
 

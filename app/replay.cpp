@@ -111,6 +111,7 @@ ReplayResult run_replay(const ReplayOptions& options) {
   if (options.frames) {
     pictures = std::make_unique<FramePictures>(*options.frames, scene, state.mesh,
                                                assembled.group_names());
+    pictures->set_endoscope(!options.fitted_camera);
     const int count = std::max(options.frame_count, 1);
     for (int k = 0; k < count; ++k)
       picture_steps.push_back(count == 1 ? n
@@ -123,6 +124,8 @@ ReplayResult run_replay(const ReplayOptions& options) {
     char stem[32];
     std::snprintf(stem, sizeof stem, "step_%06llu", static_cast<unsigned long long>(step));
     for (const auto& png : pictures->take(state, stem)) report["frames"].push_back(png.string());
+    report["frames_camera"] = pictures->camera_used();
+    report["frames_flat"].push_back(pictures->flat_fraction());
   };
 
   comp.runner->prepare(state);

@@ -20,6 +20,7 @@ struct ReplayOptions {
   bool verify = false;                          ///< check every recorded state hash
   std::optional<std::filesystem::path> frames;  ///< folder for PNG pictures
   int frame_count = 5;                          ///< pictures over the replay, with frames
+  bool fitted_camera = false;  ///< the pictures from a fitted camera, not the endoscope
   std::optional<std::filesystem::path> report;  ///< JSON report
   bool progress = true;                         ///< progress bar on a terminal
   /// Start at simulated time t, s: restore the recording's last snapshot at or before it and

@@ -48,6 +48,7 @@
 #include "metrics/metrics_stage.h"
 #include "render/camera.h"
 #include "render/frame_renderer.h"
+#include "render/image_stats.h"
 #include "render/overlay.h"
 #include "render/png_writer.h"
 #include "render/renderer_threads.h"
@@ -343,6 +344,7 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
 
     auto last = start;
     std::int64_t frames_drawn = 0;
+    std::optional<double> snapshot_flat;  // the share of flat tiles in the --snapshot picture
     bool ended = false;  // by the trainee (Esc): the summary follows, until they leave it
     bool timed_out = false;
     while (!window.should_close() && !g_interrupted.load() && !control.finished.load()) {
@@ -378,9 +380,15 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
       const int h = window.height();
       window.bind_framebuffer();
       int draw_w = w, draw_h = h;
-      scaled.begin(w, h, pacer.resolution_scale(), draw_w, draw_h);
-      renderer.draw(frame, options, draw_w, draw_h);
-      scaled.present(w, h);
+      if (options.lens && options.view == render::SnapshotOptions::View::kVisual) {
+        // The optic's pass stretches the picture over the window itself: no second pass.
+        render::scaled_size(w, h, pacer.resolution_scale(), draw_w, draw_h);
+        renderer.draw(frame, options, draw_w, draw_h);
+      } else {
+        scaled.begin(w, h, pacer.resolution_scale(), draw_w, draw_h);
+        renderer.draw(frame, options, draw_w, draw_h);
+        scaled.present(w, h);
+      }
 
       const auto now = Clock::now();
       render::OverlayInput input;
@@ -402,8 +410,11 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
                         mouse ? static_cast<int>(pointer.active()) : -1);
       const bool last_frame =
           seconds > 0.0 && std::chrono::duration<double>(now - start).count() > seconds;
-      if (!snapshot.empty() && (last_frame || window.should_close() || g_interrupted.load()))
-        render::write_png(window.read_image(), snapshot);
+      if (!snapshot.empty() && (last_frame || window.should_close() || g_interrupted.load())) {
+        const render::Image picture = window.read_image();
+        snapshot_flat = render::flat_block_fraction(picture);
+        render::write_png(picture, snapshot);
+      }
       window.swap_buffers();
       ++frames_drawn;
       pacer.frame_done(Clock::now(), frame.overlay.slow_motion && !frame.overlay.paused);
@@ -442,7 +453,9 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
                         {"max_fps", pacer.max_fps()},
                         {"resolution_scale", pacer.resolution_scale()},
                         {"deepest_rung", pacer.deepest_rung()},
-                        {"steps_down", pacer.steps_down()}};
+                        {"steps_down", pacer.steps_down()},
+                        {"lens", options.lens}};
+    if (snapshot_flat) report["render"]["snapshot_flat"] = *snapshot_flat;
     report["interrupted"] = g_interrupted.load();
     if (comp.haptics != nullptr) report["haptics"] = comp.haptics->telemetry_json();
     if (writer) report["recording"] = close_recording(*writer, scene, assembled.state.step);

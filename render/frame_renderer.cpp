@@ -13,8 +13,10 @@
 
 #include "render/camera.h"
 #include "render/gl_program.h"
+#include "render/lens_pass.h"
 #include "render/materials.h"
 #include "render/shaders.h"
+#include "render/tissue_pattern.h"
 #include "render/vertex_normals.h"
 
 namespace serosa::render {
@@ -42,13 +44,12 @@ std::vector<std::uint32_t> triangle_edges(const std::vector<std::uint32_t>& tri)
   return out;
 }
 
-std::uint8_t to_byte(float v) {
-  return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
-}
-
 GLsizeiptr bytes(std::size_t count, std::size_t size) {
   return static_cast<GLsizeiptr>(count * size);
 }
+
+constexpr GLuint kPatternUnit = 5;   // texture unit of the tissue's pattern
+constexpr float kReliefM = 0.0002f;  // the height of the tissue's fine relief, m
 
 }  // namespace
 
@@ -66,7 +67,8 @@ FrameRenderer::FrameRenderer()
           {GL_FRAGMENT_SHADER, shaders::kToolFragment, "tool fragment"}})),
       scenery_(std::make_unique<GlProgram>(std::vector<ShaderSource>{
           {GL_VERTEX_SHADER, shaders::kSceneryVertex, "scenery vertex"},
-          {GL_FRAGMENT_SHADER, shaders::kVisualFragment, "visual fragment"}})) {
+          {GL_FRAGMENT_SHADER, shaders::kVisualFragment, "visual fragment"}})),
+      lens_(std::make_unique<LensPass>()) {
   glGetIntegerv(GL_MAX_TESS_GEN_LEVEL, &max_tess_level_);
   // Mesa's software tessellator (llvmpipe, softpipe) grows its output with a realloc per patch,
   // so one draw costs time quadratic in its patch count wherever realloc copies (a sanitizer's
@@ -80,19 +82,23 @@ FrameRenderer::FrameRenderer()
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texture_buffer_);
   glGenVertexArrays(1, &vao_);
   glGenVertexArrays(1, &pull_vao_);
-  std::array<GLuint, 5> bufs{};
+  std::array<GLuint, 6> bufs{};
   glGenBuffers(static_cast<GLsizei>(bufs.size()), bufs.data());
   pos_buf_ = bufs[0];
   nrm_buf_ = bufs[1];
   tri_buf_ = bufs[2];
   line_buf_ = bufs[3];
   material_buf_ = bufs[4];
-  std::array<GLuint, 4> texs{};
+  rest_buf_ = bufs[5];
+  std::array<GLuint, 6> texs{};
   glGenTextures(static_cast<GLsizei>(texs.size()), texs.data());
   pos_tex_ = texs[0];
   nrm_tex_ = texs[1];
   tri_tex_ = texs[2];
   material_tex_ = texs[3];
+  rest_tex_ = texs[4];
+  pattern_tex_ = texs[5];
+  make_pattern_texture();
 
   // Attribute 0: position, attribute 1: normal, both (n x 3) floats.
   glBindVertexArray(vao_);
@@ -125,12 +131,14 @@ FrameRenderer::FrameRenderer()
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
 
-  // Scenery: attribute 0 position, 1 normal (3 floats each), 2 material (4 normalised bytes).
-  std::array<GLuint, 3> sbufs{};
+  // Scenery: attribute 0 position, 1 normal (3 floats each), 2 material and 3 look (4
+  // normalised bytes each).
+  std::array<GLuint, 4> sbufs{};
   glGenBuffers(static_cast<GLsizei>(sbufs.size()), sbufs.data());
   scenery_pos_buf_ = sbufs[0];
   scenery_nrm_buf_ = sbufs[1];
   scenery_mat_buf_ = sbufs[2];
+  scenery_look_buf_ = sbufs[3];
   glGenVertexArrays(1, &scenery_vao_);
   glBindVertexArray(scenery_vao_);
   glBindBuffer(GL_ARRAY_BUFFER, scenery_pos_buf_);
@@ -139,36 +147,39 @@ FrameRenderer::FrameRenderer()
   glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
   glBindBuffer(GL_ARRAY_BUFFER, scenery_mat_buf_);
   glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, 0, nullptr);
-  for (GLuint a = 0; a < 3; ++a) glEnableVertexAttribArray(a);
+  glBindBuffer(GL_ARRAY_BUFFER, scenery_look_buf_);
+  glVertexAttribPointer(3, 4, GL_UNSIGNED_BYTE, GL_TRUE, 0, nullptr);
+  for (GLuint a = 0; a < 4; ++a) glEnableVertexAttribArray(a);
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
 FrameRenderer::~FrameRenderer() {
-  const std::array<GLuint, 12> bufs{pos_buf_,         nrm_buf_,         tri_buf_,
-                                    line_buf_,        material_buf_,    tool_pos_buf_,
-                                    tool_nrm_buf_,    tool_mat_buf_,    tool_idx_buf_,
-                                    scenery_pos_buf_, scenery_nrm_buf_, scenery_mat_buf_};
-  const std::array<GLuint, 4> texs{pos_tex_, nrm_tex_, tri_tex_, material_tex_};
+  const std::array<GLuint, 14> bufs{
+      pos_buf_,         nrm_buf_,         tri_buf_,         line_buf_,        material_buf_,
+      rest_buf_,        tool_pos_buf_,    tool_nrm_buf_,    tool_mat_buf_,    tool_idx_buf_,
+      scenery_pos_buf_, scenery_nrm_buf_, scenery_mat_buf_, scenery_look_buf_};
+  const std::array<GLuint, 6> texs{pos_tex_,      nrm_tex_,  tri_tex_,
+                                   material_tex_, rest_tex_, pattern_tex_};
   const std::array<GLuint, 4> vaos{vao_, pull_vao_, tool_vao_, scenery_vao_};
   glDeleteTextures(static_cast<GLsizei>(texs.size()), texs.data());
   glDeleteBuffers(static_cast<GLsizei>(bufs.size()), bufs.data());
   glDeleteVertexArrays(static_cast<GLsizei>(vaos.size()), vaos.data());
 }
 
-// Per-triangle material (t x RGBA8): rgb the sRGB colour, a the specular strength. Wound faces
-// take the wound material whatever their group, coagulated ones the coagulated material.
+// Per-triangle material (t x 2 RGBA8, render/materials.h pack_material). Wound faces take the
+// wound material whatever their group, coagulated ones the coagulated material.
 void FrameRenderer::upload_materials(const RenderFrame& frame) {
   const std::size_t t = frame.num_triangles();
-  std::vector<std::uint8_t> mat(4 * std::max<std::size_t>(t, 1), 0);
+  std::vector<std::uint8_t> mat(8 * std::max<std::size_t>(t, 1), 0);
   const Material wound = wound_material();
   const Material coagulated = coagulated_material();
   for (std::size_t f = 0; f < t; ++f) {
     const std::uint8_t mark = frame.tri_cut.empty() ? 0 : frame.tri_cut[f];
     const std::uint16_t g = frame.tri_group.empty() ? 0 : frame.tri_group[f];
     const Material m = mark == 1 ? wound : mark == 2 ? coagulated : group_material(frame, g);
-    for (std::size_t k = 0; k < 3; ++k) mat[4 * f + k] = to_byte(m.color[k]);
-    mat[4 * f + 3] = to_byte(m.specular);
+    const std::array<std::uint8_t, 8> packed = pack_material(m);
+    std::copy(packed.begin(), packed.end(), mat.begin() + static_cast<std::ptrdiff_t>(8 * f));
   }
   glBindBuffer(GL_TEXTURE_BUFFER, material_buf_);
   glBufferData(GL_TEXTURE_BUFFER, bytes(mat.size(), 1), mat.data(), GL_STATIC_DRAW);
@@ -176,11 +187,52 @@ void FrameRenderer::upload_materials(const RenderFrame& frame) {
   material_version_ = frame.material_version;
 }
 
+// The tissue's pattern as a repeating, mipmapped 3D texture (trilinear within a level).
+void FrameRenderer::make_pattern_texture() {
+  const TissuePattern& pattern = tissue_pattern();
+  glBindTexture(GL_TEXTURE_3D, pattern_tex_);
+  glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA8, pattern.size, pattern.size, pattern.size, 0, GL_RGBA,
+               GL_UNSIGNED_BYTE, pattern.rgba.data());
+  glGenerateMipmap(GL_TEXTURE_3D);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  for (const GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+    glTexParameteri(GL_TEXTURE_3D, wrap, GL_REPEAT);
+  glBindTexture(GL_TEXTURE_3D, 0);
+}
+
+// The pattern on texture unit kPatternUnit, its period and the relief's height.
+void FrameRenderer::set_pattern_uniforms(const GlProgram& program, bool detail) const {
+  glActiveTexture(GL_TEXTURE0 + kPatternUnit);
+  glBindTexture(GL_TEXTURE_3D, pattern_tex_);
+  glActiveTexture(GL_TEXTURE0);
+  glUniform1i(program.uniform("u_pattern"), static_cast<GLint>(kPatternUnit));
+  glUniform1f(program.uniform("u_period"), kTissuePatternPeriodM);
+  glUniform1f(program.uniform("u_relief"), kReliefM);
+  glUniform1i(program.uniform("u_detail"), detail ? 1 : 0);
+}
+
+// The rest positions (the pattern's coordinates; the current ones when the frame has none) and
+// the wound's rim, (n) RGBA32F.
+void FrameRenderer::upload_rest(const RenderFrame& frame) {
+  const std::size_t n = frame.num_vertices();
+  const std::vector<float>& rest = frame.rest.empty() ? frame.pos : frame.rest;
+  rest_scratch_.resize(4 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t k = 0; k < 3; ++k) rest_scratch_[4 * i + k] = rest[3 * i + k];
+    rest_scratch_[4 * i + 3] = frame.rim.empty() ? 0.0f : frame.rim[i];
+  }
+  glBindBuffer(GL_TEXTURE_BUFFER, rest_buf_);
+  glBufferData(GL_TEXTURE_BUFFER, bytes(rest_scratch_.size(), sizeof(float)), rest_scratch_.data(),
+               GL_STREAM_DRAW);
+  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+}
+
 void FrameRenderer::upload_topology(const RenderFrame& frame) {
   const std::size_t t = frame.num_triangles();
   // The visual view reads 3t indices and n vertices through buffer textures.
   const auto limit = static_cast<std::size_t>(max_texture_buffer_);
-  if (frame.tri.size() > limit || frame.num_vertices() > limit) {
+  if (frame.tri.size() > limit || frame.num_vertices() > limit || 2 * t > limit) {
     throw std::runtime_error("FrameRenderer: " + std::to_string(frame.tri.size()) +
                              " triangle corners or " + std::to_string(frame.num_vertices()) +
                              " vertices exceed GL_MAX_TEXTURE_BUFFER_SIZE (" +
@@ -249,7 +301,7 @@ void FrameRenderer::draw_tools(const RenderFrame& frame, const float* view_proj,
 void FrameRenderer::upload_scenery(const Scenery& scenery) {
   const std::size_t corners = scenery.tri.size();
   std::vector<float> pos(3 * corners), nrm(3 * corners);
-  std::vector<std::uint8_t> mat(4 * corners);
+  std::vector<std::uint8_t> mat(4 * corners), look(4 * corners);
   scenery_lo_ = Eigen::Vector3f::Constant(1.0f);
   scenery_hi_ = Eigen::Vector3f::Zero();
   for (std::size_t c = 0; c < corners; ++c) {
@@ -258,18 +310,19 @@ void FrameRenderer::upload_scenery(const Scenery& scenery) {
       pos[3 * c + k] = scenery.pos[3 * v + k];
       nrm[3 * c + k] = scenery.nrm[3 * v + k];
     }
-    const Material m = scenery_material(scenery.material[c / 3]);
-    for (std::size_t k = 0; k < 3; ++k) mat[4 * c + k] = to_byte(m.color[k]);
-    mat[4 * c + 3] = to_byte(m.specular);
+    const std::array<std::uint8_t, 8> m = pack_material(scenery_material(scenery.material[c / 3]));
+    std::copy(m.begin(), m.begin() + 4, mat.begin() + static_cast<std::ptrdiff_t>(4 * c));
+    std::copy(m.begin() + 4, m.end(), look.begin() + static_cast<std::ptrdiff_t>(4 * c));
     const Eigen::Vector3f p(pos[3 * c], pos[3 * c + 1], pos[3 * c + 2]);
     const bool first = c == 0;
     scenery_lo_ = first ? p : Eigen::Vector3f(scenery_lo_.cwiseMin(p));
     scenery_hi_ = first ? p : Eigen::Vector3f(scenery_hi_.cwiseMax(p));
   }
-  const std::array<std::pair<GLuint, std::pair<const void*, std::size_t>>, 3> data{{
+  const std::array<std::pair<GLuint, std::pair<const void*, std::size_t>>, 4> data{{
       {scenery_pos_buf_, {pos.data(), pos.size() * sizeof(float)}},
       {scenery_nrm_buf_, {nrm.data(), nrm.size() * sizeof(float)}},
       {scenery_mat_buf_, {mat.data(), mat.size()}},
+      {scenery_look_buf_, {look.data(), look.size()}},
   }};
   for (const auto& [buf, d] : data) {
     glBindBuffer(GL_ARRAY_BUFFER, buf);
@@ -295,11 +348,13 @@ void FrameRenderer::upload_vertices(const RenderFrame& frame) {
 
   // Buffer-texture views of the same buffers for the visual view's vertex pulling (re-attached
   // every draw: glBufferData above gave the buffers new storage).
-  const std::array<std::pair<GLuint, std::pair<GLenum, GLuint>>, 4> views{{
+  upload_rest(frame);
+  const std::array<std::pair<GLuint, std::pair<GLenum, GLuint>>, 5> views{{
       {pos_tex_, {GL_RGB32F, pos_buf_}},
       {nrm_tex_, {GL_RGB32F, nrm_buf_}},
       {tri_tex_, {GL_R32UI, tri_buf_}},
       {material_tex_, {GL_RGBA8, material_buf_}},
+      {rest_tex_, {GL_RGBA32F, rest_buf_}},
   }};
   for (const auto& [tex, fmt] : views) {
     glBindTexture(GL_TEXTURE_BUFFER, tex);
@@ -378,16 +433,19 @@ void FrameRenderer::draw_visual(const View& v, const SnapshotOptions& options) {
   glUniform1f(visual_->uniform("u_ref_dist"), ref_dist);
   const std::array<float, 24> planes = frustum_planes(view_proj);
   glUniform4fv(visual_->uniform("u_planes"), 6, planes.data());
-  // Texture units 0..3: positions, normals, indices, materials.
-  const std::array<std::pair<GLuint, const char*>, 4> units{{{pos_tex_, "u_pos"},
+  // Texture units 0..4: positions, normals, indices, materials, rest positions; the pattern's
+  // on kPatternUnit.
+  const std::array<std::pair<GLuint, const char*>, 5> units{{{pos_tex_, "u_pos"},
                                                              {nrm_tex_, "u_nrm"},
                                                              {tri_tex_, "u_tri"},
-                                                             {material_tex_, "u_tri_material"}}};
+                                                             {material_tex_, "u_tri_material"},
+                                                             {rest_tex_, "u_rest"}}};
   for (std::size_t u = 0; u < units.size(); ++u) {
     glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(u));
     glBindTexture(GL_TEXTURE_BUFFER, units[u].first);
     glUniform1i(visual_->uniform(units[u].second), static_cast<GLint>(u));
   }
+  set_pattern_uniforms(*visual_, options.detail);
   glBindVertexArray(pull_vao_);
   glPatchParameteri(GL_PATCH_VERTICES, 3);
   const std::size_t batch = patches_per_draw_ > 0 ? patches_per_draw_ : tri_count_;
@@ -402,12 +460,13 @@ void FrameRenderer::draw_visual(const View& v, const SnapshotOptions& options) {
 }
 
 // The scenery with the visual view's lighting (kVisualFragment), untessellated.
-void FrameRenderer::draw_scenery(const View& v) {
+void FrameRenderer::draw_scenery(const View& v, bool detail) {
   if (scenery_corners_ == 0) return;
   glUseProgram(scenery_->id());
   glUniformMatrix4fv(scenery_->uniform("u_view_proj"), 1, GL_FALSE, v.view_proj.data());
   glUniform3f(scenery_->uniform("u_eye"), v.eye.x(), v.eye.y(), v.eye.z());
   glUniform1f(scenery_->uniform("u_ref_dist"), v.ref_dist);
+  set_pattern_uniforms(*scenery_, detail);
   glBindVertexArray(scenery_vao_);
   glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(scenery_corners_));
   glBindVertexArray(0);
@@ -467,6 +526,8 @@ void FrameRenderer::draw(const RenderFrame& frame, const SnapshotOptions& option
     upload_scenery(frame.scenery);
   }
   upload_vertices(frame);
+  const bool lens = options.lens && options.view == SnapshotOptions::View::kVisual;
+  if (lens) lens_->begin(width, height);
   const View v = view_of(frame, options, width, height);
   const auto& bg = options.background;
   glClearColor(bg[0], bg[1], bg[2], 0.0f);  // alpha 0: coverage is read back in alpha
@@ -482,7 +543,7 @@ void FrameRenderer::draw(const RenderFrame& frame, const SnapshotOptions& option
   switch (options.view) {
     case SnapshotOptions::View::kVisual:
       draw_visual(v, options);
-      draw_scenery(v);
+      draw_scenery(v, options.detail);
       break;
     case SnapshotOptions::View::kCollision:
       draw_collision(v);
@@ -493,6 +554,7 @@ void FrameRenderer::draw(const RenderFrame& frame, const SnapshotOptions& option
   }
   glBindVertexArray(0);
   glUseProgram(0);
+  if (lens) lens_->end(options.optic);
 }
 
 }  // namespace serosa::render

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -13,6 +14,7 @@
 namespace serosa::render {
 
 class GlProgram;
+class LensPass;
 
 /// Owns the GL programs and buffers that draw RenderFrames. Construct and use it with a current
 /// OpenGL 4.1+ core context (OffscreenContext or a window's), and destroy it before the context.
@@ -33,7 +35,9 @@ class FrameRenderer {
   FrameRenderer(FrameRenderer&&) = delete;
   FrameRenderer& operator=(FrameRenderer&&) = delete;
 
-  /// Clears the bound framebuffer to the background and draws `frame` in `options.view`.
+  /// Clears the bound framebuffer to the background and draws `frame` in `options.view` (the
+  /// visual view through the endoscope's optic when options.lens: then the picture is drawn at
+  /// width x height into the optic's target and stretched over the viewport bound at the call).
   /// Missing normals are computed (area-weighted); the camera is frame.camera, or auto_camera's
   /// when options.fit_camera. The viewport must already cover width x height pixels.
   /// @throws std::invalid_argument when validate(frame) reports a problem
@@ -61,12 +65,15 @@ class FrameRenderer {
   void upload_materials(const RenderFrame& frame);
   void upload_vertices(const RenderFrame& frame);
   void upload_scenery(const Scenery& scenery);
+  void upload_rest(const RenderFrame& frame);
+  void make_pattern_texture();
+  void set_pattern_uniforms(const GlProgram& program, bool detail) const;
   [[nodiscard]] View view_of(const RenderFrame& frame, const SnapshotOptions& options, int width,
                              int height) const;
   void draw_visual(const View& v, const SnapshotOptions& options);
   void draw_collision(const View& v);
   void draw_mechanical(const View& v);
-  void draw_scenery(const View& v);
+  void draw_scenery(const View& v, bool detail);
   void draw_tools(const RenderFrame& frame, const float* view_proj, const float* eye,
                   float ref_dist, bool depth_cue);
 
@@ -74,6 +81,7 @@ class FrameRenderer {
   std::unique_ptr<GlProgram> flat_;
   std::unique_ptr<GlProgram> tool_;
   std::unique_ptr<GlProgram> scenery_;
+  std::unique_ptr<LensPass> lens_;
   // GL object names: vertex arrays (attributes for the flat views, none for the visual view's
   // vertex pulling), position and normal buffers, triangle and line index buffers, the
   // per-triangle material buffer, and the buffer textures the visual view reads them through.
@@ -88,6 +96,12 @@ class FrameRenderer {
   unsigned int line_buf_ = 0;
   unsigned int material_buf_ = 0;
   unsigned int material_tex_ = 0;
+  // The rest positions and the wound's rim ((n) RGBA32F) and their buffer texture; the tissue's
+  // pattern (a repeating 3D texture, render/tissue_pattern.h).
+  unsigned int rest_buf_ = 0;
+  unsigned int rest_tex_ = 0;
+  unsigned int pattern_tex_ = 0;
+  std::vector<float> rest_scratch_;
   // Instruments: their vertex array, interleaved-free attribute buffers and index buffer.
   unsigned int tool_vao_ = 0;
   unsigned int tool_pos_buf_ = 0;
@@ -101,6 +115,7 @@ class FrameRenderer {
   unsigned int scenery_pos_buf_ = 0;
   unsigned int scenery_nrm_buf_ = 0;
   unsigned int scenery_mat_buf_ = 0;
+  unsigned int scenery_look_buf_ = 0;
   std::uint64_t scenery_version_ = 0;
   std::size_t scenery_corners_ = 0;
   std::uint64_t scenery_uploads_ = 0;

@@ -2,6 +2,7 @@
 #include "render/image_stats.h"
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace serosa::render {
@@ -32,6 +33,62 @@ DominantColor most_common_color(const Image& image) {
              static_cast<std::uint8_t>(c)};
   out.fraction = static_cast<double>(best_count) / static_cast<double>(packed.size());
   return out;
+}
+
+namespace {
+
+// Rec. 601 luma of every pixel, (height x width).
+std::vector<double> luma(const Image& image) {
+  std::vector<double> y(static_cast<std::size_t>(image.width) *
+                        static_cast<std::size_t>(image.height));
+  for (std::size_t i = 0; i < y.size(); ++i)
+    y[i] =
+        0.299 * image.rgba[4 * i] + 0.587 * image.rgba[4 * i + 1] + 0.114 * image.rgba[4 * i + 2];
+  return y;
+}
+
+// The luma minus its 5 x 5 box mean (clamped at the borders), (height x width).
+std::vector<double> high_pass(const std::vector<double>& y, int w, int h) {
+  std::vector<double> out(y.size());
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c) {
+      double sum = 0.0;
+      for (int dr = -2; dr <= 2; ++dr)
+        for (int dc = -2; dc <= 2; ++dc) {
+          const int rr = std::clamp(r + dr, 0, h - 1), cc = std::clamp(c + dc, 0, w - 1);
+          sum += y[static_cast<std::size_t>(rr) * static_cast<std::size_t>(w) +
+                   static_cast<std::size_t>(cc)];
+        }
+      const std::size_t i =
+          static_cast<std::size_t>(r) * static_cast<std::size_t>(w) + static_cast<std::size_t>(c);
+      out[i] = y[i] - sum / 25.0;
+    }
+  return out;
+}
+
+}  // namespace
+
+double flat_block_fraction(const Image& image, int block, double spread) {
+  const int w = image.width, h = image.height;
+  if (block < 1 || w < block || h < block) return 0.0;
+  const std::vector<double> d = high_pass(luma(image), w, h);
+  std::size_t flat = 0, blocks = 0;
+  for (int r0 = 0; r0 + block <= h; r0 += block)
+    for (int c0 = 0; c0 + block <= w; c0 += block) {
+      double s = 0.0, s2 = 0.0;
+      for (int r = r0; r < r0 + block; ++r)
+        for (int c = c0; c < c0 + block; ++c) {
+          const double v = d[static_cast<std::size_t>(r) * static_cast<std::size_t>(w) +
+                             static_cast<std::size_t>(c)];
+          s += v;
+          s2 += v * v;
+        }
+      const double n = static_cast<double>(block) * block;
+      const double var = std::max(s2 / n - (s / n) * (s / n), 0.0);
+      ++blocks;
+      if (std::sqrt(var) < spread) ++flat;
+    }
+  return static_cast<double>(flat) / static_cast<double>(blocks);
 }
 
 }  // namespace serosa::render

@@ -18,4 +18,10 @@ struct DominantColor {
 };
 [[nodiscard]] DominantColor most_common_color(const Image& image);
 
+/// How much of a picture carries no detail: the fraction of its whole block x block tiles in which
+/// the grey level (Rec. 601 luma, 0..255) minus its 5 x 5 box mean varies by less than
+/// `spread` grey levels (standard deviation). A smooth, uniformly shaded surface is flat; tissue
+/// with vessels, lobules and wet glints is not. 0 for a picture smaller than one tile.
+[[nodiscard]] double flat_block_fraction(const Image& image, int block = 16, double spread = 1.0);
+
 }  // namespace serosa::render

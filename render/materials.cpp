@@ -2,6 +2,9 @@
 // serosa is pale pink and glossy, fat pale yellow, the cecum a deeper pink, cut tissue dark red.
 #include "render/materials.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace serosa::render {
 namespace {
 
@@ -10,18 +13,21 @@ struct Named {
   Material material;
 };
 
-constexpr std::array<Named, 11> kNamed{{
-    {"appendix", {{0.93f, 0.62f, 0.62f}, 0.45f}},
-    {"mesoappendix", {{0.95f, 0.84f, 0.50f}, 0.30f}},
-    {"cecum", {{0.80f, 0.45f, 0.50f}, 0.40f}},
-    {"colon", {{0.82f, 0.52f, 0.52f}, 0.40f}},
-    {"bowel", {{0.90f, 0.60f, 0.58f}, 0.45f}},
-    {"ileum", {{0.90f, 0.60f, 0.58f}, 0.45f}},
-    {"liver", {{0.55f, 0.20f, 0.16f}, 0.50f}},
-    {"gallbladder", {{0.45f, 0.58f, 0.32f}, 0.55f}},
-    {"fat", {{0.95f, 0.86f, 0.55f}, 0.30f}},
-    {"peritoneum", {{0.88f, 0.72f, 0.70f}, 0.40f}},
-    {"stomach", {{0.88f, 0.58f, 0.55f}, 0.40f}},
+// {colour, specular, vessels, lobules, mottle}: serosa carries a vessel network, fat is lobular,
+// the inflamed appendix is redder with more vessels (hyperaemia).
+constexpr std::array<Named, 12> kNamed{{
+    {"appendix", {{0.90f, 0.50f, 0.48f}, 0.55f, 0.85f, 0.0f, 0.6f}},
+    {"mesoappendix", {{0.94f, 0.80f, 0.50f}, 0.45f, 0.45f, 1.0f, 0.5f}},
+    {"artery", {{0.62f, 0.20f, 0.28f}, 0.60f, 0.0f, 0.0f, 0.3f}},
+    {"cecum", {{0.84f, 0.52f, 0.52f}, 0.50f, 0.60f, 0.0f, 0.55f}},
+    {"colon", {{0.84f, 0.56f, 0.54f}, 0.50f, 0.55f, 0.0f, 0.55f}},
+    {"bowel", {{0.90f, 0.60f, 0.58f}, 0.50f, 0.55f, 0.0f, 0.5f}},
+    {"ileum", {{0.90f, 0.60f, 0.58f}, 0.50f, 0.55f, 0.0f, 0.5f}},
+    {"liver", {{0.55f, 0.20f, 0.16f}, 0.50f, 0.15f, 0.0f, 0.7f}},
+    {"gallbladder", {{0.45f, 0.58f, 0.32f}, 0.55f, 0.45f, 0.0f, 0.4f}},
+    {"fat", {{0.94f, 0.80f, 0.50f}, 0.45f, 0.45f, 1.0f, 0.5f}},
+    {"peritoneum", {{0.88f, 0.72f, 0.70f}, 0.45f, 0.50f, 0.0f, 0.5f}},
+    {"stomach", {{0.88f, 0.58f, 0.55f}, 0.45f, 0.55f, 0.0f, 0.5f}},
 }};
 
 // Used for unnamed groups, by id: soft tissue-like hues that stay far from the wound's red.
@@ -61,16 +67,31 @@ Material group_material(const RenderFrame& frame, std::uint16_t group) {
 Material scenery_material(SceneryMaterial m) {
   switch (m) {
     case SceneryMaterial::kPeritoneum:
-      return {{0.80f, 0.42f, 0.40f}, 0.50f};
+      return {{0.80f, 0.42f, 0.40f}, 0.50f, 0.70f, 0.0f, 0.6f};
     case SceneryMaterial::kBowel:
-      return {{0.93f, 0.64f, 0.62f}, 0.55f};
+      return {{0.93f, 0.64f, 0.62f}, 0.55f, 0.55f, 0.0f, 0.5f};
     case SceneryMaterial::kFat:
-      return {{0.96f, 0.83f, 0.46f}, 0.35f};
+      return {{0.96f, 0.83f, 0.46f}, 0.40f, 0.30f, 1.0f, 0.5f};
   }
   return {};
 }
 
-Material wound_material() { return {{0.45f, 0.04f, 0.06f}, 0.75f}; }
-Material coagulated_material() { return {{0.62f, 0.52f, 0.40f}, 0.1f}; }
+Material wound_material() {
+  return {{0.45f, 0.04f, 0.06f}, 0.75f, 0.0f, 0.0f, 0.8f, SurfaceKind::kCut};
+}
+Material coagulated_material() {
+  return {{0.62f, 0.52f, 0.40f}, 0.1f, 0.0f, 0.0f, 0.8f, SurfaceKind::kCharred};
+}
+
+std::array<std::uint8_t, 8> pack_material(const Material& m) {
+  const auto byte = [](float v) {
+    return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+  };
+  const std::uint8_t kind = m.kind == SurfaceKind::kCut       ? 128
+                            : m.kind == SurfaceKind::kCharred ? 255
+                                                              : 0;
+  return {byte(m.color[0]), byte(m.color[1]), byte(m.color[2]), byte(m.specular),
+          byte(m.vessels),  byte(m.lobules),  byte(m.mottle),   kind};
+}
 
 }  // namespace serosa::render

@@ -184,8 +184,15 @@ struct Scenery {
 /// (all tet nodes, say, so that `edges` can index interior nodes); unused vertices are not drawn
 /// in the visual and collision views.
 struct RenderFrame {
-  std::vector<float> pos;          ///< (n x 3) vertex positions, m
-  std::vector<float> nrm;          ///< (n x 3) unit normals; empty: computed when drawn
+  std::vector<float> pos;  ///< (n x 3) vertex positions, m
+  std::vector<float> nrm;  ///< (n x 3) unit normals; empty: computed when drawn
+  /// (n x 3) rest (material) positions, m: the tissue's pattern (render/tissue_pattern.h) is laid
+  /// out in them, so it stays on the tissue as it deforms and is cut; empty: laid out in pos.
+  /// Changes only with the topology (bump topology_version).
+  std::vector<float> rest;
+  /// (n) 1 on a cut face's corners that also lie on the uncut surface (the wound's rim, where it
+  /// oozes), 0 elsewhere; empty: no rim. Changes only with the topology.
+  std::vector<float> rim;
   std::vector<std::uint32_t> tri;  ///< (t x 3) vertex ids, counter-clockwise seen from outside
   std::vector<std::uint16_t> tri_group;  ///< (t) visual group (Gmsh physical tag) of each triangle
   /// (t) 1 = face made by a cut (wound), 2 = coagulated by a hook (charred), else 0
@@ -222,7 +229,8 @@ struct RenderFrame {
   [[nodiscard]] std::size_t num_triangles() const { return tri.size() / 3; }
 };
 
-/// Checks shapes and ids: pos a multiple of 3; nrm empty or as long as pos; tri a multiple of 3
+/// Checks shapes and ids: pos a multiple of 3; nrm and rest empty or as long as pos; rim empty or
+/// one per vertex; tri a multiple of 3
 /// with ids < n; tri_group and tri_cut empty or one per triangle; edges a multiple of 2 with ids
 /// < n; tools with finite poses and jaw_rad in [0, pi]; the scenery's pos a multiple of 3, nrm as
 /// long as pos, tri a multiple of 3 with ids below its vertex count, one material per triangle,

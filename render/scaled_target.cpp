@@ -66,14 +66,19 @@ void ScaledTarget::ensure_size(int width, int height) {
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
 }
 
+void scaled_size(int width, int height, float scale, int& draw_width, int& draw_height) {
+  const float s = std::clamp(std::isfinite(scale) ? scale : 1.0f, 0.1f, 1.0f);
+  draw_width = std::max(1, static_cast<int>(std::lround(s * static_cast<float>(width))));
+  draw_height = std::max(1, static_cast<int>(std::lround(s * static_cast<float>(height))));
+}
+
 void ScaledTarget::begin(int width, int height, float scale, int& draw_width, int& draw_height) {
   scale_ = std::clamp(std::isfinite(scale) ? scale : 1.0f, 0.1f, 1.0f);
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target_);
   draw_width = width;
   draw_height = height;
   if (scale_ >= 1.0f) return;
-  draw_width = std::max(1, static_cast<int>(std::lround(scale_ * static_cast<float>(width))));
-  draw_height = std::max(1, static_cast<int>(std::lround(scale_ * static_cast<float>(height))));
+  scaled_size(width, height, scale_, draw_width, draw_height);
   ensure_size(draw_width, draw_height);
   glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
   glViewport(0, 0, draw_width, draw_height);

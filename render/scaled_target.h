@@ -10,6 +10,10 @@ namespace serosa::render {
 
 class GlProgram;
 
+/// The size a frame is drawn at for `scale` of width x height: round(scale x width) x
+/// round(scale x height), at least 1 each, scale clamped to [0.1, 1] (1 when not finite).
+void scaled_size(int width, int height, float scale, int& draw_width, int& draw_height);
+
 class ScaledTarget {
  public:
   /// Needs a current GL 4.1 core context (compiles its program).

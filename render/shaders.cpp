@@ -10,16 +10,22 @@ namespace serosa::render::shaders {
 const char* const kVisualVertex = R"(#version 410 core
 uniform samplerBuffer u_pos;           // (n) world positions, m
 uniform samplerBuffer u_nrm;           // (n) unit normals
+uniform samplerBuffer u_rest;          // (n) xyz: rest position, m; w: the wound's rim, [0, 1]
 uniform usamplerBuffer u_tri;          // (3t) vertex ids
-uniform samplerBuffer u_tri_material;  // (t) rgb: sRGB colour, a: specular strength
+uniform samplerBuffer u_tri_material;  // (2t) per triangle: colour and specular; its look
 out vec3 v_pos;
 out vec3 v_nrm;
+out vec4 v_rest;
 out vec4 v_material;
+out vec4 v_look;
 void main() {
   int vid = int(texelFetch(u_tri, gl_VertexID).r);
   v_pos = texelFetch(u_pos, vid).xyz;
   v_nrm = texelFetch(u_nrm, vid).xyz;
-  v_material = texelFetch(u_tri_material, gl_VertexID / 3);
+  v_rest = texelFetch(u_rest, vid);
+  int tri = gl_VertexID / 3;
+  v_material = texelFetch(u_tri_material, 2 * tri);
+  v_look = texelFetch(u_tri_material, 2 * tri + 1);
 }
 )";
 
@@ -33,10 +39,14 @@ const char* const kVisualTessControl = R"(#version 410 core
 layout(vertices = 3) out;
 in vec3 v_pos[];
 in vec3 v_nrm[];
+in vec4 v_rest[];
 in vec4 v_material[];
+in vec4 v_look[];
 out vec3 c_pos[];
 out vec3 c_nrm[];
+out vec4 c_rest[];
 patch out vec4 c_material;  // rgb: sRGB colour, a: specular strength
+patch out vec4 c_look;      // vessels, lobules, mottle, kind
 uniform float u_level;
 uniform vec4 u_planes[6];  // the view frustum's planes, world space, unit normals pointing in
 bool outside() {
@@ -49,8 +59,10 @@ bool outside() {
 void main() {
   c_pos[gl_InvocationID] = v_pos[gl_InvocationID];
   c_nrm[gl_InvocationID] = v_nrm[gl_InvocationID];
+  c_rest[gl_InvocationID] = v_rest[gl_InvocationID];
   if (gl_InvocationID == 0) {
     c_material = v_material[0];  // the same for the three corners
+    c_look = v_look[0];
     float level = outside() ? 0.0 : u_level;
     gl_TessLevelOuter[0] = level;
     gl_TessLevelOuter[1] = level;
@@ -63,15 +75,20 @@ void main() {
 // Phong tessellation: the linear point p(u, v, w) is projected onto the tangent plane of each
 // corner, the three projections are blended with the same barycentric weights, and the result
 // is mixed with p by the shape factor alpha (0 = flat, 3/4 recommended by the paper).
-// The per-triangle material comes through the control stage as a per-patch value.
+// The per-triangle material comes through the control stage as a per-patch value; the rest
+// position (the pattern's coordinates) is interpolated linearly.
 const char* const kVisualTessEval = R"(#version 410 core
 layout(triangles, equal_spacing, ccw) in;
 in vec3 c_pos[];
 in vec3 c_nrm[];
+in vec4 c_rest[];
 patch in vec4 c_material;
+patch in vec4 c_look;
 out vec3 e_pos;
 out vec3 e_nrm;
+out vec4 e_rest;
 flat out vec4 e_material;  // rgb: sRGB colour, a: specular strength
+flat out vec4 e_look;      // vessels, lobules, mottle, kind (0 outside, 0.5 cut, 1 charred)
 uniform mat4 u_view_proj;
 uniform float u_alpha;
 vec3 unit_or_zero(vec3 n) {
@@ -90,54 +107,126 @@ void main() {
   vec3 q = mix(p, s, u_alpha);
   e_pos = q;
   e_nrm = b.x * n0 + b.y * n1 + b.z * n2;
+  e_rest = b.x * c_rest[0] + b.y * c_rest[1] + b.z * c_rest[2];
   e_material = c_material;
+  e_look = c_look;
   gl_Position = u_view_proj * vec4(q, 1.0);
 }
 )";
 
-// Phong lighting in linear colour, the light at the eye (endoscope tip). Intensity falls off with
-// the square of the distance, normalised to 1 at the distance of the camera's target and capped,
-// so that tissue close to the scope is bright and far tissue dim. A tight highlight gives the wet
-// look of serosa. Both sides are lit (cut surfaces can be seen from behind).
+// Tissue under the endoscope's light, in linear colour. The light sits at the scope's tip (the
+// eye) and falls off with the square of the distance, normalised to 1 at the camera target's
+// distance and capped. The pattern volume (render/tissue_pattern.h), sampled at the rest position
+// at two scales, gives the serosa its vessels and mottling, fat its lobules, and every surface a
+// fine relief that bends the normal (a bump from the screen-space derivatives of the height, so
+// no tangent frame is needed): the tight wet highlight then breaks up into glints. Red light
+// reaches further round the terminator than blue (a wrapped diffuse term: the warmth of light
+// scattered under the surface), and a Fresnel sheen brightens grazing wet surfaces. A cut face
+// shows the darker inside with the pattern's stipple, darkest and glossiest at its oozing rim;
+// coagulated tissue is matt tan with charred specks. Both sides are lit (cut surfaces can be
+// seen from behind).
 const char* const kVisualFragment = R"(#version 410 core
 in vec3 e_pos;
 in vec3 e_nrm;
+in vec4 e_rest;
 flat in vec4 e_material;
+flat in vec4 e_look;
 out vec4 frag_color;
-uniform vec3 u_eye;         // light and eye position, m
-uniform float u_ref_dist;   // distance at which the light's intensity is 1, m
+uniform vec3 u_eye;          // light and eye position, m
+uniform float u_ref_dist;    // distance at which the light's intensity is 1, m
+uniform sampler3D u_pattern; // R vessels, G lobule borders, B mottle, A relief
+uniform float u_period;      // m of rest space per repeat of the pattern
+uniform float u_relief;      // height of the relief, m
+uniform int u_detail;        // 0: the plain colour, no pattern or relief
+vec3 bumped(vec3 n, float h) {
+  vec3 dpx = dFdx(e_pos);
+  vec3 dpy = dFdy(e_pos);
+  vec3 r1 = cross(dpy, n);
+  vec3 r2 = cross(n, dpx);
+  float det = dot(dpx, r1);
+  vec3 grad = sign(det) * (dFdx(h) * r1 + dFdy(h) * r2);
+  vec3 m = abs(det) * n - grad;
+  return dot(m, m) > 0.0 ? normalize(m) : n;
+}
 void main() {
   vec3 n = e_nrm;
   if (dot(n, n) < 1e-12) n = cross(dFdx(e_pos), dFdy(e_pos));
   n = normalize(n);
   if (!gl_FrontFacing) n = -n;
+  vec3 albedo = pow(e_material.rgb, vec3(2.2));
+  float wet = e_material.a;
+  float vessels = e_look.r, lobules = e_look.g, mottle = e_look.b, kind = e_look.a;
+  vec3 q = e_rest.xyz / u_period;
+  vec4 coarse = vec4(0.0, 0.0, 0.5, 0.5), fine = coarse;
+  if (u_detail != 0) {
+    coarse = texture(u_pattern, q);
+    fine = texture(u_pattern, q * 2.7 + vec3(0.31, 0.57, 0.13));
+  }
+  float h;
+  if (u_detail == 0) {
+    h = 0.0;
+  } else if (kind < 0.25) {
+    albedo *= 1.0 + mottle * (0.9 * (coarse.b - 0.5) + 0.5 * (fine.b - 0.5));
+    albedo = mix(albedo, albedo * vec3(0.95, 0.62, 0.45), lobules * 0.6 * coarse.g);
+    float vein = clamp(coarse.r + 0.6 * fine.r * (1.0 - lobules), 0.0, 1.0);
+    albedo = mix(albedo, vec3(0.16, 0.012, 0.03), vessels * 0.85 * vein);
+    h = mix(fine.a, 1.0 - coarse.g, lobules) + 0.4 * vessels * coarse.r;
+  } else if (kind < 0.75) {
+    albedo *= 0.55 + 0.9 * fine.b * coarse.b;
+    float rim = smoothstep(0.35, 1.0, e_rest.w);
+    albedo = mix(albedo, vec3(0.09, 0.004, 0.008), rim);
+    wet = mix(wet, 1.0, rim);
+    h = fine.a;
+  } else {
+    float speck = smoothstep(0.55, 0.75, fine.b) * smoothstep(0.4, 0.6, coarse.b);
+    albedo = mix(albedo, vec3(0.03, 0.02, 0.015), speck);
+    h = fine.b;
+  }
+  // Seen from very close, one voxel of the pattern spans many pixels and the relief's trilinear
+  // slopes would show as facets: it fades out there.
+  float voxels_per_pixel = length(fwidth(q * 2.7 * float(textureSize(u_pattern, 0).x)));
+  if (u_detail != 0) n = bumped(n, u_relief * smoothstep(0.04, 0.15, voxels_per_pixel) * h);
   vec3 l = u_eye - e_pos;
   float d = max(length(l), 1e-9);
   l /= d;
   float att = min((u_ref_dist * u_ref_dist) / (d * d), 3.0);
-  float diffuse = max(dot(n, l), 0.0);
-  // Light and eye coincide: the half vector is l itself.
-  float spec = pow(diffuse, 60.0) + 0.25 * pow(diffuse, 12.0);
-  vec3 albedo = pow(e_material.rgb, vec3(2.2));
-  vec3 c = albedo * (0.08 + 0.92 * diffuse * att) + e_material.a * spec * att * vec3(1.0, 0.96, 0.92);
-  frag_color = vec4(pow(clamp(c, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
+  float ndl = dot(n, l);
+  vec3 wrap = vec3(0.30, 0.12, 0.08);
+  vec3 diffuse = clamp((vec3(ndl) + wrap) / (1.0 + wrap), 0.0, 1.0);
+  float c = max(ndl, 0.0);
+  // Light and eye coincide: the half vector is l itself, and n.v = n.l.
+  float spec = pow(c, 90.0) + 0.2 * pow(c, 14.0);
+  float fresnel = 0.02 + 0.98 * pow(1.0 - c, 5.0);
+  vec3 lit = albedo * (0.06 + 0.94 * diffuse * att) +
+             wet * (spec + 0.12 * fresnel) * att * vec3(1.0, 0.96, 0.92);
+  // A soft shoulder above 0.8 instead of a hard clip: bright fat close to the scope keeps its
+  // lobules rather than burning out to white (the camera's exposure would do the same).
+  vec3 over = max(lit - 0.8, 0.0);
+  lit = min(lit, 0.8) + 0.2 * (1.0 - exp(-over / 0.2));
+  frag_color = vec4(pow(lit, vec3(1.0 / 2.2)), 1.0);
 }
 )";
 
 // The scenery: per-corner attributes (the renderer repeats each triangle's material at its three
-// corners), handed to kVisualFragment under the names the tessellation evaluation stage uses.
+// corners), handed to kVisualFragment under the names the tessellation evaluation stage uses. It
+// does not move, so its pattern is laid out in its own positions.
 const char* const kSceneryVertex = R"(#version 410 core
 layout(location = 0) in vec3 a_pos;       // world position, m
 layout(location = 1) in vec3 a_nrm;       // unit normal
 layout(location = 2) in vec4 a_material;  // rgb: sRGB colour, a: specular strength
+layout(location = 3) in vec4 a_look;      // vessels, lobules, mottle, kind
 out vec3 e_pos;
 out vec3 e_nrm;
+out vec4 e_rest;
 flat out vec4 e_material;
+flat out vec4 e_look;
 uniform mat4 u_view_proj;
 void main() {
   e_pos = a_pos;
   e_nrm = a_nrm;
+  e_rest = vec4(a_pos, 0.0);
   e_material = a_material;
+  e_look = a_look;
   gl_Position = u_view_proj * vec4(a_pos, 1.0);
 }
 )";

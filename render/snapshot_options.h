@@ -3,6 +3,8 @@
 
 #include <array>
 
+#include "render/lens_pass.h"
+
 namespace serosa::render {
 
 struct SnapshotOptions {
@@ -25,6 +27,13 @@ struct SnapshotOptions {
   bool depth_cue = true;
   /// Use auto_camera(frame) instead of frame.camera.
   bool fit_camera = false;
+  /// The visual view's tissue detail (render/tissue_pattern.h: vessels, lobules, mottling, fine
+  /// relief and the wound's rim); false: each material's plain colour, smoothly shaded (cheaper).
+  bool detail = true;
+  /// The visual view through the endoscope's optic (render/lens_pass.h): barrel distortion,
+  /// vignette and edge anti-aliasing as a last pass; false: the pinhole picture as drawn.
+  bool lens = true;
+  LensSettings optic;
   /// Background colour (sRGB, [0, 1]): a dark abdominal cavity.
   std::array<float, 3> background{0.06f, 0.04f, 0.04f};
 };

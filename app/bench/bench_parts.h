@@ -23,6 +23,9 @@ PartResult run_haptics_part(const BenchOptions& options);
 /// The shipped appendectomy scenes, every stage: real-time factor and step-time distribution
 /// against the accuracy of each solver setting and dt (positions against the exact solve).
 PartResult run_scenes_part(const BenchOptions& options);
+/// The endoscopic picture: the cost per frame of each feature (pattern, optic, anti-aliasing) at
+/// two tessellations and resolutions, against its detail (the share of flat tiles).
+PartResult run_render_part(const BenchOptions& options);
 /// Surface extraction full vs incremental, CPU vs GPU: the same result, time only.
 PartResult run_surface_part(const BenchOptions& options);
 

@@ -9,7 +9,7 @@ const std::vector<PartEntry>& registered_parts() {
       {"scenes", run_scenes_part},   {"fem", run_fem_part},
       {"polar", run_polar_part},     {"cutting", run_cutting_part},
       {"surface", run_surface_part}, {"tessellation", run_tessellation_part},
-      {"haptics", run_haptics_part},
+      {"haptics", run_haptics_part}, {"render", run_render_part},
   };
   return parts;
 }

@@ -154,6 +154,7 @@ TEST_F(Snapshot, TwoGroupsShowTheirMaterials) {
   o.fit_camera = true;
   o.width = 320;
   o.height = 240;
+  o.detail = false;  // the materials' own colours, without vessels and lobules over them
   const Image img = shoot(f, o, "two_groups_visual");
   // Pink: red clearly above green and green ~ blue; fat yellow: green close to red, blue low.
   const std::size_t pink = fixtures::count_pixels(
@@ -211,6 +212,7 @@ TEST_F(Snapshot, ThreeViewsDiffer) {
   o.fit_camera = true;
   o.width = 320;
   o.height = 240;
+  o.lens = false;  // the optic's barrel distortion magnifies the centre of the visual view only
   o.view = View::kVisual;
   const Image visual = shoot(f, o, "views_visual");
   o.view = View::kCollision;
