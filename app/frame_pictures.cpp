@@ -70,7 +70,10 @@ std::vector<std::filesystem::path> FramePictures::take(const SimState& state,
     name.append(".png");
     out.push_back(m_dir / name);
     const render::Image image = render::render_image(*m_context, m_frame, o);
-    if (i == 0) m_flat = render::flat_block_fraction(image);
+    if (i == 0) {
+      m_flat = render::flat_block_fraction(image);
+      m_blood = render::blood_fraction(image);
+    }
     render::write_png(image, out.back());
   }
   return out;

@@ -53,10 +53,15 @@ class FramePictures {
   /// The share of 16 x 16 tiles with no detail in the last take()'s first picture
   /// (render/image_stats.h flat_block_fraction), [0, 1].
   [[nodiscard]] double flat_fraction() const { return m_flat; }
+  /// The share of its pixels that read as blood (render/image_stats.h blood_fraction), [0, 1].
+  [[nodiscard]] double blood_fraction() const { return m_blood; }
   /// The camera of the last picture: "endoscope" or "fitted".
   [[nodiscard]] const char* camera_used() const { return m_used_scope ? "endoscope" : "fitted"; }
-  /// Look through `camera` from now on instead of the fitted one (a close-up, say).
-  void set_camera(const render::Camera& camera) { m_fitted = camera; }
+  /// Look through `camera` from now on instead of the fitted one or the endoscope (a close-up).
+  void set_camera(const render::Camera& camera) {
+    m_fitted = camera;
+    m_endoscope = false;
+  }
 
  private:
   std::filesystem::path m_dir;
@@ -71,6 +76,7 @@ class FramePictures {
   bool m_endoscope = true;
   bool m_used_scope = false;
   double m_flat = 0.0;
+  double m_blood = 0.0;
 };
 
 }  // namespace serosa::app

@@ -288,6 +288,7 @@ Json run_headless(const HeadlessOptions& options) {
           report["frames"].push_back(png.string());
         report["frames_camera"] = pictures->camera_used();
         report["frames_flat"].push_back(pictures->flat_fraction());
+        report["frames_blood"].push_back(pictures->blood_fraction());
         render_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - r0).count();
         break;
       }

@@ -126,6 +126,7 @@ ReplayResult run_replay(const ReplayOptions& options) {
     for (const auto& png : pictures->take(state, stem)) report["frames"].push_back(png.string());
     report["frames_camera"] = pictures->camera_used();
     report["frames_flat"].push_back(pictures->flat_fraction());
+    report["frames_blood"].push_back(pictures->blood_fraction());
   };
 
   comp.runner->prepare(state);

@@ -91,4 +91,15 @@ double flat_block_fraction(const Image& image, int block, double spread) {
   return static_cast<double>(flat) / static_cast<double>(blocks);
 }
 
+double blood_fraction(const Image& image) {
+  const std::size_t n = image.rgba.size() / 4;
+  if (n == 0) return 0.0;
+  std::size_t blood = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const int r = image.rgba[4 * i], g = image.rgba[4 * i + 1], b = image.rgba[4 * i + 2];
+    if (r >= 40 && r <= 190 && 4 * g < r && 4 * b < r) ++blood;
+  }
+  return static_cast<double>(blood) / static_cast<double>(n);
+}
+
 }  // namespace serosa::render

@@ -24,4 +24,8 @@ struct DominantColor {
 /// with vessels, lobules and wet glints is not. 0 for a picture smaller than one tile.
 [[nodiscard]] double flat_block_fraction(const Image& image, int block = 16, double spread = 1.0);
 
+/// The fraction of a picture's pixels that read as blood: a dark, saturated red (red from 40 to
+/// 190 of 255, green and blue under a quarter of it). Tissue, fat and the instruments do not.
+[[nodiscard]] double blood_fraction(const Image& image);
+
 }  // namespace serosa::render
