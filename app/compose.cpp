@@ -13,6 +13,7 @@
 #include "engine/tissue_stress.h"
 #include "fem/fem_stage.h"
 #include "haptics/haptics_stage.h"
+#include "metrics/bleeding_stage.h"
 #include "metrics/metrics_stage.h"
 #include "surface/surface_stage.h"
 
@@ -225,6 +226,11 @@ Composition compose(const Scene& scene, const AssembledScene& assembled, Compose
   if (metrics_stage) {
     c.metrics = metrics_stage.get();
     c.runner->add(Slot::metrics, std::move(metrics_stage));
+    // the blood of what the metrics found cut (after them: they find it)
+    if (listed(Effect::kBleeding)) {
+      c.runner->add(Slot::metrics, std::make_unique<metrics::BleedingStage>(scene));
+      c.built.push_back(Effect::kBleeding);
+    }
   }
   if (listed(Effect::kRender)) c.folded.push_back(Effect::kRender);
   if (listed(Effect::kRecord)) c.folded.push_back(Effect::kRecord);

@@ -362,6 +362,11 @@ Json run_headless(const HeadlessOptions& options) {
     report["nodes_final_m"] = std::move(nodes);
     report["binary_id"] = binary_id();
   }
+  for (const Blood& b : state.handoff.blood)
+    report["bleeding"].push_back({{"since_s", b.since_s},
+                                  {"shed_m3", b.shed_m3},
+                                  {"pool_radius_m", b.pool_radius_m},
+                                  {"flowing", b.pulse > 0.0}});
   report["state_hash"] = hash_hex(state_hash(state));
   if (comp.cutting) {
     report["cutting"] = cutting_json(comp);

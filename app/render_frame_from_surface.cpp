@@ -69,12 +69,26 @@ void fill_rest_and_rim(const TetMesh& mesh, const surface::SurfaceMesh& surface,
   }
 }
 
+// Each vertex's node's stain of blood (none without a stain).
+void fill_stain(const surface::RenderVertices& rv, std::size_t n, const std::vector<float>* stain,
+                render::RenderFrame& frame) {
+  if (stain == nullptr || stain->empty()) {
+    frame.stain.clear();
+    return;
+  }
+  const auto of = [&](std::size_t node) { return node < stain->size() ? (*stain)[node] : 0.0f; };
+  frame.stain.resize(n + rv.node.size());
+  for (std::size_t i = 0; i < n; ++i) frame.stain[i] = of(i);
+  for (std::size_t i = 0; i < rv.node.size(); ++i)
+    frame.stain[n + i] = of(static_cast<std::size_t>(rv.node[i]));
+}
+
 }  // namespace
 
 void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
                        const std::map<int, std::string>& group_names, bool with_edges,
                        render::RenderFrame& frame, const std::vector<std::uint8_t>* coagulated,
-                       std::uint64_t coagulated_version) {
+                       std::uint64_t coagulated_version, const std::vector<float>* stain) {
   const std::size_t f = surface.faces.size();
   // Wound flags: from the surface when it has them (sized like its faces).
   std::vector<std::uint8_t> cut = surface.face_cut;
@@ -116,6 +130,7 @@ void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
     }
   }
   fill_rest_and_rim(mesh, surface, rv, marks, n, frame);
+  fill_stain(rv, n, stain, frame);
   frame.tri.resize(3 * f);
   for (std::size_t i = 0; i < f; ++i)
     for (int k = 0; k < 3; ++k)
@@ -147,6 +162,28 @@ constexpr double kBleedGrowS = 2.0;            ///< s: ... in this long
 
 namespace {
 
+constexpr int kStreamDrops = 14;         ///< droplets drawn along the stream
+constexpr double kStreamStepS = 0.008;   ///< time of flight between two of them, s
+constexpr double kStreamSpeedMps = 0.45;  ///< the stream's speed at the top of a pulse, m/s
+
+// The stream from a cut end: droplets on the ballistic path of blood leaving it upwards (against
+// gravity, leaning sideways so that a scope above sees its arc) at a speed that follows the
+// pulse, down to the pool's plane.
+std::vector<std::array<float, 3>> stream(const Blood& b, const Vec3& gravity) {
+  std::vector<std::array<float, 3>> out;
+  if (b.pulse <= 0.0 || gravity.norm() <= 0.0) return out;
+  const Vec3 up = -gravity.normalized();
+  const Vec3 dir = (0.8 * up + up.unitOrthogonal()).normalized();
+  const Vec3 v0 = kStreamSpeedMps * b.pulse * dir;
+  for (int i = 1; i <= kStreamDrops; ++i) {
+    const double t = i * kStreamStepS;
+    const Vec3 p = b.source_m + t * v0 + 0.5 * t * t * gravity;
+    if ((p - b.pool_m).dot(b.pool_normal) < 0.0) break;
+    out.push_back(to_float(p));
+  }
+  return out;
+}
+
 // The tissue between a tool's open jaws: the surface corners within kJawSlabM of the jaws' plane
 // between them, and the diagonal of their box in that plane, m (0 with fewer than two).
 constexpr double kJawSlabM = 0.0015;
@@ -172,6 +209,33 @@ float tissue_in_jaws(const SimState& state, const ToolState& tool) {
 
 }  // namespace
 
+namespace {
+
+// Blood: with effect "bleeding", each bleeding's drop, stream and pool as the stage publishes
+// them; without it, a drop that wells up over kBleedGrowS to kBleedRadius where it was cut.
+void fill_render_bleeds(const Scene& scene, const SimState& state, render::RenderFrame& frame) {
+  frame.bleeds.clear();
+  for (std::size_t k = 0; k < state.handoff.bleeds.size(); ++k) {
+    const auto& [where, since] = state.handoff.bleeds[k];
+    const double grown = std::clamp((state.time_s - since) / kBleedGrowS, 0.0, 1.0);
+    render::RenderBleed rb;
+    rb.at = to_float(where);
+    rb.radius = static_cast<float>(kBleedRadius * (0.2 + 0.8 * grown));
+    if (k < state.handoff.blood.size()) {
+      const Blood& b = state.handoff.blood[k];
+      rb.at = to_float(b.source_m);
+      rb.radius = static_cast<float>(0.3 * kBleedRadius);
+      rb.pool = to_float(b.pool_m);
+      rb.pool_normal = to_float(b.pool_normal);
+      rb.pool_radius = static_cast<float>(b.pool_radius_m);
+      rb.stream = stream(b, scene.settings.gravity_mps2);
+    }
+    frame.bleeds.push_back(std::move(rb));
+  }
+}
+
+}  // namespace
+
 void fill_render_tools(const Scene& scene, const SimState& state, render::RenderFrame& frame) {
   frame.tools.clear();
   frame.guide.clear();
@@ -186,13 +250,7 @@ void fill_render_tools(const Scene& scene, const SimState& state, render::Render
     rc.radius = static_cast<float>(c.reach_m());
     frame.clips.push_back(rc);
   }
-  frame.bleeds.clear();
-  for (const auto& [where, since] : state.handoff.bleeds) {
-    // A pool that wells up over kBleedGrowS to kBleedRadius.
-    const double grown = std::clamp((state.time_s - since) / kBleedGrowS, 0.0, 1.0);
-    frame.bleeds.push_back(
-        {to_float(where), static_cast<float>(kBleedRadius * (0.2 + 0.8 * grown))});
-  }
+  fill_render_bleeds(scene, state, frame);
   for (const Vec3& p : scene.metrics.planned_cut_m) frame.guide.push_back(to_float(p));
   if (scene.metrics.planned_cut_m.empty() && scene.metrics.clip_target_m) {
     const Vec3 up = board_normal(scene);

@@ -24,12 +24,14 @@ namespace serosa::app {
 /// version changed. topology_version = the surface's. The camera, tools and overlay are left.
 /// With `coagulated` ((n) node marks, SimState::handoff.coagulated): faces whose three nodes are
 /// marked are tri_cut 2 (a hook's wound is dry; so is a cut through coagulated tissue), and
-/// material_version = `coagulated_version`.
+/// material_version = `coagulated_version`. With `stain` ((n) SimState::handoff.stain, not
+/// empty): each vertex takes its node's stain of blood (frame.stain), else frame.stain is empty.
 void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
                        const std::map<int, std::string>& group_names, bool with_edges,
                        render::RenderFrame& frame,
                        const std::vector<std::uint8_t>* coagulated = nullptr,
-                       std::uint64_t coagulated_version = 0);
+                       std::uint64_t coagulated_version = 0,
+                       const std::vector<float>* stain = nullptr);
 
 /// frame.guide: the scene's planned cut ([metrics] planned_cut), drawn as a marker; without one,
 /// its clip target ([metrics] clip_target) as a short pin through the tissue there, along the

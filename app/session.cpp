@@ -193,7 +193,8 @@ class SolverLoop {
     count_cuts();
     render::RenderFrame& f = m_frames.back();
     fill_render_frame(m_state.mesh, m_drawn->of(m_state), m_names, true, f,
-                      &m_state.handoff.coagulated, m_state.handoff.coagulated_version);
+                      &m_state.handoff.coagulated, m_state.handoff.coagulated_version,
+                      &m_state.handoff.stain);
     fill_render_tools(m_scene, m_state, f);
     // Each of the triple buffer's slots takes the scenery once; it never changes afterwards.
     if (f.scenery.version != m_scenery.version) f.scenery = m_scenery;
@@ -578,7 +579,7 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
 
     const SimState& state = replay.state();
     fill_render_frame(state.mesh, drawn.of(state), names, true, frame, &state.handoff.coagulated,
-                      state.handoff.coagulated_version);
+                      state.handoff.coagulated_version, &state.handoff.stain);
     fill_render_tools(scene, state, frame);
     const int w = window.width();
     const int h = window.height();

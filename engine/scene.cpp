@@ -25,7 +25,8 @@ constexpr NameTable<Effect, kNumEffects> kEffectNames{{{Effect::kFem, "fem"},
                                                        {Effect::kSurface, "surface"},
                                                        {Effect::kHaptics, "haptics"},
                                                        {Effect::kRender, "render"},
-                                                       {Effect::kRecord, "record"}}};
+                                                       {Effect::kRecord, "record"},
+                                                       {Effect::kBleeding, "bleeding"}}};
 constexpr NameTable<Quality, 3> kQualityNames{
     {{Quality::kFast, "fast"}, {Quality::kBalanced, "balanced"}, {Quality::kAccurate, "accurate"}}};
 constexpr NameTable<SolverKind, 4> kSolverNames{{{SolverKind::kPcg, "pcg"},

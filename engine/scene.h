@@ -39,14 +39,17 @@ enum class Effect : std::uint8_t {
   kHaptics,     ///< "haptics": the 1 kHz force loop (needs a tool driven by a device)
   kRender,      ///< "render": endoscope view (needs surface)
   kRecord,      ///< "record": record inputs and state hashes to a .lapr file
+  /// "bleeding": a cut unsecured artery bleeds, a pulsing stream and a pool that stains the
+  /// tissue below, until a ligature or the hook's coagulation closes it (needs metrics.artery)
+  kBleeding,
 };
-inline constexpr std::size_t kNumEffects = 13;
+inline constexpr std::size_t kNumEffects = 14;
 
 /// Every effect in enum order.
 inline constexpr Effect kAllEffects[kNumEffects] = {
     Effect::kFem,     Effect::kGravity, Effect::kSupports, Effect::kPlasticity, Effect::kCutting,
     Effect::kClips,   Effect::kLoops,   Effect::kCautery,  Effect::kContact,    Effect::kSurface,
-    Effect::kHaptics, Effect::kRender,  Effect::kRecord};
+    Effect::kHaptics, Effect::kRender,  Effect::kRecord,   Effect::kBleeding};
 
 /// The scene-file name of an effect ("fem", "gravity", ...).
 [[nodiscard]] std::string_view effect_name(Effect e) noexcept;

@@ -1007,6 +1007,9 @@ class Loader {
     if (!s.has(Effect::kSupports) && !scene.supports.empty())
       fail(m_support_line, "support", "a [[support]] plane, but effect \"supports\" is not listed",
            "\"supports\" in scene.effects");
+    if (s.has(Effect::kBleeding) && !scene.metrics.artery)
+      fail(line, p, "effect \"bleeding\" is listed but no artery is named to bleed",
+           "metrics.artery, or \"bleeding\" not listed");
     if (scene.metrics.clip_target_m && !scene.metrics.artery)
       fail(m_clip_target_line, "metrics.clip_target", "a clip target, but no artery is named",
            "metrics.artery");

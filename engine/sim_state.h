@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "engine/blood.h"
 #include "engine/clip.h"
 #include "engine/contact_plane.h"
 #include "engine/surface_mesh.h"
@@ -72,6 +73,11 @@ struct StepHandoff {
   /// metrics -> render: where the artery bleeds (each cut through it while unsecured) and since
   /// when: (k) {where, m; time, s}, in the order they began (metrics/procedure_errors.h).
   std::vector<std::pair<Vec3, double>> bleeds;
+  /// bleeding -> render: the blood of each bleeding in `bleeds`, in the same order
+  /// (metrics/bleeding_stage.h); empty when the effect is not listed.
+  std::vector<Blood> blood;
+  /// bleeding -> render: (n) how much blood stains each node, [0, 1]; empty when nothing is.
+  std::vector<float> stain;
   /// cutting (cautery) -> render, metrics: 1 for each node a live hook coagulated, else 0; (n), or
   /// empty when no hook is simulated. coagulated_version changes whenever a mark is added.
   std::vector<std::uint8_t> coagulated;

@@ -210,17 +210,35 @@ void FrameRenderer::set_pattern_uniforms(const GlProgram& program, bool detail) 
   glUniform1f(program.uniform("u_period"), kTissuePatternPeriodM);
   glUniform1f(program.uniform("u_relief"), kReliefM);
   glUniform1i(program.uniform("u_detail"), detail ? 1 : 0);
+  glUniform1i(program.uniform("u_pools"), pools_);
+  glUniform4fv(program.uniform("u_pool"), 4, pool_.data());
+  glUniform3fv(program.uniform("u_pool_up"), 4, pool_up_.data());
 }
 
-// The rest positions (the pattern's coordinates; the current ones when the frame has none) and
-// the wound's rim, (n) RGBA32F.
+// The first four pools of blood the frame's bleedings made (render_frame.h RenderBleed).
+void FrameRenderer::set_pools(const RenderFrame& frame) {
+  pools_ = 0;
+  for (const RenderBleed& b : frame.bleeds) {
+    if (!(b.pool_radius > 0.0f) || pools_ == 4) continue;
+    const auto k = static_cast<std::size_t>(pools_++);
+    for (std::size_t c = 0; c < 3; ++c) {
+      pool_[4 * k + c] = b.pool[c];
+      pool_up_[3 * k + c] = b.pool_normal[c];
+    }
+    pool_[4 * k + 3] = b.pool_radius;
+  }
+}
+
+// Per vertex two RGBA32F texels: the rest position (the pattern's coordinates; the current one
+// when the frame has none) and the wound's rim; then the blood's stain.
 void FrameRenderer::upload_rest(const RenderFrame& frame) {
   const std::size_t n = frame.num_vertices();
   const std::vector<float>& rest = frame.rest.empty() ? frame.pos : frame.rest;
-  rest_scratch_.resize(4 * n);
+  rest_scratch_.assign(8 * n, 0.0f);
   for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t k = 0; k < 3; ++k) rest_scratch_[4 * i + k] = rest[3 * i + k];
-    rest_scratch_[4 * i + 3] = frame.rim.empty() ? 0.0f : frame.rim[i];
+    for (std::size_t k = 0; k < 3; ++k) rest_scratch_[8 * i + k] = rest[3 * i + k];
+    rest_scratch_[8 * i + 3] = frame.rim.empty() ? 0.0f : frame.rim[i];
+    rest_scratch_[8 * i + 4] = frame.stain.empty() ? 0.0f : frame.stain[i];
   }
   glBindBuffer(GL_TEXTURE_BUFFER, rest_buf_);
   glBufferData(GL_TEXTURE_BUFFER, bytes(rest_scratch_.size(), sizeof(float)), rest_scratch_.data(),
@@ -232,7 +250,7 @@ void FrameRenderer::upload_topology(const RenderFrame& frame) {
   const std::size_t t = frame.num_triangles();
   // The visual view reads 3t indices and n vertices through buffer textures.
   const auto limit = static_cast<std::size_t>(max_texture_buffer_);
-  if (frame.tri.size() > limit || frame.num_vertices() > limit || 2 * t > limit) {
+  if (frame.tri.size() > limit || 2 * frame.num_vertices() > limit || 2 * t > limit) {
     throw std::runtime_error("FrameRenderer: " + std::to_string(frame.tri.size()) +
                              " triangle corners or " + std::to_string(frame.num_vertices()) +
                              " vertices exceed GL_MAX_TEXTURE_BUFFER_SIZE (" +
@@ -526,6 +544,7 @@ void FrameRenderer::draw(const RenderFrame& frame, const SnapshotOptions& option
     upload_scenery(frame.scenery);
   }
   upload_vertices(frame);
+  set_pools(frame);
   const bool lens = options.lens && options.view == SnapshotOptions::View::kVisual;
   if (lens) lens_->begin(width, height);
   const View v = view_of(frame, options, width, height);

@@ -1,6 +1,7 @@
 // FrameRenderer: draws a RenderFrame into the bound framebuffer (the GL half of rendering).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -68,6 +69,7 @@ class FrameRenderer {
   void upload_rest(const RenderFrame& frame);
   void make_pattern_texture();
   void set_pattern_uniforms(const GlProgram& program, bool detail) const;
+  void set_pools(const RenderFrame& frame);
   [[nodiscard]] View view_of(const RenderFrame& frame, const SnapshotOptions& options, int width,
                              int height) const;
   void draw_visual(const View& v, const SnapshotOptions& options);
@@ -102,6 +104,11 @@ class FrameRenderer {
   unsigned int rest_tex_ = 0;
   unsigned int pattern_tex_ = 0;
   std::vector<float> rest_scratch_;
+  // The frame's pools of blood for the visual view's shader: count, (4) centre and radius, m,
+  // (4) unit normals.
+  int pools_ = 0;
+  std::array<float, 16> pool_ = {};
+  std::array<float, 12> pool_up_ = {};
   // Instruments: their vertex array, interleaved-free attribute buffers and index buffer.
   unsigned int tool_vao_ = 0;
   unsigned int tool_pos_buf_ = 0;

@@ -51,6 +51,9 @@ std::vector<std::string> validate(const RenderFrame& frame) {
   if (!frame.rim.empty() && frame.rim.size() != n) {
     errors.emplace_back("rim is neither empty nor one per vertex");
   }
+  if (!frame.stain.empty() && frame.stain.size() != n) {
+    errors.emplace_back("stain is neither empty nor one per vertex");
+  }
   if (frame.tri.size() % 3 != 0) errors.emplace_back("tri is not t x 3");
   if (!frame.tri_group.empty() && frame.tri_group.size() != t) {
     errors.emplace_back("tri_group is neither empty nor one per triangle");

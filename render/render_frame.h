@@ -70,11 +70,16 @@ struct RenderClip {
   float radius = 0.0f;                            ///< a loop's ring radius, m
 };
 
-/// Blood welling where an unsecured artery was cut (plain data, world coordinates, m): a dark red
-/// pool that grows as it bleeds.
+/// Blood where an unsecured artery was cut (plain data, world coordinates, m): a dark red drop
+/// welling at the cut end; with effect "bleeding", also the pulsing stream's droplets and the pool
+/// on the surface below.
 struct RenderBleed {
-  std::array<float, 3> at{0.0f, 0.0f, 0.0f};  ///< where, m
-  float radius = 0.0f;                        ///< m
+  std::array<float, 3> at{0.0f, 0.0f, 0.0f};  ///< the cut end, m
+  float radius = 0.0f;                        ///< the drop welling there, m
+  std::array<float, 3> pool{0.0f, 0.0f, 0.0f};         ///< the pool's centre, m
+  std::array<float, 3> pool_normal{0.0f, 1.0f, 0.0f};  ///< unit: the surface it lies on
+  float pool_radius = 0.0f;                            ///< m; 0: no pool
+  std::vector<std::array<float, 3>> stream;  ///< the stream's droplets, m; empty: not flowing
 };
 
 /// One named number the overlay lists (instructor metrics: cut length, time in contact, force
@@ -193,6 +198,8 @@ struct RenderFrame {
   /// (n) 1 on a cut face's corners that also lie on the uncut surface (the wound's rim, where it
   /// oozes), 0 elsewhere; empty: no rim. Changes only with the topology.
   std::vector<float> rim;
+  /// (n) how much blood stains each vertex, [0, 1] (effect "bleeding"); empty: none.
+  std::vector<float> stain;
   std::vector<std::uint32_t> tri;  ///< (t x 3) vertex ids, counter-clockwise seen from outside
   std::vector<std::uint16_t> tri_group;  ///< (t) visual group (Gmsh physical tag) of each triangle
   /// (t) 1 = face made by a cut (wound), 2 = coagulated by a hook (charred), else 0
@@ -229,8 +236,8 @@ struct RenderFrame {
   [[nodiscard]] std::size_t num_triangles() const { return tri.size() / 3; }
 };
 
-/// Checks shapes and ids: pos a multiple of 3; nrm and rest empty or as long as pos; rim empty or
-/// one per vertex; tri a multiple of 3
+/// Checks shapes and ids: pos a multiple of 3; nrm and rest empty or as long as pos; rim and stain
+/// empty or one per vertex; tri a multiple of 3
 /// with ids < n; tri_group and tri_cut empty or one per triangle; edges a multiple of 2 with ids
 /// < n; tools with finite poses and jaw_rad in [0, pi]; the scenery's pos a multiple of 3, nrm as
 /// long as pos, tri a multiple of 3 with ids below its vertex count, one material per triangle,

@@ -10,19 +10,21 @@ namespace serosa::render::shaders {
 const char* const kVisualVertex = R"(#version 410 core
 uniform samplerBuffer u_pos;           // (n) world positions, m
 uniform samplerBuffer u_nrm;           // (n) unit normals
-uniform samplerBuffer u_rest;          // (n) xyz: rest position, m; w: the wound's rim, [0, 1]
+uniform samplerBuffer u_rest;          // (2n) rest position, m, and the wound's rim; stain
 uniform usamplerBuffer u_tri;          // (3t) vertex ids
 uniform samplerBuffer u_tri_material;  // (2t) per triangle: colour and specular; its look
 out vec3 v_pos;
 out vec3 v_nrm;
 out vec4 v_rest;
+out float v_stain;
 out vec4 v_material;
 out vec4 v_look;
 void main() {
   int vid = int(texelFetch(u_tri, gl_VertexID).r);
   v_pos = texelFetch(u_pos, vid).xyz;
   v_nrm = texelFetch(u_nrm, vid).xyz;
-  v_rest = texelFetch(u_rest, vid);
+  v_rest = texelFetch(u_rest, 2 * vid);
+  v_stain = texelFetch(u_rest, 2 * vid + 1).x;
   int tri = gl_VertexID / 3;
   v_material = texelFetch(u_tri_material, 2 * tri);
   v_look = texelFetch(u_tri_material, 2 * tri + 1);
@@ -40,11 +42,13 @@ layout(vertices = 3) out;
 in vec3 v_pos[];
 in vec3 v_nrm[];
 in vec4 v_rest[];
+in float v_stain[];
 in vec4 v_material[];
 in vec4 v_look[];
 out vec3 c_pos[];
 out vec3 c_nrm[];
 out vec4 c_rest[];
+out float c_stain[];
 patch out vec4 c_material;  // rgb: sRGB colour, a: specular strength
 patch out vec4 c_look;      // vessels, lobules, mottle, kind
 uniform float u_level;
@@ -60,6 +64,7 @@ void main() {
   c_pos[gl_InvocationID] = v_pos[gl_InvocationID];
   c_nrm[gl_InvocationID] = v_nrm[gl_InvocationID];
   c_rest[gl_InvocationID] = v_rest[gl_InvocationID];
+  c_stain[gl_InvocationID] = v_stain[gl_InvocationID];
   if (gl_InvocationID == 0) {
     c_material = v_material[0];  // the same for the three corners
     c_look = v_look[0];
@@ -82,11 +87,13 @@ layout(triangles, equal_spacing, ccw) in;
 in vec3 c_pos[];
 in vec3 c_nrm[];
 in vec4 c_rest[];
+in float c_stain[];
 patch in vec4 c_material;
 patch in vec4 c_look;
 out vec3 e_pos;
 out vec3 e_nrm;
 out vec4 e_rest;
+out float e_stain;
 flat out vec4 e_material;  // rgb: sRGB colour, a: specular strength
 flat out vec4 e_look;      // vessels, lobules, mottle, kind (0 outside, 0.5 cut, 1 charred)
 uniform mat4 u_view_proj;
@@ -108,6 +115,7 @@ void main() {
   e_pos = q;
   e_nrm = b.x * n0 + b.y * n1 + b.z * n2;
   e_rest = b.x * c_rest[0] + b.y * c_rest[1] + b.z * c_rest[2];
+  e_stain = b.x * c_stain[0] + b.y * c_stain[1] + b.z * c_stain[2];
   e_material = c_material;
   e_look = c_look;
   gl_Position = u_view_proj * vec4(q, 1.0);
@@ -129,6 +137,7 @@ const char* const kVisualFragment = R"(#version 410 core
 in vec3 e_pos;
 in vec3 e_nrm;
 in vec4 e_rest;
+in float e_stain;
 flat in vec4 e_material;
 flat in vec4 e_look;
 out vec4 frag_color;
@@ -138,6 +147,22 @@ uniform sampler3D u_pattern; // R vessels, G lobule borders, B mottle, A relief
 uniform float u_period;      // m of rest space per repeat of the pattern
 uniform float u_relief;      // height of the relief, m
 uniform int u_detail;        // 0: the plain colour, no pattern or relief
+uniform int u_pools;         // pools of blood (at most 4)
+uniform vec4 u_pool[4];      // centre, m; radius, m
+uniform vec3 u_pool_up[4];   // unit normal of the surface each lies on
+// How much a pool of blood covers this point: a film over whatever lies within its radius and
+// up to 7 mm above its plane (the wall's undulation, the organs' undersides), its edge ragged.
+float pooled(vec3 p, float ragged) {
+  float w = 0.0;
+  for (int k = 0; k < u_pools; ++k) {
+    vec3 d = p - u_pool[k].xyz;
+    float h = dot(d, u_pool_up[k]);
+    float across = length(d - h * u_pool_up[k]);
+    float edge = u_pool[k].w * (0.9 + 0.2 * ragged);
+    w = max(w, (1.0 - smoothstep(0.85 * edge, edge, across)) * (1.0 - smoothstep(0.005, 0.007, h)));
+  }
+  return w;
+}
 vec3 bumped(vec3 n, float h) {
   vec3 dpx = dFdx(e_pos);
   vec3 dpy = dFdy(e_pos);
@@ -185,7 +210,12 @@ void main() {
   // Seen from very close, one voxel of the pattern spans many pixels and the relief's trilinear
   // slopes would show as facets: it fades out there.
   float voxels_per_pixel = length(fwidth(q * 2.7 * float(textureSize(u_pattern, 0).x)));
-  if (u_detail != 0) n = bumped(n, u_relief * smoothstep(0.04, 0.15, voxels_per_pixel) * h);
+  // Blood that pooled over the tissue, or that lies on it now: dark red, a smooth wet film.
+  float blood = max(smoothstep(0.05, 0.6, e_stain), pooled(e_pos, coarse.b));
+  float relief = u_relief * smoothstep(0.04, 0.15, voxels_per_pixel) * (1.0 - blood);
+  if (u_detail != 0) n = bumped(n, relief * h);
+  albedo = mix(albedo, vec3(0.15, 0.002, 0.005), blood);
+  wet = mix(wet, 0.6, blood);
   vec3 l = u_eye - e_pos;
   float d = max(length(l), 1e-9);
   l /= d;
@@ -195,8 +225,9 @@ void main() {
   vec3 diffuse = clamp((vec3(ndl) + wrap) / (1.0 + wrap), 0.0, 1.0);
   float c = max(ndl, 0.0);
   // Light and eye coincide: the half vector is l itself, and n.v = n.l.
-  float spec = pow(c, 90.0) + 0.2 * pow(c, 14.0);
-  float fresnel = 0.02 + 0.98 * pow(1.0 - c, 5.0);
+  // A film of blood is a mirror: its tight highlight stays, the broad sheen of tissue goes.
+  float spec = pow(c, 90.0) + (1.0 - blood) * 0.2 * pow(c, 14.0);
+  float fresnel = (1.0 - blood) * (0.02 + 0.98 * pow(1.0 - c, 5.0));
   vec3 lit = albedo * (0.06 + 0.94 * diffuse * att) +
              wet * (spec + 0.12 * fresnel) * att * vec3(1.0, 0.96, 0.92);
   // A soft shoulder above 0.8 instead of a hard clip: bright fat close to the scope keeps its
@@ -218,6 +249,7 @@ layout(location = 3) in vec4 a_look;      // vessels, lobules, mottle, kind
 out vec3 e_pos;
 out vec3 e_nrm;
 out vec4 e_rest;
+out float e_stain;
 flat out vec4 e_material;
 flat out vec4 e_look;
 uniform mat4 u_view_proj;
@@ -225,6 +257,7 @@ void main() {
   e_pos = a_pos;
   e_nrm = a_nrm;
   e_rest = vec4(a_pos, 0.0);
+  e_stain = 0.0;
   e_material = a_material;
   e_look = a_look;
   gl_Position = u_view_proj * vec4(a_pos, 1.0);

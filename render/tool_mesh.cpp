@@ -268,16 +268,33 @@ void append_clip_mesh(const RenderClip& clip, ToolMesh& out) {
   add_box(out, b + ht * along, along, pin, across, ht, hw, leg + ht, kClipMaterial);  // the crown
 }
 
-void append_bleed_mesh(const RenderBleed& bleed, ToolMesh& out) {
-  if (!(bleed.radius > 0.0f)) return;
+namespace {
+
+// A blob of blood: a sphere of `radius` about `at`, squashed along the unit `axis` to `flat` of
+// its radius (1: round). An ellipsoid's normal at the sphere's n is flat x n_across + n_along.
+void add_blood_blob(ToolMesh& out, const V3& at, float radius, const V3& axis, float flat,
+                    const std::array<float, 4>& material) {
   static const TriMesh unit = icosphere(2);
   const auto base = static_cast<std::uint32_t>(out.num_vertices());
-  const V3 at = vec(bleed.at);
   for (std::size_t v = 0; v + 2 < unit.pos.size(); v += 3) {
     const V3 n(unit.pos[v], unit.pos[v + 1], unit.pos[v + 2]);
-    add_vertex(out, at + bleed.radius * n, n, kBloodMaterial);
+    const V3 along = n.dot(axis) * axis;
+    const V3 across = n - along;
+    add_vertex(out, at + radius * (across + flat * along), (flat * across + along).normalized(),
+               material);
   }
   for (std::uint32_t id : unit.tri) out.tri.push_back(base + id);
+}
+
+constexpr float kDropRadiusM = 0.0008f;     // one droplet of the stream, m
+
+}  // namespace
+
+void append_bleed_mesh(const RenderBleed& bleed, ToolMesh& out) {
+  if (bleed.radius > 0.0f)
+    add_blood_blob(out, vec(bleed.at), bleed.radius, V3::UnitZ(), 1.0f, kBloodMaterial);
+  for (const auto& p : bleed.stream)
+    add_blood_blob(out, vec(p), kDropRadiusM, V3::UnitZ(), 1.0f, kBloodMaterial);
 }
 
 void ToolMesh::clear() {

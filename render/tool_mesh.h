@@ -77,7 +77,8 @@ inline constexpr float kStaplePitch = 3.5e-3f;
 /// apart, engine/stapler.h).
 void append_clip_mesh(const RenderClip& clip, ToolMesh& out);
 
-/// Appends a pool of blood: a sphere of bleed.radius about bleed.at, glossy dark red.
+/// Appends blood, glossy dark red: a drop of bleed.radius about bleed.at and the stream's
+/// droplets (the pool is drawn over the surfaces it covers by the visual view's shader).
 void append_bleed_mesh(const RenderBleed& bleed, ToolMesh& out);
 
 /// Radius of the guide's marker tube, m.

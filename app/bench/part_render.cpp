@@ -51,7 +51,8 @@ render::RenderFrame scene_frame(const BenchOptions& options, double seconds) {
   for (std::int64_t k = 0; k < steps; ++k) comp.runner->step(state);
   render::RenderFrame f;
   fill_render_frame(state.mesh, state.handoff.surface, assembled.group_names(), false, f,
-                    &state.handoff.coagulated, state.handoff.coagulated_version);
+                    &state.handoff.coagulated, state.handoff.coagulated_version,
+                    &state.handoff.stain);
   fill_render_tools(scene, state, f);
   f.scenery = scenery_from_scene(scene, initial);
   if (const auto scope = endoscope_view(scene, state)) f.camera = *scope;

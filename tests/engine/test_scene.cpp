@@ -157,7 +157,7 @@ TEST_F(SceneTest, ReadsEveryKey) {
 [scene]
 dt = 0.002
 gravity = [0, 0, -9.81]
-effects = ["record", "fem", "gravity", "supports", "plasticity", "cutting", "clips", "loops", "cautery", "surface", "contact", "render", "haptics"]
+effects = ["record", "fem", "gravity", "supports", "plasticity", "cutting", "clips", "loops", "cautery", "surface", "contact", "render", "haptics", "bleeding"]
 
 [[support]]
 name = "posterior wall"
@@ -228,6 +228,9 @@ snapshot_every_s = 0.5
 method = "snap"
 tolerance = 0.05
 strokes = "plane"
+
+[metrics]
+artery = "mesoappendix"
 
 [headless]
 steps = 250
