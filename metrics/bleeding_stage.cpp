@@ -113,8 +113,9 @@ void BleedingStage::step(const StepContext& ctx, SimState& state) {
   for (Source& s : m_sources) {
     // The stroke that cut it coagulates on for a moment: only coagulation after that closes it.
     if (s.closed_s < 0.0 && t - s.since_s < kOwnStrokeS)
-      s.coagulated_near = std::max(
-          s.coagulated_near, coagulated_near(state.mesh.x[static_cast<std::size_t>(s.node)], state));
+      s.coagulated_near =
+          std::max(s.coagulated_near,
+                   coagulated_near(state.mesh.x[static_cast<std::size_t>(s.node)], state));
     else if (s.closed_s < 0.0 && closed(s, state))
       s.closed_s = t;
     if (s.closed_s < 0.0) {

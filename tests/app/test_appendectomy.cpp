@@ -117,7 +117,38 @@ TEST(DefaultAppendectomy, TheScriptedPathDoesTheFiveStepsWithTheProcedureInstrum
   const render::DominantColor common = render::most_common_color(image);
   EXPECT_LT(common.fraction, 0.2);
   std::printf("most common colour of the last picture: %.3f\n", common.fraction);
+  // Through the endoscope, with tissue's detail (at most 35 % flat tiles), and no blood: the
+  // expert clipped the artery before dividing it.
+  EXPECT_EQ(r["frames_camera"], "endoscope");
+  EXPECT_GE(image.width, 960);
+  EXPECT_LT(render::flat_block_fraction(image), 0.35);
+  EXPECT_LT(render::blood_fraction(image), 0.005);
+  EXPECT_FALSE(r.contains("bleeding")) << r["bleeding"].dump();
 }
+
+#if !defined(__SANITIZE_ADDRESS__)  // a 14 s procedure: ASan+UBSan is ~15x slower
+// The novice's path cuts the unsecured artery: it bleeds until the novice's hook coagulates the
+// cut end, and its blood lies in the last picture (at least 2 % of the pixels dark red).
+TEST(DefaultAppendectomy, TheNovicesCutArteryBleedsIntoTheLastPicture) {
+  const std::filesystem::path dir = out_dir("default_appendectomy_novice");
+  const std::filesystem::path report = dir / "report.json";
+  const auto run = testing::run_serosa(
+      "headless " + shell_quote(source("config/appendectomy.toml").string()) + " --path " +
+      shell_quote(source("config/paths/appendectomy_procedure_novice.csv").string()) +
+      " --steps 2820 --frame-count 2 --frames " + shell_quote((dir / "frames").string()) +
+      " --report " + shell_quote(report.string()));
+  ASSERT_EQ(run.code, 0) << run.out;
+  nlohmann::json r;
+  std::ifstream(report) >> r;
+  EXPECT_TRUE(lists(r["effects"]["simulated"], "bleeding")) << r["effects"].dump();
+  ASSERT_EQ(r["bleeding"].size(), 1u) << r.dump();
+  EXPECT_GT(r["bleeding"][0]["shed_m3"].get<double>(), 1e-6);  // over a millilitre
+  const render::Image image = read_png(dir / "frames" / "step_002820.png");
+  ASSERT_GT(image.width, 0);
+  EXPECT_GE(render::blood_fraction(image), 0.02);
+  std::printf("blood in the novice's last picture: %.4f\n", render::blood_fraction(image));
+}
+#endif
 
 // Stopped before the transection (7.5 s): three steps done, a critical metric of the rubric
 // failed, a lower score than the whole procedure's.

@@ -1,8 +1,11 @@
 // Effects: app builds a stage only for what the scene lists (docs/ARCHITECTURE.md "Effects").
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "app/assemble_state.h"
 #include "app/compose.h"
@@ -75,6 +78,38 @@ TEST(Compose, ListedButUnimplementedEffectsAreReportedNotFaked) {
     EXPECT_EQ(std::count(c.built.begin(), c.built.end(), e), 0);
   }
   EXPECT_EQ(c.built.size() + c.folded.size() + c.unavailable.size(), scene.settings.effects.size());
+}
+
+// The default scene lists "bleeding": its stage runs after the metrics that find the cut artery;
+// without it listed there is no such stage, and nothing publishes blood.
+TEST(Compose, BleedingIsBuiltOnlyWhenListed) {
+  Scene scene =
+      load_scene(fs::path(::serosa::test_paths::source_dir()) / "config" / "appendectomy.toml");
+  ASSERT_TRUE(scene.settings.has(Effect::kBleeding));
+  const auto stage_names = [](const Composition& c) {
+    std::vector<std::string> names;
+    for (const auto& t : c.runner->timings()) names.push_back(t.name);
+    return names;
+  };
+  {
+    const AssembledScene a = assemble_state(scene);
+    const Composition c = compose(scene, a);
+    const auto names = stage_names(c);
+    ASSERT_EQ(std::count(names.begin(), names.end(), "bleeding"), 1);
+    EXPECT_EQ(names.back(), "bleeding");
+    EXPECT_EQ(std::count(c.built.begin(), c.built.end(), Effect::kBleeding), 1);
+  }
+  scene.settings.effects.erase(Effect::kBleeding);
+  AssembledScene a = assemble_state(scene);
+  Composition c = compose(scene, a);
+  const auto names = stage_names(c);
+  EXPECT_EQ(std::count(names.begin(), names.end(), "bleeding"), 0);
+  EXPECT_EQ(std::count(c.built.begin(), c.built.end(), Effect::kBleeding), 0);
+  // A bleeding the metrics found is not drawn as blood then: nothing is published or allocated.
+  a.state.handoff.bleeds.emplace_back(Vec3::Zero(), 0.0);
+  c.runner->run(a.state, 2);
+  EXPECT_EQ(a.state.handoff.blood.capacity(), 0u);
+  EXPECT_EQ(a.state.handoff.stain.capacity(), 0u);
 }
 
 TEST(Compose, GravityPullsTheFreeEndDown) {

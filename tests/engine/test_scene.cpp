@@ -443,6 +443,8 @@ TEST_F(SceneTest, WrongType) {
   expect_error(kOrgan + "[render]\ntessellation = 2.5\n", 5, "render.tessellation",
                "expected an integer, got a float");
   expect_error("[scene]\neffects = \"fem\"\n" + kOrgan, 2, "scene.effects", "expected an array");
+  expect_error("[scene]\neffects = [\"fem\", \"bleeding\"]\n" + kOrgan, 2, "scene.effects",
+               "no artery is named");
   expect_error("[scene]\ngravity = [0, \"down\", 0]\n" + kOrgan, 2, "scene.gravity[1]",
                "expected a number");
   expect_error("scene = 3\n" + kOrgan, 1, "scene", "expected a table");
