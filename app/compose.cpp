@@ -7,6 +7,7 @@
 
 #include "contact/support_stage.h"
 #include "cutting/cutting_stage.h"
+#include "cutting/smoke_stage.h"
 #include "engine/input_error.h"
 #include "engine/script_tool_stage.h"
 #include "engine/sim_state.h"
@@ -217,6 +218,11 @@ Composition compose(const Scene& scene, const AssembledScene& assembled, Compose
     c.runner->add(Slot::cutting, std::move(cutting_stage));
     if (listed(Effect::kCutting)) c.built.push_back(Effect::kCutting);
     if (listed(Effect::kCautery)) c.built.push_back(Effect::kCautery);
+    // the smoke of what the hooks coagulated (after them: they mark it)
+    if (listed(Effect::kSmoke)) {
+      c.runner->add(Slot::cutting, std::make_unique<cutting::SmokeStage>(scene));
+      c.built.push_back(Effect::kSmoke);
+    }
   }
   if (surface_stage) {
     c.surface = surface_stage.get();

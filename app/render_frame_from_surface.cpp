@@ -162,8 +162,8 @@ constexpr double kBleedGrowS = 2.0;            ///< s: ... in this long
 
 namespace {
 
-constexpr int kStreamDrops = 14;         ///< droplets drawn along the stream
-constexpr double kStreamStepS = 0.008;   ///< time of flight between two of them, s
+constexpr int kStreamDrops = 14;          ///< droplets drawn along the stream
+constexpr double kStreamStepS = 0.008;    ///< time of flight between two of them, s
 constexpr double kStreamSpeedMps = 0.45;  ///< the stream's speed at the top of a pulse, m/s
 
 // The stream from a cut end: droplets on the ballistic path of blood leaving it upwards (against
@@ -251,6 +251,10 @@ void fill_render_tools(const Scene& scene, const SimState& state, render::Render
     frame.clips.push_back(rc);
   }
   fill_render_bleeds(scene, state, frame);
+  frame.smoke.clear();
+  for (const SmokePuff& p : state.handoff.smoke)
+    frame.smoke.push_back(
+        {to_float(p.at_m), static_cast<float>(p.radius_m), static_cast<float>(p.density)});
   for (const Vec3& p : scene.metrics.planned_cut_m) frame.guide.push_back(to_float(p));
   if (scene.metrics.planned_cut_m.empty() && scene.metrics.clip_target_m) {
     const Vec3 up = board_normal(scene);

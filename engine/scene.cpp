@@ -26,7 +26,8 @@ constexpr NameTable<Effect, kNumEffects> kEffectNames{{{Effect::kFem, "fem"},
                                                        {Effect::kHaptics, "haptics"},
                                                        {Effect::kRender, "render"},
                                                        {Effect::kRecord, "record"},
-                                                       {Effect::kBleeding, "bleeding"}}};
+                                                       {Effect::kBleeding, "bleeding"},
+                                                       {Effect::kSmoke, "smoke"}}};
 constexpr NameTable<Quality, 3> kQualityNames{
     {{Quality::kFast, "fast"}, {Quality::kBalanced, "balanced"}, {Quality::kAccurate, "accurate"}}};
 constexpr NameTable<SolverKind, 4> kSolverNames{{{SolverKind::kPcg, "pcg"},

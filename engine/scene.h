@@ -42,14 +42,16 @@ enum class Effect : std::uint8_t {
   /// "bleeding": a cut unsecured artery bleeds, a pulsing stream and a pool that stains the
   /// tissue below, until a ligature or the hook's coagulation closes it (needs metrics.artery)
   kBleeding,
+  /// "smoke": the hook's coagulation raises smoke that drifts up and clears (needs cautery)
+  kSmoke,
 };
-inline constexpr std::size_t kNumEffects = 14;
+inline constexpr std::size_t kNumEffects = 15;
 
 /// Every effect in enum order.
 inline constexpr Effect kAllEffects[kNumEffects] = {
     Effect::kFem,     Effect::kGravity, Effect::kSupports, Effect::kPlasticity, Effect::kCutting,
     Effect::kClips,   Effect::kLoops,   Effect::kCautery,  Effect::kContact,    Effect::kSurface,
-    Effect::kHaptics, Effect::kRender,  Effect::kRecord,   Effect::kBleeding};
+    Effect::kHaptics, Effect::kRender,  Effect::kRecord,   Effect::kBleeding,   Effect::kSmoke};
 
 /// The scene-file name of an effect ("fem", "gravity", ...).
 [[nodiscard]] std::string_view effect_name(Effect e) noexcept;

@@ -1000,6 +1000,7 @@ class Loader {
     need(Effect::kClips, Effect::kContact);
     need(Effect::kLoops, Effect::kContact);
     need(Effect::kSupports, Effect::kFem);
+    need(Effect::kSmoke, Effect::kCautery);
     // Supports and their effect come together: a plane nothing simulates would be a false promise.
     if (s.has(Effect::kSupports) && scene.supports.empty())
       fail(line, p, "effect \"supports\" is listed but the scene has no [[support]]",

@@ -9,6 +9,7 @@
 #include "engine/blood.h"
 #include "engine/clip.h"
 #include "engine/contact_plane.h"
+#include "engine/smoke.h"
 #include "engine/surface_mesh.h"
 #include "engine/tet_mesh.h"
 #include "engine/tool_state.h"
@@ -78,6 +79,9 @@ struct StepHandoff {
   std::vector<Blood> blood;
   /// bleeding -> render: (n) how much blood stains each node, [0, 1]; empty when nothing is.
   std::vector<float> stain;
+  /// smoke -> render: the puffs the hook's coagulation raised that have not cleared yet
+  /// (cutting/smoke_stage.h); empty when the effect is not listed.
+  std::vector<SmokePuff> smoke;
   /// cutting (cautery) -> render, metrics: 1 for each node a live hook coagulated, else 0; (n), or
   /// empty when no hook is simulated. coagulated_version changes whenever a mark is added.
   std::vector<std::uint8_t> coagulated;

@@ -68,7 +68,10 @@ FrameRenderer::FrameRenderer()
       scenery_(std::make_unique<GlProgram>(std::vector<ShaderSource>{
           {GL_VERTEX_SHADER, shaders::kSceneryVertex, "scenery vertex"},
           {GL_FRAGMENT_SHADER, shaders::kVisualFragment, "visual fragment"}})),
-      lens_(std::make_unique<LensPass>()) {
+      lens_(std::make_unique<LensPass>()),
+      smoke_(std::make_unique<GlProgram>(std::vector<ShaderSource>{
+          {GL_VERTEX_SHADER, shaders::kSmokeVertex, "smoke vertex"},
+          {GL_FRAGMENT_SHADER, shaders::kSmokeFragment, "smoke fragment"}})) {
   glGetIntegerv(GL_MAX_TESS_GEN_LEVEL, &max_tess_level_);
   // Mesa's software tessellator (llvmpipe, softpipe) grows its output with a realloc per patch,
   // so one draw costs time quadratic in its patch count wherever realloc copies (a sanitizer's
@@ -152,6 +155,24 @@ FrameRenderer::FrameRenderer()
   for (GLuint a = 0; a < 4; ++a) glEnableVertexAttribArray(a);
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
+
+  // Smoke: attribute 0 a puff's centre and radius (4 floats), 1 its density, one per instance.
+  std::array<GLuint, 2> pbufs{};
+  glGenBuffers(static_cast<GLsizei>(pbufs.size()), pbufs.data());
+  smoke_puff_buf_ = pbufs[0];
+  smoke_density_buf_ = pbufs[1];
+  glGenVertexArrays(1, &smoke_vao_);
+  glBindVertexArray(smoke_vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, smoke_puff_buf_);
+  glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glBindBuffer(GL_ARRAY_BUFFER, smoke_density_buf_);
+  glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
+  for (GLuint a = 0; a < 2; ++a) {
+    glEnableVertexAttribArray(a);
+    glVertexAttribDivisor(a, 1);
+  }
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
 FrameRenderer::~FrameRenderer() {
@@ -165,6 +186,9 @@ FrameRenderer::~FrameRenderer() {
   glDeleteTextures(static_cast<GLsizei>(texs.size()), texs.data());
   glDeleteBuffers(static_cast<GLsizei>(bufs.size()), bufs.data());
   glDeleteVertexArrays(static_cast<GLsizei>(vaos.size()), vaos.data());
+  const std::array<GLuint, 2> smoke_bufs{smoke_puff_buf_, smoke_density_buf_};
+  glDeleteBuffers(static_cast<GLsizei>(smoke_bufs.size()), smoke_bufs.data());
+  glDeleteVertexArrays(1, &smoke_vao_);
 }
 
 // Per-triangle material (t x 2 RGBA8, render/materials.h pack_material). Wound faces take the
@@ -413,8 +437,9 @@ FrameRenderer::View FrameRenderer::view_of(const RenderFrame& frame, const Snaps
   const Eigen::Vector3f eye(cam.eye[0], cam.eye[1], cam.eye[2]);
   const Eigen::Vector3f target(cam.target[0], cam.target[1], cam.target[2]);
   const float ref_dist = std::max((target - eye).norm(), 1e-6f);
-
-  return {view_proj, eye, ref_dist};
+  const Eigen::Vector3f right = m.view.block<1, 3>(0, 0).transpose().normalized();
+  const Eigen::Vector3f up = m.view.block<1, 3>(1, 0).transpose().normalized();
+  return {view_proj, eye, ref_dist, right, up};
 }
 
 namespace {
@@ -475,6 +500,37 @@ void FrameRenderer::draw_visual(const View& v, const SnapshotOptions& options) {
     glBindTexture(GL_TEXTURE_BUFFER, 0);
   }
   glActiveTexture(GL_TEXTURE0);
+}
+
+// Surgical smoke, over what is drawn: blended (its alpha over the colour; the coverage in alpha
+// left as it is), depth-tested against the surfaces but not written.
+void FrameRenderer::draw_smoke(const RenderFrame& frame, const View& v) {
+  if (frame.smoke.empty()) return;
+  smoke_puffs_.clear();
+  smoke_densities_.clear();
+  for (const RenderPuff& p : frame.smoke) {
+    smoke_puffs_.insert(smoke_puffs_.end(), {p.at[0], p.at[1], p.at[2], p.radius});
+    smoke_densities_.push_back(std::clamp(p.density, 0.0f, 1.0f));
+  }
+  glBindBuffer(GL_ARRAY_BUFFER, smoke_puff_buf_);
+  glBufferData(GL_ARRAY_BUFFER, bytes(smoke_puffs_.size(), sizeof(float)), smoke_puffs_.data(),
+               GL_STREAM_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, smoke_density_buf_);
+  glBufferData(GL_ARRAY_BUFFER, bytes(smoke_densities_.size(), sizeof(float)),
+               smoke_densities_.data(), GL_STREAM_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  glUseProgram(smoke_->id());
+  glUniformMatrix4fv(smoke_->uniform("u_view_proj"), 1, GL_FALSE, v.view_proj.data());
+  glUniform3f(smoke_->uniform("u_right"), v.right.x(), v.right.y(), v.right.z());
+  glUniform3f(smoke_->uniform("u_up"), v.up.x(), v.up.y(), v.up.z());
+  glEnable(GL_BLEND);
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+  glDepthMask(GL_FALSE);
+  glBindVertexArray(smoke_vao_);
+  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(frame.smoke.size()));
+  glBindVertexArray(0);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
 }
 
 // The scenery with the visual view's lighting (kVisualFragment), untessellated.
@@ -563,6 +619,7 @@ void FrameRenderer::draw(const RenderFrame& frame, const SnapshotOptions& option
     case SnapshotOptions::View::kVisual:
       draw_visual(v, options);
       draw_scenery(v, options.detail);
+      draw_smoke(frame, v);
       break;
     case SnapshotOptions::View::kCollision:
       draw_collision(v);

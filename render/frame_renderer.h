@@ -61,6 +61,8 @@ class FrameRenderer {
     Eigen::Matrix4f view_proj;
     Eigen::Vector3f eye;
     float ref_dist = 1.0f;
+    Eigen::Vector3f right = Eigen::Vector3f::UnitX();  // unit: the picture's right, world
+    Eigen::Vector3f up = Eigen::Vector3f::UnitY();     // unit: the picture's up, world
   };
   void upload_topology(const RenderFrame& frame);
   void upload_materials(const RenderFrame& frame);
@@ -76,6 +78,7 @@ class FrameRenderer {
   void draw_collision(const View& v);
   void draw_mechanical(const View& v);
   void draw_scenery(const View& v, bool detail);
+  void draw_smoke(const RenderFrame& frame, const View& v);
   void draw_tools(const RenderFrame& frame, const float* view_proj, const float* eye,
                   float ref_dist, bool depth_cue);
 
@@ -84,6 +87,12 @@ class FrameRenderer {
   std::unique_ptr<GlProgram> tool_;
   std::unique_ptr<GlProgram> scenery_;
   std::unique_ptr<LensPass> lens_;
+  std::unique_ptr<GlProgram> smoke_;
+  // Smoke: its vertex array and per-puff (instanced) buffers, and their scratch.
+  unsigned int smoke_vao_ = 0;
+  unsigned int smoke_puff_buf_ = 0;
+  unsigned int smoke_density_buf_ = 0;
+  std::vector<float> smoke_puffs_, smoke_densities_;
   // GL object names: vertex arrays (attributes for the flat views, none for the visual view's
   // vertex pulling), position and normal buffers, triangle and line index buffers, the
   // per-triangle material buffer, and the buffer textures the visual view reads them through.

@@ -74,12 +74,20 @@ struct RenderClip {
 /// welling at the cut end; with effect "bleeding", also the pulsing stream's droplets and the pool
 /// on the surface below.
 struct RenderBleed {
-  std::array<float, 3> at{0.0f, 0.0f, 0.0f};  ///< the cut end, m
-  float radius = 0.0f;                        ///< the drop welling there, m
+  std::array<float, 3> at{0.0f, 0.0f, 0.0f};           ///< the cut end, m
+  float radius = 0.0f;                                 ///< the drop welling there, m
   std::array<float, 3> pool{0.0f, 0.0f, 0.0f};         ///< the pool's centre, m
   std::array<float, 3> pool_normal{0.0f, 1.0f, 0.0f};  ///< unit: the surface it lies on
   float pool_radius = 0.0f;                            ///< m; 0: no pool
   std::vector<std::array<float, 3>> stream;  ///< the stream's droplets, m; empty: not flowing
+};
+
+/// A puff of surgical smoke (plain data, world coordinates, m): a soft grey cloud, drawn over the
+/// visual view's surfaces.
+struct RenderPuff {
+  std::array<float, 3> at{0.0f, 0.0f, 0.0f};  ///< centre, m
+  float radius = 0.0f;                        ///< m
+  float density = 0.0f;  ///< how much it hides what lies behind its centre, [0, 1]
 };
 
 /// One named number the overlay lists (instructor metrics: cut length, time in contact, force
@@ -224,6 +232,8 @@ struct RenderFrame {
   std::vector<RenderClip> clips;
   /// Bleeding, drawn in every view (render/tool_mesh.h append_bleed_mesh).
   std::vector<RenderBleed> bleeds;
+  /// Surgical smoke, drawn over the visual view (blended, after its surfaces).
+  std::vector<RenderPuff> smoke;
   /// (k) a polyline drawn as a thin violet marker in every view (the planned cut: where the
   /// trainee should cut), m; empty: none.
   std::vector<std::array<float, 3>> guide;

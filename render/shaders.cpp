@@ -264,6 +264,44 @@ void main() {
 }
 )";
 
+// Surgical smoke: one camera-facing quad per puff (instanced: its centre, radius and density are
+// per-instance attributes), a soft round cloud whose density falls off towards its rim and is
+// broken up by a little noise; blended over the picture, depth-tested but not written, so a puff
+// behind tissue is hidden by it.
+const char* const kSmokeVertex = R"(#version 410 core
+layout(location = 0) in vec4 a_puff;     // centre, m; radius, m
+layout(location = 1) in float a_density; // [0, 1]
+out vec2 v_corner;
+flat out float v_density;
+flat out float v_seed;
+uniform mat4 u_view_proj;
+uniform vec3 u_right;  // unit: the picture's right, world space
+uniform vec3 u_up;     // unit: the picture's up
+void main() {
+  vec2 c = vec2(float(gl_VertexID & 1), float((gl_VertexID >> 1) & 1)) * 2.0 - 1.0;
+  v_corner = c;
+  v_density = a_density;
+  v_seed = fract(dot(a_puff.xyz, vec3(173.1, 291.7, 117.3)));
+  vec3 p = a_puff.xyz + a_puff.w * (c.x * u_right + c.y * u_up);
+  gl_Position = u_view_proj * vec4(p, 1.0);
+}
+)";
+
+const char* const kSmokeFragment = R"(#version 410 core
+in vec2 v_corner;
+flat in float v_density;
+flat in float v_seed;
+out vec4 frag_color;
+void main() {
+  float r2 = dot(v_corner, v_corner);
+  if (r2 >= 1.0) discard;
+  float a = atan(v_corner.y, v_corner.x);
+  float ragged = 0.85 + 0.15 * sin(5.0 * a + 6.283 * v_seed) * sin(3.0 * a + 11.0 * v_seed);
+  float cloud = max(1.0 - r2 / (ragged * ragged), 0.0);
+  frag_color = vec4(vec3(0.86, 0.84, 0.80), v_density * cloud * cloud);
+}
+)";
+
 const char* const kFlatVertex = R"(#version 410 core
 layout(location = 0) in vec3 a_pos;  // world position, m
 out vec3 v_pos;

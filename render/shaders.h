@@ -14,6 +14,8 @@ extern const char* const kVisualFragment;
 extern const char* const kSceneryVertex;
 
 // Collision and mechanical views: untessellated triangles or lines, flat shaded or one colour.
+extern const char* const kSmokeVertex;
+extern const char* const kSmokeFragment;
 extern const char* const kFlatVertex;
 extern const char* const kFlatFragment;
 extern const char* const kToolVertex;    ///< instruments: position, normal, material attributes

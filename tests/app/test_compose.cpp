@@ -80,12 +80,14 @@ TEST(Compose, ListedButUnimplementedEffectsAreReportedNotFaked) {
   EXPECT_EQ(c.built.size() + c.folded.size() + c.unavailable.size(), scene.settings.effects.size());
 }
 
-// The default scene lists "bleeding": its stage runs after the metrics that find the cut artery;
-// without it listed there is no such stage, and nothing publishes blood.
-TEST(Compose, BleedingIsBuiltOnlyWhenListed) {
+// The default scene lists "bleeding" and "smoke": their stages run after the metrics that find
+// the cut artery and after the cutting stage whose hooks coagulate; without them listed there are
+// no such stages, and nothing publishes blood or smoke.
+TEST(Compose, BleedingAndSmokeAreBuiltOnlyWhenListed) {
   Scene scene =
       load_scene(fs::path(::serosa::test_paths::source_dir()) / "config" / "appendectomy.toml");
   ASSERT_TRUE(scene.settings.has(Effect::kBleeding));
+  ASSERT_TRUE(scene.settings.has(Effect::kSmoke));
   const auto stage_names = [](const Composition& c) {
     std::vector<std::string> names;
     for (const auto& t : c.runner->timings()) names.push_back(t.name);
@@ -98,18 +100,26 @@ TEST(Compose, BleedingIsBuiltOnlyWhenListed) {
     ASSERT_EQ(std::count(names.begin(), names.end(), "bleeding"), 1);
     EXPECT_EQ(names.back(), "bleeding");
     EXPECT_EQ(std::count(c.built.begin(), c.built.end(), Effect::kBleeding), 1);
+    const auto smoke = std::find(names.begin(), names.end(), "smoke");
+    ASSERT_NE(smoke, names.end());
+    EXPECT_EQ(*(smoke - 1), "cutting");
   }
   scene.settings.effects.erase(Effect::kBleeding);
+  scene.settings.effects.erase(Effect::kSmoke);
   AssembledScene a = assemble_state(scene);
   Composition c = compose(scene, a);
   const auto names = stage_names(c);
   EXPECT_EQ(std::count(names.begin(), names.end(), "bleeding"), 0);
+  EXPECT_EQ(std::count(names.begin(), names.end(), "smoke"), 0);
   EXPECT_EQ(std::count(c.built.begin(), c.built.end(), Effect::kBleeding), 0);
   // A bleeding the metrics found is not drawn as blood then: nothing is published or allocated.
   a.state.handoff.bleeds.emplace_back(Vec3::Zero(), 0.0);
   c.runner->run(a.state, 2);
   EXPECT_EQ(a.state.handoff.blood.capacity(), 0u);
   EXPECT_EQ(a.state.handoff.stain.capacity(), 0u);
+  a.state.handoff.coagulated.assign(a.state.mesh.x.size(), 1);
+  c.runner->run(a.state, 2);
+  EXPECT_EQ(a.state.handoff.smoke.capacity(), 0u);
 }
 
 TEST(Compose, GravityPullsTheFreeEndDown) {

@@ -157,7 +157,7 @@ TEST_F(SceneTest, ReadsEveryKey) {
 [scene]
 dt = 0.002
 gravity = [0, 0, -9.81]
-effects = ["record", "fem", "gravity", "supports", "plasticity", "cutting", "clips", "loops", "cautery", "surface", "contact", "render", "haptics", "bleeding"]
+effects = ["record", "fem", "gravity", "supports", "plasticity", "cutting", "clips", "loops", "cautery", "surface", "contact", "render", "haptics", "bleeding", "smoke"]
 
 [[support]]
 name = "posterior wall"
@@ -445,6 +445,8 @@ TEST_F(SceneTest, WrongType) {
   expect_error("[scene]\neffects = \"fem\"\n" + kOrgan, 2, "scene.effects", "expected an array");
   expect_error("[scene]\neffects = [\"fem\", \"bleeding\"]\n" + kOrgan, 2, "scene.effects",
                "no artery is named");
+  expect_error("[scene]\neffects = [\"fem\", \"smoke\"]\n" + kOrgan, 2, "scene.effects",
+               "\"smoke\" needs effect \"cautery\"");
   expect_error("[scene]\ngravity = [0, \"down\", 0]\n" + kOrgan, 2, "scene.gravity[1]",
                "expected a number");
   expect_error("scene = 3\n" + kOrgan, 1, "scene", "expected a table");

@@ -172,6 +172,40 @@ TEST_F(PictureTest, ThePatternMovesWithTheTissueNotWithTheWorld) {
   EXPECT_GT(mean_abs_difference(base, render_image(*ctx_, slid, o)), 3.0);
 }
 
+// A puff of smoke between the scope and the tissue greys the picture where it lies, and only
+// there; the coverage (alpha) stays the tissue's. Behind the tissue it is hidden.
+TEST_F(PictureTest, SmokeVeilsTheTissueInFrontOfItOnly) {
+  SnapshotOptions o;
+  o.width = 320;
+  o.height = 240;
+  o.lens = false;
+  RenderFrame f = tissue_in_view(1);
+  const Image clear = render_image(*ctx_, f, o);
+  f.smoke.push_back({{0.0f, 0.0f, 0.06f}, 0.008f, 0.9f});  // 1 cm in front of the surface
+  const Image smoky = render_image(*ctx_, f, o);
+  const auto grey = [](const Image& img, int x, int y) {
+    const auto p = img.at(x, y);
+    return (p[0] + p[1] + p[2]) / 3.0;
+  };
+  const auto saturation = [](const Image& img, int x, int y) {
+    const auto p = img.at(x, y);
+    return static_cast<double>(std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]}));
+  };
+  // Its centre: greyer, nearer the smoke's colour than the tissue; the corners untouched.
+  EXPECT_LT(saturation(smoky, 160, 120), 0.6 * saturation(clear, 160, 120));
+  const auto to_smoke = [](const Image& img, int x, int y) {
+    const auto p = img.at(x, y);
+    return std::abs(p[0] - 219) + std::abs(p[1] - 214) + std::abs(p[2] - 204);
+  };
+  EXPECT_LT(to_smoke(smoky, 160, 120), to_smoke(clear, 160, 120));
+  EXPECT_GT(grey(smoky, 160, 120), 0.0);
+  EXPECT_EQ(smoky.at(5, 5), clear.at(5, 5));
+  for (std::size_t i = 3; i < clear.rgba.size(); i += 4) ASSERT_EQ(smoky.rgba[i], clear.rgba[i]);
+  // Behind the sphere's front (inside it): hidden.
+  f.smoke.back().at = {0.0f, 0.0f, 0.0f};
+  EXPECT_LT(mean_abs_difference(render_image(*ctx_, f, o), clear), 0.01);
+}
+
 TEST_F(PictureTest, EndoscopeOpticDarkensTheCornersAndIsTheIdentityWhenOff) {
   constexpr int kW = 160, kH = 120;
   ctx_->resize(kW, kH);

@@ -1,0 +1,110 @@
+// The smoke stage (cutting/smoke_stage.h): nodes a hook coagulates raise puffs there (a few a
+// step), which rise against gravity, swell, thin out and clear; never more than the ring holds,
+// in storage that a step does not reallocate; a restored stage continues bit for bit.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "cutting/smoke_stage.h"
+#include "engine/input_error.h"
+#include "engine/kuhn_grid.h"
+#include "engine/scene.h"
+#include "engine/sim_state.h"
+#include "engine/state_codec.h"
+
+namespace serosa::cutting {
+namespace {
+
+constexpr double kDt = 0.005;
+
+Scene scene() {
+  Scene s;
+  s.settings.dt_s = kDt;
+  s.settings.gravity_mps2 = Vec3(0.0, 0.0, -9.81);
+  return s;
+}
+
+SimState slab() {
+  SimState s;
+  s.mesh = kuhn_grid(6, 0.005);
+  s.handoff.coagulated.assign(s.mesh.x.size(), 0);
+  return s;
+}
+
+void run(SmokeStage& stage, SimState& s, int steps) {
+  for (int k = 0; k < steps; ++k) {
+    stage.step(StepContext{s.step, s.time_s, kDt}, s);
+    s.time_s += kDt;
+    ++s.step;
+  }
+}
+
+TEST(SmokeStage, CoagulationRaisesPuffsThatRiseSwellThinAndClear) {
+  SmokeStage stage(scene());
+  SimState s = slab();
+  run(stage, s, 5);
+  EXPECT_TRUE(s.handoff.smoke.empty());
+  for (std::size_t i = 0; i < 10; ++i) s.handoff.coagulated[i] = 1;  // ten nodes at once
+  run(stage, s, 1);
+  ASSERT_EQ(s.handoff.smoke.size(), static_cast<std::size_t>(SmokeStage::kPuffsPerStep));
+  const SmokePuff first = s.handoff.smoke[0];
+  EXPECT_NEAR((first.at_m - s.mesh.x[0]).norm(), 0.0, 0.001);
+  run(stage, s, 1);  // the same marks raise no more puffs
+  ASSERT_EQ(s.handoff.smoke.size(), static_cast<std::size_t>(SmokeStage::kPuffsPerStep));
+  run(stage, s, 100);
+  const SmokePuff later = s.handoff.smoke[0];
+  EXPECT_NEAR(later.at_m.z() - first.at_m.z(), SmokeStage::kRiseMps * 101 * kDt, 1e-9);
+  EXPECT_GT(later.radius_m, first.radius_m);
+  EXPECT_LT(later.density, first.density);
+  run(stage, s, static_cast<int>(SmokeStage::kLifeS / kDt));
+  EXPECT_TRUE(s.handoff.smoke.empty());
+}
+
+TEST(SmokeStage, TheRingHoldsAtMostItsPuffsAndAStepDoesNotReallocate) {
+  SmokeStage stage(scene());
+  SimState s = slab();
+  run(stage, s, 1);
+  const SmokePuff* storage = s.handoff.smoke.data();
+  for (std::size_t i = 0; i < s.mesh.x.size(); ++i) {
+    s.handoff.coagulated[i] = 1;
+    run(stage, s, 1);
+    ASSERT_LE(s.handoff.smoke.size(), SmokeStage::kMaxPuffs);
+    ASSERT_EQ(s.handoff.smoke.data(), storage) << "step " << i;
+  }
+  EXPECT_EQ(s.handoff.smoke.size(), SmokeStage::kMaxPuffs);
+}
+
+TEST(SmokeStage, ARestoredStageContinuesBitForBit) {
+  SmokeStage a(scene());
+  SimState s = slab();
+  for (std::size_t i = 0; i < 40; i += 3) {
+    s.handoff.coagulated[i] = 1;
+    run(a, s, 7);
+  }
+  StateWriter out;
+  a.save(out);
+  const std::vector<std::uint8_t> bytes = out.bytes();
+  SimState r = s;
+  r.handoff.smoke.clear();
+  SmokeStage b(scene());
+  StateReader in(bytes, "snapshot");
+  b.restore(in, r);
+  for (std::size_t i = 40; i < 80; i += 2) {
+    s.handoff.coagulated[i] = r.handoff.coagulated[i] = 1;
+    run(a, s, 3);
+    run(b, r, 3);
+  }
+  ASSERT_EQ(r.handoff.smoke.size(), s.handoff.smoke.size());
+  for (std::size_t k = 0; k < s.handoff.smoke.size(); ++k) {
+    EXPECT_EQ(r.handoff.smoke[k].at_m, s.handoff.smoke[k].at_m);
+    EXPECT_EQ(r.handoff.smoke[k].density, s.handoff.smoke[k].density);
+  }
+  SimState small = slab();
+  small.mesh.x.resize(4);
+  SmokeStage c(scene());
+  StateReader bad(bytes, "snapshot");
+  EXPECT_THROW(c.restore(bad, small), InputError);
+}
+
+}  // namespace
+}  // namespace serosa::cutting
