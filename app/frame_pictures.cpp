@@ -17,7 +17,7 @@ FramePictures::FramePictures(std::filesystem::path dir, const Scene& scene, cons
                              std::map<int, std::string> group_names, std::vector<View> views)
     : m_dir(std::move(dir)),
       m_scene(scene),
-      m_names(std::move(group_names)),
+      m_names(drawn_group_names(scene, std::move(group_names))),
       m_views(std::move(views)),
       m_drawn(initial) {
   if (m_views.empty()) m_views.push_back(View::kVisual);

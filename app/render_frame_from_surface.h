@@ -33,6 +33,11 @@ void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
                        std::uint64_t coagulated_version = 0,
                        const std::vector<float>* stain = nullptr);
 
+/// The names the renderer picks each group's material by (render/materials.h): the tissue the
+/// scene's `[render] looks` draws the group as, else the group's own name.
+[[nodiscard]] std::map<int, std::string> drawn_group_names(const Scene& scene,
+                                                           std::map<int, std::string> names);
+
 /// frame.guide: the scene's planned cut ([metrics] planned_cut), drawn as a marker; without one,
 /// its clip target ([metrics] clip_target) as a short pin through the tissue there, along the
 /// board's normal (the first support's, else against gravity): a dot where the clip goes.

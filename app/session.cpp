@@ -109,7 +109,7 @@ class SolverLoop {
       : m_scene(scene),
         m_state(assembled.state),
         m_comp(comp),
-        m_names(assembled.group_names()),
+        m_names(drawn_group_names(scene, assembled.group_names())),
         m_aspect(aspect),
         m_frames(frames),
         m_control(control) {}
@@ -125,6 +125,8 @@ class SolverLoop {
 
   [[nodiscard]] std::exception_ptr error() const { return m_error; }
   [[nodiscard]] std::int64_t steps() const { return m_steps; }
+  /// Whether the last frame published was the endoscope's view (read once the loop has stopped).
+  [[nodiscard]] bool through_scope() const { return m_through_scope; }
   /// Wall time of each solver step taken, ms (read after the loop's thread has ended).
   [[nodiscard]] const std::vector<double>& step_ms() const { return m_step_times; }
 
@@ -199,6 +201,7 @@ class SolverLoop {
     // Each of the triple buffer's slots takes the scenery once; it never changes afterwards.
     if (f.scenery.version != m_scenery.version) f.scenery = m_scenery;
     std::optional<render::Camera> cam = endoscope_view(m_scene, m_state);
+    m_through_scope = cam.has_value();
     if (!cam) {
       // No endoscope: a fixed camera fitted to the organs at the start.
       if (!m_fitted) m_fitted = render::auto_camera(f, m_aspect);
@@ -253,6 +256,7 @@ class SolverLoop {
   SimState& m_state;
   Composition& m_comp;
   std::map<int, std::string> m_names;
+  bool m_through_scope = false;  // the last frame published was the endoscope's view
   float m_aspect;
   TripleBuffer<render::RenderFrame>& m_frames;
   Control& m_control;
@@ -455,7 +459,8 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
                         {"resolution_scale", pacer.resolution_scale()},
                         {"deepest_rung", pacer.deepest_rung()},
                         {"steps_down", pacer.steps_down()},
-                        {"lens", options.lens}};
+                        {"lens", options.lens},
+                        {"camera", loop.through_scope() ? "endoscope" : "fitted"}};
     if (snapshot_flat) report["render"]["snapshot_flat"] = *snapshot_flat;
     report["interrupted"] = g_interrupted.load();
     if (comp.haptics != nullptr) report["haptics"] = comp.haptics->telemetry_json();
@@ -507,7 +512,7 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
                  replay.time_s(), replay.steps_taken(), file.string());
   };
   const Scene& scene = replay.scene();
-  const std::map<int, std::string> names = replay.group_names();
+  const std::map<int, std::string> names = drawn_group_names(scene, replay.group_names());
   DrawnSurface drawn(replay.state().mesh);
   // The metric timeline, computed beside the replay; N jumps to a second before the next error.
   const TimelineBuilder timeline(recording);

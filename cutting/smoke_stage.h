@@ -1,9 +1,9 @@
 // The "smoke" stage (after cutting, effect "smoke"): surgical smoke. Each node a live hook
 // coagulates this step (SimState::handoff.coagulated; not the nodes a cut adds, which take their
-// parents' marks) raises a puff there, at most kPuffsPerStep a step; a puff rises against gravity at kRiseMps, drifts sideways, swells from
-// kStartRadiusM by kGrowMps and thins out over kLifeS, then clears. At most kMaxPuffs live at once
-// (the oldest gives way), held in storage sized once, so a step allocates nothing. It publishes
-// SimState::handoff.smoke for the view.
+// parents' marks) raises a puff there, at most kPuffsPerStep a step; a puff rises against gravity
+// at kRiseMps, drifts sideways, swells from kStartRadiusM by kGrowMps and thins out over kLifeS,
+// then clears. At most kMaxPuffs live at once (the oldest gives way), held in storage sized once,
+// so a step allocates nothing. It publishes SimState::handoff.smoke for the view.
 #pragma once
 
 #include <array>

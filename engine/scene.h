@@ -221,6 +221,11 @@ struct SolverSettings {
   int threads = 1;
 };
 
+/// The tissues a group can be drawn as (`[render] looks`; render/materials.h draws each).
+inline constexpr std::array<std::string_view, 12> kTissueLooks{
+    "appendix", "mesoappendix", "artery",      "cecum", "colon",      "bowel",
+    "ileum",    "liver",        "gallbladder", "fat",   "peritoneum", "stomach"};
+
 struct RenderSettings {
   int tessellation = 3;        ///< Phong tessellation level; 1 = flat, 1..16
   double shape_factor = 0.75;  ///< Phong tessellation alpha; 0 = flat, 0..1
@@ -228,6 +233,9 @@ struct RenderSettings {
   int height = 720;            ///< window or offscreen frame height, pixels; 1..16384
   /// Drawn around the organs: an abdomen needs a [[support]] (drawn as the posterior wall).
   Surroundings surroundings = Surroundings::kNone;
+  /// Group name -> the tissue it is drawn as (one of kTissueLooks); a group not listed is drawn
+  /// as the tissue its own name names, if any, else in a palette colour.
+  std::map<std::string, std::string> looks;
 };
 
 struct ToolDevice {

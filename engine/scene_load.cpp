@@ -599,9 +599,26 @@ class Loader {
     }
   }
 
+  // looks = { GROUP = "TISSUE", ... }: the group must be one the organs name (checked once all
+  // are read), the tissue one of kTissueLooks.
+  void read_looks(const toml::table& t, const std::string& p, RenderSettings& r) {
+    std::string known;
+    for (const std::string_view l : kTissueLooks)
+      known += (known.empty() ? "" : ", ") + std::string(l);
+    for (auto&& [key, value] : t) {
+      const std::string kp = sub(p, key.str());
+      const std::string& look = string(value, kp, "a tissue name (string)");
+      if (std::find(kTissueLooks.begin(), kTissueLooks.end(), look) == kTissueLooks.end())
+        fail(value, kp, "unknown tissue \"" + look + "\"", "one of: " + known);
+      r.looks[std::string(key.str())] = look;
+      m_group_refs.push_back({line_of(key), kp, std::string(key.str())});
+    }
+  }
+
   void read_render(const toml::table& t, RenderSettings& r) {
     const std::string p = "render";
-    check_keys(t, p, {"tessellation", "shape_factor", "width", "height", "surroundings"});
+    check_keys(t, p, {"tessellation", "shape_factor", "width", "height", "surroundings", "looks"});
+    if (const auto* looks = opt_table(t, "looks", p)) read_looks(*looks, sub(p, "looks"), r);
     if (const auto* n = t.get("surroundings")) {
       r.surroundings = enum_value<Surroundings>(*n, sub(p, "surroundings"), surroundings_from_name,
                                                 "none, abdomen");

@@ -237,9 +237,12 @@ void FrameRenderer::set_pattern_uniforms(const GlProgram& program, bool detail) 
   glUniform1i(program.uniform("u_pools"), pools_);
   glUniform4fv(program.uniform("u_pool"), 4, pool_.data());
   glUniform3fv(program.uniform("u_pool_up"), 4, pool_up_.data());
+  glUniform3fv(program.uniform("u_taenia_centre"), 1, taenia_centre_.data());
+  glUniform3fv(program.uniform("u_taenia_axis"), 1, taenia_axis_.data());
 }
 
-// The first four pools of blood the frame's bleedings made (render_frame.h RenderBleed).
+// The first four pools of blood the frame's bleedings made (render_frame.h RenderBleed), and
+// where the cecum's taeniae run.
 void FrameRenderer::set_pools(const RenderFrame& frame) {
   pools_ = 0;
   for (const RenderBleed& b : frame.bleeds) {
@@ -251,6 +254,8 @@ void FrameRenderer::set_pools(const RenderFrame& frame) {
     }
     pool_[4 * k + 3] = b.pool_radius;
   }
+  taenia_centre_ = frame.taenia_centre;
+  taenia_axis_ = frame.taenia_axis;
 }
 
 // Per vertex two RGBA32F texels: the rest position (the pattern's coordinates; the current one

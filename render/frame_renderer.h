@@ -118,6 +118,8 @@ class FrameRenderer {
   int pools_ = 0;
   std::array<float, 16> pool_ = {};
   std::array<float, 12> pool_up_ = {};
+  std::array<float, 3> taenia_centre_ = {};
+  std::array<float, 3> taenia_axis_ = {};
   // Instruments: their vertex array, interleaved-free attribute buffers and index buffer.
   unsigned int tool_vao_ = 0;
   unsigned int tool_pos_buf_ = 0;

@@ -13,19 +13,20 @@ struct Named {
   Material material;
 };
 
-// {colour, specular, vessels, lobules, mottle}: serosa carries a vessel network, fat is lobular,
-// the inflamed appendix is redder with more vessels (hyperaemia).
+// {colour, specular, vessels, lobules, mottle}: serosa carries a vessel network, fat is lobular
+// with a brighter highlight, the inflamed appendix is redder with more vessels (hyperaemia), the
+// cecum and colon carry their taeniae.
 constexpr std::array<Named, 12> kNamed{{
     {"appendix", {{0.90f, 0.50f, 0.48f}, 0.55f, 0.85f, 0.0f, 0.6f}},
-    {"mesoappendix", {{0.94f, 0.80f, 0.50f}, 0.45f, 0.45f, 1.0f, 0.5f}},
+    {"mesoappendix", {{0.94f, 0.80f, 0.50f}, 0.65f, 0.45f, 1.0f, 0.5f}},
     {"artery", {{0.62f, 0.20f, 0.28f}, 0.60f, 0.0f, 0.0f, 0.3f}},
-    {"cecum", {{0.84f, 0.52f, 0.52f}, 0.50f, 0.60f, 0.0f, 0.55f}},
-    {"colon", {{0.84f, 0.56f, 0.54f}, 0.50f, 0.55f, 0.0f, 0.55f}},
+    {"cecum", {{0.84f, 0.52f, 0.52f}, 0.50f, 0.60f, 0.0f, 0.55f, SurfaceKind::kOutside, true}},
+    {"colon", {{0.84f, 0.56f, 0.54f}, 0.50f, 0.55f, 0.0f, 0.55f, SurfaceKind::kOutside, true}},
     {"bowel", {{0.90f, 0.60f, 0.58f}, 0.50f, 0.55f, 0.0f, 0.5f}},
     {"ileum", {{0.90f, 0.60f, 0.58f}, 0.50f, 0.55f, 0.0f, 0.5f}},
     {"liver", {{0.55f, 0.20f, 0.16f}, 0.50f, 0.15f, 0.0f, 0.7f}},
     {"gallbladder", {{0.45f, 0.58f, 0.32f}, 0.55f, 0.45f, 0.0f, 0.4f}},
-    {"fat", {{0.94f, 0.80f, 0.50f}, 0.45f, 0.45f, 1.0f, 0.5f}},
+    {"fat", {{0.94f, 0.80f, 0.50f}, 0.65f, 0.45f, 1.0f, 0.5f}},
     {"peritoneum", {{0.88f, 0.72f, 0.70f}, 0.45f, 0.50f, 0.0f, 0.5f}},
     {"stomach", {{0.88f, 0.58f, 0.55f}, 0.45f, 0.55f, 0.0f, 0.5f}},
 }};
@@ -89,6 +90,7 @@ std::array<std::uint8_t, 8> pack_material(const Material& m) {
   };
   const std::uint8_t kind = m.kind == SurfaceKind::kCut       ? 128
                             : m.kind == SurfaceKind::kCharred ? 255
+                            : m.taenia                        ? 64
                                                               : 0;
   return {byte(m.color[0]), byte(m.color[1]), byte(m.color[2]), byte(m.specular),
           byte(m.vessels),  byte(m.lobules),  byte(m.mottle),   kind};

@@ -21,6 +21,9 @@ struct Material {
   float lobules = 0.0f;    ///< fat lobules: 1 for fat, 0 for smooth serosa
   float mottle = 0.5f;     ///< colour variation and fine relief of the surface
   SurfaceKind kind = SurfaceKind::kOutside;
+  /// The cecum's and colon's taeniae: three pale longitudinal bands of muscle, converging where
+  /// the appendix leaves (RenderFrame::taenia_axis)
+  bool taenia = false;
 };
 
 /// The material of a named tissue: "appendix" (an inflamed appendix: red, many vessels),
@@ -43,7 +46,8 @@ bool named_material(std::string_view name, Material& out);
 [[nodiscard]] Material coagulated_material();
 
 /// The two RGBA8 texels a triangle's material takes in the renderer's material buffer: rgb the
-/// colour and a the specular strength; then vessels, lobules, mottle and the kind (0, 128, 255).
+/// colour and a the specular strength; then vessels, lobules, mottle and the kind (0 outside, 64
+/// outside with taeniae, 128 cut, 255 charred).
 [[nodiscard]] std::array<std::uint8_t, 8> pack_material(const Material& m);
 
 }  // namespace serosa::render

@@ -208,6 +208,10 @@ struct RenderFrame {
   std::vector<float> rim;
   /// (n) how much blood stains each vertex, [0, 1] (effect "bleeding"); empty: none.
   std::vector<float> stain;
+  /// Where a cecum's taeniae run, in rest coordinates (m): from the centre of the cecum towards
+  /// where the appendix leaves it, unit axis; a zero axis: none drawn.
+  std::array<float, 3> taenia_centre{0.0f, 0.0f, 0.0f};
+  std::array<float, 3> taenia_axis{0.0f, 0.0f, 0.0f};
   std::vector<std::uint32_t> tri;  ///< (t x 3) vertex ids, counter-clockwise seen from outside
   std::vector<std::uint16_t> tri_group;  ///< (t) visual group (Gmsh physical tag) of each triangle
   /// (t) 1 = face made by a cut (wound), 2 = coagulated by a hook (charred), else 0

@@ -147,6 +147,19 @@ uniform sampler3D u_pattern; // R vessels, G lobule borders, B mottle, A relief
 uniform float u_period;      // m of rest space per repeat of the pattern
 uniform float u_relief;      // height of the relief, m
 uniform int u_detail;        // 0: the plain colour, no pattern or relief
+uniform vec3 u_taenia_centre;  // rest space, m
+uniform vec3 u_taenia_axis;    // unit; zero: no taeniae
+// The taeniae: three bands 120 degrees apart round the axis, narrowing towards its far side and
+// strongest where they converge on the appendix; 0 off them.
+float taenia(vec3 rest) {
+  if (dot(u_taenia_axis, u_taenia_axis) < 0.5) return 0.0;
+  vec3 d = rest - u_taenia_centre;
+  float along = dot(normalize(d), u_taenia_axis);
+  vec3 b1 = normalize(cross(u_taenia_axis, abs(u_taenia_axis.x) < 0.9 ? vec3(1, 0, 0) : vec3(0, 1, 0)));
+  vec3 b2 = cross(u_taenia_axis, b1);
+  float phi = atan(dot(d, b2), dot(d, b1));
+  return smoothstep(0.94, 0.985, cos(3.0 * phi)) * smoothstep(-0.6, 0.4, along);
+}
 uniform int u_pools;         // pools of blood (at most 4)
 uniform vec4 u_pool[4];      // centre, m; radius, m
 uniform vec3 u_pool_up[4];   // unit normal of the surface each lies on
@@ -190,12 +203,14 @@ void main() {
   float h;
   if (u_detail == 0) {
     h = 0.0;
-  } else if (kind < 0.25) {
+  } else if (kind < 0.375) {
+    float band = kind > 0.125 ? taenia(e_rest.xyz) : 0.0;
     albedo *= 1.0 + mottle * (0.9 * (coarse.b - 0.5) + 0.5 * (fine.b - 0.5));
     albedo = mix(albedo, albedo * vec3(0.95, 0.62, 0.45), lobules * 0.6 * coarse.g);
     float vein = clamp(coarse.r + 0.6 * fine.r * (1.0 - lobules), 0.0, 1.0);
-    albedo = mix(albedo, vec3(0.16, 0.012, 0.03), vessels * 0.85 * vein);
-    h = mix(fine.a, 1.0 - coarse.g, lobules) + 0.4 * vessels * coarse.r;
+    albedo = mix(albedo, vec3(0.16, 0.012, 0.03), vessels * 0.85 * vein * (1.0 - 0.7 * band));
+    albedo = mix(albedo, vec3(0.80, 0.55, 0.48), 0.6 * band);
+    h = mix(fine.a, 1.0 - coarse.g, lobules) + 0.4 * vessels * coarse.r + 1.5 * band;
   } else if (kind < 0.75) {
     albedo *= 0.55 + 0.9 * fine.b * coarse.b;
     float rim = smoothstep(0.35, 1.0, e_rest.w);

@@ -286,7 +286,7 @@ void add_blood_blob(ToolMesh& out, const V3& at, float radius, const V3& axis, f
   for (std::uint32_t id : unit.tri) out.tri.push_back(base + id);
 }
 
-constexpr float kDropRadiusM = 0.0008f;     // one droplet of the stream, m
+constexpr float kDropRadiusM = 0.0008f;  // one droplet of the stream, m
 
 }  // namespace
 

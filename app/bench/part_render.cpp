@@ -50,9 +50,9 @@ render::RenderFrame scene_frame(const BenchOptions& options, double seconds) {
   const auto steps = static_cast<std::int64_t>(std::llround(seconds / scene.settings.dt_s));
   for (std::int64_t k = 0; k < steps; ++k) comp.runner->step(state);
   render::RenderFrame f;
-  fill_render_frame(state.mesh, state.handoff.surface, assembled.group_names(), false, f,
-                    &state.handoff.coagulated, state.handoff.coagulated_version,
-                    &state.handoff.stain);
+  fill_render_frame(
+      state.mesh, state.handoff.surface, drawn_group_names(scene, assembled.group_names()), false,
+      f, &state.handoff.coagulated, state.handoff.coagulated_version, &state.handoff.stain);
   fill_render_tools(scene, state, f);
   f.scenery = scenery_from_scene(scene, initial);
   if (const auto scope = endoscope_view(scene, state)) f.camera = *scope;

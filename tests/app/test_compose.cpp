@@ -4,11 +4,13 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "app/assemble_state.h"
 #include "app/compose.h"
+#include "app/render_frame_from_surface.h"
 #include "engine/mesh_io.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"
@@ -120,6 +122,16 @@ TEST(Compose, BleedingAndSmokeAreBuiltOnlyWhenListed) {
   a.state.handoff.coagulated.assign(a.state.mesh.x.size(), 1);
   c.runner->run(a.state, 2);
   EXPECT_EQ(a.state.handoff.smoke.capacity(), 0u);
+}
+
+// [render] looks: a group is drawn as the tissue the scene names for it, the others by their own
+// names.
+TEST(Compose, LooksNameTheTissueAGroupIsDrawnAs) {
+  Scene scene;
+  scene.render.looks = {{"appendix", "fat"}};
+  const std::map<int, std::string> drawn =
+      drawn_group_names(scene, {{1, "appendix"}, {2, "cecum"}});
+  EXPECT_EQ(drawn, (std::map<int, std::string>{{1, "fat"}, {2, "cecum"}}));
 }
 
 TEST(Compose, GravityPullsTheFreeEndDown) {

@@ -127,8 +127,8 @@ TEST(SceneryHeadless, PicturesShowTheAbdomen) {
   for (std::size_t i = 3; i < image.rgba.size(); i += 4) void_px += image.rgba[i] == 0 ? 1 : 0;
   const double without = static_cast<double>(void_px) / (image.rgba.size() / 4.0);
   EXPECT_GT(without, 0.5);
-  std::printf("most common colour with the abdomen %.3f; the void without it %.3f\n",
-              with.fraction, without);
+  std::printf("most common colour with the abdomen %.3f; the void without it %.3f\n", with.fraction,
+              without);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <numbers>
 #include <string>
 
@@ -200,6 +201,7 @@ shape_factor = 0.5
 width = 640
 height = 480
 surroundings = "abdomen"
+looks = { mesoappendix = "fat", colon = "cecum" }
 
 [[tool]]
 name = "grasper"
@@ -243,6 +245,8 @@ steps = 250
   EXPECT_EQ(s.supports[0].point_m, Vec3(0, 0, -0.004));
   EXPECT_EQ(s.supports[0].normal, Vec3(0, 0, 1));
   EXPECT_EQ(s.render.surroundings, Surroundings::kAbdomen);
+  EXPECT_EQ(s.render.looks,
+            (std::map<std::string, std::string>{{"mesoappendix", "fat"}, {"colon", "cecum"}}));
   ASSERT_EQ(s.organs.size(), 2u);
   const Organ& o = s.organs[0];
   EXPECT_EQ(o.groups.at(2), "mesoappendix");
@@ -447,6 +451,10 @@ TEST_F(SceneTest, WrongType) {
                "no artery is named");
   expect_error("[scene]\neffects = [\"fem\", \"smoke\"]\n" + kOrgan, 2, "scene.effects",
                "\"smoke\" needs effect \"cautery\"");
+  expect_error(kOrgan + "[render]\nlooks = { 1 = \"plastic\" }\n", 5, "render.looks.1",
+               "unknown tissue \"plastic\"");
+  expect_error(kOrgan + "[render]\nlooks = { omentum = \"fat\" }\n", 5, "render.looks.omentum",
+               "unknown group \"omentum\"");
   expect_error("[scene]\ngravity = [0, \"down\", 0]\n" + kOrgan, 2, "scene.gravity[1]",
                "expected a number");
   expect_error("scene = 3\n" + kOrgan, 1, "scene", "expected a table");

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <random>
 
+#include "engine/scene.h"
 #include "render/image_stats.h"
 #include "render/lens_pass.h"
 #include "render/materials.h"
@@ -52,6 +53,14 @@ SeamStep seam_step(const TissuePattern& p, int axis, int c) {
       s.inside = std::max(s.inside, mean);
   }
   return s;
+}
+
+// Every tissue a scene's [render] looks may name is one the renderer draws.
+TEST(TissueLooks, EveryLookTheSceneMayNameHasAMaterial) {
+  for (const std::string_view look : kTissueLooks) {
+    Material m;
+    EXPECT_TRUE(named_material(look, m)) << look;
+  }
 }
 
 TEST(TissuePattern, TilesWithoutSeamsOnEveryAxisAndChannel) {
@@ -170,6 +179,27 @@ TEST_F(PictureTest, ThePatternMovesWithTheTissueNotWithTheWorld) {
   RenderFrame slid = moved;
   slid.rest = slid.pos;
   EXPECT_GT(mean_abs_difference(base, render_image(*ctx_, slid, o)), 3.0);
+}
+
+// The cecum's taeniae show as pale bands where the frame says they run; other tissue ignores
+// them.
+TEST_F(PictureTest, TheCecumsTaeniaeRunWhereTheFrameSays) {
+  SnapshotOptions o;
+  o.width = 320;
+  o.height = 240;
+  RenderFrame f = tissue_in_view(1);
+  f.group_names = {"", "cecum"};
+  f.rest = f.pos;
+  const Image plain = render_image(*ctx_, f, o);
+  f.taenia_centre = {0.0f, 0.0f, 0.0f};
+  f.taenia_axis = {0.0f, 0.0f, 1.0f};  // converging on the point facing the scope
+  const Image banded = shoot(f, o, "tissue_cecum_taeniae");
+  EXPECT_GT(mean_abs_difference(plain, banded), 1.0);
+  f.group_names = {"", "appendix"};
+  RenderFrame without = f;
+  without.taenia_axis = {0.0f, 0.0f, 0.0f};
+  const Image appendix = render_image(*ctx_, f, o);
+  EXPECT_EQ(appendix.rgba, render_image(*ctx_, without, o).rgba);
 }
 
 // A puff of smoke between the scope and the tissue greys the picture where it lies, and only
