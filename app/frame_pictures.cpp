@@ -28,6 +28,7 @@ FramePictures::FramePictures(std::filesystem::path dir, const Scene& scene, cons
   m_options.shape_factor = static_cast<float>(scene.render.shape_factor);
   m_context = std::make_unique<render::OffscreenContext>(m_options.width, m_options.height);
   m_frame.scenery = scenery_from_scene(scene, initial);  // once: frame() leaves it as it is
+  fill_taenia(initial, m_names, m_frame);                // likewise
 }
 
 FramePictures::~FramePictures() = default;

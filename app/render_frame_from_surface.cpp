@@ -70,51 +70,6 @@ void fill_rest_and_rim(const TetMesh& mesh, const surface::SurfaceMesh& surface,
   }
 }
 
-// Where the cecum's taeniae run (render_frame.h): from the centre of the groups drawn as cecum or
-// colon towards where the appendix meets them (the nodes both share; without any, the appendix's
-// centre), in rest coordinates. None without both.
-void fill_taenia(const TetMesh& mesh, const std::map<int, std::string>& names,
-                 render::RenderFrame& frame) {
-  frame.taenia_axis = {0.0f, 0.0f, 0.0f};
-  const auto named = [&](std::uint16_t g, std::initializer_list<const char*> which) {
-    const auto it = names.find(g);
-    if (it == names.end()) return false;
-    for (const char* w : which)
-      if (it->second == w) return true;
-    return false;
-  };
-  std::vector<std::uint8_t> in(mesh.rest.size(), 0);  // bit 0: bowel, bit 1: appendix
-  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
-    const std::uint8_t bit = named(mesh.group[t], {"cecum", "colon"}) ? 1
-                             : named(mesh.group[t], {"appendix"})     ? 2
-                                                                      : 0;
-    if (bit != 0)
-      for (const std::int32_t v : mesh.tets[t]) in[static_cast<std::size_t>(v)] |= bit;
-  }
-  Vec3 bowel = Vec3::Zero(), appendix = Vec3::Zero(), base = Vec3::Zero();
-  double nb = 0.0, na = 0.0, ns = 0.0;
-  for (std::size_t i = 0; i < in.size(); ++i) {
-    if ((in[i] & 1) != 0) {
-      bowel += mesh.rest[i];
-      nb += 1.0;
-    }
-    if ((in[i] & 2) != 0) {
-      appendix += mesh.rest[i];
-      na += 1.0;
-    }
-    if (in[i] == 3) {
-      base += mesh.rest[i];
-      ns += 1.0;
-    }
-  }
-  if (nb == 0.0 || na == 0.0) return;
-  const Vec3 centre = bowel / nb;
-  const Vec3 axis = (ns > 0.0 ? Vec3(base / ns) : Vec3(appendix / na)) - centre;
-  if (axis.norm() <= 0.0) return;
-  frame.taenia_centre = to_float(centre);
-  frame.taenia_axis = to_float(Vec3(axis.normalized()));
-}
-
 // Each vertex's node's stain of blood (none without a stain).
 void fill_stain(const surface::RenderVertices& rv, std::size_t n, const std::vector<float>* stain,
                 render::RenderFrame& frame) {
@@ -177,7 +132,6 @@ void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
   }
   fill_rest_and_rim(mesh, surface, rv, marks, n, frame);
   fill_stain(rv, n, stain, frame);
-  fill_taenia(mesh, group_names, frame);
   frame.tri.resize(3 * f);
   for (std::size_t i = 0; i < f; ++i)
     for (int k = 0; k < 3; ++k)
@@ -282,6 +236,48 @@ void fill_render_bleeds(const Scene& scene, const SimState& state, render::Rende
 }
 
 }  // namespace
+
+void fill_taenia(const TetMesh& mesh, const std::map<int, std::string>& names,
+                 render::RenderFrame& frame) {
+  frame.taenia_axis = {0.0f, 0.0f, 0.0f};
+  const auto named = [&](std::uint16_t g, std::initializer_list<const char*> which) {
+    const auto it = names.find(g);
+    if (it == names.end()) return false;
+    for (const char* w : which)
+      if (it->second == w) return true;
+    return false;
+  };
+  std::vector<std::uint8_t> in(mesh.rest.size(), 0);  // bit 0: bowel, bit 1: appendix
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    const std::uint8_t bit = named(mesh.group[t], {"cecum", "colon"}) ? 1
+                             : named(mesh.group[t], {"appendix"})     ? 2
+                                                                      : 0;
+    if (bit != 0)
+      for (const std::int32_t v : mesh.tets[t]) in[static_cast<std::size_t>(v)] |= bit;
+  }
+  Vec3 bowel = Vec3::Zero(), appendix = Vec3::Zero(), base = Vec3::Zero();
+  double nb = 0.0, na = 0.0, ns = 0.0;
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    if ((in[i] & 1) != 0) {
+      bowel += mesh.rest[i];
+      nb += 1.0;
+    }
+    if ((in[i] & 2) != 0) {
+      appendix += mesh.rest[i];
+      na += 1.0;
+    }
+    if (in[i] == 3) {
+      base += mesh.rest[i];
+      ns += 1.0;
+    }
+  }
+  if (nb == 0.0 || na == 0.0) return;
+  const Vec3 centre = bowel / nb;
+  const Vec3 axis = (ns > 0.0 ? Vec3(base / ns) : Vec3(appendix / na)) - centre;
+  if (axis.norm() <= 0.0) return;
+  frame.taenia_centre = to_float(centre);
+  frame.taenia_axis = to_float(Vec3(axis.normalized()));
+}
 
 std::map<int, std::string> drawn_group_names(const Scene& scene, std::map<int, std::string> names) {
   for (auto& [id, name] : names)

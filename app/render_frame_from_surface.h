@@ -33,6 +33,13 @@ void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
                        std::uint64_t coagulated_version = 0,
                        const std::vector<float>* stain = nullptr);
 
+/// frame.taenia_centre and taenia_axis: where the cecum's taeniae run, from the centre of the
+/// groups `names` draws as cecum or colon towards where the appendix meets them (the nodes both
+/// share; without any, the appendix's centre), in rest coordinates; a zero axis without both.
+/// Rest positions do not move and cuts only add nodes: callers set it once, like the scenery.
+void fill_taenia(const TetMesh& mesh, const std::map<int, std::string>& names,
+                 render::RenderFrame& frame);
+
 /// The names the renderer picks each group's material by (render/materials.h): the tissue the
 /// scene's `[render] looks` draws the group as, else the group's own name.
 [[nodiscard]] std::map<int, std::string> drawn_group_names(const Scene& scene,

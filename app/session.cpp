@@ -198,8 +198,11 @@ class SolverLoop {
                       &m_state.handoff.coagulated, m_state.handoff.coagulated_version,
                       &m_state.handoff.stain);
     fill_render_tools(m_scene, m_state, f);
-    // Each of the triple buffer's slots takes the scenery once; it never changes afterwards.
-    if (f.scenery.version != m_scenery.version) f.scenery = m_scenery;
+    // Each of the triple buffer's slots takes the scenery and the taeniae once; they never change.
+    if (f.scenery.version != m_scenery.version) {
+      f.scenery = m_scenery;
+      fill_taenia(m_state.mesh, m_names, f);
+    }
     std::optional<render::Camera> cam = endoscope_view(m_scene, m_state);
     m_through_scope = cam.has_value();
     if (!cam) {
@@ -535,6 +538,7 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
   bool show_overlay = true;
   render::RenderFrame frame;
   frame.scenery = scenery_from_scene(scene, replay.state().mesh);  // once: it never changes
+  fill_taenia(replay.state().mesh, names, frame);                  // nor does this
   std::optional<render::Camera> fitted;
   // Every cut bumps the topology version, which snapshots keep: cuts survive seeks.
   const std::uint64_t version0 = replay.state().mesh.topology_version;

@@ -6,18 +6,10 @@
 #include <vector>
 
 #include "render/gl_program.h"
+#include "render/picture_target.h"
 
 namespace serosa::render {
 namespace {
-
-// A full-screen triangle from gl_VertexID.
-constexpr const char* kVertex = R"(#version 410 core
-out vec2 v_uv;
-void main() {
-  vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
-  v_uv = p;
-  gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0);
-})";
 
 // Radii are relative to the half diagonal, so the corner is at r = 1 whatever the aspect.
 constexpr const char* kFragment = R"(#version 410 core
@@ -57,48 +49,15 @@ void main() {
 
 LensPass::LensPass()
     : program_(std::make_unique<GlProgram>(
-          std::vector<ShaderSource>{{GL_VERTEX_SHADER, kVertex, "lens vertex"},
-                                    {GL_FRAGMENT_SHADER, kFragment, "lens fragment"}})) {
-  glGenVertexArrays(1, &vao_);
-}
+          std::vector<ShaderSource>{{GL_VERTEX_SHADER, kFullScreenVertex, "lens vertex"},
+                                    {GL_FRAGMENT_SHADER, kFragment, "lens fragment"}})) {}
 
-LensPass::~LensPass() {
-  glDeleteFramebuffers(1, &fbo_);
-  glDeleteTextures(1, &color_);
-  glDeleteRenderbuffers(1, &depth_);
-  glDeleteVertexArrays(1, &vao_);
-}
-
-void LensPass::ensure_size(int width, int height) {
-  if (fbo_ != 0 && width == width_ && height == height_) return;
-  if (fbo_ == 0) {
-    glGenFramebuffers(1, &fbo_);
-    glGenTextures(1, &color_);
-    glGenRenderbuffers(1, &depth_);
-  }
-  width_ = width;
-  height_ = height;
-  glBindTexture(GL_TEXTURE_2D, color_);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glBindTexture(GL_TEXTURE_2D, 0);
-  glBindRenderbuffer(GL_RENDERBUFFER, depth_);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
-  glBindRenderbuffer(GL_RENDERBUFFER, 0);
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color_, 0);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
-}
+LensPass::~LensPass() = default;
 
 void LensPass::begin(int width, int height) {
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target_);
   glGetIntegerv(GL_VIEWPORT, viewport_);
-  ensure_size(std::max(width, 1), std::max(height, 1));
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-  glViewport(0, 0, width_, height_);
+  picture_.bind(std::max(width, 1), std::max(height, 1));
 }
 
 void LensPass::end(const LensSettings& lens) {
@@ -107,17 +66,13 @@ void LensPass::end(const LensSettings& lens) {
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);  // every pixel is replaced, coverage (alpha) included
   glUseProgram(program_->id());
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, color_);
   glUniform1i(program_->uniform("u_picture"), 0);
-  glUniform2f(program_->uniform("u_size"), static_cast<float>(width_), static_cast<float>(height_));
+  glUniform2f(program_->uniform("u_size"), static_cast<float>(picture_.width()),
+              static_cast<float>(picture_.height()));
   glUniform1f(program_->uniform("u_k"), std::max(lens.distortion, 0.0f));
   glUniform1f(program_->uniform("u_vignette"), std::clamp(lens.vignette, 0.0f, 0.99f));
   glUniform1i(program_->uniform("u_antialias"), lens.antialias ? 1 : 0);
-  glBindVertexArray(vao_);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glBindVertexArray(0);
-  glBindTexture(GL_TEXTURE_2D, 0);
+  picture_.draw_full_screen();
   glUseProgram(0);
   glEnable(GL_DEPTH_TEST);
 }

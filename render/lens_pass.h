@@ -6,6 +6,8 @@
 
 #include <memory>
 
+#include "render/picture_target.h"
+
 namespace serosa::render {
 
 class GlProgram;
@@ -37,13 +39,10 @@ class LensPass {
   void end(const LensSettings& lens);
 
  private:
-  void ensure_size(int width, int height);
-
   std::unique_ptr<GlProgram> program_;
-  unsigned int fbo_ = 0, color_ = 0, depth_ = 0, vao_ = 0;
+  PictureTarget picture_;           // what is drawn through the optic
   int target_ = 0;                  // the framebuffer bound at begin()
   int viewport_[4] = {0, 0, 0, 0};  // and its viewport
-  int width_ = 0, height_ = 0;
 };
 
 }  // namespace serosa::render

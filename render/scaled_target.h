@@ -6,6 +6,8 @@
 
 #include <memory>
 
+#include "render/picture_target.h"
+
 namespace serosa::render {
 
 class GlProgram;
@@ -34,12 +36,9 @@ class ScaledTarget {
   [[nodiscard]] float scale() const { return scale_; }
 
  private:
-  void ensure_size(int width, int height);
-
   std::unique_ptr<GlProgram> program_;
-  unsigned int fbo_ = 0, color_ = 0, depth_ = 0, vao_ = 0;
-  int target_ = 0;  // the framebuffer bound at begin()
-  int width_ = 0, height_ = 0;
+  PictureTarget target_picture_;  // the lower resolution's picture
+  int target_ = 0;                // the framebuffer bound at begin()
   float scale_ = 1.0f;
 };
 

@@ -63,12 +63,17 @@ double gradient_dot(std::uint32_t h, double x, double y, double z) {
   }
 }
 
+// The lattice cell holding p (lattice units): the floor of each coordinate.
+std::array<int, 3> lattice_cell(const P3& p) {
+  return {static_cast<int>(std::floor(p[0])), static_cast<int>(std::floor(p[1])),
+          static_cast<int>(std::floor(p[2]))};
+}
+
 double fade(double t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
 
 // Gradient noise at `p` (lattice units), repeating every `period` cells; about [-1, 1].
 double gradient_noise(const P3& p, int period, std::uint32_t seed) {
-  const std::array<int, 3> i{static_cast<int>(std::floor(p[0])), static_cast<int>(std::floor(p[1])),
-                             static_cast<int>(std::floor(p[2]))};
+  const std::array<int, 3> i = lattice_cell(p);
   const P3 f{p[0] - i[0], p[1] - i[1], p[2] - i[2]};
   double corner[2][2][2];
   for (int a = 0; a < 2; ++a)
@@ -102,8 +107,7 @@ double fractal(const P3& q, int cells, int octaves, std::uint32_t seed) {
 // units) between a point's nearest and second-nearest feature points: 0 on a cell border.
 double cell_border(const P3& q, int cells, std::uint32_t seed) {
   const P3 p{q[0] * cells, q[1] * cells, q[2] * cells};
-  const std::array<int, 3> i{static_cast<int>(std::floor(p[0])), static_cast<int>(std::floor(p[1])),
-                             static_cast<int>(std::floor(p[2]))};
+  const std::array<int, 3> i = lattice_cell(p);
   double f1 = 1e9, f2 = 1e9;
   for (int a = -1; a <= 1; ++a)
     for (int b = -1; b <= 1; ++b)

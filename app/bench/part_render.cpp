@@ -55,6 +55,7 @@ render::RenderFrame scene_frame(const BenchOptions& options, double seconds) {
       f, &state.handoff.coagulated, state.handoff.coagulated_version, &state.handoff.stain);
   fill_render_tools(scene, state, f);
   f.scenery = scenery_from_scene(scene, initial);
+  fill_taenia(initial, drawn_group_names(scene, assembled.group_names()), f);
   if (const auto scope = endoscope_view(scene, state)) f.camera = *scope;
   return f;
 }

@@ -213,10 +213,6 @@ TEST_F(PictureTest, SmokeVeilsTheTissueInFrontOfItOnly) {
   const Image clear = render_image(*ctx_, f, o);
   f.smoke.push_back({{0.0f, 0.0f, 0.06f}, 0.008f, 0.9f});  // 1 cm in front of the surface
   const Image smoky = render_image(*ctx_, f, o);
-  const auto grey = [](const Image& img, int x, int y) {
-    const auto p = img.at(x, y);
-    return (p[0] + p[1] + p[2]) / 3.0;
-  };
   const auto saturation = [](const Image& img, int x, int y) {
     const auto p = img.at(x, y);
     return static_cast<double>(std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]}));
@@ -228,7 +224,6 @@ TEST_F(PictureTest, SmokeVeilsTheTissueInFrontOfItOnly) {
     return std::abs(p[0] - 219) + std::abs(p[1] - 214) + std::abs(p[2] - 204);
   };
   EXPECT_LT(to_smoke(smoky, 160, 120), to_smoke(clear, 160, 120));
-  EXPECT_GT(grey(smoky, 160, 120), 0.0);
   EXPECT_EQ(smoky.at(5, 5), clear.at(5, 5));
   for (std::size_t i = 3; i < clear.rgba.size(); i += 4) ASSERT_EQ(smoky.rgba[i], clear.rgba[i]);
   // Behind the sphere's front (inside it): hidden.
