@@ -137,13 +137,20 @@ class ManifestReader {
 
   // The scene, loaded as the run will load it: an override of a key it does not know fails here,
   // before anything runs, naming the manifest's line.
-  void check_scene(const BatchRun& r, const toml::node& scene, const std::string& p) const {
+  void check_scene(BatchRun& r, const toml::node& scene, const std::string& p) const {
     try {
-      (void)load_scene(r.scene, r.overrides);
+      r.paced = has_rig_in_the_loop(load_scene(r.scene, r.overrides));
     } catch (const InputError& e) {
       m_in.fail(scene, p, std::string("its scene does not load: ") + e.what(),
                 "a scene that loads with the run's overrides");
     }
+  }
+
+  static bool has_rig_in_the_loop(const Scene& s) {
+    return s.settings.has(Effect::kHaptics) &&
+           std::any_of(s.tools.begin(), s.tools.end(), [](const Tool& t) {
+             return t.device.kind == DeviceKind::kRig || t.device.kind == DeviceKind::kRigEmulated;
+           });
   }
 
   TomlReader m_in;

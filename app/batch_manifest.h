@@ -38,6 +38,9 @@ struct BatchRun {
   double perturb_m = 2e-4;                      ///< its amplitude, m
   std::optional<std::filesystem::path> golden;  ///< absolute
   std::int64_t line = 0;                        ///< where its [[run]] is in the manifest
+  /// Its scene has a rig in the loop, so it steps at the wall clock's pace: it runs alone, as
+  /// a run beside it would slow it below real time and the rig's hands would outrun the tissue.
+  bool paced = false;
 };
 
 struct BatchManifest {

@@ -75,6 +75,10 @@ TEST(Batch, RunsTwoAtOnceReportsFailuresWithTheirLogsAndResumes) {
   EXPECT_NE(by_id["broken"]["reason"].get<std::string>().find("broken.csv"), std::string::npos)
       << by_id["broken"].dump(1);
   EXPECT_TRUE(fs::is_regular_file(by_id["broken"]["log"].get<std::string>()));
+  // The progress says why beneath a failed run's line: a CI log may be all there is to read.
+  EXPECT_NE(first.out.find("broken                       failed"), std::string::npos) << first.out;
+  EXPECT_NE(first.out.find(by_id["broken"]["reason"].get<std::string>()), std::string::npos)
+      << first.out;
   EXPECT_EQ(by_id["slow"]["status"], "timeout") << by_id["slow"].dump(1);
   // The seeds perturbed the path: the two runs went different ways.
   EXPECT_NE(by_id["drill.seed-1"]["metrics"]["path_length_m"],
@@ -176,6 +180,20 @@ TEST(Batch, ABadManifestIsAnErrorNamingTheLine) {
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.out.find("m.toml:3"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+// A scene with the rig in the loop steps at the wall clock's pace: the manifest marks it, and
+// the batch runs it with nothing beside it (app/run_gate.h); scripted scenes share the machine.
+TEST(Batch, ARigInTheLoopMarksItsRunPaced) {
+  const fs::path dir = out_dir("batch_paced");
+  std::ofstream(dir / "m.toml") << "[[run]]\nname = \"rig\"\nscene = \""
+                                << source("config/appendectomy_rig.toml").string() << "\"\n"
+                                << "[[run]]\nname = \"script\"\nscene = \""
+                                << source("config/appendectomy.toml").string() << "\"\n";
+  const BatchManifest m = load_manifest(dir / "m.toml", false);
+  ASSERT_EQ(m.runs.size(), 2u);
+  EXPECT_TRUE(m.runs[0].paced);
+  EXPECT_FALSE(m.runs[1].paced);
 }
 
 // A seed moves every tip by a smooth offset no larger than the amplitude, the same each time;

@@ -181,9 +181,12 @@ TEST(RigSession, TheRigScenePerformsTheWholeAppendectomyThroughTheEmulatedRig) {
   const auto& rig = hj["rig"];
   EXPECT_EQ(rig["rejected"].get<std::uint64_t>(), 0u);
   EXPECT_EQ(rig["lost"].get<std::uint64_t>(), 0u);
-  // A packet each millisecond of wall time, and the run never gets ahead of real time.
+  // A packet each millisecond of wall time, and the run never gets ahead of real time. The loop
+  // is a plain thread here (no real-time priority in CI): on a busy two-core runner it was seen
+  // to lose a tenth of its ticks, so the floor is three quarters of the rate: a loop that stalled
+  // or ran at the solver's pace would be far below it.
   const double packets = rig["packets"].get<double>();
-  EXPECT_GE(packets, 900.0 * report["simulated_time_s"].get<double>()) << rig.dump(1);
+  EXPECT_GE(packets, 750.0 * report["simulated_time_s"].get<double>()) << rig.dump(1);
   EXPECT_LT(packets, 1000.0 * report["wall_time_s"].get<double>() + 50.0) << rig.dump(1);
   // The force commands reached the emulated firmware, none malformed.
   EXPECT_GT(rig["emulated"]["forces_ok"].get<double>(), 0.5 * packets);
