@@ -19,6 +19,61 @@ const Material& AssembledScene::material(const Scene& scene, int g) const {
   return scene.organs[info.organ].material_for(info.local_id);
 }
 
+namespace {
+
+// Marks the nodes the organ's fixed selections pick (box in the scene frame, groups, node ids in
+// mesh-file order) and counts what each picked.
+FixedCount fix_nodes(const Scene& scene, const Organ& organ, const TetMesh& part,
+                     std::int32_t node_base, const std::map<int, int>& to_global, TetMesh& mesh) {
+  const FixedSpec& fixed = organ.fixed;
+  FixedCount count{organ.name, {}, {}, {}, 0};
+  std::vector<std::uint8_t> picked(static_cast<std::size_t>(part.num_nodes()), 0);
+  if (fixed.box) {
+    count.box = 0;
+    for (std::int32_t i = 0; i < part.num_nodes(); ++i)
+      if (fixed.box->contains(mesh.rest[node_base + i])) {
+        picked[static_cast<std::size_t>(i)] = 1;
+        ++*count.box;
+      }
+  }
+  if (!fixed.groups.empty()) {
+    std::vector<std::uint8_t> in_groups(picked.size(), 0);
+    for (int g : fixed.groups) {
+      if (!to_global.count(g))
+        throw InputError(scene.file.string(), 0,
+                         "organ '" + organ.name + "': fixed group " + std::to_string(g) +
+                             " has no tets in " + organ.mesh.string(),
+                         "one of the mesh's group ids");
+      for (std::int32_t t = 0; t < part.num_tets(); ++t)
+        if (part.group[t] == g)
+          for (std::int32_t id : part.tets[t]) in_groups[static_cast<std::size_t>(id)] = 1;
+    }
+    count.groups = 0;
+    for (std::size_t i = 0; i < picked.size(); ++i)
+      if (in_groups[i]) {
+        picked[i] = 1;
+        ++*count.groups;
+      }
+  }
+  if (!fixed.nodes.empty()) count.nodes = static_cast<std::int32_t>(fixed.nodes.size());
+  for (std::int32_t id : fixed.nodes) {
+    if (id < 0 || id >= part.num_nodes())
+      throw InputError(
+          scene.file.string(), 0,
+          "organ '" + organ.name + "': fixed node " + std::to_string(id) + " out of range",
+          "0.." + std::to_string(part.num_nodes() - 1));
+    picked[static_cast<std::size_t>(id)] = 1;
+  }
+  for (std::size_t i = 0; i < picked.size(); ++i)
+    if (picked[i]) {
+      mesh.fixed[static_cast<std::size_t>(node_base) + i] = 1;
+      ++count.total;
+    }
+  return count;
+}
+
+}  // namespace
+
 AssembledScene assemble_state(const Scene& scene) {
   AssembledScene out;
   TetMesh& mesh = out.state.mesh;
@@ -58,29 +113,7 @@ AssembledScene assemble_state(const Scene& scene) {
     }
     group_offset = local_groups.empty() ? group_offset : to_global.rbegin()->second;
 
-    // Fixed nodes: box (in scene frame), groups, node ids (mesh-file order).
-    const FixedSpec& fixed = organ.fixed;
-    if (fixed.box)
-      for (std::int32_t i = 0; i < part.num_nodes(); ++i)
-        if (fixed.box->contains(mesh.rest[node_base + i])) mesh.fixed[node_base + i] = 1;
-    for (int g : fixed.groups) {
-      if (!to_global.count(g))
-        throw InputError(scene.file.string(), 0,
-                         "organ '" + organ.name + "': fixed group " + std::to_string(g) +
-                             " has no tets in " + organ.mesh.string(),
-                         "one of the mesh's group ids");
-      for (std::int32_t t = 0; t < part.num_tets(); ++t)
-        if (part.group[t] == g)
-          for (std::int32_t id : part.tets[t]) mesh.fixed[node_base + id] = 1;
-    }
-    for (std::int32_t id : fixed.nodes) {
-      if (id < 0 || id >= part.num_nodes())
-        throw InputError(
-            scene.file.string(), 0,
-            "organ '" + organ.name + "': fixed node " + std::to_string(id) + " out of range",
-            "0.." + std::to_string(part.num_nodes() - 1));
-      mesh.fixed[node_base + id] = 1;
-    }
+    out.fixed.push_back(fix_nodes(scene, organ, part, node_base, to_global, mesh));
     out.reads.push_back(std::move(report));
   }
   out.state.tools.resize(scene.tools.size());

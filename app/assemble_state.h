@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,8 +21,19 @@ struct GroupInfo {
   std::string name;       ///< "appendix" (one organ) or "liver/liver" (several organs)
 };
 
+/// How many nodes of one organ each of its fixed selections picked (a node two pick counts in
+/// both; `total` counts it once).
+struct FixedCount {
+  std::string organ;
+  std::optional<std::int32_t> box;     ///< nodes in the box, when the organ gives one
+  std::optional<std::int32_t> groups;  ///< nodes of the groups' tets, when it lists groups
+  std::optional<std::int32_t> nodes;   ///< nodes listed by id, when it lists them
+  std::int32_t total = 0;              ///< fixed nodes of the organ
+};
+
 struct AssembledScene {
   SimState state;                     ///< all organs in one TetMesh, tools at rest
+  std::vector<FixedCount> fixed;      ///< per organ, scene order
   std::map<int, GroupInfo> groups;    ///< scene-wide group id -> origin
   std::vector<MeshReadReport> reads;  ///< (organs) what each mesh read reported
 

@@ -1,6 +1,8 @@
 #include "app/batch_manifest.h"
 
 #include <algorithm>
+#include <cctype>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -39,12 +41,12 @@ class ManifestReader {
     const auto* arr = runs ? runs->as_array() : nullptr;
     if (arr == nullptr || arr->empty())
       throw InputError(m_in.file().string(), 0, "no [[run]] tables", "one [[run]] per run");
-    std::set<std::string> names;
+    Seen seen;
     for (std::size_t i = 0; i < arr->size(); ++i) {
       const std::string p = "run[" + std::to_string(i) + "]";
       const auto* t = (*arr)[i].as_table();
       if (t == nullptr) m_in.fail((*arr)[i], p, "not a table", "a [[run]] table");
-      read_run(*t, p, names, m.runs);
+      read_run(*t, p, seen, m.runs);
     }
     return m;
   }
@@ -67,9 +69,20 @@ class ManifestReader {
     return s.str();
   }
 
-  void read_run(const toml::table& t, const std::string& p, std::set<std::string>& names,
+  // What earlier runs took: names are unique, and so are goldens (two runs writing one golden
+  // under --update-golden would leave the last writer's).
+  struct Seen {
+    std::set<std::string> names;              ///< [[run]] names
+    std::set<std::string> ids;                ///< the runs they expand into (sweeps, seeds)
+    std::map<fs::path, std::string> goldens;  ///< golden -> the run that names it
+  };
+
+  void read_run(const toml::table& t, const std::string& p, Seen& seen,
                 std::vector<BatchRun>& out) const {
-    m_in.check_keys(t, p, {"name", "scene", "steps", "path", "set", "seeds", "perturb", "golden"});
+    std::set<std::string>& names = seen.names;
+    m_in.check_keys(
+        t, p,
+        {"name", "scene", "steps", "path", "set", "sweep", "seeds", "perturb", "golden", "strict"});
     BatchRun r;
     r.line = t.source().begin.line;
     const toml::node& name = m_in.required(t, p, "name");
@@ -99,11 +112,65 @@ class ManifestReader {
       if (!m_new_goldens && !fs::is_regular_file(*r.golden))
         m_in.fail(*n, p + ".golden", "no such golden " + r.golden->string(),
                   "a golden report (--update-golden writes it)");
+      const auto [other, fresh] = seen.goldens.emplace(*r.golden, r.group);
+      if (!fresh)
+        m_in.fail(*n, p + ".golden",
+                  "golden " + r.golden->string() + " is named by run '" + other->second + "' too",
+                  "a golden of its own for each run");
     }
-    check_scene(r, scene, p);
+    if (const auto* n = t.get("strict")) r.strict = m_in.boolean(*n, p + ".strict");
+    r.id = r.group;
+    for (BatchRun& v : swept(t, p, r)) {
+      check_scene(v, scene, p);
+      add_seeded(t, p, std::move(v), seen.ids, out);
+    }
+  }
+
+  // The run once per combination of its sweep's values (the cross product; keys in the order of
+  // their names, values as listed), each named by them: "tol.dt-0.0025.tolerance-0.001".
+  std::vector<BatchRun> swept(const toml::table& t, const std::string& p, const BatchRun& r) const {
+    const toml::node* n = t.get("sweep");
+    if (n == nullptr) return {r};
+    const auto* keys = n->as_table();
+    if (keys == nullptr || keys->empty())
+      m_in.fail(*n, p + ".sweep", "not a table of lists",
+                "{ \"solver.tolerance\" = [1e-3, 1e-4] }");
+    if (r.golden)
+      m_in.fail(*n, p + ".sweep", "a sweep with a golden", "a golden for a single run only");
+    std::vector<BatchRun> runs{r};
+    for (const auto& [key, values] : *keys) {
+      const std::string k(key.str());
+      const auto* a = values.as_array();
+      if (a == nullptr || a->empty())
+        m_in.fail(values, p + ".sweep." + k, "not a list of values", "[value, value, ...]");
+      std::vector<BatchRun> next;
+      for (const BatchRun& v : runs)
+        for (const toml::node& x : *a) {
+          BatchRun w = v;
+          w.overrides.push_back({k, value_text(x)});
+          w.id.append(".").append(k, k.rfind('.') + 1).append("-").append(label(value_text(x)));
+          next.push_back(std::move(w));
+        }
+      runs = std::move(next);
+    }
+    return runs;
+  }
+
+  // A value as a run name carries it: letters, digits, '.', '+' and '-'; anything else '_'.
+  static std::string label(std::string v) {
+    std::erase_if(v, [](char c) { return c == '"' || c == '\''; });
+    for (char& c : v)
+      if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '+' && c != '-') c = '_';
+    return v;
+  }
+
+  // The run, or one per seed (its path perturbed) when it lists seeds.
+  void add_seeded(const toml::table& t, const std::string& p, BatchRun r,
+                  std::set<std::string>& names, std::vector<BatchRun>& out) const {
     const auto* seeds = t.get("seeds");
     if (seeds == nullptr) {
-      r.id = r.group;
+      if (!names.insert(r.id).second)
+        m_in.fail(t, p, "a second run named '" + r.id + "'", "unique names and sweep values");
       out.push_back(std::move(r));
       return;
     }
@@ -117,7 +184,7 @@ class ManifestReader {
       if (s < 0) m_in.fail((*a)[k], p + ".seeds", "negative", "seeds >= 0");
       BatchRun seeded = r;
       seeded.seed = static_cast<std::uint64_t>(s);
-      seeded.id = r.group + ".seed-" + std::to_string(s);
+      seeded.id = r.id + ".seed-" + std::to_string(s);
       if (!names.insert(seeded.id).second)
         m_in.fail((*a)[k], p + ".seeds", "seed " + std::to_string(s) + " twice", "unique seeds");
       out.push_back(std::move(seeded));

@@ -11,9 +11,12 @@
 //   steps = 400                            # default: the scene's headless.steps
 //   path = "paths/x.csv"                   # default: the scene's own scripts
 //   set = { "solver.tolerance" = 1e-4 }    # overrides of scene keys (engine/scene_override.h)
+//   sweep = { "solver.tolerance" = [1e-3, 1e-4] }  # one run per combination of the values,
+//                                          # named NAME.tolerance-0.001 (not with a golden)
 //   seeds = [1, 2, 3]                      # one run per seed, the path perturbed by it
 //   perturb = 2e-4                         # m: the perturbation's amplitude (default 2e-4)
 //   golden = "goldens/appendectomy.json"   # compared with the report (not with seeds)
+//   strict = true                          # a run that warns fails (serosa headless --strict)
 #pragma once
 
 #include <cstdint>
@@ -38,6 +41,7 @@ struct BatchRun {
   double perturb_m = 2e-4;                      ///< its amplitude, m
   std::optional<std::filesystem::path> golden;  ///< absolute
   std::int64_t line = 0;                        ///< where its [[run]] is in the manifest
+  bool strict = false;                          ///< a warning fails the run (--strict)
   /// Its scene has a rig in the loop, so it steps at the wall clock's pace: it runs alone, as
   /// a run beside it would slow it below real time and the rig's hands would outrun the tissue.
   bool paced = false;

@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "app/path_perturb.h"
+#include "app/run_fingerprint.h"
 #include "app/run_gate.h"
 #include "engine/scene.h"
 
@@ -50,6 +51,7 @@ std::vector<std::string> headless_args(const BatchRun& r, const BatchOptions& o,
     a.insert(a.end(), {"--path", r.path->string()});
   }
   for (const SceneOverride& s : r.overrides) a.insert(a.end(), {"--set", s.key + "=" + s.value});
+  if (r.strict) a.emplace_back("--strict");
   if (r.golden) {
     a.insert(a.end(), {"--golden", r.golden->string()});
     if (o.update_golden) a.emplace_back("--update-golden");
@@ -123,15 +125,21 @@ Exit run_process(const std::vector<std::string>& argv, const std::vector<std::st
   return e;
 }
 
-// The last line of the log that says what went wrong ("error: ...", "golden mismatch: ...").
+// What went wrong, from the log: its last error line, else the golden comparison's first
+// mismatch and, when another, the largest ("golden mismatch, largest: ...").
 std::string reason_in(const fs::path& log) {
   std::ifstream in(log);
-  std::string line, last;
-  while (std::getline(in, line))
-    if (line.rfind("error:", 0) == 0 || line.rfind("internal error:", 0) == 0 ||
-        line.rfind("golden mismatch:", 0) == 0)
-      last = line;
-  return last;
+  std::string line, error, first, largest;
+  const auto starts = [&](const char* s) { return line.rfind(s, 0) == 0; };
+  while (std::getline(in, line)) {
+    if (starts("error:") || starts("internal error:")) error = line;
+    if (starts("golden mismatch:") && first.empty()) first = line;
+    if (starts("golden mismatch, largest:")) largest = line;
+  }
+  if (!error.empty()) return error;
+  if (largest.empty() || largest.substr(largest.find(':')) == first.substr(first.find(':')))
+    return first;
+  return first + "; " + largest.substr(std::string("golden mismatch, ").size());
 }
 
 Json result_of(const BatchRun& r, const fs::path& dir, const Exit& e, double wall_s) {
@@ -145,8 +153,14 @@ Json result_of(const BatchRun& r, const fs::path& dir, const Exit& e, double wal
          {"report", (dir / "report.json").string()},
          {"recording", (dir / "run.lapr").string()}};
   j["seed"] = r.seed ? Json(*r.seed) : Json(nullptr);
+  j["steps"] = r.steps ? Json(*r.steps) : Json(nullptr);  // null: the scene's own
+  j["overrides"] = Json::array();
+  for (const SceneOverride& s : r.overrides)
+    j["overrides"].push_back({{"key", s.key}, {"value", s.value}});
   j["status"] = e.timed_out ? "timeout" : e.code == 0 ? "passed" : "failed";
-  j["golden"] = !r.golden ? "none" : e.code == 0 ? "match" : e.code == 3 ? "mismatch" : "unknown";
+  // Exit 4 (--strict: the run warned) comes after the golden matched.
+  const bool matched = e.code == 0 || e.code == 4;
+  j["golden"] = !r.golden ? "none" : matched ? "match" : e.code == 3 ? "mismatch" : "unknown";
   std::string reason = e.timed_out     ? "stopped after the manifest's timeout"
                        : e.signal != 0 ? "killed by signal " + std::to_string(e.signal)
                                        : reason_in(dir / "log.txt");
@@ -181,6 +195,8 @@ void print_progress(std::size_t done, std::size_t total, const Json& result) {
   std::fprintf(stderr, "[%s] %zu/%zu  %-28s %-8s %6.1f s\n", bar, done, total,
                result.value("id", "").c_str(), result.value("status", "?").c_str(),
                result.value("wall_s", 0.0));
+  if (result.value("kept", false))
+    std::fprintf(stderr, "    kept: unchanged since its result (--resume)\n");
   // Why, where a CI log is all there is to read.
   const std::string why = result.value("reason", "");
   if (!why.empty()) std::fprintf(stderr, "    %s\n", why.c_str());
@@ -201,8 +217,18 @@ std::optional<Json> finished_result(const BatchOptions& o, const BatchRun& r) {
 }
 
 Json run_one(const BatchManifest& m, const BatchRun& r, const BatchOptions& o) {
+  const std::string fingerprint = run_fingerprint(r, o.binary);
   if (o.resume)
-    if (auto done = finished_result(o, r)) return *done;
+    if (auto done = finished_result(o, r)) {
+      if (done->value("fingerprint", "") == fingerprint) {
+        (*done)["kept"] = true;
+        return *done;
+      }
+      std::fprintf(stderr,
+                   "resume: %s changed since its result (its scene, path, keys, golden or the "
+                   "binary): running it again\n",
+                   r.id.c_str());
+    }
   const fs::path dir = run_dir(o, r);
   fs::remove_all(dir);  // a run interrupted before its result starts over
   fs::create_directories(dir);
@@ -218,7 +244,8 @@ Json run_one(const BatchManifest& m, const BatchRun& r, const BatchOptions& o) {
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   Json j = result_of(r, dir, e, wall);
-  if (o.update_golden && r.golden && e.code == 0) j["golden"] = "written";
+  j["fingerprint"] = fingerprint;
+  if (o.update_golden && r.golden && (e.code == 0 || e.code == 4)) j["golden"] = "written";
   write_result(dir, j);
   return j;
 }

@@ -23,6 +23,7 @@ struct BatchOptions {
   bool resume = false;         ///< skip runs with a result
   bool update_golden = false;  ///< write each run's golden instead of comparing
   bool progress = true;        ///< a line per finished run on stderr
+  std::string binary;          ///< the executable's id (app/version.h): part of a fingerprint
 };
 
 /// DIR/runs/ID: where a run keeps its files.
@@ -32,7 +33,9 @@ struct BatchOptions {
 [[nodiscard]] std::optional<nlohmann::json> finished_result(const BatchOptions& o,
                                                             const BatchRun& r);
 
-/// Runs one run (unless `resume` and it has a result) and returns its result: id, group, seed,
+/// Runs one run (unless `resume` and it has a result with the run's fingerprint, then marked
+/// "kept"; a result of a changed run is said and run again) and returns its result: id, group,
+/// seed, fingerprint (app/run_fingerprint.h),
 /// status ("passed", "failed" or "timeout"), exit_code, signal, wall_s, real_time_factor,
 /// simulated_time_s, golden ("match", "mismatch", "written" or "none"), reason (why not passed),
 /// log, report, recording, metrics (the report's, for the spread over seeds).

@@ -14,6 +14,7 @@
 #include "app/batch_slurm.h"
 #include "app/batch_summary.h"
 #include "app/command.h"
+#include "app/version.h"
 #include "engine/input_error.h"
 
 namespace serosa::app {
@@ -34,6 +35,7 @@ int run_batch(const BatchArgs& a) {
   o.jobs = a.jobs;
   o.resume = a.resume;
   o.update_golden = a.update_golden;
+  o.binary = binary_id();
   if (a.index >= 0) {
     if (static_cast<std::size_t>(a.index) >= m.runs.size())
       throw InputError("--index", 0, std::to_string(a.index) + " is past the manifest's runs",

@@ -133,6 +133,9 @@ int run_check(const CheckArgs& args) {
   const TetMesh mesh = read_mesh(args.mesh, options, &read);
   MeshCheckOptions check_options;
   check_options.flat_tolerance = options.flat_tolerance;
+  check_options.tet_lines = read.tet_lines;  // a problem names the tet's element and line
+  check_options.tet_ids = read.tet_ids;
+  check_options.tet_file = read.tet_file;
   const MeshCheckReport report = check_mesh(mesh, check_options);
 
   const Pieces pieces = count_pieces(mesh, report);
@@ -150,6 +153,25 @@ int run_check(const CheckArgs& args) {
   return 0;
 }
 
+// With --json, a mesh that does not load is a JSON error object on stdout too (exit 1), so a
+// script reading stdout never gets nothing.
+int run_check_reporting(const CheckArgs& args) {
+  if (!args.json) return run_check(args);
+  try {
+    return run_check(args);
+  } catch (const InputError& e) {
+    const nlohmann::json j{{"mesh", args.mesh},
+                           {"valid", false},
+                           {"error",
+                            {{"file", e.file()},
+                             {"line", e.line()},
+                             {"message", e.message()},
+                             {"expected", e.expected()}}}};
+    std::printf("%s\n", j.dump(2).c_str());
+    throw;  // and on stderr as every other error
+  }
+}
+
 }  // namespace
 
 void add_check_command(CLI::App& app, Action& action) {
@@ -160,7 +182,7 @@ void add_check_command(CLI::App& app, Action& action) {
   cmd->add_flag("--json", args->json, "Print one JSON object instead of text");
   cmd->add_flag("--repair-inverted", args->repair_inverted,
                 "Repair inverted tets (swap two nodes) instead of rejecting the file");
-  cmd->callback([&action, args] { action = [args] { return run_check(*args); }; });
+  cmd->callback([&action, args] { action = [args] { return run_check_reporting(*args); }; });
 }
 
 }  // namespace serosa::app

@@ -5,15 +5,16 @@
 // progressive stroke (cutting/progressive_cut.h: consecutive coplanar polygons whose union is
 // convex are cut as the region swept so far; the nodes in no tet, which each step releases, are
 // dropped from the output, and a stroke's "tets created" are its pieces at its end). Writes the
-// result as Gmsh 2.2 ASCII (rest positions, each tet's group as its physical tag) and prints a
+// result at rest positions in the format --out's name says: .msh (Gmsh 2.2 ASCII, each tet's group
+// as its physical tag), .vtu (ParaView) or .obj (the boundary surface); and prints a
 // summary: tets, nodes, volume and minimum quality before and after, tets created, and the time of
 // each cut (docs/ARCHITECTURE.md "External contracts"). A cut's time is the candidate query through
 // the BVH, the cut itself, apply() and the BVH's local update. Bad flags (a polygon that does not
 // parse, has fewer than 3 points, is not planar or not convex; an unknown method; an --out that is
-// a directory or lies in no existing directory) are InputErrors naming the flag and its value:
-// exit 1, before any cut runs. A polygon that changes nothing is a warning (stderr, and the JSON's
-// "warnings"). Debug builds check every pattern cut with cutting::check_cut (a broken invariant is
-// our bug: exit 2).
+// a folder, lies in no existing folder or names no format) are InputErrors naming the flag and its
+// value: exit 1, before any cut runs. A polygon that changes nothing is a warning (stderr, and the
+// JSON's "warnings"). Debug builds check every pattern cut with cutting::check_cut (a broken
+// invariant is our bug: exit 2).
 #include <charconv>
 #include <chrono>
 #include <cstdio>
@@ -27,6 +28,7 @@
 #include <vector>
 
 #include "app/command.h"
+#include "app/output_paths.h"
 #include "cutting/convex_polygon.h"
 #include "cutting/cut_method.h"
 #include "cutting/progressive_cut.h"
@@ -171,12 +173,8 @@ int run_cut(const CutArgs& args) {
     throw InputError(args.mesh, 0, "no such file", "an existing mesh file");
 
   // The output's place is checked before any cut runs (a long run must not end on a typo).
-  const std::filesystem::path out(args.out);
-  if (std::filesystem::is_directory(out, ec))
-    throw InputError("--out " + args.out, 0, "is a directory", "a file path (.msh)");
-  if (out.has_parent_path() && !std::filesystem::is_directory(out.parent_path(), ec))
-    throw InputError("--out " + args.out, 0, "its directory does not exist",
-                     "a path in an existing directory");
+  check_output_file("--out", args.out);
+  const MeshOutputFormat format = mesh_output_format("--out", args.out);
 
   MeshReadReport read;
   TetMesh mesh = read_mesh(args.mesh, {}, &read);
@@ -251,7 +249,7 @@ int run_cut(const CutArgs& args) {
     created += static_cast<std::int64_t>(stroke.num_pieces());
     drop_unused_nodes(mesh);
   }
-  write_gmsh22(args.out, mesh, false, read.group_names);
+  write_mesh_output(args.out, format, mesh, read.group_names, /*current=*/false);
   const MeshSummary after = summarize(mesh);
 
   if (args.json) {

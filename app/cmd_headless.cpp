@@ -1,8 +1,11 @@
-// serosa headless SCENE|--task NAME [--steps N] [--path TOOLPATH.csv] [--record OUT.lapr]
-//                       [--export-final OUT.msh] [--report OUT.json] [--frames DIR]
+// serosa headless SCENE|--task NAME [--steps N|--seconds S] [--path TOOLPATH.csv]
+//                       [--record OUT.lapr] [--export-final OUT.msh|.vtu|.obj] [--report OUT.json]
+//                       [--series OUT.csv] [--vtu-series DIR [--vtu-every N]] [--frames DIR]
 //                       [--golden GOLDEN.json [--update-golden]] [--validate-cuts]
-//                       [--trainee NAME [--db FILE]] [--set KEY=VALUE ...]
-// Exit codes: 0 done; 1 bad input; 3 the report differs from the golden (or it is missing).
+//                       [--trainee NAME [--db FILE]] [--set KEY=VALUE ...] [--strict]
+// Exit codes: 0 done; 1 bad input; 3 the report differs from the golden (or it is missing);
+// 4 with --strict, the run warned (app/run_warnings.h: the solver left steps above its tolerance,
+// gained energy or rejected a step, a fixed selection picked nothing). A golden mismatch wins.
 // Ctrl-C or SIGTERM stops after the current step with the recording closed and the report written.
 #include <atomic>
 #include <csignal>
@@ -28,6 +31,16 @@ std::atomic<bool> g_stop_requested{false};  // NOLINT: the one signal flag
 
 extern "C" void request_stop(int /*signal*/) { g_stop_requested.store(true); }
 
+// 4 when --strict and the report lists warnings, saying so as an error (a batch's reason);
+// else 0.
+int strict_exit(const nlohmann::json& report, bool strict) {
+  const auto it = report.find("warnings");
+  if (!strict || it == report.end() || it->empty()) return 0;
+  std::fprintf(stderr, "error: --strict: the run warned %zu time(s); the first: %s\n", it->size(),
+               (*it)[0].value("text", "").c_str());
+  return 4;
+}
+
 }  // namespace
 
 void add_headless_command(CLI::App& app, Action& action) {
@@ -40,6 +53,7 @@ void add_headless_command(CLI::App& app, Action& action) {
   auto frames = std::make_shared<std::string>();
   auto golden = std::make_shared<std::string>();
   auto update_golden = std::make_shared<bool>(false);
+  auto strict = std::make_shared<bool>(false);
   auto trainee = std::make_shared<TraineeOptions>();
   auto sets = std::make_shared<std::vector<std::string>>();
   CLI::App* cmd = app.add_subcommand("headless", "Run a scene without window or device");
@@ -47,10 +61,22 @@ void add_headless_command(CLI::App& app, Action& action) {
   auto task = std::make_shared<TaskOption>();
   cmd->add_option("scene", *scene, "Scene TOML file (or --task NAME)");
   add_task_options(*cmd, *task);
-  cmd->add_option("--steps", *steps, "Solver steps (default: the scene's headless.steps)");
+  CLI::Option* steps_opt =
+      cmd->add_option("--steps", *steps, "Solver steps (default: the scene's headless.steps)");
+  cmd->add_option("--seconds", opts->seconds,
+                  "Simulated seconds instead of --steps (a dt sweep keeps the time, not the steps)")
+      ->excludes(steps_opt);
   cmd->add_option("--path", *path, "Tool path CSV replacing every scripted tool's path");
   cmd->add_option("--record", *record, "Record the run to a .lapr file");
-  cmd->add_option("--export-final", *final_msh, "Write the final state as Gmsh 2.2");
+  cmd->add_option("--export-final", *final_msh,
+                  "Write the final state: .msh (Gmsh 2.2), .vtu (ParaView) or .obj (its surface)");
+  cmd->add_option("--series", opts->series,
+                  "Write a per-step CSV: time, step time, iterations, residual, energy, tool "
+                  "forces");
+  cmd->add_option("--vtu-series", opts->vtu_series,
+                  "Write the mesh as VTU every --vtu-every steps into this folder, with a .pvd");
+  cmd->add_option("--vtu-every", opts->vtu_every, "Steps between --vtu-series files (default 10)")
+      ->check(CLI::Range(std::int64_t{1}, std::int64_t{1000000000}));
   cmd->add_option("--report", *report, "Write the JSON report here (also printed)");
   cmd->add_option("--frames", *frames, "Write PNG pictures of the run into this folder");
   cmd->add_option("--golden", *golden,
@@ -63,13 +89,16 @@ void add_headless_command(CLI::App& app, Action& action) {
       ->check(CLI::Range(1, 100000));
   add_camera_option(*cmd, opts->fitted_camera);
   add_trainee_options(*cmd, *trainee);
+  cmd->add_flag("--strict", *strict,
+                "Exit 4 when the run warned: steps the solver left above its tolerance, energy "
+                "gained, steps rejected, a fixed selection that picked no node");
   cmd->add_option("--set", *sets,
                   "Override a scene key, KEY=VALUE with a TOML value (solver.tolerance=1e-4); "
                   "repeatable");
   cmd->callback([&action, opts, record, steps, path, final_msh, report, frames, golden,
-                 update_golden, trainee, scene, task, sets] {
+                 update_golden, trainee, scene, task, sets, strict] {
     action = [opts, record, steps, path, final_msh, report, frames, golden, update_golden, trainee,
-              scene, task, sets] {
+              scene, task, sets, strict] {
       opts->scene = scene_to_run(*scene, *task);
       for (const std::string& s : *sets) opts->overrides.push_back(parse_override(s, "--set"));
       opts->positions = !golden->empty();
@@ -89,17 +118,20 @@ void add_headless_command(CLI::App& app, Action& action) {
       if (!frames->empty()) opts->frames = *frames;
       const auto json = run_headless(*opts);
       std::printf("%s\n", json.dump(2).c_str());
-      if (kept)  // after the recording and the report are written
+      std::fflush(stdout);  // whole, before stderr's lines: a log holding both reads in order
+      if (kept)             // after the recording and the report are written
         file_session(*kept, opts->scene, json, opts->record, opts->report);
-      if (golden->empty()) return 0;
+      if (golden->empty()) return strict_exit(json, *strict);
       const GoldenComparison g = check_golden(json, *golden, *update_golden);
       for (const std::string& n : g.notes) std::fprintf(stderr, "note: %s\n", n.c_str());
       for (const std::string& f : g.failures)
         std::fprintf(stderr, "golden mismatch: %s\n", f.c_str());
+      if (g.failures.size() > 1)  // the cause is rarely the last line (the state hash)
+        std::fprintf(stderr, "golden mismatch, largest: %s\n", g.failures[g.largest].c_str());
       if (!g.ok()) return 3;
       std::fprintf(stderr, "%s %s\n",
                    *update_golden ? "golden written:" : "golden matches:", golden->c_str());
-      return 0;
+      return strict_exit(json, *strict);
     };
   });
 }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 
 namespace serosa::app {
 namespace {
@@ -16,6 +17,17 @@ const Json* find(const Json& j, const std::string& pointer) {
 
 std::string text(const Json& j) { return j.dump(); }
 
+// A failure `excess` times its tolerance away (infinity: no tolerance applies).
+void fail(GoldenComparison& out, std::string line, double excess) {
+  if (out.failures.empty() || excess > out.largest_excess) {
+    out.largest = out.failures.size();
+    out.largest_excess = excess;
+  }
+  out.failures.push_back(std::move(line));
+}
+
+constexpr double kBeyondAnyTolerance = std::numeric_limits<double>::infinity();
+
 void exact(const Json& r, const Json& g, const std::string& key, GoldenComparison& out) {
   const Json* a = find(r, key);
   const Json* b = find(g, key);
@@ -24,7 +36,7 @@ void exact(const Json& r, const Json& g, const std::string& key, GoldenCompariso
     std::string line = key;
     line.append(": golden ").append(b ? text(*b) : "absent");
     line.append(", got ").append(a ? text(*a) : "absent").append(" (must be equal)");
-    out.failures.push_back(std::move(line));
+    fail(out, std::move(line), kBeyondAnyTolerance);
   }
 }
 
@@ -55,7 +67,8 @@ void near(const Json& r, const Json& g, const std::string& key, double rel, doub
     std::string line = key;
     line.append(": golden ").append(text(*b)).append(", got ").append(a ? text(*a) : "absent");
     line.append(buf);
-    out.failures.push_back(std::move(line));
+    fail(out, std::move(line),
+         numbers && tol > 0.0 && std::isfinite(x) ? std::abs(x - y) / tol : kBeyondAnyTolerance);
   }
 }
 
@@ -81,8 +94,10 @@ void near_positions(const Json& r, const Json& g, GoldenComparison& out) {
   const Json* b = find(g, "/nodes_final_m");
   if (a == nullptr || b == nullptr) return;
   if (a->size() != b->size()) {
-    out.failures.push_back("nodes_final_m: golden " + std::to_string(b->size()) + " nodes, got " +
-                           std::to_string(a->size()));
+    fail(out,
+         "nodes_final_m: golden " + std::to_string(b->size()) + " nodes, got " +
+             std::to_string(a->size()),
+         kBeyondAnyTolerance);
     return;
   }
   std::size_t beyond = 0, worst = 0;
@@ -104,7 +119,7 @@ void near_positions(const Json& r, const Json& g, GoldenComparison& out) {
                 "node %zu, by %.3g m: golden %s, got %s",
                 beyond, a->size(), kGoldenPositionTolerance, worst, worst_d,
                 (*b)[worst].dump().c_str(), (*a)[worst].dump().c_str());
-  out.failures.push_back(buf);
+  fail(out, buf, worst_d / kGoldenPositionTolerance);
 }
 
 // The state hash: equal when the same binary ran with the same thread count, else only noted.
@@ -122,7 +137,7 @@ void same_hash(const Json& r, const Json& g, GoldenComparison& out) {
   line.append(text(*gh)).append(", got ").append(text(*h));
   if (same) {
     line.append(" (must be equal: the same binary with the same thread count wrote the golden)");
-    out.failures.push_back(std::move(line));
+    fail(out, std::move(line), 0.0);  // a consequence of any other difference, rarely the cause
   } else {
     line.append(" (not compared: exact only for the same binary and thread count)");
     out.notes.push_back(std::move(line));

@@ -25,8 +25,13 @@ namespace serosa::app {
 inline constexpr double kGoldenPositionTolerance = 1e-5;
 
 struct GoldenComparison {
-  std::vector<std::string> failures;  ///< "key: golden G, got R (tolerance T)"
+  std::vector<std::string> failures;  ///< "key: golden G, got R (tolerance T)", in check order
   std::vector<std::string> notes;     ///< differences that do not fail (state hash)
+  /// The failure furthest beyond its tolerance: difference over tolerance (the farthest node's
+  /// distance over kGoldenPositionTolerance; an unequal count or an absent value counts as
+  /// infinitely far, the first such wins; a state hash as not at all)
+  std::size_t largest = 0;
+  double largest_excess = 0.0;
   [[nodiscard]] bool ok() const { return failures.empty(); }
 };
 

@@ -20,7 +20,11 @@
 #include "app/compose.h"
 #include "app/frame_pictures.h"
 #include "app/instrument_devices.h"
+#include "app/output_paths.h"
 #include "app/preset_report.h"
+#include "app/provenance.h"
+#include "app/run_series.h"
+#include "app/run_warnings.h"
 #include "app/version.h"
 #include "contact/tool_contact_stage.h"
 #include "cutting/cutting_stage.h"
@@ -226,6 +230,29 @@ StepDetail step_detail(const Runner& runner, const fem::FemStage* fem) {
   return d;
 }
 
+// Every output the run will write, checked before anything runs; the final mesh's format.
+std::optional<MeshOutputFormat> check_outputs(const HeadlessOptions& o) {
+  if (o.report) check_output_file("--report", *o.report);
+  if (o.record) check_output_file("--record", *o.record);
+  if (o.series) check_output_file("--series", *o.series);
+  if (o.frames) check_output_folder("--frames", *o.frames);
+  if (o.vtu_series) check_output_folder("--vtu-series", *o.vtu_series);
+  if (o.vtu_every < 1) throw InputError("--vtu-every", 0, "not positive", "steps >= 1");
+  if (!o.export_final) return std::nullopt;
+  check_output_file("--export-final", *o.export_final);
+  return mesh_output_format("--export-final", *o.export_final);
+}
+
+std::int64_t steps_to_run(const HeadlessOptions& o, const Scene& scene) {
+  if (o.seconds) {
+    if (!(*o.seconds >= 0.0)) throw InputError("--seconds", 0, "negative", "seconds >= 0");
+    return std::llround(*o.seconds / scene.settings.dt_s);
+  }
+  const std::int64_t steps = o.steps.value_or(scene.headless.steps);
+  if (steps < 0) throw InputError("--steps", 0, "negative step count", ">= 0");
+  return steps;
+}
+
 }  // namespace
 
 std::string hash_hex(std::uint64_t hash) {
@@ -236,10 +263,10 @@ std::string hash_hex(std::uint64_t hash) {
 
 Json run_headless(const HeadlessOptions& options) {
   const auto wall0 = std::chrono::steady_clock::now();
+  const std::optional<MeshOutputFormat> final_format = check_outputs(options);
   Scene scene = load_scene(options.scene, options.overrides);
   if (options.tool_path) play_tool_path(scene, *options.tool_path);
-  const std::int64_t steps = options.steps.value_or(scene.headless.steps);
-  if (steps < 0) throw InputError("--steps", 0, "negative step count", ">= 0");
+  const std::int64_t steps = steps_to_run(options, scene);
   AssembledScene assembled = assemble_state(scene);
   ComposeOptions compose_options;
   compose_options.validate_cuts = options.validate_cuts;
@@ -263,6 +290,10 @@ Json run_headless(const HeadlessOptions& options) {
   report["mesh_initial"] = mesh_json(state.mesh);
   report["solver"] = solver_report(scene.solver);
   if (auto preset = preset_report(scene)) report["preset"] = std::move(*preset);
+  report["fixed"] = fixed_json(assembled);
+  report["provenance"] = provenance_json(scene, options.overrides, assembled);
+  std::vector<RunWarning> warnings = selection_warnings(scene, assembled);
+  print_warnings(warnings);  // before the run: an empty selection is known now
 
   std::unique_ptr<FramePictures> pictures;
   std::vector<std::int64_t> picture_steps;
@@ -299,6 +330,11 @@ Json run_headless(const HeadlessOptions& options) {
   comp.runner->prepare(state);  // load time: FEM's structure and first factor
   const double prepare_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - p0).count();
+  std::optional<StepSeries> series;
+  if (options.series) series.emplace(*options.series, scene);
+  std::optional<VtuSeries> vtu;
+  if (options.vtu_series) vtu.emplace(*options.vtu_series, options.vtu_every);
+  if (vtu) vtu->add(state);
   const auto sim0 = std::chrono::steady_clock::now();
   maybe_picture(0);
   std::int64_t taken = 0;
@@ -321,6 +357,10 @@ Json run_headless(const HeadlessOptions& options) {
     step_ms.push_back(
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - s0).count());
     details.push_back(step_detail(*comp.runner, comp.fem));
+    if (series)
+      series->add(state, step_ms.back(), details.back().fem_ms,
+                  comp.fem ? comp.fem->last_status() : fem::StepStatus{});
+    if (vtu) vtu->add(state);
     ++taken;
     maybe_picture(i + 1);
     if (bar && ((i + 1) % 10 == 0 || i + 1 == steps)) progress_bar(i + 1, steps);
@@ -407,19 +447,31 @@ Json run_headless(const HeadlessOptions& options) {
                      {"factor_patches", st.factor_patches},
                      {"rejected", st.rejected},
                      {"energy_gains", st.energy_gains},
+                     {"energy_gains_after_capped_solve", st.energy_gains_after_capped_solve},
                      {"energy_removed_j", st.energy_removed_j},
+                     {"peak_energy_j", st.peak_energy_j},
                      {"last_iterations", comp.fem->last_status().iterations},
                      {"last_residual", comp.fem->last_status().residual},
                      {"debris_tets", comp.fem->integrator().elements().debris_tets},
                      {"debris_volume_m3", comp.fem->integrator().elements().debris_volume_m3}};
   }
+  if (comp.fem) {
+    const std::vector<RunWarning> solver = solver_warnings(scene.solver, comp.fem->stats());
+    print_warnings(solver);
+    warnings.insert(warnings.end(), solver.begin(), solver.end());
+  }
+  report["warnings"] = warnings_json(warnings);
   if (options.export_final) {
-    write_gmsh22(*options.export_final, state.mesh, /*current=*/true, assembled.group_names());
+    write_mesh_output(*options.export_final, *final_format, state.mesh, assembled.group_names());
     report["export_final"] = options.export_final->string();
   }
+  if (series) {
+    series->close();
+    report["series"] = options.series->string();
+  }
+  if (vtu)
+    report["vtu_series"] = {{"folder", options.vtu_series->string()}, {"files", vtu->close()}};
   if (options.report) {
-    if (options.report->has_parent_path())
-      std::filesystem::create_directories(options.report->parent_path());
     std::ofstream out(*options.report);
     out << report.dump(2) << '\n';
     if (!out) throw std::runtime_error("cannot write report " + options.report->string());

@@ -21,13 +21,18 @@ namespace serosa::app {
 struct Composition;
 
 struct HeadlessOptions {
-  std::filesystem::path scene;                        ///< scene TOML
-  std::vector<SceneOverride> overrides;               ///< scene keys set over the file's
-  std::optional<std::int64_t> steps;                  ///< default: the scene's headless.steps
-  std::optional<std::filesystem::path> tool_path;     ///< replaces every scripted tool's CSV
-  std::optional<std::filesystem::path> export_final;  ///< Gmsh 2.2 of the final state
-  std::optional<std::filesystem::path> report;        ///< JSON report
-  std::optional<std::filesystem::path> frames;        ///< folder for PNG pictures
+  std::filesystem::path scene;           ///< scene TOML
+  std::vector<SceneOverride> overrides;  ///< scene keys set over the file's
+  std::optional<std::int64_t> steps;     ///< default: the scene's headless.steps
+  std::optional<double> seconds;  ///< simulated time instead of steps (rounded to whole steps), s
+  std::optional<std::filesystem::path> tool_path;  ///< replaces every scripted tool's CSV
+  /// The final state: .msh (Gmsh 2.2), .vtu (ParaView) or .obj (its boundary surface)
+  std::optional<std::filesystem::path> export_final;
+  std::optional<std::filesystem::path> series;      ///< per-step CSV (app/run_series.h)
+  std::optional<std::filesystem::path> vtu_series;  ///< folder of VTU files and series.pvd
+  std::int64_t vtu_every = 10;                      ///< a VTU file every this many steps
+  std::optional<std::filesystem::path> report;      ///< JSON report
+  std::optional<std::filesystem::path> frames;      ///< folder for PNG pictures
   int frame_count = 5;  ///< pictures spread over the run (first and last included), with --frames
   /// The pictures' camera: the scene's endoscope (while a device poses it), else one fitted to
   /// the organs; true: always the fitted one.

@@ -14,6 +14,10 @@ nlohmann::json solver_report(const SolverSettings& solver) {
   if (solver.kind == SolverKind::kPcgLagged) {
     j["refresh_iterations"] = solver.refresh_iterations;
     j["factor_lag_steps"] = solver.factor_lag_steps;
+    j["urgent_lag_steps"] = solver.urgent_lag_steps;
+    j["cut_lag_steps"] = solver.cut_lag_steps;
+    j["misfit_rad"] = solver.misfit_rad;
+    j["after_cut"] = solver.patch_after_cut ? "patch" : "factor";
   }
   return j;
 }

@@ -14,6 +14,7 @@
 #include "app/compose.h"
 #include "app/frame_pictures.h"
 #include "app/headless.h"
+#include "app/output_paths.h"
 #include "app/version.h"
 #include "engine/input_error.h"
 #include "engine/record_stage.h"
@@ -60,6 +61,9 @@ std::string first_difference(std::span<const std::uint8_t> replayed,
 }  // namespace
 
 ReplayResult run_replay(const ReplayOptions& options) {
+  // Its outputs' places first: a long replay must not end on a typo.
+  if (options.report) check_output_file("--report", *options.report);
+  if (options.frames) check_output_folder("--frames", *options.frames);
   const std::string file = options.recording.string();
   const recording::Recording rec = recording::read_recording(options.recording);
   const std::string scene_path = rec.header.get("scene_path");
@@ -191,8 +195,6 @@ ReplayResult run_replay(const ReplayOptions& options) {
     report["verify"]["ok"] = !result.diverged_at && !result.snapshot_diverged_at;
   }
   if (options.report) {
-    if (options.report->has_parent_path())
-      std::filesystem::create_directories(options.report->parent_path());
     std::ofstream out(*options.report);
     out << report.dump(2) << '\n';
   }

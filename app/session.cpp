@@ -24,6 +24,7 @@
 #include "app/help_seen.h"
 #include "app/instrument_devices.h"
 #include "app/mouse_takeover.h"
+#include "app/output_paths.h"
 #include "app/overlay_stats.h"
 #include "app/pointer_control.h"
 #include "app/render_frame_from_surface.h"
@@ -286,6 +287,11 @@ class SolverLoop {
 int run_session(const std::filesystem::path& scene_path, const SessionOptions& so) {
   const double seconds = so.seconds;
   const std::filesystem::path& snapshot = so.snapshot;
+  // Its outputs' places first: a trainee's session must not end on a typo.
+  if (so.record) check_output_file("--record", *so.record);
+  if (so.report) check_output_file("--report", *so.report);
+  if (so.view_log) check_output_file("--view-log", *so.view_log);
+  if (!snapshot.empty()) check_output_file("--snapshot", snapshot);
   Scene scene = load_scene(scene_path);
   ComposeOptions co;
   std::unique_ptr<ScopeControl> scope;  // the endoscope in the trainee's hands

@@ -5,6 +5,8 @@
 #include <fstream>
 #include <vector>
 
+#include "engine/fnv1a.h"
+
 namespace serosa::app {
 
 std::string_view version_string() noexcept {
@@ -18,17 +20,14 @@ std::string_view version_string() noexcept {
 std::string binary_id() {
   std::ifstream in("/proc/self/exe", std::ios::binary);
   if (!in) return "unknown";
-  std::uint64_t h = 0xcbf29ce484222325ull;
+  Fnv1a f;
   std::vector<char> buf(1 << 16);
   while (in.read(buf.data(), static_cast<std::streamsize>(buf.size())) || in.gcount() > 0) {
-    for (std::streamsize i = 0; i < in.gcount(); ++i) {
-      h ^= static_cast<unsigned char>(buf[static_cast<std::size_t>(i)]);
-      h *= 0x100000001b3ull;
-    }
+    f.bytes(buf.data(), static_cast<std::size_t>(in.gcount()));
     if (!in) break;
   }
   char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(f.h));
   return hex;
 }
 

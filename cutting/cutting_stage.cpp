@@ -207,7 +207,10 @@ void CuttingStage::follow(const StepContext& ctx, SimState& state, Scissors& s,
   // Only closing jaws cut: the blades slide past each other over the tissue between them.
   const bool closing = now.jaw_rad < before.jaw_rad;
   if (s.stroke && s.paused && !closing) {
-    const bool reopened = now.jaw_rad >= s.stroke->start().jaw_rad - kStrokeReopenTol;
+    // Jaws that only held still (a device sample that did not come in time for this step, a
+    // hand that hesitates) have not reopened, however little they had closed.
+    const bool reopened = now.jaw_rad > s.paused->jaw_rad &&
+                          now.jaw_rad >= s.stroke->start().jaw_rad - kStrokeReopenTol;
     const bool drawn_away = hinge_distance(now, *s.paused) > kStrokeDriftTol;
     if (reopened || drawn_away) {  // cut what it swept, up to where the jaws were most closed
       end_stroke(ctx, state, s, *s.paused);

@@ -24,6 +24,15 @@ std::string count_line(std::int64_t n, const char* what, const char* item, std::
   return s;
 }
 
+// ", element E at line L of FILE" for tet t when the options know where it came from.
+std::string tet_where(const MeshCheckOptions& o, std::int64_t t) {
+  const auto k = static_cast<std::size_t>(t);
+  if (t < 0 || k >= o.tet_lines.size()) return {};
+  std::string s = ", ";
+  if (k < o.tet_ids.size()) s += "element " + std::to_string(o.tet_ids[k]) + " at ";
+  return s + "line " + std::to_string(o.tet_lines[k]) + " of " + o.tet_file;
+}
+
 std::string format_g(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.6g", v);
@@ -123,17 +132,20 @@ void check_tets(const TetMesh& mesh, const MeshCheckOptions& options,
   }
   if (r.bad_tets > 0) {
     const Tet& t = mesh.tets[static_cast<std::size_t>(first_bad)];
-    r.problems.push_back(count_line(
-        r.bad_tets, "tets with a node id out of range", "tet:", first_bad,
-        ", ids " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]) +
-            " " + std::to_string(t[3]) + " with " + std::to_string(n) + " nodes"));
+    r.problems.push_back(
+        count_line(r.bad_tets, "tets with a node id out of range", "tet:", first_bad,
+                   tet_where(options, first_bad) + ", ids " + std::to_string(t[0]) + " " +
+                       std::to_string(t[1]) + " " + std::to_string(t[2]) + " " +
+                       std::to_string(t[3]) + " with " + std::to_string(n) + " nodes"));
   }
   if (r.inverted_tets > 0) {
     r.problems.push_back(count_line(r.inverted_tets, "inverted tets", "tet:", first_inverted,
-                                    ", volume " + format_g(first_inverted_volume) + " m^3"));
+                                    tet_where(options, first_inverted) + ", volume " +
+                                        format_g(first_inverted_volume) + " m^3"));
   }
   if (r.flat_tets > 0) {
-    r.problems.push_back(count_line(r.flat_tets, "flat (zero-volume) tets", "tet:", first_flat));
+    r.problems.push_back(count_line(r.flat_tets, "flat (zero-volume) tets", "tet:", first_flat,
+                                    tet_where(options, first_flat)));
   }
   for (std::size_t i = 0; i < n; ++i) r.unreferenced_nodes += referenced[i] ? 0 : 1;
   if (r.unreferenced_nodes > 0) {
@@ -153,7 +165,7 @@ void summarize_quality(std::vector<double>& qualities, MeshCheckReport& r) {
 }
 
 // Boundary, interior, overshared and misoriented faces.
-void check_faces(const TetMesh& mesh, MeshCheckReport& r) {
+void check_faces(const TetMesh& mesh, const MeshCheckOptions& options, MeshCheckReport& r) {
   const std::vector<TetFace> faces = sorted_tet_faces(mesh.tets);
   std::int64_t first_overshared = -1, first_misoriented = -1;
   for (std::size_t i = 0; i < faces.size();) {
@@ -175,17 +187,18 @@ void check_faces(const TetMesh& mesh, MeshCheckReport& r) {
   }
   if (r.overshared_faces > 0) {
     r.problems.push_back(count_line(r.overshared_faces, "faces shared by more than two tets",
-                                    "in tet", first_overshared));
+                                    "in tet", first_overshared,
+                                    tet_where(options, first_overshared)));
   }
   if (r.misoriented_faces > 0) {
-    r.problems.push_back(count_line(r.misoriented_faces,
-                                    "faces shared by two tets on the same side (overlapping tets)",
-                                    "in tet", first_misoriented));
+    r.problems.push_back(count_line(
+        r.misoriented_faces, "faces shared by two tets on the same side (overlapping tets)",
+        "in tet", first_misoriented, tet_where(options, first_misoriented)));
   }
 }
 
 // Tets with the same four nodes as another.
-void check_duplicates(const TetMesh& mesh, MeshCheckReport& r) {
+void check_duplicates(const TetMesh& mesh, const MeshCheckOptions& options, MeshCheckReport& r) {
   std::vector<std::pair<Tet, std::int32_t>> sorted_tets;
   sorted_tets.reserve(mesh.tets.size());
   for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
@@ -205,7 +218,7 @@ void check_duplicates(const TetMesh& mesh, MeshCheckReport& r) {
   }
   if (r.duplicate_tets > 0) {
     r.problems.push_back(count_line(r.duplicate_tets, "duplicated tets (same nodes as another)",
-                                    "tet:", first_duplicate));
+                                    "tet:", first_duplicate, tet_where(options, first_duplicate)));
   }
 }
 
@@ -221,8 +234,8 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const MeshCheckOptions& options)
   std::vector<double> qualities;
   check_tets(mesh, options, finite, r, qualities);
   summarize_quality(qualities, r);
-  check_faces(mesh, r);
-  check_duplicates(mesh, r);
+  check_faces(mesh, options, r);
+  check_duplicates(mesh, options, r);
   r.valid = sizes_ok && r.problems.empty();
   return r;
 }

@@ -16,10 +16,16 @@ struct MeshCheckOptions {
   /// A tet whose |rest volume| is at most this fraction of (mean edge length)^3 is flat (same
   /// rule as MeshReadOptions::flat_tolerance).
   double flat_tolerance = 1e-12;
+  /// Where each tet came from, for the messages: (m) its 1-based line in `tet_file`
+  /// (MeshReadReport::tet_lines); empty: tets are named by their index only.
+  std::vector<std::int64_t> tet_lines;
+  std::vector<std::int64_t> tet_ids;  ///< (m) the file's element id of each tet, with tet_lines
+  std::string tet_file;
 };
 
 /// What check_mesh found. Geometry is the rest configuration. Messages name tets and nodes by
-/// their 0-based index in the mesh arrays (file order; non-tet elements do not count). Tets with a
+/// their 0-based index in the mesh arrays (file order; non-tet elements do not count), and a tet
+/// by its line in the file too when the options give the lines. Tets with a
 /// node id out of range or touching a non-finite node are left out of volumes and qualities (and
 /// counted as such).
 struct MeshCheckReport {

@@ -39,6 +39,9 @@ struct MeshReadReport {
   std::int64_t skipped_elements = 0;       ///< non-tet elements ignored
   std::int64_t repaired_inverted = 0;      ///< tets reordered (repair_inverted only)
   std::map<int, std::string> group_names;  ///< physical names when the file has them (Gmsh)
+  std::vector<std::int64_t> tet_lines;     ///< (m) each tet's 1-based line in tet_file
+  std::vector<std::int64_t> tet_ids;       ///< (m) each tet's id as written (VTK: cell index)
+  std::string tet_file;                    ///< the file the tets came from (TetGen: the .ele)
 };
 
 /// Reads a mesh file. kAuto picks the format from the extension: .msh -> Gmsh (version from its

@@ -8,6 +8,15 @@
 #include <utility>
 
 namespace serosa {
+
+SolverSettings scene_default_solver() {
+  SolverSettings s;
+  s.kind = SolverKind::kPcgLagged;
+  s.tolerance = 1e-3;
+  s.max_iterations = 200;
+  return s;
+}
+
 namespace {
 
 template <class E, std::size_t N>

@@ -112,7 +112,8 @@ class Loader {
     if (const auto* t = opt_table(root, "scene", "")) {
       read_scene(*t, scene, effects_node);
     }
-    // Presets first; explicit [solver] and [render] keys, read below, win.
+    // The default solver, then presets; explicit [solver] and [render] keys, read below, win.
+    scene.solver = scene_default_solver();
     if (scene.settings.quality && !scene.settings.accuracy_target) {
       scene.settings.accuracy_target = quality_accuracy_target(*scene.settings.quality);
     }

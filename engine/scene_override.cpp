@@ -27,15 +27,26 @@ bool index_of(const std::string& part, std::size_t& index) {
   return ec == std::errc() && end == part.data() + part.size();
 }
 
+// A word the shell leaves bare (cholmod, ../assets/x.msh): no quotes, brackets, braces, spaces.
+bool bare_word(const std::string& v) {
+  return !v.empty() && v.find_first_of("\"'[]{}=# \t") == std::string::npos;
+}
+
+// The value as TOML; a bare word where the key holds text (or holds nothing yet) is that text,
+// as `--set solver.kind=cholmod` means.
 toml::node_view<toml::node> value_node(toml::table& holder, const SceneOverride& o,
-                                       const std::string& file) {
+                                       const std::string& file, const toml::node* old) {
   try {
     holder = toml::parse("v = " + o.value);
+    return holder["v"];
   } catch (const toml::parse_error&) {
-    throw InputError(file, 0, o.key + ": the value " + o.value + " is not TOML",
-                     "a TOML value (a number, \"text\", true, [x, y, z])");
   }
-  return holder["v"];
+  if (bare_word(o.value) && (old == nullptr || old->is_string())) {
+    holder = toml::table{{"v", o.value}};
+    return holder["v"];
+  }
+  throw InputError(file, 0, o.key + ": the value " + o.value + " is not TOML",
+                   "a TOML value (a number, \"text\", true, [x, y, z])");
 }
 
 // The table the override's last part goes into (walking `parts` but the last).
@@ -58,6 +69,12 @@ toml::table& parent_of(toml::table& root, const SceneOverride& o,
       t = (*a)[k].as_table();
       walked += "." + parts[++i];
       continue;
+    }
+    if (n->is_array_of_tables()) {
+      std::string rest;
+      for (std::size_t j = i + 1; j < parts.size(); ++j) rest += "." + parts[j];
+      throw InputError(file, 0, o.key + ": " + walked + " is a list of [[" + walked + "]] tables",
+                       "one picked by its index, as " + walked + ".0" + rest);
     }
     if (!n->is_table())
       throw InputError(file, 0, o.key + ": " + walked + " is a value, not a table",
@@ -96,8 +113,8 @@ std::string apply_overrides(const std::string& toml, const std::filesystem::path
         throw InputError(file, 0, "'" + o.key + "' is not a key path", "names joined by dots");
     toml::table& parent = parent_of(root, o, parts, file);
     toml::table holder;
-    const auto value = value_node(holder, o, file);
     const toml::node* old = parent.get(parts.back());
+    const auto value = value_node(holder, o, file, old);
     if (old != nullptr && old->is_table())
       throw InputError(file, 0, o.key + " is a table, not a value", "a key that holds a value");
     parent.insert_or_assign(parts.back(), *value.node());

@@ -1,7 +1,9 @@
 // Overrides of scene keys, as a batch's run or `serosa headless --set` gives them:
 // "solver.tolerance=1e-4", "scene.dt=0.004", "organ.0.mesh=\"../assets/x.msh\"". The key is a
 // dotted path into the scene's TOML (a number picks an element of an array of tables); the value
-// is a TOML value. A missing leaf is added (the loader then checks that the scene knows the key);
+// is a TOML value, or a bare word where the key holds text ("solver.kind=cholmod"). A key through
+// an array of tables without an index is told to name one ("organ.0.young"). A missing leaf is
+// added (the loader then checks that the scene knows the key);
 // a missing table on the way, or a path through a value, is an error.
 #pragma once
 

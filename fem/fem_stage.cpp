@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <utility>
 
 #include "engine/sim_state.h"
@@ -55,9 +56,19 @@ void FemStage::step(const StepContext& ctx, SimState& state) {
     omp_set_num_threads(m_integrator.config().solver.threads);
   m_last = m_integrator.step(state.mesh, ctx.dt_s, state.handoff.external_force_n);
   ++m_stats.steps;
-  if (!m_last.converged) ++m_stats.not_converged;
-  if (!m_last.applied) ++m_stats.rejected;
+  const StepTrouble here{ctx.step, ctx.time_s, m_last.iterations, m_last.residual};
+  const auto count = [&](bool trouble, std::uint64_t& n, std::optional<StepTrouble>& first) {
+    if (!trouble) return;
+    ++n;
+    if (!first) first = here;
+  };
+  count(!m_last.solve_converged, m_stats.not_converged, m_stats.first_not_converged);
+  m_stats.peak_energy_j = std::max(m_stats.peak_energy_j, m_last.energy_j);
+  count(!m_last.applied, m_stats.rejected, m_stats.first_rejected);
   if (m_last.energy_gain) ++m_stats.energy_gains;
+  count(m_last.energy_gain && !m_last_solve_converged, m_stats.energy_gains_after_capped_solve,
+        m_stats.first_energy_gain);
+  m_last_solve_converged = m_last.solve_converged;
   if (m_last.factor_refresh) ++m_stats.factor_refreshes;
   if (m_last.factor_patch) ++m_stats.factor_patches;
   m_stats.energy_removed_j += m_last.energy_removed_j;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -17,22 +18,42 @@
 
 namespace serosa::fem {
 
+/// A step whose solve was not what the scene asked for.
+struct StepTrouble {
+  std::uint64_t step = 0;  ///< its index (0-based)
+  double time_s = 0.0;     ///< simulated time at its start, s
+  int iterations = 0;      ///< CG iterations of its solve
+  double residual = 0.0;   ///< relative residual the solve stopped at
+};
+
 /// Counters over the stage's life (warnings are counted, never thrown).
 struct FemStageStats {
-  std::uint64_t steps = 0;          ///< steps taken
-  std::uint64_t not_converged = 0;  ///< steps whose linear solve stopped above tolerance
-  std::uint64_t rejected = 0;       ///< steps not applied (non-finite or diverged solve)
-  std::uint64_t rebuilds = 0;       ///< full precomputes (first step, unseen topology changes)
-  std::uint64_t updates = 0;        ///< incremental updates from TopologyDeltas
+  std::uint64_t steps = 0;  ///< steps taken
+  /// steps whose linear solve stopped above tolerance (StepStatus::solve_converged false)
+  std::uint64_t not_converged = 0;
+  std::uint64_t rejected = 0;  ///< steps not applied (non-finite or diverged solve)
+  std::uint64_t rebuilds = 0;  ///< full precomputes (first step, unseen topology changes)
+  std::uint64_t updates = 0;   ///< incremental updates from TopologyDeltas
   /// Steps whose previous step gained energy (StepStatus::energy_gain: a capped solve injected it)
   std::uint64_t energy_gains = 0;
+  /// Of those, the steps whose previous solve had stopped above its tolerance: energy a capped
+  /// solve injected. (The others are the corotational model's own small imbalance, a frozen
+  /// rotation over a step or an explicit contact force, which the guard takes back out.)
+  std::uint64_t energy_gains_after_capped_solve = 0;
   /// Kinetic energy taken back out over those (SolverSettings::remove_energy_gain), J
   double energy_removed_j = 0.0;
+  /// The largest mechanical energy (kinetic + corotated elastic) a step started from, J: the
+  /// scale the energy taken out is measured against
+  double peak_energy_j = 0.0;
   /// pcg_lagged: factorizations of the system matrix asked for (StepStatus::factor_refresh)
   std::uint64_t factor_refreshes = 0;
   /// pcg_lagged: steps whose changed rows (a cut, a grasp, a release) got a factor of their own
   /// (StepStatus::factor_patch)
   std::uint64_t factor_patches = 0;
+  /// The first step of each kind of trouble, as it happened: what a warning names.
+  std::optional<StepTrouble> first_not_converged;
+  std::optional<StepTrouble> first_energy_gain;  ///< after a capped solve
+  std::optional<StepTrouble> first_rejected;
 };
 
 class FemStage final : public Stage {
@@ -66,6 +87,7 @@ class FemStage final : public Stage {
   StepStatus m_last;
   FemStageStats m_stats;
   std::uint64_t m_seen_version = 0;
+  bool m_last_solve_converged = true;  ///< for the stats: the step before this one's solve
   bool m_built = false;
 };
 

@@ -262,17 +262,18 @@ StepStatus ImplicitIntegrator::step_from(TetMesh& mesh, double dt_s, std::span<c
   const SystemProduct a = assemble_system(mesh, dt_s);
   const SolveStatus ss = solve_system(mesh, dt_s, a, st);
   st.converged = ss.converged && !st.energy_gain;
+  st.solve_converged = ss.converged;
   st.iterations = ss.iterations;
   st.residual = ss.residual;
   if (ss.residual > 1.0) {  // worse than dv = 0 in the residual norm
     st.residual_growth = true;
-    st.converged = false;
+    st.converged = st.solve_converged = false;
   }
   // Never apply a non-finite or diverged solution (worse than dv = 0: phi > 0).
   if (!ss.finite || !std::isfinite(ss.residual) || !(ss.energy <= 0.0)) {
     std::fill(m_dv.begin(), m_dv.end(), 0.0);
     st.applied = false;
-    st.converged = false;
+    st.converged = st.solve_converged = false;
     return st;
   }
   const double work_j = apply_update(mesh, dt_s, f_ext);

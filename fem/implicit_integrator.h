@@ -42,11 +42,13 @@
 namespace serosa::fem {
 
 struct StepStatus {
-  bool converged = false;  ///< the linear solve reached its tolerance
-  bool applied = false;    ///< the state was advanced (false: left unchanged, see `converged`)
-  int iterations = 0;      ///< CG iterations (0 for CHOLMOD)
-  double residual = 0.0;   ///< relative residual ||b - A dv|| / ||b|| of the linear solve
-  int inverted_tets = 0;   ///< tets with det F <= 0 at the start of the step
+  bool converged = false;  ///< the linear solve reached its tolerance (false too on energy_gain)
+  /// The linear solve itself reached its tolerance (energy_gain alone does not clear it)
+  bool solve_converged = false;
+  bool applied = false;   ///< the state was advanced (false: left unchanged, see `converged`)
+  int iterations = 0;     ///< CG iterations (0 for CHOLMOD)
+  double residual = 0.0;  ///< relative residual ||b - A dv|| / ||b|| of the linear solve
+  int inverted_tets = 0;  ///< tets with det F <= 0 at the start of the step
   /// Tets whose rotation turned by more than kTurnedRad since the last step: tissue in flux (a
   /// cut's fresh pieces recoiling), whose matrix a lagged factor would not fit for long.
   int turned_tets = 0;

@@ -98,6 +98,9 @@ void check_no_nul(std::string_view text, const std::string& name) {
 }
 
 TetMesh finish_mesh(const RawMesh& raw, const MeshReadOptions& options, MeshReadReport& report) {
+  report.tet_lines = raw.tet_line;
+  report.tet_ids = raw.tet_id;
+  report.tet_file = raw.tet_file;
   const std::size_t n = raw.node_id.size();
   const std::size_t m = raw.tet_nodes.size();
   constexpr auto kMaxCount = static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max());
@@ -170,7 +173,7 @@ TetMesh finish_mesh(const RawMesh& raw, const MeshReadOptions& options, MeshRead
     if (vol < 0.0) {
       if (!options.repair_inverted) {
         fail("inverted tet (negative volume " + num(vol) + " m^3)",
-             "positive orientation, or MeshReadOptions::repair_inverted");
+             "positive orientation (`serosa check --repair-inverted` swaps two nodes)");
       }
       std::swap(t[2], t[3]);
       ++report.repaired_inverted;

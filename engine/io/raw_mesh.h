@@ -28,6 +28,7 @@ struct RawMesh {
   std::vector<std::array<std::int64_t, 4>> tet_nodes;  ///< (m) node ids as written
   std::vector<std::int64_t> tet_group;                 ///< (m) group as written
   std::vector<std::int64_t> tet_line;                  ///< (m) line of the tet (1-based)
+  std::vector<std::int64_t> tet_id;  ///< (m) its id as written (VTK: the cell's 0-based index)
 
   void add_node(std::int64_t id, const Vec3& p, std::int64_t id_line, std::int64_t line) {
     node_id.push_back(id);
@@ -35,10 +36,12 @@ struct RawMesh {
     node_id_line.push_back(id_line);
     node_line.push_back(line);
   }
-  void add_tet(const std::array<std::int64_t, 4>& t, std::int64_t g, std::int64_t line) {
+  void add_tet(const std::array<std::int64_t, 4>& t, std::int64_t g, std::int64_t line,
+               std::int64_t id) {
     tet_nodes.push_back(t);
     tet_group.push_back(g);
     tet_line.push_back(line);
+    tet_id.push_back(id);
   }
 };
 

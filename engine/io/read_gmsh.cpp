@@ -213,7 +213,8 @@ class GmshParser {
     m_c.end_line("the number of elements");
     reserve_tets(n);
     for (std::int64_t i = 0; i < n; ++i) {
-      (void)m_c.to_int(record_start("$EndElements", i, n, "element"), "element id");
+      const std::int64_t element =
+          m_c.to_int(record_start("$EndElements", i, n, "element"), "element id");
       const std::int64_t line = m_c.token_line();
       const std::int64_t type = m_c.int_on_line("element type");
       const std::int64_t ntags = m_c.int_on_line("number of tags");
@@ -234,7 +235,7 @@ class GmshParser {
       for (auto& id : t) id = m_c.int_on_line("4 node ids of the tet");
       m_c.end_line("the tet's 4 node ids");
       const std::int64_t group = physical != 0 ? physical : (ntags >= 2 ? elementary : 1);
-      m_raw.add_tet(t, group, line);
+      m_raw.add_tet(t, group, line, element);
     }
     expect_end("$EndElements", more_than(n, "elements"));
   }
@@ -350,7 +351,8 @@ class GmshParser {
         m_c.fail("tet block on an entity of dimension " + std::to_string(dim), "dimension 3");
       }
       for (std::int64_t i = 0; i < nin; ++i) {
-        (void)m_c.to_int(record_start("$EndElements", i, nin, "element of block"), "element tag");
+        const std::int64_t element =
+            m_c.to_int(record_start("$EndElements", i, nin, "element of block"), "element tag");
         const std::int64_t line = m_c.token_line();
         if (type != 4) {
           m_c.skip_line();
@@ -360,7 +362,7 @@ class GmshParser {
         std::array<std::int64_t, 4> t{};
         for (auto& id : t) id = m_c.int_on_line("4 node ids of the tet");
         m_c.end_line("the tet's 4 node ids");
-        m_raw.add_tet(t, entity, line);  // entity tag for now: resolved after $Entities
+        m_raw.add_tet(t, entity, line, element);  // entity tag for now: resolved after $Entities
       }
       total += nin;
     }

@@ -85,7 +85,7 @@ void read_tets(TextCursor& c, std::size_t text_size, RawMesh& raw) {
   raw.tet_group.reserve(r);
   raw.tet_line.reserve(r);
   for (std::int64_t i = 0; i < n; ++i) {
-    (void)c.to_int(record_start(c, i, n, "tet"), "tet id");
+    const std::int64_t tet_id = c.to_int(record_start(c, i, n, "tet"), "tet id");
     const std::int64_t line = c.token_line();
     std::array<std::int64_t, 4> t{};
     for (auto& id : t) id = c.int_on_line("node id");
@@ -102,7 +102,7 @@ void read_tets(TextCursor& c, std::size_t text_size, RawMesh& raw) {
       group = static_cast<std::int64_t>(a);
     }
     c.end_line("the tet's fields");
-    raw.add_tet(t, group, line);
+    raw.add_tet(t, group, line, tet_id);
   }
   expect_no_more(c, n, "tet");
 }

@@ -434,7 +434,7 @@ class VtkParser {
         group = static_cast<std::int64_t>(g);
       }
       m_raw.add_tet({m_conn[begin], m_conn[begin + 1], m_conn[begin + 2], m_conn[begin + 3]}, group,
-                    m_cell_line[i]);
+                    m_cell_line[i], static_cast<std::int64_t>(i));
     }
     return std::move(m_raw);
   }

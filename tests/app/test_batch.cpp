@@ -103,6 +103,21 @@ TEST(Batch, RunsTwoAtOnceReportsFailuresWithTheirLogsAndResumes) {
   EXPECT_EQ(fs::last_write_time(kept), when);
   EXPECT_TRUE(fs::is_regular_file(dir / "out/runs/drill.seed-2/result.json"));
   EXPECT_EQ(read_json(dir / "out/summary.json")["passed"], 3);
+  EXPECT_NE(again.out.find("kept: unchanged since its result"), std::string::npos) << again.out;
+
+  // A run whose definition changed since its result runs again, and says so.
+  std::stringstream text;
+  text << std::ifstream(m).rdbuf();
+  std::string changed = text.str();
+  changed.replace(changed.find("1e-4"), 4, "2e-4");
+  std::ofstream(m) << changed;
+  const CliResult third = run_serosa(cmd + " --resume");
+  EXPECT_EQ(third.code, 3) << third.out;
+  EXPECT_NE(third.out.find("resume: plain changed since its result"), std::string::npos)
+      << third.out;
+  EXPECT_NE(fs::last_write_time(kept), when) << "the changed run was not run again";
+  EXPECT_EQ(third.out.find("resume: drill.seed-1 changed"), std::string::npos) << third.out;
+  std::ofstream(m) << text.str();
 
   // --index: one run alone, its result only, no merge.
   fs::remove_all(dir / "one");
@@ -159,6 +174,9 @@ TEST(Batch, ABadManifestIsAnErrorNamingTheLine) {
       {"title = \"t\"\n", "no [[run]] tables", 0},
       {"timeout = -1\n" + run, "timeout: not positive", 1},
       {run + "path = \"none.csv\"\n", "no such tool path", 4},
+      {run + "golden = \"g.json\"\n[[run]]\nname = \"b\"\nscene = \"" + scene +
+           "\"\ngolden = \"g.json\"\n",
+       "is named by run 'a' too", 8},
   };
   std::ofstream(dir / "g.json") << "{}\n";
   for (const Case& c : cases) {
@@ -182,6 +200,36 @@ TEST(Batch, ABadManifestIsAnErrorNamingTheLine) {
   EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
+// A golden mismatch's reason (summary, JUnit) names the first difference and the largest, each
+// with both values: the cause is rarely the last line of the comparison (the state hash).
+TEST(Batch, AMismatchNamesTheFirstAndTheLargestDifference) {
+  const fs::path dir = out_dir("batch_mismatch");
+  std::ofstream(dir / "m.toml") << "[[run]]\nname = \"g\"\nscene = \""
+                                << source("config/transfer.toml").string() << "\"\n"
+                                << "steps = 20\ngolden = \"g.json\"\n";
+  const std::string cmd = "batch " + shell_quote((dir / "m.toml").string()) + " --out " +
+                          shell_quote((dir / "out").string());
+  fs::remove_all(dir / "out");
+  ASSERT_EQ(run_serosa(cmd + " --update-golden").code, 0);
+  nlohmann::json g = read_json(dir / "g.json");
+  const double bimanual = g["metrics"]["bimanual_fraction"].get<double>();
+  g["metrics"]["bimanual_fraction"] = bimanual + 1e-5;  // at most 10 tolerances off
+  g["metrics"]["time_s"] = 0.2;                         // 500 tolerances (2e-4 s) off
+  std::ofstream(dir / "g.json") << g.dump(2);
+  fs::remove_all(dir / "out");
+  const CliResult r = run_serosa(cmd);
+  EXPECT_EQ(r.code, 3) << r.out;
+  const std::string reason =
+      read_json(dir / "out/summary.json")["runs"][0]["reason"].get<std::string>();
+  EXPECT_EQ(reason.rfind("golden mismatch: /metrics/", 0), 0u) << reason;
+  EXPECT_NE(reason.find("/metrics/bimanual_fraction: golden "), std::string::npos) << reason;
+  EXPECT_NE(reason.find("largest: /metrics/time_s: golden 0.2, got 0.1"), std::string::npos)
+      << reason;
+  std::ostringstream junit;
+  junit << std::ifstream(dir / "out/junit.xml").rdbuf();
+  EXPECT_NE(junit.str().find("largest: /metrics/time_s"), std::string::npos) << junit.str();
+}
+
 // A scene with the rig in the loop steps at the wall clock's pace: the manifest marks it, and
 // the batch runs it with nothing beside it (app/run_gate.h); scripted scenes share the machine.
 TEST(Batch, ARigInTheLoopMarksItsRunPaced) {
@@ -194,6 +242,43 @@ TEST(Batch, ARigInTheLoopMarksItsRunPaced) {
   ASSERT_EQ(m.runs.size(), 2u);
   EXPECT_TRUE(m.runs[0].paced);
   EXPECT_FALSE(m.runs[1].paced);
+}
+
+// A sweep expands into the cross product of its values (keys by name, values as listed), each
+// run named by them and setting
+// them over the run's own keys; with seeds, each combination runs each seed.
+TEST(Batch, ASweepExpandsIntoEveryCombinationNamedByItsValues) {
+  const fs::path dir = out_dir("batch_sweep");
+  std::ofstream(dir / "m.toml") << "[[run]]\nname = \"s\"\nscene = \""
+                                << source("config/transfer.toml").string() << "\"\n"
+                                << "set = { \"solver.max_iterations\" = 50 }\n"
+                                << "sweep = { \"solver.tolerance\" = [1e-3, 1e-4], "
+                                << "\"solver.kind\" = [\"pcg\", \"cholmod\"] }\n"
+                                << "seeds = [7]\n";
+  const BatchManifest m = load_manifest(dir / "m.toml", false);
+  ASSERT_EQ(m.runs.size(), 4u);
+  const std::vector<std::string> ids = {
+      "s.kind-pcg.tolerance-0.001.seed-7", "s.kind-pcg.tolerance-0.0001.seed-7",
+      "s.kind-cholmod.tolerance-0.001.seed-7", "s.kind-cholmod.tolerance-0.0001.seed-7"};
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    EXPECT_EQ(m.runs[k].id, ids[k]);
+    EXPECT_EQ(m.runs[k].group, "s");
+    ASSERT_EQ(m.runs[k].overrides.size(), 3u);
+    EXPECT_EQ(m.runs[k].overrides[0].key, "solver.max_iterations");
+    EXPECT_EQ(m.runs[k].overrides[1].key, "solver.kind");  // keys in the order of their names
+    EXPECT_EQ(m.runs[k].overrides[2].key, "solver.tolerance");
+    EXPECT_EQ(m.runs[k].seed, 7u);
+  }
+  // A sweep of a key the scene does not have fails at its line, before anything runs.
+  std::ofstream(dir / "bad.toml") << "[[run]]\nname = \"s\"\nscene = \""
+                                  << source("config/transfer.toml").string() << "\"\n"
+                                  << "sweep = { \"solver.tolerence\" = [1e-3] }\n";
+  try {
+    (void)load_manifest(dir / "bad.toml", false);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("solver.tolerence"), std::string::npos) << e.what();
+  }
 }
 
 // A seed moves every tip by a smooth offset no larger than the amplitude, the same each time;

@@ -129,6 +129,20 @@ TEST_F(CliCheck, DuplicatedTetExitsOneNamingTheFile) {
     EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
     EXPECT_NE(r.err.find(p.string()), std::string::npos) << r.err;
   }
+  // The duplicate is named by its element id (Gmsh numbers from 1) and its line in the file: the
+  // last element line, before $EndElements.
+  std::istringstream lines(slurp(p));
+  int line_no = 0, last_element = 0;
+  for (std::string line; std::getline(lines, line);) {
+    ++line_no;
+    if (line == "$EndElements") break;
+    last_element = line_no;
+  }
+  const CliResult r = serosa("check " + quoted(p.string()));
+  EXPECT_NE(r.err.find("(first tet: 48, element 49 at line " + std::to_string(last_element) +
+                       " of " + p.string() + ")"),
+            std::string::npos)
+      << r.err;
 }
 
 TEST_F(CliCheck, MissingFileExitsOneNamingTheFile) {
@@ -138,6 +152,28 @@ TEST_F(CliCheck, MissingFileExitsOneNamingTheFile) {
     EXPECT_EQ(r.exit_code, 1) << cmd << r.out << r.err;
     EXPECT_NE(r.err.find(p.string()), std::string::npos) << r.err;
   }
+}
+
+// A mesh that does not load is, with --json, a JSON error object on stdout as well: a script that
+// reads stdout gets what and where, never nothing.
+TEST_F(CliCheck, JsonSaysWhyAMeshDidNotLoad) {
+  TetMesh m = grid();
+  std::swap(m.tets[3][0], m.tets[3][1]);
+  const fs::path inverted = write("inverted_json.msh", m);
+  const CliResult r = serosa("check --json " + quoted(inverted.string()));
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_FALSE(j.at("valid").get<bool>());
+  EXPECT_EQ(j.at("error").at("file").get<std::string>(), inverted.string());
+  EXPECT_GT(j.at("error").at("line").get<int>(), 0);
+  EXPECT_NE(j.at("error").at("message").get<std::string>().find("inverted tet"), std::string::npos);
+  // The way out is the command's own option, not a C++ name.
+  EXPECT_NE(j.at("error").at("expected").get<std::string>().find("--repair-inverted"),
+            std::string::npos)
+      << j.dump(1);
+  const CliResult missing = serosa("check --json " + quoted((m_dir / "none.msh").string()));
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_EQ(nlohmann::json::parse(missing.out).at("error").at("message"), "no such file");
 }
 
 TEST_F(CliCheck, InvertedTetIsRejectedUnlessRepaired) {

@@ -70,6 +70,27 @@ TEST(Golden, MetricsWithinToleranceMatchAndBeyondFail) {
   EXPECT_FALSE(compare_golden(m, sample()).ok());
 }
 
+// The failure named largest is the one furthest beyond its tolerance, whatever its place: a
+// metric ten thousand tolerances off beats one just off, and a state hash never beats either.
+TEST(Golden, TheLargestMismatchIsTheOneFurthestBeyondItsTolerance) {
+  Json r = sample();
+  r["metrics"]["time_s"] = 0.05 * (1.0 + 2e-3);  // twice its 1e-3 relative tolerance
+  r["metrics"]["peak_stress_pa"] = 11000.0;      // 10,000 tolerances of 1 Pa
+  r["metrics"]["cut"]["deviation_max_m"] = 0.0011;
+  const GoldenComparison c = compare_golden(r, sample());
+  ASSERT_EQ(c.failures.size(), 3u);
+  EXPECT_NE(c.failures[c.largest].find("/metrics/peak_stress_pa: golden 1000.0, got 11000.0"),
+            std::string::npos)
+      << c.failures[c.largest];
+  EXPECT_NEAR(c.largest_excess, 1e4, 1.0);
+  Json counted = sample();
+  counted["metrics"]["time_s"] = 0.06;
+  counted["cutting"]["cuts"] = 4;  // no tolerance: beyond any
+  const GoldenComparison k = compare_golden(counted, sample());
+  ASSERT_EQ(k.failures.size(), 2u);
+  EXPECT_NE(k.failures[k.largest].find("/cutting/cuts"), std::string::npos);
+}
+
 TEST(Golden, TimingsAreIgnoredAndHashIsOnlyNoted) {
   Json r = sample();
   r["time_per_stage_ms"]["fem"] = 300.0;
@@ -166,6 +187,9 @@ TEST(Golden, CliExitsThreeOnMismatchOrMissingGolden) {
       run_serosa("headless '" + source("config/beam.toml").string() + "' --steps 4 " + golden);
   EXPECT_EQ(longer.code, 3) << longer.out;
   EXPECT_NE(longer.out.find("golden mismatch: /steps"), std::string::npos) << longer.out;
+  // Several lines differ; the largest is said once more on its own line, for a batch's reason.
+  EXPECT_NE(longer.out.find("golden mismatch, largest: /steps: golden 3, got 4"), std::string::npos)
+      << longer.out;
 }
 
 }  // namespace

@@ -77,7 +77,7 @@ TEST(PresetReport, NoPresetNoBlock) {
   const fs::path dir = out_dir("preset_none");
   const auto r = run(beam_scene(dir, "", ""));
   EXPECT_FALSE(r.contains("preset"));
-  EXPECT_EQ(r["solver"]["max_iterations"], SolverSettings{}.max_iterations);
+  EXPECT_EQ(r["solver"]["max_iterations"], scene_default_solver().max_iterations);
 }
 
 }  // namespace

@@ -134,9 +134,9 @@ TEST_F(SceneTest, MinimalSceneGetsDefaults) {
   EXPECT_TRUE(o.group_materials.empty());
   EXPECT_TRUE(o.fixed.empty());
   EXPECT_TRUE(o.transform.is_identity());
-  EXPECT_EQ(s.solver.kind, SolverKind::kPcg);
-  EXPECT_DOUBLE_EQ(s.solver.tolerance, 1e-6);
-  EXPECT_EQ(s.solver.max_iterations, 100);
+  EXPECT_EQ(s.solver.kind, SolverKind::kPcgLagged);  // scene_default_solver()
+  EXPECT_DOUBLE_EQ(s.solver.tolerance, 1e-3);
+  EXPECT_EQ(s.solver.max_iterations, 200);
   EXPECT_EQ(s.render.tessellation, 3);
   EXPECT_DOUBLE_EQ(s.render.shape_factor, 0.75);
   EXPECT_EQ(s.render.width, 1280);
@@ -353,7 +353,7 @@ TEST_F(SceneTest, QualityPresetSetsDefaultsAndExplicitKeysWin) {
   EXPECT_EQ(accurate.solver.max_iterations, 7);
   const Scene none = parse(kOrgan);
   EXPECT_FALSE(none.settings.accuracy_target.has_value());
-  EXPECT_EQ(none.solver.max_iterations, SolverSettings{}.max_iterations);
+  EXPECT_EQ(none.solver.max_iterations, scene_default_solver().max_iterations);
 }
 
 TEST_F(SceneTest, AccuracyTargetOverridesTheQualityTarget) {
