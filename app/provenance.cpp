@@ -1,9 +1,7 @@
 #include "app/provenance.h"
 
 #include <cstdio>
-#include <fstream>
 #include <set>
-#include <sstream>
 
 #include "app/version.h"
 #include "engine/fnv1a.h"
@@ -12,11 +10,8 @@ namespace serosa::app {
 namespace {
 
 void hash_file(Fnv1a& f, const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
   f.text(p.filename().string());
-  f.text(s.str());
+  f.file(p);
 }
 
 std::string inputs_hash(const Scene& scene, const std::vector<SceneOverride>& overrides) {

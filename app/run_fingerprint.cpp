@@ -1,29 +1,20 @@
 #include "app/run_fingerprint.h"
 
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 #include "engine/fnv1a.h"
 
 namespace serosa::app {
-namespace {
-
-std::string file_text(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-}  // namespace
 
 std::string run_fingerprint(const BatchRun& r, const std::string& binary) {
   Fnv1a f;
   f.text(binary);
   f.text(r.scene.string());
-  f.text(file_text(r.scene));
-  f.text(r.path ? file_text(*r.path) : std::string("-"));
+  f.file(r.scene);
+  if (r.path)
+    f.file(*r.path);
+  else
+    f.text("-");
   f.text(r.steps ? std::to_string(*r.steps) : std::string("-"));
   for (const SceneOverride& o : r.overrides) {
     f.text(o.key);

@@ -4,6 +4,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -29,6 +33,13 @@ struct Fnv1a {
     const std::uint64_t n = s.size();
     bytes(&n, sizeof n);
     bytes(s.data(), s.size());
+  }
+  /// A file's bytes, as text() (a file that cannot be read counts as empty).
+  void file(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream all;
+    if (in) all << in.rdbuf();
+    text(all.str());
   }
 };
 

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,6 +26,13 @@ inline fs::path out_dir(const std::string& name) {
 
 inline fs::path source(const std::string& rel) {
   return fs::path(::serosa::test_paths::source_dir()) / rel;
+}
+
+/// A file's whole text ("" when it cannot be read).
+inline std::string file_text(const fs::path& p) {
+  std::ostringstream s;
+  s << std::ifstream(p).rdbuf();
+  return s.str();
 }
 
 /// Every shipped scene (config/*.toml that loads as one; the manifests and the curriculum do

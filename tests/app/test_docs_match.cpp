@@ -18,12 +18,6 @@ namespace {
 
 using namespace serosa::app::testing;
 
-std::string slurp(const fs::path& p) {
-  std::ostringstream s;
-  s << std::ifstream(p).rdbuf();
-  return s.str();
-}
-
 bool option_char(char c) { return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-'; }
 
 // The options (--name) a text names. (No std::regex: under ASan GCC 12 warns inside it.)
@@ -67,7 +61,7 @@ std::set<std::string> options_listed(const std::string& help) {
 }
 
 TEST(DocsMatch, EveryOptionOfEveryCommandIsInTheReadmeSynopsis) {
-  const std::string readme = slurp(source("README.md"));
+  const std::string readme = file_text(source("README.md"));
   for (const char* sub : {"run", "headless", "replay", "batch", "check", "cut", "surface", "bench",
                           "tasks", "trainee"}) {
     SCOPED_TRACE(sub);
@@ -97,7 +91,7 @@ TEST(DocsMatch, EveryKeyOfARealReportIsDocumented) {
   ASSERT_EQ(r.code, 0) << r.out;
   nlohmann::json report;
   std::ifstream(dir / "r.json") >> report;
-  const std::string doc = slurp(source("docs/headless-report.md"));
+  const std::string doc = file_text(source("docs/headless-report.md"));
   const auto documented = [&](const std::string& key) {
     return doc.find("`" + key + "`") != std::string::npos;
   };

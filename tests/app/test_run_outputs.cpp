@@ -21,12 +21,6 @@ namespace {
 
 using namespace serosa::app::testing;
 
-std::string slurp(const fs::path& p) {
-  std::ostringstream s;
-  s << std::ifstream(p).rdbuf();
-  return s.str();
-}
-
 // Each DataArray's numbers by its Name, and the Piece's counts, as a VTK XML reader takes them.
 struct Vtu {
   std::int64_t points = -1, cells = -1;
@@ -72,7 +66,7 @@ TEST(RunOutputs, TheFinalMeshIsWrittenInTheFormatItsNameSays) {
   const CliResult msh =
       run_serosa(beam_run(dir, "--export-final " + shell_quote((dir / "f.msh").string())));
   ASSERT_EQ(msh.code, 0) << msh.out;
-  const std::string text = slurp(dir / "f.vtu");
+  const std::string text = file_text(dir / "f.vtu");
   ASSERT_EQ(text.rfind("<?xml", 0), 0u) << "not XML";
   EXPECT_NE(text.find("<VTKFile type=\"UnstructuredGrid\""), std::string::npos);
   const Vtu v = parse_vtu(text);
@@ -96,7 +90,7 @@ TEST(RunOutputs, TheFinalMeshIsWrittenInTheFormatItsNameSays) {
   const CliResult obj =
       run_serosa(beam_run(dir, "--export-final " + shell_quote((dir / "f.obj").string())));
   ASSERT_EQ(obj.code, 0) << obj.out;
-  std::istringstream lines(slurp(dir / "f.obj"));
+  std::istringstream lines(file_text(dir / "f.obj"));
   int vertices = 0, faces = 0;
   for (std::string line; std::getline(lines, line);) {
     vertices += line.rfind("v ", 0) == 0;
@@ -142,7 +136,7 @@ TEST(RunOutputs, TheSeriesHaveARowAStepAndAFileEveryNSteps) {
       beam_run(dir, "--series " + shell_quote((dir / "s.csv").string()) + " --vtu-series " +
                         shell_quote((dir / "vtu").string()) + " --vtu-every 5"));
   ASSERT_EQ(r.code, 0) << r.out;
-  std::istringstream csv(slurp(dir / "s.csv"));
+  std::istringstream csv(file_text(dir / "s.csv"));
   std::string header;
   std::getline(csv, header);
   EXPECT_EQ(header.rfind("time_s,step,step_ms,fem_ms,cg_iterations,residual,energy_j", 0), 0u)
@@ -159,7 +153,7 @@ TEST(RunOutputs, TheSeriesHaveARowAStepAndAFileEveryNSteps) {
   for (const char* f : {"step_000000.vtu", "step_000005.vtu", "step_000010.vtu"})
     EXPECT_TRUE(fs::is_regular_file(dir / "vtu" / f)) << f;
   EXPECT_FALSE(fs::exists(dir / "vtu/step_000012.vtu"));
-  const std::string pvd = slurp(dir / "vtu/series.pvd");
+  const std::string pvd = file_text(dir / "vtu/series.pvd");
   EXPECT_NE(pvd.find("<VTKFile type=\"Collection\""), std::string::npos) << pvd;
   EXPECT_NE(pvd.find("file=\"step_000010.vtu\""), std::string::npos) << pvd;
   nlohmann::json report;
