@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <initializer_list>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -21,6 +22,33 @@
 
 namespace serosa::render {
 namespace {
+
+// One vertex attribute of a VAO: the buffer it reads, its component count and type, whether
+// bytes are normalised, and its divisor (1: one value per instance).
+struct VertexAttribute {
+  GLuint buffer = 0;
+  GLint size = 3;
+  GLenum type = GL_FLOAT;
+  GLboolean normalized = GL_FALSE;
+  GLuint divisor = 0;
+};
+
+// Wires attribute k of `vao` to attrs[k], tightly packed, and the element buffer when given.
+void wire_attributes(GLuint vao, std::initializer_list<VertexAttribute> attrs,
+                     GLuint elements = 0) {
+  glBindVertexArray(vao);
+  GLuint k = 0;
+  for (const VertexAttribute& a : attrs) {
+    glBindBuffer(GL_ARRAY_BUFFER, a.buffer);
+    glVertexAttribPointer(k, a.size, a.type, a.normalized, 0, nullptr);
+    glEnableVertexAttribArray(k);
+    if (a.divisor != 0) glVertexAttribDivisor(k, a.divisor);
+    ++k;
+  }
+  if (elements != 0) glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, elements);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
 
 // Unique undirected edges of the triangles, (e x 2) vertex ids: the mechanical view's fallback.
 std::vector<std::uint32_t> triangle_edges(const std::vector<std::uint32_t>& tri) {
@@ -104,15 +132,7 @@ FrameRenderer::FrameRenderer()
   make_pattern_texture();
 
   // Attribute 0: position, attribute 1: normal, both (n x 3) floats.
-  glBindVertexArray(vao_);
-  glBindBuffer(GL_ARRAY_BUFFER, pos_buf_);
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glEnableVertexAttribArray(0);
-  glBindBuffer(GL_ARRAY_BUFFER, nrm_buf_);
-  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glEnableVertexAttribArray(1);
-  glBindVertexArray(0);
-  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  wire_attributes(vao_, {{pos_buf_}, {nrm_buf_}});
 
   // Instruments: attribute 0 position, 1 normal (3 floats each), 2 material (4 floats).
   std::array<GLuint, 4> tbufs{};
@@ -122,17 +142,7 @@ FrameRenderer::FrameRenderer()
   tool_mat_buf_ = tbufs[2];
   tool_idx_buf_ = tbufs[3];
   glGenVertexArrays(1, &tool_vao_);
-  glBindVertexArray(tool_vao_);
-  const std::array<std::pair<GLuint, GLint>, 3> attrs{
-      {{tool_pos_buf_, 3}, {tool_nrm_buf_, 3}, {tool_mat_buf_, 4}}};
-  for (std::size_t a = 0; a < attrs.size(); ++a) {
-    glBindBuffer(GL_ARRAY_BUFFER, attrs[a].first);
-    glVertexAttribPointer(static_cast<GLuint>(a), attrs[a].second, GL_FLOAT, GL_FALSE, 0, nullptr);
-    glEnableVertexAttribArray(static_cast<GLuint>(a));
-  }
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, tool_idx_buf_);
-  glBindVertexArray(0);
-  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  wire_attributes(tool_vao_, {{tool_pos_buf_}, {tool_nrm_buf_}, {tool_mat_buf_, 4}}, tool_idx_buf_);
 
   // Scenery: attribute 0 position, 1 normal (3 floats each), 2 material and 3 look (4
   // normalised bytes each).
@@ -143,18 +153,10 @@ FrameRenderer::FrameRenderer()
   scenery_mat_buf_ = sbufs[2];
   scenery_look_buf_ = sbufs[3];
   glGenVertexArrays(1, &scenery_vao_);
-  glBindVertexArray(scenery_vao_);
-  glBindBuffer(GL_ARRAY_BUFFER, scenery_pos_buf_);
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glBindBuffer(GL_ARRAY_BUFFER, scenery_nrm_buf_);
-  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glBindBuffer(GL_ARRAY_BUFFER, scenery_mat_buf_);
-  glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, 0, nullptr);
-  glBindBuffer(GL_ARRAY_BUFFER, scenery_look_buf_);
-  glVertexAttribPointer(3, 4, GL_UNSIGNED_BYTE, GL_TRUE, 0, nullptr);
-  for (GLuint a = 0; a < 4; ++a) glEnableVertexAttribArray(a);
-  glBindVertexArray(0);
-  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  wire_attributes(scenery_vao_, {{scenery_pos_buf_},
+                                 {scenery_nrm_buf_},
+                                 {scenery_mat_buf_, 4, GL_UNSIGNED_BYTE, GL_TRUE},
+                                 {scenery_look_buf_, 4, GL_UNSIGNED_BYTE, GL_TRUE}});
 
   // Smoke: attribute 0 a puff's centre and radius (4 floats), 1 its density, one per instance.
   std::array<GLuint, 2> pbufs{};
@@ -162,17 +164,8 @@ FrameRenderer::FrameRenderer()
   smoke_puff_buf_ = pbufs[0];
   smoke_density_buf_ = pbufs[1];
   glGenVertexArrays(1, &smoke_vao_);
-  glBindVertexArray(smoke_vao_);
-  glBindBuffer(GL_ARRAY_BUFFER, smoke_puff_buf_);
-  glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glBindBuffer(GL_ARRAY_BUFFER, smoke_density_buf_);
-  glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
-  for (GLuint a = 0; a < 2; ++a) {
-    glEnableVertexAttribArray(a);
-    glVertexAttribDivisor(a, 1);
-  }
-  glBindVertexArray(0);
-  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  wire_attributes(smoke_vao_, {{smoke_puff_buf_, 4, GL_FLOAT, GL_FALSE, 1},
+                               {smoke_density_buf_, 1, GL_FLOAT, GL_FALSE, 1}});
 }
 
 FrameRenderer::~FrameRenderer() {
