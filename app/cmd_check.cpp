@@ -12,7 +12,7 @@
 #include <string>
 
 #include "app/command.h"
-#include "cutting/validate.h"
+#include "app/mesh_check_report.h"
 #include "engine/input_error.h"
 #include "engine/mesh_check.h"
 #include "engine/mesh_io.h"
@@ -31,57 +31,6 @@ std::string group_label(int g, const MeshReadReport& read) {
   const auto it = read.group_names.find(g);
   return it == read.group_names.end() ? std::to_string(g)
                                       : std::to_string(g) + " (" + it->second + ")";
-}
-
-// Pieces per group: tets connected through shared nodes (a transected organ part has two).
-using Pieces = std::map<int, std::int32_t>;
-
-Pieces count_pieces(const TetMesh& mesh, const MeshCheckReport& r) {
-  Pieces p;
-  for (const auto& [g, tets] : r.group_tets)
-    p[g] = cutting::count_components(mesh, static_cast<std::uint16_t>(g));
-  return p;
-}
-
-nlohmann::json to_json(const std::string& file, const MeshReadReport& read,
-                       const MeshCheckReport& r, const Pieces& pieces) {
-  nlohmann::json groups = nlohmann::json::array();
-  for (const auto& [g, tets] : r.group_tets) {
-    nlohmann::json j{{"id", g}, {"tets", tets}, {"volume_m3", 0.0}, {"pieces", pieces.at(g)}};
-    if (const auto v = r.group_volume_m3.find(g); v != r.group_volume_m3.end()) {
-      j["volume_m3"] = v->second;
-    }
-    if (const auto n = read.group_names.find(g); n != read.group_names.end()) j["name"] = n->second;
-    groups.push_back(std::move(j));
-  }
-  return {
-      {"file", file},
-      {"format", read.format},
-      {"nodes", r.nodes},
-      {"tets", r.tets},
-      {"volume_m3", r.volume_m3},
-      {"groups", groups},
-      {"bbox_min_m", {r.bbox_min.x(), r.bbox_min.y(), r.bbox_min.z()}},
-      {"bbox_max_m", {r.bbox_max.x(), r.bbox_max.y(), r.bbox_max.z()}},
-      {"quality_measure", "mean_ratio"},
-      {"min_quality", r.min_quality},
-      {"median_quality", r.median_quality},
-      {"inverted_tets", r.inverted_tets},
-      {"flat_tets", r.flat_tets},
-      {"duplicate_tets", r.duplicate_tets},
-      {"bad_tets", r.bad_tets},
-      {"boundary_faces", r.boundary_faces},
-      {"interior_faces", r.interior_faces},
-      {"overshared_faces", r.overshared_faces},
-      {"misoriented_faces", r.misoriented_faces},
-      {"unreferenced_nodes", r.unreferenced_nodes},
-      {"nonfinite_nodes", r.nonfinite_nodes},
-      {"skipped_elements", read.skipped_elements},
-      {"repaired_inverted", read.repaired_inverted},
-      {"valid", r.valid},
-      {"problems", r.problems},
-      {"warnings", r.warnings},
-  };
 }
 
 void print_text(const std::string& file, const MeshReadReport& read, const MeshCheckReport& r,
@@ -119,28 +68,12 @@ void print_text(const std::string& file, const MeshReadReport& read, const MeshC
 }
 
 int run_check(const CheckArgs& args) {
-  // The reader names a missing file too, but say it here plainly whatever the reader does.
-  std::error_code ec;
-  if (!std::filesystem::exists(args.mesh, ec)) {
-    throw InputError(args.mesh, 0, "no such file", "an existing mesh file");
-  }
-  if (std::filesystem::is_directory(args.mesh, ec)) {
-    throw InputError(args.mesh, 0, "is a directory", "a mesh file");
-  }
-  MeshReadOptions options;
-  options.repair_inverted = args.repair_inverted;
-  MeshReadReport read;
-  const TetMesh mesh = read_mesh(args.mesh, options, &read);
-  MeshCheckOptions check_options;
-  check_options.flat_tolerance = options.flat_tolerance;
-  check_options.tet_lines = read.tet_lines;  // a problem names the tet's element and line
-  check_options.tet_ids = read.tet_ids;
-  check_options.tet_file = read.tet_file;
-  const MeshCheckReport report = check_mesh(mesh, check_options);
-
-  const Pieces pieces = count_pieces(mesh, report);
+  const CheckedMesh checked = check_mesh_file(args.mesh, args.repair_inverted);
+  const MeshCheckReport& report = checked.report;
+  const MeshReadReport& read = checked.read;
+  const Pieces& pieces = checked.pieces;
   if (args.json) {
-    std::printf("%s\n", to_json(args.mesh, read, report, pieces).dump(2).c_str());
+    std::printf("%s\n", check_json(args.mesh, checked).dump(2).c_str());
   } else {
     print_text(args.mesh, read, report, pieces);
   }

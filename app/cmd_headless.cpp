@@ -2,7 +2,8 @@
 //                       [--record OUT.lapr] [--export-final OUT.msh|.vtu|.obj] [--report OUT.json]
 //                       [--series OUT.csv] [--vtu-series DIR [--vtu-every N]] [--frames DIR]
 //                       [--golden GOLDEN.json [--update-golden]] [--validate-cuts]
-//                       [--trainee NAME [--db FILE]] [--set KEY=VALUE ...] [--strict]
+//                       [--trainee NAME [--db FILE]] [--set KEY=VALUE ...] [--strict] [--json]
+// Prints a short summary (app/run_summary.h), or with --json the whole report, on stdout.
 // Exit codes: 0 done; 1 bad input; 3 the report differs from the golden (or it is missing);
 // 4 with --strict, the run warned (app/run_warnings.h: the solver left steps above its tolerance,
 // gained energy or rejected a step, a fixed selection picked nothing). A golden mismatch wins.
@@ -17,6 +18,7 @@
 #include "app/emulated_rig_process.h"
 #include "app/golden.h"
 #include "app/headless.h"
+#include "app/run_summary.h"
 #include "app/task_option.h"
 #include "app/trainee_session.h"
 #include "engine/input_error.h"
@@ -54,6 +56,7 @@ void add_headless_command(CLI::App& app, Action& action) {
   auto golden = std::make_shared<std::string>();
   auto update_golden = std::make_shared<bool>(false);
   auto strict = std::make_shared<bool>(false);
+  auto json_out = std::make_shared<bool>(false);
   auto trainee = std::make_shared<TraineeOptions>();
   auto sets = std::make_shared<std::vector<std::string>>();
   CLI::App* cmd = app.add_subcommand("headless", "Run a scene without window or device");
@@ -77,7 +80,8 @@ void add_headless_command(CLI::App& app, Action& action) {
                   "Write the mesh as VTU every --vtu-every steps into this folder, with a .pvd");
   cmd->add_option("--vtu-every", opts->vtu_every, "Steps between --vtu-series files (default 10)")
       ->check(CLI::Range(std::int64_t{1}, std::int64_t{1000000000}));
-  cmd->add_option("--report", *report, "Write the JSON report here (also printed)");
+  cmd->add_option("--report", *report, "Write the JSON report here");
+  cmd->add_flag("--json", *json_out, "Print the JSON report on stdout instead of a summary");
   cmd->add_option("--frames", *frames, "Write PNG pictures of the run into this folder");
   cmd->add_option("--golden", *golden,
                   "Compare the report with this golden report (exit 3 on a difference beyond "
@@ -96,9 +100,9 @@ void add_headless_command(CLI::App& app, Action& action) {
                   "Override a scene key, KEY=VALUE with a TOML value (solver.tolerance=1e-4); "
                   "repeatable");
   cmd->callback([&action, opts, record, steps, path, final_msh, report, frames, golden,
-                 update_golden, trainee, scene, task, sets, strict] {
+                 update_golden, trainee, scene, task, sets, strict, json_out] {
     action = [opts, record, steps, path, final_msh, report, frames, golden, update_golden, trainee,
-              scene, task, sets, strict] {
+              scene, task, sets, strict, json_out] {
       opts->scene = scene_to_run(*scene, *task);
       for (const std::string& s : *sets) opts->overrides.push_back(parse_override(s, "--set"));
       opts->positions = !golden->empty();
@@ -117,7 +121,10 @@ void add_headless_command(CLI::App& app, Action& action) {
       if (!final_msh->empty()) opts->export_final = *final_msh;
       if (!frames->empty()) opts->frames = *frames;
       const auto json = run_headless(*opts);
-      std::printf("%s\n", json.dump(2).c_str());
+      if (*json_out)
+        std::printf("%s\n", json.dump(2).c_str());
+      else
+        std::fputs(run_summary(json, {opts->report, opts->frames}).c_str(), stdout);
       std::fflush(stdout);  // whole, before stderr's lines: a log holding both reads in order
       if (kept)             // after the recording and the report are written
         file_session(*kept, opts->scene, json, opts->record, opts->report);

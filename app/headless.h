@@ -39,6 +39,9 @@ struct HeadlessOptions {
   bool fitted_camera = false;
   bool progress = true;                         ///< progress bar on stderr when it is a terminal
   std::optional<std::filesystem::path> record;  ///< .lapr recording of the run
+  /// Without `record`, record to the scene's [record] path when it gives one (a Python program
+  /// records only when it asks).
+  bool scene_record = true;
   bool validate_cuts = false;  ///< check every cut's invariants (cutting/validate.h); costly
   /// The final node positions in the report ("nodes_final_m"), for a golden comparison.
   bool positions = false;

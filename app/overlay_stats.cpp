@@ -55,6 +55,8 @@ const char* instruments_label(std::optional<DeviceKind> loop_device, bool connec
       return "mouse";
     case DeviceKind::kScript:
       return "script";
+    case DeviceKind::kPython:
+      return "python";
     case DeviceKind::kRig:
       return connected ? "rig" : was_connected ? "rig disconnected" : "rig not connected";
     case DeviceKind::kRigEmulated:

@@ -65,8 +65,9 @@ double hinge_distance(const ToolState& a, const ToolState& b) {
 
 void CuttingStage::step(const StepContext& ctx, SimState& state) {
   state.handoff.cuts.clear();  // the FEM stage of this step has taken the last step's
-  if (!m_scissors.empty() || !m_hooks.empty() || !m_staplers.empty())
+  if (!m_scissors.empty() || !m_hooks.empty() || !m_staplers.empty() || !m_queued.empty())
     cutting::reserve_for_cuts(state.mesh);  // no realloc in the first cut
+  cut_queued(ctx, state);
   for (Scissors& s : m_scissors) {
     if (s.tool >= state.tools.size()) continue;
     const ToolState now = state.tools[s.tool];
@@ -91,6 +92,18 @@ void CuttingStage::step(const StepContext& ctx, SimState& state) {
   inherit_coagulation(state, 0);
   state.handoff.coagulated = m_coagulated;  // (no allocation once it has its size)
   state.handoff.coagulated_version = m_coagulated_version;
+}
+
+void CuttingStage::cut_queued(const StepContext& ctx, SimState& state) {
+  m_queued_reports.clear();
+  for (const cutting::ConvexPolygon& polygon : m_queued) {
+    StrokeReport report;
+    report.first_step = report.last_step = ctx.step;
+    report.steps = report.polygons = 1;
+    cut(ctx, state, kNoTool, 0, polygon, nullptr, report);
+    m_queued_reports.push_back(report);
+  }
+  m_queued.clear();
 }
 
 // A hook withdrawn into its port: the current goes off where it left the tissue (what it burnt

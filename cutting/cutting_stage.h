@@ -168,6 +168,15 @@ class CuttingStage final : public Stage {
   void save(StateWriter& out) const override;
   void restore(StateReader& in, SimState& state) override;
 
+  /// Cuts `polygon` (convex, planar, world coordinates, m) by the scene's [cutting] method in the
+  /// next step, before the tools cut: a cut no tool made (CutEvent::tool is kNoTool), asked for
+  /// by a program (serosa.Simulation.cut). It is not a stroke; the step hands it on like one.
+  void queue_cut(const cutting::ConvexPolygon& polygon) { m_queued.push_back(polygon); }
+  /// What each queued polygon did, in the step that cut them (empty after a step without).
+  [[nodiscard]] const std::vector<StrokeReport>& queued_cuts() const noexcept {
+    return m_queued_reports;
+  }
+
   [[nodiscard]] const CuttingStageStats& stats() const noexcept { return m_stats; }
   [[nodiscard]] std::size_t num_scissors() const noexcept { return m_scissors.size(); }
   [[nodiscard]] std::size_t num_staplers() const noexcept { return m_staplers.size(); }
@@ -230,7 +239,11 @@ class CuttingStage final : public Stage {
   void cut(const StepContext& ctx, SimState& state, std::size_t tool, int blade,
            const cutting::ConvexPolygon& polygon, FlattenedPositions* flat, StrokeReport& report);
   void refresh_bvh(const StepContext& ctx, const TetMesh& mesh);
+  /// Cuts the polygons queue_cut asked for.
+  void cut_queued(const StepContext& ctx, SimState& state);
   std::vector<Scissors> m_scissors;
+  std::vector<cutting::ConvexPolygon> m_queued;  // queue_cut's, cut in the next step
+  std::vector<StrokeReport> m_queued_reports;    // what they did
   std::vector<Hook> m_hooks;
   std::vector<Stapler> m_staplers;
   std::vector<std::int32_t> m_near;        // scratch: tets near a live crook

@@ -50,10 +50,11 @@ constexpr NameTable<ToolKind, 7> kToolKindNames{{{ToolKind::kScissors, "scissors
                                                  {ToolKind::kHook, "hook"},
                                                  {ToolKind::kEndoloop, "endoloop"},
                                                  {ToolKind::kStapler, "stapler"}}};
-constexpr NameTable<DeviceKind, 4> kDeviceNames{{{DeviceKind::kRig, "rig"},
+constexpr NameTable<DeviceKind, 5> kDeviceNames{{{DeviceKind::kRig, "rig"},
                                                  {DeviceKind::kRigEmulated, "rig-emulated"},
                                                  {DeviceKind::kMouse, "mouse"},
-                                                 {DeviceKind::kScript, "script"}}};
+                                                 {DeviceKind::kScript, "script"},
+                                                 {DeviceKind::kPython, "python"}}};
 constexpr NameTable<Hand, 2> kHandNames{{{Hand::kLeft, "left"}, {Hand::kRight, "right"}}};
 constexpr NameTable<CutMethod, 3> kCutMethodNames{
     {{CutMethod::kPattern, "pattern"}, {CutMethod::kRemove, "remove"}, {CutMethod::kSnap, "snap"}}};

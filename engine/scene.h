@@ -72,7 +72,9 @@ enum class ToolKind : std::uint8_t {
   kEndoloop,
   kStapler  ///< a linear cutter-stapler (engine/stapler.h)
 };
-enum class DeviceKind : std::uint8_t { kRig, kRigEmulated, kMouse, kScript };
+/// What drives a tool: a USB rig's handle, the emulated rig, the mouse, a scripted path, or a
+/// Python program (serosa.Simulation.set_tool; anywhere else such a tool stays where it is).
+enum class DeviceKind : std::uint8_t { kRig, kRigEmulated, kMouse, kScript, kPython };
 enum class Hand : std::uint8_t { kLeft, kRight };
 enum class CutMethod : std::uint8_t { kPattern, kRemove, kSnap };
 /// What a scissors stroke whose blades bent out of one plane is cut along: its swept surface, or
@@ -85,7 +87,7 @@ enum class Surroundings : std::uint8_t { kNone, kAbdomen };
 [[nodiscard]] std::string_view solver_kind_name(SolverKind k) noexcept;  ///< pcg|cholmod|...
 [[nodiscard]] std::string_view tool_kind_name(
     ToolKind k) noexcept;  ///< scissors|...|clip-applier|hook|endoloop
-[[nodiscard]] std::string_view device_kind_name(DeviceKind k) noexcept;  ///< rig|...|script
+[[nodiscard]] std::string_view device_kind_name(DeviceKind k) noexcept;  ///< rig|...|script|python
 [[nodiscard]] std::string_view hand_name(Hand h) noexcept;               ///< left|right
 [[nodiscard]] std::string_view cut_method_name(CutMethod m) noexcept;    ///< pattern|remove|snap
 [[nodiscard]] std::string_view stroke_surface_name(StrokeSurfaceKind k) noexcept;  ///< swept|plane
@@ -94,8 +96,8 @@ enum class Surroundings : std::uint8_t { kNone, kAbdomen };
 [[nodiscard]] std::optional<Quality> quality_from_name(std::string_view s) noexcept;
 [[nodiscard]] std::optional<SolverKind> solver_kind_from_name(std::string_view s) noexcept;
 [[nodiscard]] std::optional<ToolKind> tool_kind_from_name(std::string_view s) noexcept;
-/// Device kinds without argument: "rig", "rig-emulated", "mouse" (and "script" alone, which the
-/// loader rejects: a script needs ":FILE").
+/// Device kinds without argument: "rig", "rig-emulated", "mouse", "python" (and "script" alone,
+/// which the loader rejects: a script needs ":FILE").
 [[nodiscard]] std::optional<DeviceKind> device_kind_from_name(std::string_view s) noexcept;
 [[nodiscard]] std::optional<Hand> hand_from_name(std::string_view s) noexcept;
 [[nodiscard]] std::optional<CutMethod> cut_method_from_name(std::string_view s) noexcept;

@@ -931,8 +931,8 @@ class Loader {
                                        tool_kind_from_name, kinds);
       m_kind_lines.push_back(line_of(*t.get("kind")));
 
-      // device = "rig" | "rig-emulated[:FILE]" | "mouse" | "script:FILE"
-      const std::string dev_expected = "rig, rig-emulated[:FILE], mouse or script:FILE";
+      // device = "rig" | "rig-emulated[:FILE]" | "mouse" | "script:FILE" | "python"
+      const std::string dev_expected = "rig, rig-emulated[:FILE], mouse, script:FILE or python";
       const toml::node& dev_node = required(t, "device", p, dev_expected);
       const std::string dp = sub(p, "device");
       const std::string& dev = string(dev_node, dp, dev_expected);

@@ -18,9 +18,12 @@
 namespace serosa {
 
 /// One cut applied to the mesh during a step, as the cutting stage hands it on.
+/// CutEvent::tool of a cut no tool made: a polygon an engineer asked for (serosa.Simulation.cut).
+inline constexpr std::size_t kNoTool = static_cast<std::size_t>(-1);
+
 struct CutEvent {
   std::uint64_t step = 0;                     ///< solver step during which it happened
-  std::size_t tool = 0;                       ///< index into Scene::tools
+  std::size_t tool = 0;                       ///< index into Scene::tools, or kNoTool
   int blade = 0;                              ///< 0 or 1 (engine/tool_geometry.h)
   std::vector<Vec3> polygon_m;                ///< (k) the swept blade polygon, m
   TopologyDelta delta;                        ///< as applied (its filled-in fields set)

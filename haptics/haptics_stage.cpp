@@ -118,7 +118,8 @@ HapticsStage::HapticsStage(const Scene& scene, const HapticsStageOptions& option
   std::optional<std::filesystem::path> script;
   for (std::size_t i = 0; i < scene.tools.size(); ++i) {
     const Tool& t = scene.tools[i];
-    if (t.kind == ToolKind::kEndoscope) continue;
+    // A Python program poses its tools itself, between steps: no handle takes them.
+    if (t.kind == ToolKind::kEndoscope || t.device.kind == DeviceKind::kPython) continue;
     const bool rig = is_rig(t.device.kind);
     // A rig tool with a hand starts in that handle; any other tool in the next free one.
     std::size_t h = 0;

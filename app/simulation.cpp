@@ -1,0 +1,404 @@
+#include "app/simulation.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+#include <thread>
+
+#include "app/assessment_report.h"
+#include "app/frame_pictures.h"
+#include "app/instrument_devices.h"
+#include "app/preset_report.h"
+#include "app/provenance.h"
+#include "app/version.h"
+#include "contact/tool_contact_stage.h"
+#include "cutting/cutting_stage.h"
+#include "engine/input_error.h"
+#include "engine/mesh_check.h"
+#include "engine/sim_state.h"
+#include "fem/fem_stage.h"
+#include "haptics/haptics_stage.h"
+#include "metrics/metrics_stage.h"
+#include "surface/surface_stage.h"
+
+namespace serosa::app {
+namespace {
+
+using Json = nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+Json mesh_json(const TetMesh& mesh) {
+  const MeshCheckReport r = check_mesh(mesh);
+  Json j;
+  j["nodes"] = mesh.num_nodes();
+  j["tets"] = mesh.num_tets();
+  j["topology_version"] = mesh.topology_version;
+  j["rest_volume_m3"] = r.volume_m3;
+  j["valid"] = r.valid;
+  j["min_quality"] = r.min_quality;
+  return j;
+}
+
+// Each placed ligature (clip or loop: when, by which tool, what it clamps, where it is now) and
+// the clips each applier closed on no tissue and the loops cinched round none.
+Json clips_json(const Scene& scene, const SimState& state, const Composition& comp,
+                const std::map<int, std::string>& group_names) {
+  Json placed = Json::array();
+  for (const Clip& c : state.handoff.clips) {
+    Json groups = Json::array();
+    for (int g : c.groups) {
+      const auto it = group_names.find(g);
+      groups.push_back(it != group_names.end() ? it->second : std::to_string(g));
+    }
+    const Vec3 mid = 0.5 * (c.end(0) + c.end(1));
+    placed.push_back({{"tool", scene.tools[c.tool].name},
+                      {"kind", c.kind == Clip::Kind::kLoop     ? "loop"
+                               : c.kind == Clip::Kind::kStaple ? "staple"
+                                                               : "clip"},
+                      {"time_s", c.placed_s},
+                      {"nodes", c.nodes},
+                      {"groups", std::move(groups)},
+                      {"centre_m", {mid.x(), mid.y(), mid.z()}}});
+  }
+  Json dropped = Json::object(), refused = Json::object();
+  for (std::size_t i = 0; i < scene.tools.size(); ++i) {
+    const ToolKind k = scene.tools[i].kind;
+    if (k == ToolKind::kClipApplier || k == ToolKind::kEndoloop || k == ToolKind::kStapler)
+      dropped[scene.tools[i].name] = comp.clips->dropped()[i];
+    if (k == ToolKind::kStapler) refused[scene.tools[i].name] = comp.clips->refused()[i];
+  }
+  Json j = {{"placed", std::move(placed)}, {"dropped", std::move(dropped)}};
+  if (!refused.empty()) j["refused"] = std::move(refused);  // fires on a ligature, per stapler
+  return j;
+}
+
+StepDetail step_detail(const Runner& runner, const fem::FemStage* fem) {
+  StepDetail d;
+  d.fem_ms = 1e3 * runner.last_stage_s("fem");
+  if (fem != nullptr) {
+    const fem::StepStatus& st = fem->last_status();
+    d.cg_iterations = st.iterations;
+    d.factor_refresh = st.factor_refresh;
+    d.factor_patch = st.factor_patch;
+  }
+  return d;
+}
+
+// Every output the run will write, checked before anything runs; the final mesh's format.
+std::optional<MeshOutputFormat> check_outputs(const HeadlessOptions& o) {
+  if (o.report) check_output_file("--report", *o.report);
+  if (o.record) check_output_file("--record", *o.record);
+  if (o.series) check_output_file("--series", *o.series);
+  if (o.frames) check_output_folder("--frames", *o.frames);
+  if (o.vtu_series) check_output_folder("--vtu-series", *o.vtu_series);
+  if (o.vtu_every < 1) throw InputError("--vtu-every", 0, "not positive", "steps >= 1");
+  if (!o.export_final) return std::nullopt;
+  check_output_file("--export-final", *o.export_final);
+  return mesh_output_format("--export-final", *o.export_final);
+}
+
+std::int64_t steps_to_run(const HeadlessOptions& o, const Scene& scene) {
+  if (o.seconds) {
+    if (!(*o.seconds >= 0.0)) throw InputError("--seconds", 0, "negative", "seconds >= 0");
+    return std::llround(*o.seconds / scene.settings.dt_s);
+  }
+  const std::int64_t steps = o.steps.value_or(scene.headless.steps);
+  if (steps < 0) throw InputError("--steps", 0, "negative step count", ">= 0");
+  return steps;
+}
+
+}  // namespace
+
+Simulation::Simulation(const HeadlessOptions& options)
+    : m_options(options), m_final_format(check_outputs(options)), m_wall0(Clock::now()) {
+  m_scene = load_scene(options.scene, options.overrides);
+  if (options.tool_path) play_tool_path(m_scene, *options.tool_path);
+  m_planned = steps_to_run(options, m_scene);
+  m_initial = assemble_state(m_scene);
+  m_assembled = m_initial;
+  m_python_poses.resize(m_scene.tools.size());
+  for (std::size_t i = 0; i < m_scene.tools.size(); ++i)
+    if (m_scene.tools[i].device.kind == DeviceKind::kPython)
+      m_python_poses[i] = std::make_unique<Seqlock<ToolState>>(ToolState{});
+  build();
+  // Record: the last stage, after everything the step changed.
+  if (options.record || options.scene_record)
+    m_writer =
+        record_run(m_comp, m_scene, options.record, recording_header(m_scene, m_planned), "run");
+  for (Effect e : m_comp.unavailable)
+    spdlog::warn("effect '{}' is listed by {} but not implemented in this build: not simulated",
+                 effect_name(e), m_scene.file.string());
+  start_report();
+  m_warnings = selection_warnings(m_scene, m_assembled);
+  print_warnings(m_warnings);  // before the run: an empty selection is known now
+  if (options.frames) {
+    m_pictures = std::make_unique<FramePictures>(*options.frames, m_scene, m_assembled.state.mesh,
+                                                 m_assembled.group_names());
+    m_pictures->set_endoscope(!options.fitted_camera);
+    const int count = std::max(options.frame_count, 1);
+    for (int k = 0; k < count; ++k)
+      m_picture_steps.push_back(count == 1 ? m_planned : m_planned * k / std::max(count - 1, 1));
+  }
+  const auto p0 = Clock::now();
+  m_comp.runner->prepare(m_assembled.state);  // load time: FEM's structure and first factor
+  m_prepare_ms = ms_since(p0);
+  if (options.series) m_series.emplace(*options.series, m_scene);
+  if (options.vtu_series) m_vtu.emplace(*options.vtu_series, options.vtu_every);
+  if (m_vtu) m_vtu->add(m_assembled.state);
+  m_paced = m_comp.haptics && m_comp.haptics->driven_by_rig();
+}
+
+Simulation::~Simulation() {
+  // A run dropped without finish() (an exception, a Python object collected) still leaves a
+  // readable recording behind.
+  if (m_writer && !m_finished) {
+    try {
+      m_writer->close(m_assembled.state.step);
+    } catch (const std::exception& e) {
+      spdlog::error("{}: {}", m_writer->path().string(), e.what());
+    }
+  }
+}
+
+void Simulation::build() {
+  ComposeOptions co;
+  co.validate_cuts = m_options.validate_cuts;
+  for (std::size_t i = 0; i < m_python_poses.size(); ++i)
+    if (m_python_poses[i]) co.live_poses.push_back({i, m_python_poses[i].get()});
+  m_comp = compose(m_scene, m_assembled, std::move(co));
+}
+
+void Simulation::start_report() {
+  Json& r = m_report;
+  r["serosa"] = std::string(version_string());
+  r["scene"] = m_scene.file.string();
+  r["dt_s"] = m_scene.settings.dt_s;
+  r["steps"] = m_planned;
+  for (Effect e : m_comp.built) r["effects"]["simulated"].push_back(effect_name(e));
+  for (Effect e : m_comp.folded) r["effects"]["folded"].push_back(effect_name(e));
+  for (Effect e : m_comp.unavailable) r["effects"]["unavailable"].push_back(effect_name(e));
+  r["mesh_initial"] = mesh_json(m_assembled.state.mesh);
+  r["solver"] = solver_report(m_scene.solver);
+  if (auto preset = preset_report(m_scene)) r["preset"] = std::move(*preset);
+  r["fixed"] = fixed_json(m_assembled);
+  r["provenance"] = provenance_json(m_scene, m_options.overrides, m_assembled);
+}
+
+void Simulation::take_picture_if_due(std::int64_t step) {
+  if (!m_pictures ||
+      std::find(m_picture_steps.begin(), m_picture_steps.end(), step) == m_picture_steps.end())
+    return;
+  const auto r0 = Clock::now();
+  ++m_rendered;
+  char stem[32];
+  std::snprintf(stem, sizeof stem, "step_%06lld", static_cast<long long>(step));
+  for (const auto& png : m_pictures->take(m_assembled.state, stem))
+    m_report["frames"].push_back(png.string());
+  m_report["frames_camera"] = m_pictures->camera_used();
+  m_report["frames_flat"].push_back(m_pictures->flat_fraction());
+  m_report["frames_blood"].push_back(m_pictures->blood_fraction());
+  m_render_s += 1e-3 * ms_since(r0);
+}
+
+void Simulation::step() {
+  SimState& state = m_assembled.state;
+  if (!m_step0) {
+    m_step0 = Clock::now();
+    take_picture_if_due(static_cast<std::int64_t>(state.step));
+  }
+  if (m_paced)
+    std::this_thread::sleep_until(
+        *m_step0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
+                       static_cast<double>(m_step_ms.size()) * m_scene.settings.dt_s)));
+  const auto s0 = Clock::now();
+  m_comp.runner->step(state);
+  m_step_ms.push_back(ms_since(s0));
+  m_details.push_back(step_detail(*m_comp.runner, m_comp.fem));
+  if (m_series)
+    m_series->add(state, m_step_ms.back(), m_details.back().fem_ms,
+                  m_comp.fem ? m_comp.fem->last_status() : fem::StepStatus{});
+  if (m_vtu) m_vtu->add(state);
+  take_picture_if_due(static_cast<std::int64_t>(state.step));
+}
+
+void Simulation::set_tool(std::size_t tool, const ToolState& pose) {
+  if (tool >= m_python_poses.size() || !m_python_poses[tool])
+    throw std::invalid_argument(
+        "tool " + (tool < m_scene.tools.size() ? "'" + m_scene.tools[tool].name + "'" : "#?") +
+        " is not driven from Python (its device is not \"python\" in " + m_scene.file.string() +
+        ")");
+  ToolState t = pose;
+  t.tick = ++m_pose_tick;
+  t.time_s = m_assembled.state.time_s;
+  m_python_poses[tool]->store(t);
+}
+
+cutting::StrokeReport Simulation::cut(const cutting::ConvexPolygon& polygon) {
+  if (!m_comp.cutting)
+    throw std::invalid_argument(m_scene.file.string() +
+                                " does not list the effect \"cutting\": nothing can cut");
+  m_comp.cutting->queue_cut(polygon);
+  step();
+  const auto& done = m_comp.cutting->queued_cuts();
+  return done.empty() ? cutting::StrokeReport{} : done.front();
+}
+
+std::vector<std::uint8_t> Simulation::snapshot() const {
+  if (!m_assembled.state.handoff.cuts.empty())
+    throw std::logic_error("a cut is in flight (this step cut): take one more step first");
+  return m_comp.runner->snapshot(m_assembled.state);
+}
+
+void Simulation::restore(std::span<const std::uint8_t> bytes, const std::string& what) {
+  if (m_writer)
+    throw std::logic_error("this run records to " + m_writer->path().string() +
+                           ": a restore would break the recording");
+  m_assembled = m_initial;
+  build();
+  m_comp.runner->restore(bytes, m_assembled.state, what);
+  m_comp.runner->prepare(m_assembled.state);
+  // The per-step timings follow the steps: those after the snapshot's are no longer this run's.
+  m_step_ms.resize(m_assembled.state.step, 0.0);
+  m_details.resize(m_assembled.state.step);
+}
+
+void Simulation::add_run_blocks(Json& report) const {
+  const SimState& state = m_assembled.state;
+  report["steps_taken"] = state.step;
+  report["paced_to_real_time"] = m_paced;
+  for (const StageTiming& t : m_comp.runner->timings())
+    report["time_per_stage_ms"][t.name] =
+        t.calls ? 1e3 * t.total_s / static_cast<double>(t.calls) : 0.0;
+  // Rendering is not a solver stage headless: ms per picture step, when pictures were drawn.
+  if (m_rendered > 0)
+    report["time_per_stage_ms"]["render"] = 1e3 * m_render_s / static_cast<double>(m_rendered);
+  report["simulated_time_s"] = state.time_s;
+  report["wall_time_s"] = 1e-3 * ms_since(m_wall0);
+  report["stepping_time_s"] = m_step0 ? 1e-3 * ms_since(*m_step0) : 0.0;
+  report["step_time_ms"] = step_time_json(m_step_ms, m_details);
+  report["prepare_ms"] = m_prepare_ms;  // load time before the first step (Runner::prepare)
+  // Simulated over wall time of the solver steps: >= 1 runs ahead of the clock.
+  double stepped_s = 0.0;
+  for (double ms : m_step_ms) stepped_s += 1e-3 * ms;
+  report["real_time_factor"] = stepped_s > 0.0 ? state.time_s / stepped_s : 0.0;
+  report["mesh_final"] = mesh_json(state.mesh);
+  if (m_options.positions) {
+    // For a golden: where every node ended, and which binary put it there (the state hash is
+    // exact only for the same binary and thread count).
+    Json nodes = Json::array();
+    // To the nanometre: a golden compares them to 10 um, and the file stays small.
+    const auto nm = [](double v) { return std::round(v * 1e9) / 1e9; };
+    for (const Vec3& x : state.mesh.x) nodes.push_back({nm(x.x()), nm(x.y()), nm(x.z())});
+    report["nodes_final_m"] = std::move(nodes);
+    report["binary_id"] = binary_id();
+  }
+  for (const Blood& b : state.handoff.blood)
+    report["bleeding"].push_back({{"since_s", b.since_s},
+                                  {"shed_m3", b.shed_m3},
+                                  {"pool_radius_m", b.pool_radius_m},
+                                  {"flowing", b.pulse > 0.0}});
+  report["state_hash"] = hash_hex(state_hash(state));
+  if (m_comp.cutting) {
+    report["cutting"] = cutting_json(m_comp);
+    // The step each stroke was cut in, and the next (whose FEM takes the new tets), against dt;
+    // kept out of "cutting", which a replay reproduces exactly.
+    Json cut_steps = Json::array();
+    for (const cutting::StrokeReport& r : m_comp.cutting->stats().stroke_reports) {
+      const auto at = static_cast<std::size_t>(r.last_step);
+      if (at >= m_step_ms.size()) continue;
+      cut_steps.push_back({{"step", r.last_step},
+                           {"ms", m_step_ms[at]},
+                           {"next_ms", at + 1 < m_step_ms.size() ? m_step_ms[at + 1] : 0.0}});
+    }
+    report["cut_steps"] = std::move(cut_steps);
+  }
+  add_metrics_blocks(report, m_scene, m_comp.metrics, state.mesh, m_assembled.group_names());
+  add_stage_blocks(report);
+}
+
+void Simulation::add_stage_blocks(Json& report) const {
+  const SimState& state = m_assembled.state;
+  if (m_comp.contact) {
+    const auto held = m_comp.contact->grasped_counts();
+    for (std::size_t i = 0; i < m_scene.tools.size() && i < held.size(); ++i)
+      if (m_scene.tools[i].kind == ToolKind::kGrasper)
+        report["contact"]["held_nodes"][m_scene.tools[i].name] = held[i];
+  }
+  if (m_comp.clips) report["clips"] = clips_json(m_scene, state, m_comp, m_assembled.group_names());
+  if (m_comp.surface) {
+    const auto& ss = m_comp.surface->stats();
+    report["surface"] = {
+        {"faces", state.handoff.surface.num_faces()},
+        {"rebuilds", ss.rebuilds},
+        {"updates", ss.updates},
+        {"failed_updates", ss.failed_updates},
+        {"backend", m_comp.surface->backend() == surface::Backend::kCuda ? "cuda" : "cpu"}};
+  }
+  std::vector<RunWarning> warnings = m_warnings;
+  if (m_comp.fem) {
+    const auto& st = m_comp.fem->stats();
+    const auto& fem = *m_comp.fem;
+    report["fem"] = {{"steps", st.steps},
+                     {"not_converged", st.not_converged},
+                     {"factor_refreshes", st.factor_refreshes},
+                     {"factor_patches", st.factor_patches},
+                     {"rejected", st.rejected},
+                     {"energy_gains", st.energy_gains},
+                     {"energy_gains_after_capped_solve", st.energy_gains_after_capped_solve},
+                     {"energy_removed_j", st.energy_removed_j},
+                     {"peak_energy_j", st.peak_energy_j},
+                     {"last_iterations", fem.last_status().iterations},
+                     {"last_residual", fem.last_status().residual},
+                     {"debris_tets", fem.integrator().elements().debris_tets},
+                     {"debris_volume_m3", fem.integrator().elements().debris_volume_m3}};
+    const std::vector<RunWarning> solver = solver_warnings(m_scene.solver, st);
+    warnings.insert(warnings.end(), solver.begin(), solver.end());
+  }
+  report["warnings"] = warnings_json(warnings);
+}
+
+Json Simulation::report() const {
+  Json report = m_report;
+  add_run_blocks(report);
+  return report;
+}
+
+Json Simulation::finish(bool interrupted) {
+  if (m_finished) throw std::logic_error("the run has already finished");
+  m_finished = true;
+  SimState& state = m_assembled.state;
+  if (!m_step0) take_picture_if_due(static_cast<std::int64_t>(state.step));
+  Json report = m_report;
+  if (m_comp.haptics) report["haptics"] = m_comp.haptics->telemetry_json();  // stops the loop
+  if (m_writer) report["recording"] = close_recording(*m_writer, m_scene, state.step);
+  add_run_blocks(report);
+  if (interrupted) report["interrupted"] = true;
+  if (m_comp.fem) print_warnings(solver_warnings(m_scene.solver, m_comp.fem->stats()));
+  if (m_options.export_final) {
+    write_mesh_output(*m_options.export_final, *m_final_format, state.mesh,
+                      m_assembled.group_names());
+    report["export_final"] = m_options.export_final->string();
+  }
+  if (m_series) {
+    m_series->close();
+    report["series"] = m_options.series->string();
+  }
+  if (m_vtu)
+    report["vtu_series"] = {{"folder", m_options.vtu_series->string()}, {"files", m_vtu->close()}};
+  if (m_options.report) {
+    std::ofstream out(*m_options.report);
+    out << report.dump(2) << '\n';
+    if (!out) throw std::runtime_error("cannot write report " + m_options.report->string());
+  }
+  return report;
+}
+
+}  // namespace serosa::app

@@ -1,0 +1,116 @@
+// Simulation: one scene loaded, assembled, composed and prepared, stepped one solver step at a
+// time and reported on. It is the driver of `serosa headless` (run_headless: construct, step,
+// finish) and the object the Python module wraps (python/serosa_module.cpp, docs/python.md):
+// a program steps the same stages, in the same order, to the same bits as the command.
+// Tools whose device is "python" take the pose set_tool gives them at the next step boundary
+// (a LivePoseStage in the tools place, so a recording records what the solver consumed).
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/assemble_state.h"
+#include "app/compose.h"
+#include "app/headless.h"
+#include "app/output_paths.h"
+#include "app/run_series.h"
+#include "app/run_warnings.h"
+#include "cutting/convex_polygon.h"
+#include "engine/scene.h"
+#include "engine/seqlock.h"
+
+namespace serosa::app {
+
+class FramePictures;
+
+class Simulation {
+ public:
+  /// Checks every output `options` names, loads the scene with its overrides and tool path
+  /// (InputError naming the file, key and line), builds the listed effects' stages, opens the
+  /// recording and prepares the first step (load time).
+  explicit Simulation(const HeadlessOptions& options);
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  /// One solver step: every stage in its place, timed; then the series, VTU and picture due.
+  void step();
+  /// The steps the options asked for (--steps, --seconds, else the scene's headless.steps).
+  [[nodiscard]] std::int64_t planned_steps() const noexcept { return m_planned; }
+
+  /// The run's report so far (docs/headless-report.md), without the blocks only the end writes
+  /// ("haptics", "recording", "export_final", "series", "vtu_series").
+  [[nodiscard]] nlohmann::json report() const;
+  /// Ends the run: stops the haptic loop, closes the recording and the series, writes the final
+  /// mesh and the report file the options name; returns the whole report. Once. `interrupted`:
+  /// the run stopped before its planned steps (the report says so).
+  nlohmann::json finish(bool interrupted = false);
+
+  /// Poses tool `tool` (index into Scene::tools) for the next step. Throws std::invalid_argument
+  /// naming it unless its device is "python".
+  void set_tool(std::size_t tool, const ToolState& pose);
+  /// Cuts `polygon` (convex, planar, world coordinates, m) through the cutting stage in one
+  /// step (CuttingStage::queue_cut); returns what it did. Throws std::invalid_argument when the
+  /// scene does not list "cutting".
+  cutting::StrokeReport cut(const cutting::ConvexPolygon& polygon);
+  /// The whole state (Runner::snapshot). Throws std::logic_error while a cut is in flight (the
+  /// step that cut: take one more step).
+  [[nodiscard]] std::vector<std::uint8_t> snapshot() const;
+  /// Rebuilds the stages from the scene and restores `bytes` into them (Runner::restore): the
+  /// run goes on bit for bit as from where the snapshot was taken. InputError naming `what` on
+  /// damaged bytes. Not while recording (the recording would no longer be one run).
+  void restore(std::span<const std::uint8_t> bytes, const std::string& what);
+
+  [[nodiscard]] const Scene& scene() const noexcept { return m_scene; }
+  [[nodiscard]] const SimState& state() const noexcept { return m_assembled.state; }
+  [[nodiscard]] const AssembledScene& assembled() const noexcept { return m_assembled; }
+  [[nodiscard]] const Composition& composition() const noexcept { return m_comp; }
+
+ private:
+  /// Compose the stages for m_assembled (fresh: at load and at restore).
+  void build();
+  /// The report's blocks known before the first step.
+  void start_report();
+  /// Draws the pictures due at `step` (options.frames).
+  void take_picture_if_due(std::int64_t step);
+  /// The blocks after the steps: timing, meshes, cuts, metrics, then add_stage_blocks.
+  void add_run_blocks(nlohmann::json& report) const;
+  /// Contact, clips, surface, FEM and the warnings.
+  void add_stage_blocks(nlohmann::json& report) const;
+
+  HeadlessOptions m_options;
+  std::optional<MeshOutputFormat> m_final_format;
+  Scene m_scene;
+  std::int64_t m_planned = 0;
+  AssembledScene m_initial;  // the assembled state before the first step (restore rebuilds it)
+  AssembledScene m_assembled;
+  Composition m_comp;
+  std::unique_ptr<recording::RecordingWriter> m_writer;
+  /// (tools) The pose channel of each tool a Python program drives; null for the others.
+  std::vector<std::unique_ptr<Seqlock<ToolState>>> m_python_poses;
+  std::uint64_t m_pose_tick = 0;  // set_tool's sample count (a channel with tick 0 is unset)
+
+  nlohmann::json m_report;  // the blocks known at load and the pictures taken
+  std::vector<RunWarning> m_warnings;
+  std::unique_ptr<FramePictures> m_pictures;
+  std::vector<std::int64_t> m_picture_steps;
+  double m_render_s = 0.0;  // wall time drawing pictures, s
+  std::int64_t m_rendered = 0;
+  std::optional<StepSeries> m_series;
+  std::optional<VtuSeries> m_vtu;
+  double m_prepare_ms = 0.0;                                     // Runner::prepare, ms
+  std::chrono::steady_clock::time_point m_wall0;                 // construction
+  std::optional<std::chrono::steady_clock::time_point> m_step0;  // the first step's start
+  std::vector<double> m_step_ms;                                 // (steps) wall time per step, ms
+  std::vector<StepDetail> m_details;                             // (steps) where it went
+  bool m_paced = false;  // a rig's hand moves in wall-clock time: no faster than real time
+  bool m_finished = false;
+};
+
+}  // namespace serosa::app
