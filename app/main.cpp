@@ -1,4 +1,5 @@
 // serosa: the command line (docs/ARCHITECTURE.md "External contracts").
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
@@ -11,6 +12,10 @@
 
 int main(int argc, char** argv) {
   serosa::app::keep_freed_memory();
+  // The log goes to stderr: stdout carries only what the command prints (a script reads
+  // `headless --json` or `check --json` from it whole).
+  spdlog::set_default_logger(std::make_shared<spdlog::logger>(
+      "", std::make_shared<spdlog::sinks::stderr_color_sink_mt>()));
   CLI::App cli{"Serosa: real-time laparoscopic surgery simulator"};
   cli.require_subcommand(1);
   serosa::app::Action action;

@@ -123,37 +123,37 @@ Simulation::Simulation(const HeadlessOptions& options)
   if (options.tool_path) play_tool_path(m_scene, *options.tool_path);
   m_planned = steps_to_run(options, m_scene);
   m_initial = assemble_state(m_scene);
-  m_assembled = m_initial;
   m_python_poses.resize(m_scene.tools.size());
   for (std::size_t i = 0; i < m_scene.tools.size(); ++i)
     if (m_scene.tools[i].device.kind == DeviceKind::kPython)
       m_python_poses[i] = std::make_unique<Seqlock<ToolState>>(ToolState{});
-  build();
+  m_pipe = build();
   // Record: the last stage, after everything the step changed.
   if (options.record || options.scene_record)
-    m_writer =
-        record_run(m_comp, m_scene, options.record, recording_header(m_scene, m_planned), "run");
-  for (Effect e : m_comp.unavailable)
+    m_writer = record_run(m_pipe->comp, m_scene, options.record,
+                          recording_header(m_scene, m_planned), "run");
+  for (Effect e : m_pipe->comp.unavailable)
     spdlog::warn("effect '{}' is listed by {} but not implemented in this build: not simulated",
                  effect_name(e), m_scene.file.string());
   start_report();
-  m_warnings = selection_warnings(m_scene, m_assembled);
+  m_warnings = selection_warnings(m_scene, m_pipe->assembled);
   print_warnings(m_warnings);  // before the run: an empty selection is known now
   if (options.frames) {
-    m_pictures = std::make_unique<FramePictures>(*options.frames, m_scene, m_assembled.state.mesh,
-                                                 m_assembled.group_names());
+    m_pictures = std::make_unique<FramePictures>(
+        *options.frames, m_scene, m_pipe->assembled.state.mesh, m_pipe->assembled.group_names());
     m_pictures->set_endoscope(!options.fitted_camera);
     const int count = std::max(options.frame_count, 1);
     for (int k = 0; k < count; ++k)
       m_picture_steps.push_back(count == 1 ? m_planned : m_planned * k / std::max(count - 1, 1));
   }
   const auto p0 = Clock::now();
-  m_comp.runner->prepare(m_assembled.state);  // load time: FEM's structure and first factor
+  m_pipe->comp.runner->prepare(
+      m_pipe->assembled.state);  // load time: FEM's structure and first factor
   m_prepare_ms = ms_since(p0);
   if (options.series) m_series.emplace(*options.series, m_scene);
   if (options.vtu_series) m_vtu.emplace(*options.vtu_series, options.vtu_every);
-  if (m_vtu) m_vtu->add(m_assembled.state);
-  m_paced = m_comp.haptics && m_comp.haptics->driven_by_rig();
+  if (m_vtu) m_vtu->add(m_pipe->assembled.state);
+  m_paced = m_pipe->comp.haptics && m_pipe->comp.haptics->driven_by_rig();
 }
 
 Simulation::~Simulation() {
@@ -161,19 +161,22 @@ Simulation::~Simulation() {
   // readable recording behind.
   if (m_writer && !m_finished) {
     try {
-      m_writer->close(m_assembled.state.step);
+      m_writer->close(m_pipe->assembled.state.step);
     } catch (const std::exception& e) {
       spdlog::error("{}: {}", m_writer->path().string(), e.what());
     }
   }
 }
 
-void Simulation::build() {
+std::unique_ptr<Simulation::Pipeline> Simulation::build() const {
+  auto p = std::make_unique<Pipeline>();
+  p->assembled = m_initial;
   ComposeOptions co;
   co.validate_cuts = m_options.validate_cuts;
   for (std::size_t i = 0; i < m_python_poses.size(); ++i)
     if (m_python_poses[i]) co.live_poses.push_back({i, m_python_poses[i].get()});
-  m_comp = compose(m_scene, m_assembled, std::move(co));
+  p->comp = compose(m_scene, p->assembled, std::move(co));
+  return p;
 }
 
 void Simulation::start_report() {
@@ -182,14 +185,14 @@ void Simulation::start_report() {
   r["scene"] = m_scene.file.string();
   r["dt_s"] = m_scene.settings.dt_s;
   r["steps"] = m_planned;
-  for (Effect e : m_comp.built) r["effects"]["simulated"].push_back(effect_name(e));
-  for (Effect e : m_comp.folded) r["effects"]["folded"].push_back(effect_name(e));
-  for (Effect e : m_comp.unavailable) r["effects"]["unavailable"].push_back(effect_name(e));
-  r["mesh_initial"] = mesh_json(m_assembled.state.mesh);
+  for (Effect e : m_pipe->comp.built) r["effects"]["simulated"].push_back(effect_name(e));
+  for (Effect e : m_pipe->comp.folded) r["effects"]["folded"].push_back(effect_name(e));
+  for (Effect e : m_pipe->comp.unavailable) r["effects"]["unavailable"].push_back(effect_name(e));
+  r["mesh_initial"] = mesh_json(m_pipe->assembled.state.mesh);
   r["solver"] = solver_report(m_scene.solver);
   if (auto preset = preset_report(m_scene)) r["preset"] = std::move(*preset);
-  r["fixed"] = fixed_json(m_assembled);
-  r["provenance"] = provenance_json(m_scene, m_options.overrides, m_assembled);
+  r["fixed"] = fixed_json(m_pipe->assembled);
+  r["provenance"] = provenance_json(m_scene, m_options.overrides, m_pipe->assembled);
 }
 
 void Simulation::take_picture_if_due(std::int64_t step) {
@@ -200,7 +203,7 @@ void Simulation::take_picture_if_due(std::int64_t step) {
   ++m_rendered;
   char stem[32];
   std::snprintf(stem, sizeof stem, "step_%06lld", static_cast<long long>(step));
-  for (const auto& png : m_pictures->take(m_assembled.state, stem))
+  for (const auto& png : m_pictures->take(m_pipe->assembled.state, stem))
     m_report["frames"].push_back(png.string());
   m_report["frames_camera"] = m_pictures->camera_used();
   m_report["frames_flat"].push_back(m_pictures->flat_fraction());
@@ -209,7 +212,7 @@ void Simulation::take_picture_if_due(std::int64_t step) {
 }
 
 void Simulation::step() {
-  SimState& state = m_assembled.state;
+  SimState& state = m_pipe->assembled.state;
   if (!m_step0) {
     m_step0 = Clock::now();
     take_picture_if_due(static_cast<std::int64_t>(state.step));
@@ -219,12 +222,12 @@ void Simulation::step() {
         *m_step0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
                        static_cast<double>(m_step_ms.size()) * m_scene.settings.dt_s)));
   const auto s0 = Clock::now();
-  m_comp.runner->step(state);
+  m_pipe->comp.runner->step(state);
   m_step_ms.push_back(ms_since(s0));
-  m_details.push_back(step_detail(*m_comp.runner, m_comp.fem));
+  m_details.push_back(step_detail(*m_pipe->comp.runner, m_pipe->comp.fem));
   if (m_series)
     m_series->add(state, m_step_ms.back(), m_details.back().fem_ms,
-                  m_comp.fem ? m_comp.fem->last_status() : fem::StepStatus{});
+                  m_pipe->comp.fem ? m_pipe->comp.fem->last_status() : fem::StepStatus{});
   if (m_vtu) m_vtu->add(state);
   take_picture_if_due(static_cast<std::int64_t>(state.step));
 }
@@ -237,44 +240,44 @@ void Simulation::set_tool(std::size_t tool, const ToolState& pose) {
         ")");
   ToolState t = pose;
   t.tick = ++m_pose_tick;
-  t.time_s = m_assembled.state.time_s;
+  t.time_s = m_pipe->assembled.state.time_s;
   m_python_poses[tool]->store(t);
 }
 
 cutting::StrokeReport Simulation::cut(const cutting::ConvexPolygon& polygon) {
-  if (!m_comp.cutting)
+  if (!m_pipe->comp.cutting)
     throw std::invalid_argument(m_scene.file.string() +
                                 " does not list the effect \"cutting\": nothing can cut");
-  m_comp.cutting->queue_cut(polygon);
+  m_pipe->comp.cutting->queue_cut(polygon);
   step();
-  const auto& done = m_comp.cutting->queued_cuts();
+  const auto& done = m_pipe->comp.cutting->queued_cuts();
   return done.empty() ? cutting::StrokeReport{} : done.front();
 }
 
 std::vector<std::uint8_t> Simulation::snapshot() const {
-  if (!m_assembled.state.handoff.cuts.empty())
+  if (!m_pipe->assembled.state.handoff.cuts.empty())
     throw std::logic_error("a cut is in flight (this step cut): take one more step first");
-  return m_comp.runner->snapshot(m_assembled.state);
+  return m_pipe->comp.runner->snapshot(m_pipe->assembled.state);
 }
 
 void Simulation::restore(std::span<const std::uint8_t> bytes, const std::string& what) {
   if (m_writer)
     throw std::logic_error("this run records to " + m_writer->path().string() +
                            ": a restore would break the recording");
-  m_assembled = m_initial;
-  build();
-  m_comp.runner->restore(bytes, m_assembled.state, what);
-  m_comp.runner->prepare(m_assembled.state);
+  std::unique_ptr<Pipeline> fresh = build();
+  fresh->comp.runner->restore(bytes, fresh->assembled.state, what);  // throws: the run stays
+  fresh->comp.runner->prepare(fresh->assembled.state);
+  m_pipe = std::move(fresh);
   // The per-step timings follow the steps: those after the snapshot's are no longer this run's.
-  m_step_ms.resize(m_assembled.state.step, 0.0);
-  m_details.resize(m_assembled.state.step);
+  m_step_ms.resize(m_pipe->assembled.state.step, 0.0);
+  m_details.resize(m_pipe->assembled.state.step);
 }
 
 void Simulation::add_run_blocks(Json& report) const {
-  const SimState& state = m_assembled.state;
+  const SimState& state = m_pipe->assembled.state;
   report["steps_taken"] = state.step;
   report["paced_to_real_time"] = m_paced;
-  for (const StageTiming& t : m_comp.runner->timings())
+  for (const StageTiming& t : m_pipe->comp.runner->timings())
     report["time_per_stage_ms"][t.name] =
         t.calls ? 1e3 * t.total_s / static_cast<double>(t.calls) : 0.0;
   // Rendering is not a solver stage headless: ms per picture step, when pictures were drawn.
@@ -306,12 +309,12 @@ void Simulation::add_run_blocks(Json& report) const {
                                   {"pool_radius_m", b.pool_radius_m},
                                   {"flowing", b.pulse > 0.0}});
   report["state_hash"] = hash_hex(state_hash(state));
-  if (m_comp.cutting) {
-    report["cutting"] = cutting_json(m_comp);
+  if (m_pipe->comp.cutting) {
+    report["cutting"] = cutting_json(m_pipe->comp);
     // The step each stroke was cut in, and the next (whose FEM takes the new tets), against dt;
     // kept out of "cutting", which a replay reproduces exactly.
     Json cut_steps = Json::array();
-    for (const cutting::StrokeReport& r : m_comp.cutting->stats().stroke_reports) {
+    for (const cutting::StrokeReport& r : m_pipe->comp.cutting->stats().stroke_reports) {
       const auto at = static_cast<std::size_t>(r.last_step);
       if (at >= m_step_ms.size()) continue;
       cut_steps.push_back({{"step", r.last_step},
@@ -320,32 +323,34 @@ void Simulation::add_run_blocks(Json& report) const {
     }
     report["cut_steps"] = std::move(cut_steps);
   }
-  add_metrics_blocks(report, m_scene, m_comp.metrics, state.mesh, m_assembled.group_names());
+  add_metrics_blocks(report, m_scene, m_pipe->comp.metrics, state.mesh,
+                     m_pipe->assembled.group_names());
   add_stage_blocks(report);
 }
 
 void Simulation::add_stage_blocks(Json& report) const {
-  const SimState& state = m_assembled.state;
-  if (m_comp.contact) {
-    const auto held = m_comp.contact->grasped_counts();
+  const SimState& state = m_pipe->assembled.state;
+  if (m_pipe->comp.contact) {
+    const auto held = m_pipe->comp.contact->grasped_counts();
     for (std::size_t i = 0; i < m_scene.tools.size() && i < held.size(); ++i)
       if (m_scene.tools[i].kind == ToolKind::kGrasper)
         report["contact"]["held_nodes"][m_scene.tools[i].name] = held[i];
   }
-  if (m_comp.clips) report["clips"] = clips_json(m_scene, state, m_comp, m_assembled.group_names());
-  if (m_comp.surface) {
-    const auto& ss = m_comp.surface->stats();
+  if (m_pipe->comp.clips)
+    report["clips"] = clips_json(m_scene, state, m_pipe->comp, m_pipe->assembled.group_names());
+  if (m_pipe->comp.surface) {
+    const auto& ss = m_pipe->comp.surface->stats();
     report["surface"] = {
         {"faces", state.handoff.surface.num_faces()},
         {"rebuilds", ss.rebuilds},
         {"updates", ss.updates},
         {"failed_updates", ss.failed_updates},
-        {"backend", m_comp.surface->backend() == surface::Backend::kCuda ? "cuda" : "cpu"}};
+        {"backend", m_pipe->comp.surface->backend() == surface::Backend::kCuda ? "cuda" : "cpu"}};
   }
   std::vector<RunWarning> warnings = m_warnings;
-  if (m_comp.fem) {
-    const auto& st = m_comp.fem->stats();
-    const auto& fem = *m_comp.fem;
+  if (m_pipe->comp.fem) {
+    const auto& st = m_pipe->comp.fem->stats();
+    const auto& fem = *m_pipe->comp.fem;
     report["fem"] = {{"steps", st.steps},
                      {"not_converged", st.not_converged},
                      {"factor_refreshes", st.factor_refreshes},
@@ -374,17 +379,18 @@ Json Simulation::report() const {
 Json Simulation::finish(bool interrupted) {
   if (m_finished) throw std::logic_error("the run has already finished");
   m_finished = true;
-  SimState& state = m_assembled.state;
+  SimState& state = m_pipe->assembled.state;
   if (!m_step0) take_picture_if_due(static_cast<std::int64_t>(state.step));
   Json report = m_report;
-  if (m_comp.haptics) report["haptics"] = m_comp.haptics->telemetry_json();  // stops the loop
+  if (m_pipe->comp.haptics)
+    report["haptics"] = m_pipe->comp.haptics->telemetry_json();  // stops the loop
   if (m_writer) report["recording"] = close_recording(*m_writer, m_scene, state.step);
   add_run_blocks(report);
   if (interrupted) report["interrupted"] = true;
-  if (m_comp.fem) print_warnings(solver_warnings(m_scene.solver, m_comp.fem->stats()));
+  if (m_pipe->comp.fem) print_warnings(solver_warnings(m_scene.solver, m_pipe->comp.fem->stats()));
   if (m_options.export_final) {
     write_mesh_output(*m_options.export_final, *m_final_format, state.mesh,
-                      m_assembled.group_names());
+                      m_pipe->assembled.group_names());
     report["export_final"] = m_options.export_final->string();
   }
   if (m_series) {

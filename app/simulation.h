@@ -68,13 +68,19 @@ class Simulation {
   void restore(std::span<const std::uint8_t> bytes, const std::string& what);
 
   [[nodiscard]] const Scene& scene() const noexcept { return m_scene; }
-  [[nodiscard]] const SimState& state() const noexcept { return m_assembled.state; }
-  [[nodiscard]] const AssembledScene& assembled() const noexcept { return m_assembled; }
-  [[nodiscard]] const Composition& composition() const noexcept { return m_comp; }
+  [[nodiscard]] const SimState& state() const noexcept { return m_pipe->assembled.state; }
+  [[nodiscard]] const AssembledScene& assembled() const noexcept { return m_pipe->assembled; }
+  [[nodiscard]] const Composition& composition() const noexcept { return m_pipe->comp; }
 
  private:
-  /// Compose the stages for m_assembled (fresh: at load and at restore).
-  void build();
+  /// The state and the stages stepping it, together: stages may keep references into the state
+  /// they were composed for, so a restore builds a new pair and swaps it in whole.
+  struct Pipeline {
+    AssembledScene assembled;
+    Composition comp;
+  };
+  /// The initial state and stages freshly composed for it (at load and at restore).
+  [[nodiscard]] std::unique_ptr<Pipeline> build() const;
   /// The report's blocks known before the first step.
   void start_report();
   /// Draws the pictures due at `step` (options.frames).
@@ -89,8 +95,7 @@ class Simulation {
   Scene m_scene;
   std::int64_t m_planned = 0;
   AssembledScene m_initial;  // the assembled state before the first step (restore rebuilds it)
-  AssembledScene m_assembled;
-  Composition m_comp;
+  std::unique_ptr<Pipeline> m_pipe;
   std::unique_ptr<recording::RecordingWriter> m_writer;
   /// (tools) The pose channel of each tool a Python program drives; null for the others.
   std::vector<std::unique_ptr<Seqlock<ToolState>>> m_python_poses;

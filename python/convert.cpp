@@ -1,5 +1,7 @@
 #include "python/convert.h"
 
+#include <pybind11/stl.h>
+
 #include <cstdio>
 #include <stdexcept>
 
