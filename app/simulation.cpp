@@ -115,11 +115,23 @@ std::int64_t steps_to_run(const HeadlessOptions& o, const Scene& scene) {
   return steps;
 }
 
+// The scene the options name, loaded after their outputs are checked (a run that could not write
+// its results fails before anything is read).
+Scene checked_scene(const HeadlessOptions& o) {
+  (void)check_outputs(o);
+  return load_scene(o.scene, o.overrides);
+}
+
 }  // namespace
 
 Simulation::Simulation(const HeadlessOptions& options)
-    : m_options(options), m_final_format(check_outputs(options)), m_wall0(Clock::now()) {
-  m_scene = load_scene(options.scene, options.overrides);
+    : Simulation(checked_scene(options), options) {}
+
+Simulation::Simulation(Scene scene, const HeadlessOptions& options)
+    : m_options(options),
+      m_final_format(check_outputs(options)),
+      m_scene(std::move(scene)),
+      m_wall0(Clock::now()) {
   if (options.tool_path) play_tool_path(m_scene, *options.tool_path);
   m_planned = steps_to_run(options, m_scene);
   m_initial = assemble_state(m_scene);

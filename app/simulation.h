@@ -35,6 +35,9 @@ class Simulation {
   /// (InputError naming the file, key and line), builds the listed effects' stages, opens the
   /// recording and prepares the first step (load time).
   explicit Simulation(const HeadlessOptions& options);
+  /// The same with `scene` already loaded (a benchmark sets its solver fields directly); the
+  /// options' scene and overrides are not read.
+  Simulation(Scene scene, const HeadlessOptions& options);
   ~Simulation();
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
@@ -71,6 +74,8 @@ class Simulation {
   [[nodiscard]] const SimState& state() const noexcept { return m_pipe->assembled.state; }
   [[nodiscard]] const AssembledScene& assembled() const noexcept { return m_pipe->assembled; }
   [[nodiscard]] const Composition& composition() const noexcept { return m_pipe->comp; }
+  /// (steps) Wall time of each step this run took, ms (Runner::step, every stage).
+  [[nodiscard]] const std::vector<double>& step_ms() const noexcept { return m_step_ms; }
 
  private:
   /// The state and the stages stepping it, together: stages may keep references into the state

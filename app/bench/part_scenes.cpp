@@ -16,6 +16,7 @@
 #include "app/assemble_state.h"
 #include "app/bench/bench_parts.h"
 #include "app/compose.h"
+#include "app/simulation.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"
 
@@ -47,21 +48,21 @@ Trajectory run(const Scene& base, const Setting& s, double seconds) {
   scene.solver.max_iterations = s.max_iterations;
   scene.solver.patch_after_cut = s.patch_after_cut;
   scene.settings.dt_s = base.settings.dt_s * s.dt_ratio;
-  AssembledScene assembled = assemble_state(scene);
-  Composition comp = compose(scene, assembled);
-  SimState& state = assembled.state;
-  comp.runner->prepare(state);  // load time, as in the session
-  const std::uint64_t version0 = state.mesh.topology_version;
+  HeadlessOptions o;  // the headless driver: the same load, compose and prepare as the session's
+  o.progress = false;
+  o.scene_record = false;
   const auto steps = static_cast<std::int64_t>(std::llround(seconds / scene.settings.dt_s));
+  o.steps = steps;
+  Simulation sim(std::move(scene), o);
+  const SimState& state = sim.state();
+  const std::uint64_t version0 = state.mesh.topology_version;
   Trajectory t;
   t.x.push_back(state.mesh.x);
   for (std::int64_t k = 0; k < steps; ++k) {
-    const auto t0 = std::chrono::steady_clock::now();
-    comp.runner->step(state);
-    t.step_ms.push_back(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    sim.step();
     if (state.mesh.topology_version == version0) t.x.push_back(state.mesh.x);
   }
+  t.step_ms = sim.step_ms();
   t.simulated_s = state.time_s;
   return t;
 }
