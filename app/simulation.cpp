@@ -150,17 +150,10 @@ Simulation::Simulation(Scene scene, const HeadlessOptions& options)
   start_report();
   m_warnings = selection_warnings(m_scene, m_pipe->assembled);
   print_warnings(m_warnings);  // before the run: an empty selection is known now
-  if (options.frames) {
-    m_pictures = std::make_unique<FramePictures>(
-        *options.frames, m_scene, m_pipe->assembled.state.mesh, m_pipe->assembled.group_names());
-    m_pictures->set_endoscope(!options.fitted_camera);
-    const int count = std::max(options.frame_count, 1);
-    for (int k = 0; k < count; ++k)
-      m_picture_steps.push_back(count == 1 ? m_planned : m_planned * k / std::max(count - 1, 1));
-  }
+  if (options.frames) plan_pictures(*options.frames);
   const auto p0 = Clock::now();
-  m_pipe->comp.runner->prepare(
-      m_pipe->assembled.state);  // load time: FEM's structure and first factor
+  // Load time, not step time: the FEM's structure and first factor.
+  m_pipe->comp.runner->prepare(m_pipe->assembled.state);
   m_prepare_ms = ms_since(p0);
   if (options.series) m_series.emplace(*options.series, m_scene);
   if (options.vtu_series) m_vtu.emplace(*options.vtu_series, options.vtu_every);
@@ -205,6 +198,15 @@ void Simulation::start_report() {
   if (auto preset = preset_report(m_scene)) r["preset"] = std::move(*preset);
   r["fixed"] = fixed_json(m_pipe->assembled);
   r["provenance"] = provenance_json(m_scene, m_options.overrides, m_pipe->assembled);
+}
+
+void Simulation::plan_pictures(const std::filesystem::path& folder) {
+  m_pictures = std::make_unique<FramePictures>(folder, m_scene, m_pipe->assembled.state.mesh,
+                                               m_pipe->assembled.group_names());
+  m_pictures->set_endoscope(!m_options.fitted_camera);
+  const int count = std::max(m_options.frame_count, 1);
+  for (int k = 0; k < count; ++k)  // spread over the run, the first and last step included
+    m_picture_steps.push_back(count == 1 ? m_planned : m_planned * k / std::max(count - 1, 1));
 }
 
 void Simulation::take_picture_if_due(std::int64_t step) {

@@ -88,6 +88,8 @@ class Simulation {
   [[nodiscard]] std::unique_ptr<Pipeline> build() const;
   /// The report's blocks known before the first step.
   void start_report();
+  /// The picture taker and the steps it draws at (options.frames, options.frame_count).
+  void plan_pictures(const std::filesystem::path& folder);
   /// Draws the pictures due at `step` (options.frames).
   void take_picture_if_due(std::int64_t step);
   /// The blocks after the steps: timing, meshes, cuts, metrics, then add_stage_blocks.
