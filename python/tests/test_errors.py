@@ -15,19 +15,20 @@ def test_a_missing_scene_names_the_file(tmp_path):
     assert isinstance(e.value, ValueError)
 
 
-def test_a_broken_scene_names_the_file_and_line(tmp_path):
-    text = TRANSECTION.read_text().replace("poisson = 0.45", "poisson = \"soft\"", 1)
-    scene = TRANSECTION.parent / f"_pytest_broken_{tmp_path.name}.toml"
+def test_a_broken_scene_names_the_file_and_line(tmp_path, source):
+    # A copy of the transection whose paths point back into the repository, one value broken.
+    text = (TRANSECTION.read_text()
+            .replace('"../assets/', f'"{source}/assets/')
+            .replace("script:paths/", f"script:{source}/config/paths/")
+            .replace("poisson = 0.45", "poisson = \"soft\"", 1))
+    scene = tmp_path / "broken.toml"
     scene.write_text(text)
-    try:
-        with pytest.raises(serosa.InputError) as e:
-            serosa.Simulation(str(scene))
-    finally:
-        scene.unlink()
+    with pytest.raises(serosa.InputError) as e:
+        serosa.Simulation(str(scene))
     line = 1 + text.splitlines().index(
         next(s for s in text.splitlines() if s.startswith("poisson = \"soft\"")))
     assert e.value.line == line and "poisson" in str(e.value)
-    assert scene.name in str(e.value)
+    assert str(scene) in str(e.value) and e.value.file == str(scene)
 
 
 def test_a_wrong_override_names_the_key():
