@@ -75,6 +75,13 @@ int glfw_key(Key k) {
   return GLFW_KEY_UNKNOWN;
 }
 
+// The keypad's twin of a key (plus and minus), else GLFW_KEY_UNKNOWN.
+int keypad_key(Key k) {
+  return k == Key::kPlus    ? GLFW_KEY_KP_ADD
+         : k == Key::kMinus ? GLFW_KEY_KP_SUBTRACT
+                            : GLFW_KEY_UNKNOWN;
+}
+
 }  // namespace
 
 Window::Window(int width, int height, const std::string& title) {
@@ -116,9 +123,10 @@ void Window::on_key(GLFWwindow* w, int key, int /*scancode*/, int action, int /*
   if (action == GLFW_REPEAT) return;
   auto* self = static_cast<Window*>(glfwGetWindowUserPointer(w));
   for (int k = 0; k < static_cast<int>(Key::kCount); ++k) {
-    if (glfw_key(static_cast<Key>(k)) != key) continue;
+    if (glfw_key(static_cast<Key>(k)) != key && keypad_key(static_cast<Key>(k)) != key) continue;
     const auto i = static_cast<std::size_t>(k);
     if (action == GLFW_PRESS) {
+      ++self->m_taps[i];
       ++self->m_events.presses[i];
       self->m_keys.press(i);
     } else if (const double held = self->m_keys.release(i); held >= 0.0) {
@@ -202,16 +210,12 @@ int Window::height() const {
 
 bool Window::pressed(Key key) {
   if (key == Key::kCount) return false;
-  // Plus and minus also on the keypad.
-  const int alt = key == Key::kPlus    ? GLFW_KEY_KP_ADD
-                  : key == Key::kMinus ? GLFW_KEY_KP_SUBTRACT
-                                       : GLFW_KEY_UNKNOWN;
-  const bool down = glfwGetKey(m_window, glfw_key(key)) == GLFW_PRESS ||
-                    (alt != GLFW_KEY_UNKNOWN && glfwGetKey(m_window, alt) == GLFW_PRESS);
-  bool& was = m_down[static_cast<int>(key)];
-  const bool edge = down && !was;
-  was = down;
-  return edge;
+  // Counted by the key callback, not read from the key's state: a second tap that came and went
+  // before the next poll would read as the same press.
+  int& taps = m_taps[static_cast<std::size_t>(key)];
+  if (taps == 0) return false;
+  --taps;
+  return true;
 }
 
 void Window::cursor(float& x, float& y) const {

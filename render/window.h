@@ -70,7 +70,8 @@ class Window {
   /// Framebuffer size in pixels (differs from the window size on high-DPI screens).
   [[nodiscard]] int width() const;
   [[nodiscard]] int height() const;
-  /// True when `key` went down since the previous call for that key.
+  /// True when `key` went down since the previous call for that key: each tap the callbacks saw
+  /// once, however many fell between two calls (two quick taps are two presses, a frame apart).
   [[nodiscard]] bool pressed(Key key);
   void set_title(const std::string& title);
   /// Reads back the back buffer (what was drawn since the last swap), first row at the top.
@@ -109,7 +110,7 @@ class Window {
   static void on_scroll(GLFWwindow* w, double dx, double dy);
 
   GLFWwindow* m_window = nullptr;
-  bool m_down[static_cast<int>(Key::kCount)] = {};
+  std::array<int, static_cast<int>(Key::kCount)> m_taps{};  // presses pressed() has not told
   Events m_events;
   KeyClock m_keys{static_cast<std::size_t>(Key::kCount)};  // as the callbacks saw the keys
   bool m_left_held = false;  // the left button, as the callbacks saw it
