@@ -159,6 +159,8 @@ Simulation::Simulation(Scene scene, const HeadlessOptions& options)
   if (options.vtu_series) m_vtu.emplace(*options.vtu_series, options.vtu_every);
   if (m_vtu) m_vtu->add(m_pipe->assembled.state);
   m_paced = m_pipe->comp.haptics && m_pipe->comp.haptics->driven_by_rig();
+  m_step_ms.reserve(static_cast<std::size_t>(m_planned));  // no growth while the run steps
+  m_details.reserve(static_cast<std::size_t>(m_planned));
 }
 
 Simulation::~Simulation() {
@@ -256,6 +258,12 @@ void Simulation::set_tool(std::size_t tool, const ToolState& pose) {
   t.tick = ++m_pose_tick;
   t.time_s = m_pipe->assembled.state.time_s;
   m_python_poses[tool]->store(t);
+}
+
+std::optional<ToolState> Simulation::pose_set(std::size_t tool) const {
+  if (tool >= m_python_poses.size() || !m_python_poses[tool]) return std::nullopt;
+  const ToolState t = m_python_poses[tool]->load();
+  return t.tick > 0 ? std::optional<ToolState>(t) : std::nullopt;
 }
 
 cutting::StrokeReport Simulation::cut(const cutting::ConvexPolygon& polygon) {

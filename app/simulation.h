@@ -58,6 +58,8 @@ class Simulation {
   /// Poses tool `tool` (index into Scene::tools) for the next step. Throws std::invalid_argument
   /// naming it unless its device is "python".
   void set_tool(std::size_t tool, const ToolState& pose);
+  /// The pose set_tool last gave `tool`, or nullopt when none was (or its device is not python).
+  [[nodiscard]] std::optional<ToolState> pose_set(std::size_t tool) const;
   /// Cuts `polygon` (convex, planar, world coordinates, m) through the cutting stage in one
   /// step (CuttingStage::queue_cut); returns what it did. Throws std::invalid_argument when the
   /// scene does not list "cutting".

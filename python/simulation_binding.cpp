@@ -31,7 +31,6 @@ class PySimulation {
     if (record) o.record = *record;
     o.validate_cuts = validate_cuts;
     m_sim = std::make_unique<app::Simulation>(o);
-    m_pending.resize(m_sim->scene().tools.size());
   }
 
   void step(std::int64_t n) {
@@ -65,7 +64,7 @@ class PySimulation {
   void set_tool(const std::string& name, const py::object& position, const py::object& orientation,
                 const py::object& jaw, const py::object& buttons) {
     const std::size_t i = tool_index(name);
-    ToolState t = m_pending[i].value_or(state().tools[i]);
+    ToolState t = m_sim->pose_set(i).value_or(state().tools[i]);
     if (!position.is_none()) {
       const std::vector<Vec3> p = points_from(py::make_tuple(position), "position");
       if (!p[0].allFinite()) throw std::invalid_argument("position: not finite");
@@ -87,7 +86,6 @@ class PySimulation {
     }
     if (!buttons.is_none()) t.buttons = buttons.cast<std::uint32_t>();
     m_sim->set_tool(i, t);
-    m_pending[i] = t;
   }
 
   py::dict cut(const py::object& polygon) {
@@ -128,7 +126,6 @@ class PySimulation {
 
  private:
   std::unique_ptr<app::Simulation> m_sim;
-  std::vector<std::optional<ToolState>> m_pending;  // (tools) the last pose set_tool gave
 };
 
 double rest_volume(const TetMesh& mesh) {
