@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <optional>
@@ -23,18 +22,16 @@
 #include "app/headless.h"
 #include "app/help_seen.h"
 #include "app/instrument_devices.h"
-#include "app/mouse_takeover.h"
 #include "app/output_paths.h"
 #include "app/overlay_stats.h"
 #include "app/pointer_control.h"
 #include "app/render_frame_from_surface.h"
-#include "app/replay_controller.h"
-#include "app/replay_timeline.h"
 #include "app/scenery_from_scene.h"
 #include "app/scope_control.h"
 #include "app/session_summary.h"
 #include "app/summary_screen.h"
 #include "app/view_log.h"
+#include "app/window_interrupt.h"
 #include "app/window_pointer.h"
 #include "engine/hook.h"
 #include "engine/input_error.h"
@@ -67,33 +64,6 @@ using Clock = std::chrono::steady_clock;
 /// The least time between two frames the solver publishes (the window's frame rate cap).
 constexpr auto kPublishPeriod = std::chrono::duration_cast<Clock::duration>(
     std::chrono::duration<double>(1.0 / kMaxFramesPerS));
-
-// Set by the SIGINT/SIGTERM handler, read by the window loop. A signal handler can reach no
-// other state, so this one flag is process-wide; run_session clears it on entry.
-std::atomic<bool> g_interrupted{false};
-static_assert(std::atomic<bool>::is_always_lock_free);
-
-extern "C" void on_interrupt(int /*signal*/) { g_interrupted.store(true); }
-
-// Installs the handler for the session's lifetime and restores the previous one after.
-class InterruptGuard {
- public:
-  InterruptGuard() {
-    g_interrupted.store(false);
-    m_int = std::signal(SIGINT, on_interrupt);
-    m_term = std::signal(SIGTERM, on_interrupt);
-  }
-  ~InterruptGuard() {
-    std::signal(SIGINT, m_int == SIG_ERR ? SIG_DFL : m_int);
-    std::signal(SIGTERM, m_term == SIG_ERR ? SIG_DFL : m_term);
-  }
-  InterruptGuard(const InterruptGuard&) = delete;
-  InterruptGuard& operator=(const InterruptGuard&) = delete;
-
- private:
-  void (*m_int)(int) = SIG_DFL;
-  void (*m_term)(int) = SIG_DFL;
-};
 
 // What the window thread tells the solver thread.
 struct Control {
@@ -361,7 +331,7 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
     std::optional<double> snapshot_flat;  // the share of flat tiles in the --snapshot picture
     bool ended = false;  // by the trainee (Esc): the summary follows, until they leave it
     bool timed_out = false;
-    while (!window.should_close() && !g_interrupted.load() && !control.finished.load()) {
+    while (!window.should_close() && !interrupts.interrupted() && !control.finished.load()) {
       std::this_thread::sleep_until(pacer.next_frame());  // the solver's core stays its own
       window.poll_events();
       if (window.pressed(render::Key::kEscape)) {
@@ -424,7 +394,7 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
                         mouse ? static_cast<int>(pointer.active()) : -1);
       const bool last_frame =
           seconds > 0.0 && std::chrono::duration<double>(now - start).count() > seconds;
-      if (!snapshot.empty() && (last_frame || window.should_close() || g_interrupted.load())) {
+      if (!snapshot.empty() && (last_frame || window.should_close() || interrupts.interrupted())) {
         const render::Image picture = window.read_image();
         snapshot_flat = render::flat_block_fraction(picture);
         render::write_png(picture, snapshot);
@@ -450,7 +420,7 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
     solver.join();
     const double wall = std::chrono::duration<double>(Clock::now() - start).count();
     spdlog::info("session: {} frames drawn in {:.1f} s, simulated {:.2f} s{}", frames_drawn, wall,
-                 assembled.state.time_s, g_interrupted.load() ? " (interrupted)" : "");
+                 assembled.state.time_s, interrupts.interrupted() ? " (interrupted)" : "");
     // The solver has stopped: the haptic loop next (motors off), then the recording.
     nlohmann::json report;
     report["scene"] = std::filesystem::absolute(scene.file).lexically_normal().string();
@@ -471,7 +441,7 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
                         {"lens", options.lens},
                         {"camera", loop.through_scope() ? "endoscope" : "fitted"}};
     if (snapshot_flat) report["render"]["snapshot_flat"] = *snapshot_flat;
-    report["interrupted"] = g_interrupted.load();
+    report["interrupted"] = interrupts.interrupted();
     if (comp.haptics != nullptr) report["haptics"] = comp.haptics->telemetry_json();
     if (writer) report["recording"] = close_recording(*writer, scene, assembled.state.step);
     add_metrics_blocks(report, scene, comp.metrics, assembled.state.mesh, assembled.group_names());
@@ -486,186 +456,13 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
     // The assessment's summary: after a session the trainee ended (until they leave it), or one
     // that --seconds ended when --summary-seconds asks for it; never after the window was closed,
     // Ctrl-C or a solver error.
-    if (report.contains("assessment") && !window.should_close() && !g_interrupted.load() &&
+    if (report.contains("assessment") && !window.should_close() && !interrupts.interrupted() &&
         !loop.error() && (ended || (timed_out && so.summary_seconds > 0.0)))
       show_summary(window, renderer, frames.front(), options, overlay,
                    session_summary(report["assessment"]), timed_out ? so.summary_seconds : 0.0,
-                   snapshot, g_interrupted);
+                   snapshot, interrupts.flag());
   }
   if (loop.error()) std::rethrow_exception(loop.error());
-  return 0;
-}
-
-int run_replay_window(const std::filesystem::path& recording, const ReplayWindowOptions& ro) {
-  const double seconds = ro.seconds;
-  const std::filesystem::path& snapshot = ro.snapshot;
-  ReplayControllerOptions co;
-  co.snapshot_every_s = 1.0;  // seeks back restore the nearest snapshot: exact and quick
-  co.speed = ro.speed;
-  ReplayController replay(recording, co);
-  std::optional<MouseTakeover> takeover;
-  PointerControl pointer;
-  const auto branch_here = [&] {
-    replay.set_paused(true);
-    std::filesystem::path file = ro.branch_file.value_or(std::filesystem::path{});
-    if (file.empty()) {
-      file = recording;
-      std::string name = recording.stem().string();
-      name.append(".branch-").append(std::to_string(replay.steps_taken())).append(".lapr");
-      file.replace_filename(name);
-    }
-    replay.branch(file);
-    takeover.emplace(replay.scene(), replay.state().tools);
-    pointer = PointerControl(takeover->initial_input());
-    spdlog::info("replay: branched at {:.3f} s (step {}) into {}; the mouse drives the tools",
-                 replay.time_s(), replay.steps_taken(), file.string());
-  };
-  const Scene& scene = replay.scene();
-  const std::map<int, std::string> names = drawn_group_names(scene, replay.group_names());
-  DrawnSurface drawn(replay.state().mesh);
-  // The metric timeline, computed beside the replay; N jumps to a second before the next error.
-  const TimelineBuilder timeline(recording);
-  int current_mark = -1;
-  const auto jump_to_next_error = [&](const std::vector<render::TimelineMark>& marks) {
-    if (replay.branched()) return;  // a branch plays on: no seeking
-    const std::optional<std::size_t> k = mark_to_jump_to(marks, current_mark, replay.time_s());
-    if (!k) return;
-    current_mark = static_cast<int>(*k);
-    replay.seek(std::max(marks[*k].time_s - kJumpLeadS, 0.0));
-  };
-
-  const InterruptGuard interrupts;
-  render::Window window(scene.render.width, scene.render.height, "Serosa replay");
-  render::FrameRenderer renderer;
-  render::Overlay overlay;
-  render::SnapshotOptions options;
-  options.tessellation = scene.render.tessellation;
-  options.shape_factor = static_cast<float>(scene.render.shape_factor);
-  bool show_overlay = true;
-  render::RenderFrame frame;
-  frame.scenery = scenery_from_scene(scene, replay.state().mesh);  // once: it never changes
-  fill_taenia(replay.state().mesh, names, frame);                  // nor does this
-  std::optional<render::Camera> fitted;
-  // Every cut bumps the topology version, which snapshots keep: cuts survive seeks.
-  const std::uint64_t version0 = replay.state().mesh.topology_version;
-  double step_ms = 0.0;
-  double rate_hz = 0.0;
-
-  const auto start = Clock::now();
-  auto last = start;
-  while (!window.should_close() && !g_interrupted.load()) {
-    window.poll_events();
-    if (window.pressed(render::Key::kEscape)) window.close();
-    if (window.pressed(render::Key::kSpace)) replay.set_paused(!replay.paused());
-    if (window.pressed(render::Key::kLeft)) replay.seek(replay.time_s() - 1.0);
-    if (window.pressed(render::Key::kRight)) replay.seek(replay.time_s() + 1.0);
-    if (window.pressed(render::Key::kPlus)) replay.set_speed(2.0 * replay.speed());
-    if (window.pressed(render::Key::kMinus)) replay.set_speed(0.5 * replay.speed());
-    if (window.pressed(render::Key::kV))
-      options.view =
-          static_cast<render::SnapshotOptions::View>((static_cast<int>(options.view) + 1) % 3);
-    if (window.pressed(render::Key::kUp))
-      options.tessellation = std::min(options.tessellation + 1, 16);
-    if (window.pressed(render::Key::kDown))
-      options.tessellation = std::max(options.tessellation - 1, 1);
-    if (window.pressed(render::Key::kH)) show_overlay = !show_overlay;
-    if (window.pressed(render::Key::kB) && !replay.branched()) branch_here();
-    const PointerEvents events = pointer_events(window);  // taken every frame: none pile up
-    if (takeover) takeover->apply(pointer.update(events, screen_axes(frame.camera)), replay);
-    const TimelineData known = timeline.data();
-    if (window.pressed(render::Key::kN)) jump_to_next_error(known.marks);
-
-    // Play: the steps that became due over the wall time since the last frame (at most 0.1 s of
-    // it, so that a slow step plays in slow motion rather than in a catch-up burst).
-    const auto now = Clock::now();
-    const double wall_dt = std::chrono::duration<double>(now - last).count();
-    last = now;
-    const auto t0 = Clock::now();
-    const std::uint64_t taken = replay.advance(std::min(wall_dt, 0.1));
-    if (taken > 0)
-      step_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count() /
-                static_cast<double>(taken);
-    if (wall_dt > 0.0) rate_hz = 0.9 * rate_hz + 0.1 * static_cast<double>(taken) / wall_dt;
-    if (replay.at_end()) replay.set_paused(true);
-    if (ro.branch_at_s && !replay.branched() && replay.time_s() >= *ro.branch_at_s) {
-      branch_here();
-      replay.set_paused(false);  // scripted checks: the branch records at rest input
-    }
-
-    const SimState& state = replay.state();
-    fill_render_frame(state.mesh, drawn.of(state), names, true, frame, &state.handoff.coagulated,
-                      state.handoff.coagulated_version, &state.handoff.stain);
-    fill_render_tools(scene, state, frame);
-    const int w = window.width();
-    const int h = window.height();
-    std::optional<render::Camera> cam = endoscope_view(scene, state);
-    if (!cam) {
-      if (!fitted)
-        fitted =
-            render::auto_camera(frame, static_cast<float>(w) / static_cast<float>(std::max(h, 1)));
-      cam = fitted;
-    }
-    frame.camera = *cam;
-
-    FrameStats stats;
-    stats.sim_time_s = state.time_s;
-    stats.fem_ms_per_step = step_ms;
-    stats.solver_rate_hz = rate_hz;
-    stats.cuts = static_cast<std::int64_t>(state.mesh.topology_version - version0);
-    stats.paused = replay.paused();
-    stats.replay = true;
-    stats.replay_position_s = replay.time_s();
-    stats.replay_duration_s = replay.duration_s();
-    stats.replay_speed = replay.speed();
-    nlohmann::json metrics;
-    if (replay.composition().metrics != nullptr) {
-      metrics = replay.composition().metrics->report();
-      stats.metrics = &metrics;
-    }
-    frame.overlay = overlay_data(stats);
-    frame.overlay.visible = show_overlay;
-    frame.overlay.timeline = {known.force_n, known.marks,
-                              static_cast<double>(known.computed) * replay.dt_s(), known.done,
-                              current_mark};
-
-    window.bind_framebuffer();
-    renderer.draw(frame, options, w, h);
-    render::OverlayInput input;
-    window.cursor(input.mouse_x, input.mouse_y);
-    input.mouse_down = window.mouse_down();
-    input.dt_s = static_cast<float>(std::max(wall_dt, 1e-3));
-    const render::OverlayResult r = overlay.draw(frame.overlay, options, w, h, input);
-    if (r.view) options.view = *r.view;
-    if (r.tessellation) options.tessellation = *r.tessellation;
-    if (r.toggle_pause) replay.set_paused(!replay.paused());
-    if (r.seek_s) replay.seek(*r.seek_s);
-    const bool last_frame =
-        seconds > 0.0 && std::chrono::duration<double>(now - start).count() > seconds;
-    if (!snapshot.empty() && (last_frame || window.should_close() || g_interrupted.load()))
-      render::write_png(window.read_image(), snapshot);
-    window.swap_buffers();
-
-    // The errors' count once the timeline is known, and the one last jumped to.
-    char errors[64] = "";
-    if (known.done && current_mark >= 0)
-      std::snprintf(errors, sizeof errors, "  errors %zu  error %d/%zu", known.marks.size(),
-                    current_mark + 1, known.marks.size());
-    else if (known.done)
-      std::snprintf(errors, sizeof errors, "  errors %zu", known.marks.size());
-    char title[224];
-    std::snprintf(title, sizeof title, "Serosa replay  %.2f / %.2f s  x%.3g%s  %s%s",
-                  replay.time_s(), replay.duration_s(), replay.speed(),
-                  replay.paused() ? "  [paused]" : "", render::view_name(options.view), errors);
-    window.set_title(title);
-    if (last_frame) break;
-  }
-  if (replay.branched()) {
-    replay.end_branch();
-    spdlog::info("replay: branch of {} steps recorded (from step {})", replay.steps_taken(),
-                 *replay.branch_step());
-  } else {
-    spdlog::info("replay: {} of {} steps shown", replay.steps_taken(), replay.num_steps());
-  }
   return 0;
 }
 
