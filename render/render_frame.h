@@ -164,6 +164,10 @@ struct OverlayData {
   double replay_duration_s = 0.0;      ///< length of the recording, s
   double replay_speed = 1.0;           ///< playback speed, x real time (> 0)
   OverlayTimeline timeline;            ///< the metric timeline and its error marks (replays)
+  /// A branch taken over from the replay: who drives what, one line ("BRANCH at 0:05.2 (step
+  /// 1041): the mouse drives grasper (left), scissors (right); the recording drives the rest");
+  /// empty: not branched. Shown in a coloured band above the timeline.
+  std::string branch;
   std::vector<OverlayMetric> metrics;  ///< listed under the statistics, in this order
 };
 
