@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <optional>
 #include <string>
 
@@ -19,6 +20,7 @@
 #include "app/replay_timeline.h"
 #include "app/scenery_from_scene.h"
 #include "app/session.h"
+#include "app/session_summary.h"
 #include "app/window_interrupt.h"
 #include "app/window_pointer.h"
 #include "engine/scene.h"
@@ -33,6 +35,23 @@ namespace serosa::app {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+void write_layout_log(const std::filesystem::path& file, int width, int height,
+                      const render::OverlayResult& r, const render::OverlayData& data) {
+  nlohmann::json log;
+  log["window"] = {width, height};
+  log["replay_bar"] = r.replay_bar;
+  log["timeline"] = r.timeline;
+  log["debrief"] = r.debrief;
+  log["statistics"] = r.stats_rect;
+  log["debrief_text"] =
+      data.debrief ? render::summary_text(*data.debrief, false) : std::vector<std::string>{};
+  log["errors_line"] = render::overlay_text(data).errors;
+  log["marks"] = nlohmann::json::array();
+  for (const render::TimelineMark& m : data.timeline.marks)
+    log["marks"].push_back({{"time_s", m.time_s}, {"what", m.what}, {"criterion", m.criterion}});
+  std::ofstream(file) << log.dump(1) << "\n";
+}
 
 }  // namespace
 
@@ -73,6 +92,14 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
     current_mark = static_cast<int>(*k);
     replay.seek(std::max(marks[*k].time_s - kJumpLeadS, 0.0));
   };
+  const auto jump_to_previous_error = [&](const std::vector<render::TimelineMark>& marks) {
+    if (replay.branched()) return;
+    const std::optional<std::size_t> k = mark_to_jump_back_to(marks, replay.time_s());
+    if (!k) return;
+    current_mark = static_cast<int>(*k);
+    replay.seek(std::max(marks[*k].time_s - kJumpLeadS, 0.0));
+  };
+  std::optional<render::SessionSummary> debrief;  // once the timeline has assessed the run
 
   const InterruptGuard interrupts;
   render::Window window(scene.render.width, scene.render.height, "Serosa replay");
@@ -114,6 +141,9 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
     if (takeover) takeover->apply(pointer.update(events, screen_axes(frame.camera)), replay);
     const TimelineData known = timeline.data();
     if (window.pressed(render::Key::kN)) jump_to_next_error(known.marks);
+    if (window.pressed(render::Key::kP) && !replay.branched()) jump_to_previous_error(known.marks);
+    if (!debrief && known.done && known.report.contains("assessment"))
+      debrief = session_summary(known.report, &known.failures);
 
     // Play: the steps that became due over the wall time since the last frame (at most 0.1 s of
     // it, so that a slow step plays in slow motion rather than in a catch-up burst).
@@ -157,16 +187,12 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
     stats.replay_position_s = replay.time_s();
     stats.replay_duration_s = replay.duration_s();
     stats.replay_speed = replay.speed();
-    nlohmann::json metrics;
-    if (replay.composition().metrics != nullptr) {
-      metrics = replay.composition().metrics->report();
-      stats.metrics = &metrics;
-    }
-    frame.overlay = overlay_data(stats);
+    frame.overlay = overlay_data(stats);  // the metrics are the debrief's, by domain
     frame.overlay.visible = show_overlay;
     frame.overlay.timeline = {known.force_n, known.marks,
                               static_cast<double>(known.computed) * replay.dt_s(), known.done,
                               current_mark};
+    frame.overlay.debrief = debrief;
 
     window.bind_framebuffer();
     renderer.draw(frame, options, w, h);
@@ -181,8 +207,9 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
     if (r.seek_s) replay.seek(*r.seek_s);
     const bool last_frame =
         seconds > 0.0 && std::chrono::duration<double>(now - start).count() > seconds;
-    if (!snapshot.empty() && (last_frame || window.should_close() || interrupts.interrupted()))
-      render::write_png(window.read_image(), snapshot);
+    const bool leaving = last_frame || window.should_close() || interrupts.interrupted();
+    if (!snapshot.empty() && leaving) render::write_png(window.read_image(), snapshot);
+    if (!ro.layout_log.empty() && leaving) write_layout_log(ro.layout_log, w, h, r, frame.overlay);
     window.swap_buffers();
 
     // The errors' count once the timeline is known, and the one last jumped to.
