@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "app/branch_assessment.h"
 #include "app/compose.h"
 #include "app/drawn_surface.h"
 #include "app/mouse_takeover.h"
@@ -21,6 +22,7 @@
 #include "app/scenery_from_scene.h"
 #include "app/session.h"
 #include "app/session_summary.h"
+#include "app/summary_screen.h"
 #include "app/window_interrupt.h"
 #include "app/window_pointer.h"
 #include "engine/scene.h"
@@ -64,6 +66,9 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
   ReplayController replay(recording, co);
   std::optional<MouseTakeover> takeover;
   PointerControl pointer;
+  std::filesystem::path branch_path;
+  BranchDebrief branch_debrief;
+  bool end_branch_asked = false;  // Esc in a branch: its summary, then out
   const auto branch_here = [&] {
     replay.set_paused(true);
     std::filesystem::path file = ro.branch_file.value_or(std::filesystem::path{});
@@ -74,6 +79,7 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
       file.replace_filename(name);
     }
     replay.branch(file);
+    branch_path = file;
     takeover.emplace(replay.scene(), replay.state().tools);
     pointer = PointerControl(takeover->initial_input());
     spdlog::info("replay: branched at {:.3f} s (step {}) into {}; the mouse drives the tools",
@@ -122,7 +128,12 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
   auto last = start;
   while (!window.should_close() && !interrupts.interrupted()) {
     window.poll_events();
-    if (window.pressed(render::Key::kEscape)) window.close();
+    if (window.pressed(render::Key::kEscape)) {
+      if (replay.branched())
+        end_branch_asked = true;
+      else
+        window.close();
+    }
     if (window.pressed(render::Key::kSpace)) replay.set_paused(!replay.paused());
     if (window.pressed(render::Key::kLeft)) replay.seek(replay.time_s() - 1.0);
     if (window.pressed(render::Key::kRight)) replay.seek(replay.time_s() + 1.0);
@@ -162,6 +173,12 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
       replay.set_paused(false);  // scripted checks: the branch records at rest input
     }
 
+    const bool last_frame =
+        seconds > 0.0 && std::chrono::duration<double>(now - start).count() > seconds;
+    const bool leaving =
+        last_frame || end_branch_asked || window.should_close() || interrupts.interrupted();
+    if (replay.branched()) branch_debrief.update(replay, known.marks, leaving);
+
     const SimState& state = replay.state();
     fill_render_frame(state.mesh, drawn.of(state), names, true, frame, &state.handoff.coagulated,
                       state.handoff.coagulated_version, &state.handoff.stain);
@@ -193,6 +210,10 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
                               static_cast<double>(known.computed) * replay.dt_s(), known.done,
                               current_mark};
     frame.overlay.debrief = debrief;
+    if (replay.branched()) {
+      frame.overlay.timeline.marks = branch_debrief.marks();
+      frame.overlay.debrief = branch_debrief.summary();
+    }
 
     window.bind_framebuffer();
     renderer.draw(frame, options, w, h);
@@ -205,9 +226,6 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
     if (r.tessellation) options.tessellation = *r.tessellation;
     if (r.toggle_pause) replay.set_paused(!replay.paused());
     if (r.seek_s) replay.seek(*r.seek_s);
-    const bool last_frame =
-        seconds > 0.0 && std::chrono::duration<double>(now - start).count() > seconds;
-    const bool leaving = last_frame || window.should_close() || interrupts.interrupted();
     if (!snapshot.empty() && leaving) render::write_png(window.read_image(), snapshot);
     if (!ro.layout_log.empty() && leaving) write_layout_log(ro.layout_log, w, h, r, frame.overlay);
     window.swap_buffers();
@@ -215,21 +233,23 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
     // The errors' count once the timeline is known, and the one last jumped to.
     char errors[64] = "";
     if (known.done && current_mark >= 0)
-      std::snprintf(errors, sizeof errors, "  errors %zu  error %d/%zu", known.marks.size(),
-                    current_mark + 1, known.marks.size());
+      std::snprintf(errors, sizeof errors, "  errors %zu  error %d/%zu",
+                    frame.overlay.timeline.marks.size(), current_mark + 1,
+                    frame.overlay.timeline.marks.size());
     else if (known.done)
-      std::snprintf(errors, sizeof errors, "  errors %zu", known.marks.size());
+      std::snprintf(errors, sizeof errors, "  errors %zu", frame.overlay.timeline.marks.size());
     char title[224];
     std::snprintf(title, sizeof title, "Serosa replay  %.2f / %.2f s  x%.3g%s  %s%s",
                   replay.time_s(), replay.duration_s(), replay.speed(),
                   replay.paused() ? "  [paused]" : "", render::view_name(options.view), errors);
     window.set_title(title);
-    if (last_frame) break;
+    if (last_frame || end_branch_asked) break;
   }
   if (replay.branched()) {
-    replay.end_branch();
-    spdlog::info("replay: branch of {} steps recorded (from step {})", replay.steps_taken(),
-                 *replay.branch_step());
+    const nlohmann::json report = finish_branch(replay, branch_path);
+    if (end_branch_asked && !interrupts.interrupted() && report.contains("assessment"))
+      show_summary(window, renderer, frame, options, overlay, session_summary(report), 0.0, {},
+                   interrupts.flag());
   } else {
     spdlog::info("replay: {} of {} steps shown", replay.steps_taken(), replay.num_steps());
   }

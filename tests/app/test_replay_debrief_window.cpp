@@ -23,6 +23,20 @@ namespace {
 using namespace serosa::app::testing;
 
 #if !defined(__SANITIZE_THREAD__) && !defined(__SANITIZE_ADDRESS__)  // an 8.5 s run, replayed twice
+// The shipped procedure's novice up to 8.5 s (its bleeding at 8.0 s), recorded once for the tests.
+fs::path novice_recording() {
+  static const fs::path recording = [] {
+    const fs::path file = out_dir("replay_debrief_novice") / "novice.lapr";
+    const CliResult run =
+        run_serosa("headless --task appendectomy --path " +
+                   shell_quote(source("config/paths/appendectomy_procedure_novice.csv").string()) +
+                   " --steps 1700 --record " + shell_quote(file.string()));
+    EXPECT_EQ(run.code, 0) << run.out;
+    return file;
+  }();
+  return recording;
+}
+
 bool overlaps(const nlohmann::json& a, const nlohmann::json& b) {
   return a[0].get<double>() < b[2].get<double>() && b[0].get<double>() < a[2].get<double>() &&
          a[1].get<double>() < b[3].get<double>() && b[1].get<double>() < a[3].get<double>();
@@ -81,6 +95,36 @@ TEST(ReplayDebrief, ANovicesDebriefStandsBesideThePictureAndLeavesTheTimelineCle
              near(p[2], render::kFailedRgb[2]);
     }
   EXPECT_GT(red, 3000u);
+}
+
+// Taken over at 7.5 s, before the novice's hook cuts the artery, and left at rest: the branch is
+// scored on its own (its report beside its recording, no bleeding in it), and its timeline and
+// debrief are its own (no bleeding marked; the debrief says it is the branch's).
+TEST(ReplayDebrief, ABranchIsScoredOnItsOwn) {
+  const fs::path dir = out_dir("replay_debrief_branch");
+  const fs::path branch = dir / "branch.lapr";
+  const fs::path json = dir / "layout.json";
+  fs::remove(branch.parent_path() / "branch.json");
+  const Command window = run_command(
+      "xvfb-run -a -s '-screen 0 1280x720x24' " + shell_quote(serosa_exe().string()) + " replay " +
+      shell_quote(novice_recording().string()) +
+      " --speed 4 --branch-at 7.5 --seconds 20 --branch " + shell_quote(branch.string()) +
+      " --layout-log " + shell_quote(json.string()) + " 2>&1");
+  ASSERT_EQ(window.code, 0) << window.output;
+  nlohmann::json report;
+  std::ifstream(dir / "branch.json") >> report;
+  ASSERT_TRUE(report.contains("assessment")) << window.output;
+  const std::uint64_t at = report["branch_step"].get<std::uint64_t>();
+  EXPECT_GE(at, 1500u);
+  EXPECT_LT(at, 1605u);  // before the recorded bleeding's step
+  EXPECT_EQ(report["metrics"]["bleeding_events"].get<int>(), 0);
+  EXPECT_GT(report["steps"].get<std::uint64_t>(), at);
+  nlohmann::json layout;
+  std::ifstream(json) >> layout;
+  for (const nlohmann::json& m : layout["marks"])
+    EXPECT_NE(m["criterion"].get<std::string>(), "bleeding_events") << m.dump();
+  ASSERT_FALSE(layout["debrief_text"].empty());
+  EXPECT_EQ(layout["debrief_text"][0].get<std::string>().rfind("Branch so far: ", 0), 0u);
 }
 #endif
 
