@@ -134,6 +134,14 @@ TEST(ReplayTimeline, TheProcedureNovicesMarksAreItsFailedCriteriaAndTheExpertHas
   EXPECT_TRUE(std::none_of(t.marks.begin(), t.marks.end(), [](const auto& m) {
     return m.what.find("planned line") != std::string::npos;  // judged for the transection only
   }));
+  // The clip it closed on nothing, which fell away, is marked where its jaws closed.
+  const auto clip = std::find_if(t.marks.begin(), t.marks.end(),
+                                 [](const auto& m) { return m.criterion == "clips_on_artery"; });
+  ASSERT_NE(clip, t.marks.end());
+  EXPECT_EQ(novice.report["clips"]["dropped"]["clip-applier"].get<int>(), 1);
+  EXPECT_GT(clip->time_s, 3.0);
+  EXPECT_LT(clip->time_s, bleeding->time_s);
+  for (const auto& m : t.marks) std::printf("mark %.3f s  %s\n", m.time_s, m.what.c_str());
 
   const Recorded expert = record("expert", "config/paths/appendectomy_procedure.csv", 1880);
   const TimelineData e = compute_timeline(expert.recording, 400);
