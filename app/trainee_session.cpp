@@ -5,6 +5,7 @@
 #include <ctime>
 
 #include "app/progress_db.h"
+#include "app/task_names.h"
 #include "engine/input_error.h"
 
 namespace serosa::app {
@@ -60,7 +61,7 @@ std::optional<TraineeSession> begin_trainee_session(const TraineeOptions& option
                    options.db.empty() ? default_progress_db() : std::filesystem::path(options.db),
                    utc_now()};
   if (!record) {
-    record = trainee_recording(s.db, s.trainee, scene.stem().string(), s.started_utc);
+    record = trainee_recording(s.db, s.trainee, task_name_for_scene(scene), s.started_utc);
     std::filesystem::create_directories(record->parent_path());
   }
   if (!report) {  // beside the recording: the progress points at both
@@ -76,16 +77,12 @@ void file_session(const TraineeSession& session, const std::filesystem::path& sc
                   const std::optional<std::filesystem::path>& report_file) {
   SessionRecord r;
   r.trainee = session.trainee;
-  r.task = scene.stem().string();
+  r.task = task_name_for_scene(scene);  // the database stays readable without the task list
   r.scene = std::filesystem::absolute(scene).lexically_normal().string();
   r.started_utc = session.started_utc;
   r.simulated_s = report.value("simulated_time_s", 0.0);
-  if (report.contains("assessment")) {
-    const nlohmann::json& a = report["assessment"];
-    r.score = a["score"].get<double>();
-    r.passed = a["passed"].get<bool>();
-    r.domains_json = a["domains"].dump();
-  }
+  if (const auto a = report.find("assessment"); a != report.end() && a->is_object())
+    set_assessment(r, *a);
   if (recording) r.recording = std::filesystem::absolute(*recording).lexically_normal().string();
   if (report_file) r.report = std::filesystem::absolute(*report_file).lexically_normal().string();
   try {
