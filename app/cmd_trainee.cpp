@@ -1,55 +1,75 @@
-// serosa trainee NAME [--db FILE] [--plot PNG]: a trainee's progress (app/trainee_progress.h):
-// per task the sessions, passes, best and last score and the first pass, then every session;
-// --plot draws the learning curve with gnuplot. Exit codes: 0 done; 1 bad input (an unknown
-// trainee, a locked, damaged or foreign database, gnuplot failing).
+// serosa trainee [NAME] [--db FILE] [--tasks FILE] [--plot PNG]: a trainee's progress
+// (app/trainee_progress.h): per task the sessions, passes, best and last score, the pass score and
+// the first pass, then every session and why each failed one failed; --plot draws the learning
+// curve with gnuplot. Without a name: every trainee with their sessions, and where to go next.
+// Tasks are named as `serosa tasks` names them (app/task_names.h). Exit codes: 0 done; 1 bad
+// input (a missing, locked, damaged or foreign database, an unknown trainee, gnuplot failing).
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
 
 #include "app/command.h"
 #include "app/progress_db.h"
+#include "app/task_names.h"
 #include "app/trainee_progress.h"
 #include "engine/input_error.h"
 
 namespace serosa::app {
 
+namespace {
+
+struct TraineeArgs {
+  std::string name;
+  std::string db;
+  std::string tasks;
+  std::string plot;
+};
+
+int show_trainee(const TraineeArgs& a) {
+  const std::filesystem::path file =
+      a.db.empty() ? default_progress_db() : std::filesystem::path(a.db);
+  ProgressDb progress(file, ProgressDb::Open::existing);
+  const TaskNames names = load_task_names(a.tasks);
+  if (a.name.empty()) {
+    std::vector<SessionRecord> all = progress.all_sessions();
+    name_tasks(all, names);
+    std::fputs(trainees_text(all, file).c_str(), stdout);
+    return 0;
+  }
+  std::vector<SessionRecord> sessions = progress.sessions(a.name);
+  if (sessions.empty()) {
+    std::string known;
+    for (const std::string& t : progress.trainees())
+      known.append(known.empty() ? "" : ", ").append(t);
+    throw InputError(file.string(), 0, std::string("no sessions of trainee '") + a.name + "'",
+                     "one of: " + (known.empty() ? std::string("(none yet)") : known));
+  }
+  name_tasks(sessions, names);
+  std::fputs(progress_text(a.name, sessions).c_str(), stdout);
+  if (!a.plot.empty()) {
+    try {
+      plot_learning_curve(a.name, sessions, a.plot);
+    } catch (const std::runtime_error& e) {
+      throw InputError(a.plot, 0, e.what(), "gnuplot (gnuplot-nox) on the PATH");
+    }
+    std::printf("\nlearning curve: %s\n", a.plot.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
 void add_trainee_command(CLI::App& app, Action& action) {
-  auto name = std::make_shared<std::string>();
-  auto db = std::make_shared<std::string>();
-  auto plot = std::make_shared<std::string>();
+  auto args = std::make_shared<TraineeArgs>();
   CLI::App* cmd = app.add_subcommand("trainee", "A trainee's progress and learning curve");
-  cmd->add_option("name", *name, "The trainee's name")->required();
-  cmd->add_option("--db", *db,
+  cmd->add_option("name", args->name, "The trainee's name (none: list the trainees)");
+  cmd->add_option("--db", args->db,
                   "Progress database (default: $SEROSA_PROGRESS_DB, else "
                   "~/.local/share/serosa/progress.sqlite)");
-  cmd->add_option("--plot", *plot, "Draw the learning curve into this PNG (gnuplot)");
-  cmd->callback([&action, name, db, plot] {
-    action = [name, db, plot] {
-      const std::filesystem::path file =
-          db->empty() ? default_progress_db() : std::filesystem::path(*db);
-      if (!std::filesystem::exists(file))
-        throw InputError(file.string(), 0, "no progress database here",
-                         "a database a session with --trainee wrote (--db FILE)");
-      ProgressDb progress(file);
-      const std::vector<SessionRecord> sessions = progress.sessions(*name);
-      if (sessions.empty()) {
-        std::string known;
-        for (const std::string& t : progress.trainees()) known += (known.empty() ? "" : ", ") + t;
-        throw InputError(file.string(), 0, "no sessions of trainee '" + *name + "'",
-                         "one of: " + (known.empty() ? std::string("(none yet)") : known));
-      }
-      std::printf("%s", progress_text(*name, sessions).c_str());
-      if (!plot->empty()) {
-        try {
-          plot_learning_curve(*name, sessions, *plot);
-        } catch (const std::runtime_error& e) {
-          throw InputError(*plot, 0, e.what(), "gnuplot (gnuplot-nox) on the PATH");
-        }
-        std::printf("\nlearning curve: %s\n", plot->c_str());
-      }
-      return 0;
-    };
-  });
+  cmd->add_option("--tasks", args->tasks,
+                  "The task list that names the tasks (default: config/tasks.toml when present)");
+  cmd->add_option("--plot", args->plot, "Draw the learning curve into this PNG (gnuplot)");
+  cmd->callback([&action, args] { action = [args] { return show_trainee(*args); }; });
 }
 
 }  // namespace serosa::app

@@ -1,8 +1,9 @@
 // The trainees' progress in real SQLite (app/progress_db.h): sessions round-trip; the per-task
 // progress agrees with an independent count over random histories; `serosa headless --trainee`
 // files each session with its recording and report; `serosa trainee` prints the table and draws
-// the learning curve; a locked, damaged or foreign database is an error naming it and saying
-// where the session is kept, and the recording is complete.
+// the learning curve (leaving nothing beside it but the picture) and why each session failed; a
+// locked, damaged or foreign database is an error naming it and saying where the session is kept,
+// and the recording is complete.
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 
@@ -150,6 +151,12 @@ TEST(ProgressDb, HeadlessFilesTheSessionAndTraineePrintsAndPlotsIt) {
   EXPECT_NE(t.out.find("transection                  2       0"), std::string::npos) << t.out;
   EXPECT_NE(t.out.find("not yet"), std::string::npos) << t.out;
   EXPECT_GT(fs::file_size(png), 1000u);
+  // Nothing but the picture is left: gnuplot's script and data went to a folder now removed.
+  for (const auto& entry : fs::directory_iterator(dir))
+    EXPECT_TRUE(entry.path().extension() != ".dat" && entry.path().extension() != ".gp")
+        << entry.path();
+  EXPECT_NE(t.out.find("pass at"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("     failed: pieces.appendix = 1 < 2\n"), std::string::npos) << t.out;
 
   const CliResult unknown = run_serosa("trainee zed --db '" + db.string() + "'");
   EXPECT_EQ(unknown.code, 1) << unknown.out;
