@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   serosa::app::add_cut_command(cli, action);
   serosa::app::add_bench_command(cli, action);
   serosa::app::add_trainee_command(cli, action);
+  serosa::app::add_cohort_command(cli, action);
   serosa::app::add_tasks_command(cli, action);
   serosa::app::add_batch_command(cli, action);
   try {
