@@ -63,7 +63,7 @@ std::set<std::string> options_listed(const std::string& help) {
 TEST(DocsMatch, EveryOptionOfEveryCommandIsInTheReadmeSynopsis) {
   const std::string readme = file_text(source("README.md"));
   for (const char* sub : {"run", "headless", "replay", "batch", "check", "cut", "surface", "bench",
-                          "tasks", "trainee"}) {
+                          "tasks", "trainee", "cohort"}) {
     SCOPED_TRACE(sub);
     const CliResult help = run_serosa(std::string(sub) + " --help");
     ASSERT_EQ(help.code, 0) << help.out;
