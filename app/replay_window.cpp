@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "app/branch_banner.h"
 #include "app/compose.h"
 #include "app/drawn_surface.h"
 #include "app/mouse_takeover.h"
@@ -57,8 +58,9 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
     replay.branch(file);
     takeover.emplace(replay.scene(), replay.state().tools);
     pointer = PointerControl(takeover->initial_input());
-    spdlog::info("replay: branched at {:.3f} s (step {}) into {}; the mouse drives the tools",
-                 replay.time_s(), replay.steps_taken(), file.string());
+    spdlog::info(
+        "replay: branched into {}: {}", file.string(),
+        branch_banner(replay.scene(), *takeover, {replay.steps_taken(), replay.dt_s(), 0, true}));
   };
   const Scene& scene = replay.scene();
   const std::map<int, std::string> names = drawn_group_names(scene, replay.group_names());
@@ -111,7 +113,10 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
     if (window.pressed(render::Key::kH)) show_overlay = !show_overlay;
     if (window.pressed(render::Key::kB) && !replay.branched()) branch_here();
     const PointerEvents events = pointer_events(window);  // taken every frame: none pile up
-    if (takeover) takeover->apply(pointer.update(events, screen_axes(frame.camera)), replay);
+    if (takeover) {
+      if (ScopeControl* scope_control = takeover->scope()) scope_control->update(window);
+      takeover->apply(pointer.update(events, screen_axes(frame.camera)), replay);
+    }
     const TimelineData known = timeline.data();
     if (window.pressed(render::Key::kN)) jump_to_next_error(known.marks);
 
@@ -163,6 +168,10 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
       stats.metrics = &metrics;
     }
     frame.overlay = overlay_data(stats);
+    if (takeover)
+      frame.overlay.branch = branch_banner(scene, *takeover,
+                                           {*replay.branch_step(), replay.dt_s(), pointer.active(),
+                                            replay.steps_taken() < replay.num_steps()});
     frame.overlay.visible = show_overlay;
     frame.overlay.timeline = {known.force_n, known.marks,
                               static_cast<double>(known.computed) * replay.dt_s(), known.done,
