@@ -33,11 +33,9 @@ ToolState zeroed() {
 // none stays idle until X); a recording without hands (a script's) gives them the first two
 // instruments (scene order).
 std::array<std::optional<std::size_t>, haptics::kHandles> first_held(
-    const std::vector<Tool>& scene, const std::vector<ToolState>& tools) {
+    const std::vector<Tool>& scene, const std::vector<ToolState>& tools, bool hands) {
   std::array<std::optional<std::size_t>, haptics::kHandles> held{};
   const std::size_t n = std::min(scene.size(), tools.size());
-  const bool hands = std::any_of(tools.begin(), tools.begin() + static_cast<std::ptrdiff_t>(n),
-                                 [](const ToolState& t) { return holder(t) || in_port(t); });
   std::size_t next = 0;
   for (std::size_t h = 0; h < haptics::kHandles; ++h)
     for (std::size_t i = hands ? 0 : next; i < n && !held[h]; ++i) {
@@ -53,7 +51,9 @@ std::array<std::optional<std::size_t>, haptics::kHandles> first_held(
 MouseTakeover::MouseTakeover(const Scene& scene, const std::vector<ToolState>& tools,
                              const haptics::MouseMapping& mapping)
     : m_tools(scene.tools), m_base_map(mapping), m_left(scene.tools.size(), false) {
-  const auto held = first_held(m_tools, tools);
+  m_hands = std::any_of(tools.begin(), tools.end(),
+                        [](const ToolState& t) { return holder(t) || in_port(t); });
+  const auto held = first_held(m_tools, tools, m_hands);
   for (std::size_t h = 0; h < haptics::kHandles; ++h)
     if (held[h]) seat(h, *held[h], tools[*held[h]], m_initial);
   // The initial input holds what the hands took: the jaws as recorded, the buttons as recorded.
@@ -84,7 +84,9 @@ void MouseTakeover::seat(std::size_t h, std::size_t tool, const ToolState& pose,
   const bool ported = in_port(pose);
   double length = t.trocar_m ? std::max((tip - *t.trocar_m).norm(), 1e-3) : 0.1;
   haptics::Trocar trocar;
-  trocar.pivot_m = ported ? Vec3(tip + kPortOutsideM * shaft) : Vec3(tip - length * shaft);
+  trocar.pivot_m = !ported      ? Vec3(tip - length * shaft)
+                   : t.trocar_m ? *t.trocar_m
+                                : Vec3(tip + kPortOutsideM * shaft);
   trocar.rotation = q;
   if (ported) length = m_base_map.min_insertion_m;  // it enters, just inside its trocar
   haptics::MouseMapping map = m_base_map;
@@ -102,7 +104,7 @@ void MouseTakeover::seat(std::size_t h, std::size_t tool, const ToolState& pose,
   s.base = in;
   s.recorded_jaw_fraction = map.jaw_max_rad[h] > 0.0 ? pose.jaw_rad / map.jaw_max_rad[h] : 0.0;
   s.recorded_buttons = pose.buttons & ~kInPortBit;
-  if (ported || holder(pose)) {  // a recording with hands: this hand holds it now
+  if (m_hands) {  // a recording with hands: this hand holds it now
     ToolState b = pose;
     b.buttons = s.recorded_buttons;
     set_holder(b, hand_of(h));

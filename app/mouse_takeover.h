@@ -123,6 +123,7 @@ class MouseTakeover {
   std::array<std::uint32_t, haptics::kHandles> m_exchanges_seen{};
   std::vector<bool> m_left;             // (tools) let go of by a hand (and not taken again)
   std::vector<TakeoverInput> m_let_go;  // their last inputs, for the next poll
+  bool m_hands = false;  // the recording says which hand holds what (engine/instrument_hold.h)
   std::optional<std::size_t> m_scope_tool;
   std::unique_ptr<ScopeControl> m_scope;
   haptics::PointerInput m_initial{};

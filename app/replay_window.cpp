@@ -59,8 +59,9 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
     takeover.emplace(replay.scene(), replay.state().tools);
     pointer = PointerControl(takeover->initial_input());
     spdlog::info(
-        "replay: branched into {}: {}", file.string(),
-        branch_banner(replay.scene(), *takeover, {replay.steps_taken(), replay.dt_s(), 0, true}));
+        "replay: branched at {:.3f} s (step {}) into {}; the mouse takes over (Tab: other "
+        "hand, X: next instrument)",
+        replay.time_s(), replay.steps_taken(), file.string());
   };
   const Scene& scene = replay.scene();
   const std::map<int, std::string> names = drawn_group_names(scene, replay.group_names());
