@@ -189,7 +189,7 @@ ReplayResult run_replay(const ReplayOptions& options) {
     report["recording"]["corrupt"] = rec.corrupt;
   }
   report["scene"] = scene_path;
-  report["warnings"] = warnings_json(warnings);
+  if (!warnings.empty()) report["warnings"] = warnings_json(warnings);  // as the headless report's
   report["start_step"] = result.start_step;
   report["steps"] = result.steps;
   report["simulated_time_s"] = state.time_s;
