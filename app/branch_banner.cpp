@@ -18,14 +18,15 @@ std::string listed(const std::vector<std::string>& items) {
   return out;
 }
 
-// What the mouse drives: each hand's instrument, then the endoscope.
+// What the mouse drives: each hand's instrument (an empty hand said as such: X fills it), then
+// the endoscope.
 std::vector<std::string> mouse_driven(const Scene& scene, const MouseTakeover& takeover,
                                       std::size_t active_hand) {
   std::vector<std::string> out;
   const auto& hands = takeover.handle_tools();
   for (std::size_t h = 0; h < hands.size(); ++h) {
-    if (!hands[h] || *hands[h] >= scene.tools.size()) continue;
-    std::string item = scene.tools[*hands[h]].name;
+    const bool held = hands[h] && *hands[h] < scene.tools.size();
+    std::string item = held ? scene.tools[*hands[h]].name : std::string("no instrument");
     item.append(h == 0 ? " (left" : " (right").append(h == active_hand ? ", active)" : ")");
     out.push_back(std::move(item));
   }
@@ -52,7 +53,7 @@ std::string branch_banner(const Scene& scene, const MouseTakeover& takeover,
       .append(std::to_string(info.branch_step))
       .append("): the mouse drives ");
   const std::vector<std::string> mouse = mouse_driven(scene, takeover, info.active_hand);
-  out.append(mouse.empty() ? "nothing" : listed(mouse));
+  out.append(listed(mouse));
   std::vector<std::string> left;
   for (std::size_t i : takeover.left_tools())
     if (i < scene.tools.size()) left.push_back(scene.tools[i].name);
@@ -63,8 +64,9 @@ std::string branch_banner(const Scene& scene, const MouseTakeover& takeover,
         .append(" where the mouse left ")
         .append(left.size() == 1 ? "it" : "them");
   // The rest: every tool neither the mouse drives nor a hand let go of.
-  const std::size_t others =
-      scene.tools.size() - std::min(scene.tools.size(), mouse.size() + left.size());
+  std::size_t driven = left.size() + (takeover.scope_tool() ? 1 : 0);
+  for (const auto& h : takeover.handle_tools()) driven += h ? 1 : 0;
+  const std::size_t others = scene.tools.size() - std::min(scene.tools.size(), driven);
   if (others > 0)
     out.append(info.recording_plays ? "; the recording drives the rest"
                                     : "; the rest hold the recording's last pose");

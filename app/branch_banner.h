@@ -3,8 +3,9 @@
 //   BRANCH at 0:05.2 (step 1041): the mouse drives grasper (left, active), clip-applier (right)
 //   and endoscope (right button); the recording drives the rest. Tab: other hand, X: next
 //   instrument
-// (one line on screen). Instruments a hand let go of are named as staying where the mouse left
-// them; once the recording has ended, the rest hold its last pose.
+// (one line on screen). An empty hand is said ("no instrument (right)": X brings one in);
+// instruments a hand let go of are named as staying where the mouse left them; once the recording
+// has ended, the rest hold its last pose.
 #pragma once
 
 #include <cstddef>

@@ -411,6 +411,17 @@ TEST(BranchBanner, SaysWhoDrivesWhat) {
             "hold the recording's last pose. Tab: other hand, X: next instrument");
 }
 
+// At the procedure's start the right hand holds nothing: said, so that X is pressed there.
+TEST(BranchBanner, AnEmptyHandIsSaid) {
+  const Posed p = posed("config/appendectomy.toml", "config/paths/appendectomy_procedure.csv", 0.0);
+  MouseTakeover m(p.scene, p.tools);
+  EXPECT_FALSE(m.handle_tools()[1].has_value());
+  EXPECT_EQ(branch_banner(p.scene, m, {0, kDt, 1, true}),
+            "BRANCH at 0:00.0 (step 0): the mouse drives grasper (left), no instrument (right, "
+            "active) and endoscope (right button); the recording drives the rest. Tab: other "
+            "hand, X: next instrument");
+}
+
 // A scripted transection's takeover (no hands in the recording): the first two instruments.
 TEST(BranchBanner, AScriptWithoutHandsGivesTheFirstTwoInstruments) {
   const Posed p = posed("config/transection.toml", "config/paths/appendectomy.csv", 0.5);
