@@ -53,6 +53,10 @@ void add_replay_command(CLI::App& app, Action& action) {
   cmd->add_option("--seconds", *seconds, "In a window: close after this much wall time (0: never)");
   cmd->add_option("--snapshot", *snapshot,
                   "In a window: also write the last picture drawn to this PNG");
+  auto layout_log = std::make_shared<std::string>();
+  cmd->add_option("--layout-log", *layout_log,
+                  "In a window: with the last picture, write where the overlay's panels were and "
+                  "what the debrief said to this JSON file (checks)");
   auto branch_at = std::make_shared<double>(-1.0);
   auto branch_file = std::make_shared<std::string>();
   cmd->add_option("--branch-at", *branch_at,
@@ -62,9 +66,9 @@ void add_replay_command(CLI::App& app, Action& action) {
   cmd->add_option("--branch", *branch_file,
                   "In a window: the branch recording (default: NAME.branch-STEP.lapr beside it)");
   cmd->callback([&action, opts, headless, frames, report, speed, seconds, snapshot, branch_at,
-                 branch_file, from] {
+                 branch_file, from, layout_log] {
     action = [opts, headless, frames, report, speed, seconds, snapshot, branch_at, branch_file,
-              from] {
+              from, layout_log] {
       if (*from >= 0.0) opts->from_s = *from;
       if (!*headless) {
         if (opts->from_s)
@@ -80,6 +84,7 @@ void add_replay_command(CLI::App& app, Action& action) {
         wo.speed = *speed;
         wo.seconds = *seconds;
         wo.snapshot = *snapshot;
+        wo.layout_log = *layout_log;
         if (*branch_at >= 0.0) wo.branch_at_s = *branch_at;
         if (!branch_file->empty()) wo.branch_file = *branch_file;
         return run_replay_window(opts->recording, wo);

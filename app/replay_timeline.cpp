@@ -1,10 +1,10 @@
 #include "app/replay_timeline.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <limits>
 #include <utility>
 
+#include "app/assessment_report.h"
 #include "app/compose.h"
 #include "app/replay_controller.h"
 #include "metrics/metrics_stage.h"
@@ -14,44 +14,72 @@ namespace {
 
 constexpr std::uint64_t kProgressEvery = 200;  // steps between progress calls
 
-// Follows the metrics from step to step and marks the errors as they happen.
-class ErrorWatch {
+// Follows the metrics from step to step: the force plot's value, and when what the report keeps
+// only as totals happened.
+class EventWatch {
  public:
-  ErrorWatch(const Scene& scene, const MetricsStage& metrics)
-      : m_scene(scene), m_metrics(metrics), m_over(scene.tools.size(), 0) {}
+  EventWatch(const Scene& scene, const MetricsStage& metrics)
+      : m_scene(scene), m_metrics(metrics), m_jaw(scene.tools.size(), 0.0) {}
 
-  // The tools' largest force this step, N; marks what went wrong in it.
-  float after_step(double t_s, std::vector<render::TimelineMark>& marks) {
+  // The tools' largest force this step, N.
+  float after_step(double t_s, const SimState& state) {
     double largest = 0.0;
-    const double limit = m_metrics.force_limit_n();
     for (std::size_t i = 0; i < m_scene.tools.size(); ++i) {
       const double f = m_metrics.load_n(i);
       largest = std::max(largest, f);
-      const bool over = f > limit;
-      if (over && m_over[i] == 0) {
-        char what[96];
-        std::snprintf(what, sizeof what, " over %.3g N", limit);
-        marks.push_back({t_s, m_scene.tools[i].name + what});
-      }
-      m_over[i] = over ? 1 : 0;
+      if (f > 0.0 && f >= m_metrics.force_max_n(i))
+        m_events.force_max_at_s[m_scene.tools[i].name] = t_s;
+      if (f > m_metrics.force_limit_n() && m_events.force_over_at_s < 0.0)
+        m_events.force_over_at_s = t_s;
+      if (i < state.tools.size()) watch_clip_applier(i, t_s, state.tools[i].jaw_rad);
     }
-    const double collateral = m_metrics.collateral_m3();
-    if (collateral > m_collateral) {
-      char what[96];
-      std::snprintf(what, sizeof what, "cut %.3g mm3 off the planned line",
-                    (collateral - m_collateral) * 1e9);
-      marks.push_back({t_s, what});
+    if (m_metrics.peak_stress_pa() > m_peak) m_events.peak_stress_at_s = t_s;
+    m_peak = m_metrics.peak_stress_pa();
+    const double cut = m_metrics.cut_volume_m3();
+    if (cut > m_cut && m_events.first_cut_at_s < 0.0) m_events.first_cut_at_s = t_s;
+    m_cut = cut;
+    const double added = m_metrics.collateral_m3() - m_collateral;
+    if (added > m_most_collateral) {
+      m_most_collateral = added;
+      m_events.collateral_at_s = t_s;
     }
-    m_collateral = collateral;
+    m_collateral = m_metrics.collateral_m3();
+    m_events.end_s = t_s;
     return static_cast<float>(largest);
   }
 
+  [[nodiscard]] const RunEvents& events() const { return m_events; }
+
  private:
+  // A clip applier's jaws closing (from open) is where its clip went, or failed to.
+  void watch_clip_applier(std::size_t i, double t_s, double jaw_rad) {
+    if (m_scene.tools[i].kind != ToolKind::kClipApplier) return;
+    constexpr double kOpen = 0.15, kClosed = 0.05;  // rad
+    if (jaw_rad > kOpen) m_jaw[i] = jaw_rad;
+    if (jaw_rad < kClosed && m_jaw[i] > kOpen) {
+      m_events.clip_closed_at_s.push_back(t_s);
+      m_jaw[i] = 0.0;
+    }
+  }
+
   const Scene& m_scene;
   const MetricsStage& m_metrics;
-  std::vector<std::uint8_t> m_over;  // (tools) over the limit last step
-  double m_collateral = 0.0;
+  std::vector<double> m_jaw;  // (tools) a clip applier's opening since it last closed, rad
+  RunEvents m_events;
+  double m_peak = 0.0, m_cut = 0.0, m_collateral = 0.0, m_most_collateral = 0.0;
 };
+
+// The report's metric blocks and the failures once the replay reached the recording's end.
+void assess(const ReplayController& replay, const EventWatch& watch, TimelineData& d) {
+  nlohmann::json report;
+  add_metrics_blocks(report, replay.scene(), replay.composition().metrics, replay.state().mesh,
+                     replay.group_names());
+  RunEvents events = watch.events();
+  events.end_s = replay.time_s();
+  d.failures = failures(report, events);
+  d.marks = failure_timeline_marks(d.failures);
+  d.report = std::move(report);
+}
 
 }  // namespace
 
@@ -71,10 +99,10 @@ TimelineData compute_timeline(const std::filesystem::path& recording, std::size_
     if (progress) progress(d);
     return d;
   }
-  ErrorWatch watch(replay.scene(), *metrics);
+  EventWatch watch(replay.scene(), *metrics);
   try {
     while (!stop.stop_requested() && replay.step_forward()) {
-      const float force = watch.after_step(replay.time_s(), d.marks);
+      const float force = watch.after_step(replay.time_s(), replay.state());
       const std::size_t bin =
           std::min<std::size_t>(d.computed * d.force_n.size() / std::max<std::uint64_t>(d.steps, 1),
                                 d.force_n.size() - 1);
@@ -82,12 +110,22 @@ TimelineData compute_timeline(const std::filesystem::path& recording, std::size_
       ++d.computed;
       if (progress && d.computed % kProgressEvery == 0) progress(d);
     }
+    if (!stop.stop_requested()) assess(replay, watch, d);
   } catch (const std::exception& e) {
     d.error = e.what();  // what was computed stays shown
   }
   d.done = true;
   if (progress) progress(d);
   return d;
+}
+
+std::vector<render::TimelineMark> failure_timeline_marks(const std::vector<Failure>& failed) {
+  std::vector<render::TimelineMark> marks;
+  for (const Failure& f : failed)
+    for (const double t : f.at_s) marks.push_back({t, f.words, f.criterion});
+  std::stable_sort(marks.begin(), marks.end(),
+                   [](const auto& a, const auto& b) { return a.time_s < b.time_s; });
+  return marks;
 }
 
 std::optional<std::size_t> next_mark(const std::vector<render::TimelineMark>& marks,
@@ -104,6 +142,15 @@ std::optional<std::size_t> mark_to_jump_to(const std::vector<render::TimelineMar
   if (current >= 0 && current < n && time_s <= marks[static_cast<std::size_t>(current)].time_s)
     return static_cast<std::size_t>((current + 1) % n);
   return next_mark(marks, time_s);
+}
+
+std::optional<std::size_t> mark_to_jump_back_to(const std::vector<render::TimelineMark>& marks,
+                                                double time_s) {
+  if (marks.empty()) return std::nullopt;
+  constexpr double kSlackS = 0.5;  // a jump just taken lands here: P goes one further back
+  for (std::size_t k = marks.size(); k-- > 0;)
+    if (std::max(marks[k].time_s - kJumpLeadS, 0.0) < time_s - kSlackS) return k;
+  return marks.size() - 1;
 }
 
 TimelineBuilder::TimelineBuilder(std::filesystem::path recording)

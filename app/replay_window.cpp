@@ -6,9 +6,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <optional>
 #include <string>
 
+#include "app/branch_assessment.h"
 #include "app/branch_banner.h"
 #include "app/compose.h"
 #include "app/drawn_surface.h"
@@ -20,6 +22,8 @@
 #include "app/replay_timeline.h"
 #include "app/scenery_from_scene.h"
 #include "app/session.h"
+#include "app/session_summary.h"
+#include "app/summary_screen.h"
 #include "app/window_interrupt.h"
 #include "app/window_pointer.h"
 #include "engine/scene.h"
@@ -35,6 +39,23 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+void write_layout_log(const std::filesystem::path& file, int width, int height,
+                      const render::OverlayResult& r, const render::OverlayData& data) {
+  nlohmann::json log;
+  log["window"] = {width, height};
+  log["replay_bar"] = r.replay_bar;
+  log["timeline"] = r.timeline;
+  log["debrief"] = r.debrief;
+  log["statistics"] = r.stats_rect;
+  log["debrief_text"] =
+      data.debrief ? render::summary_text(*data.debrief, false) : std::vector<std::string>{};
+  log["errors_line"] = render::overlay_text(data).errors;
+  log["marks"] = nlohmann::json::array();
+  for (const render::TimelineMark& m : data.timeline.marks)
+    log["marks"].push_back({{"time_s", m.time_s}, {"what", m.what}, {"criterion", m.criterion}});
+  std::ofstream(file) << log.dump(1) << "\n";
+}
+
 }  // namespace
 
 int run_replay_window(const std::filesystem::path& recording, const ReplayWindowOptions& ro) {
@@ -46,6 +67,9 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
   ReplayController replay(recording, co);
   std::optional<MouseTakeover> takeover;
   PointerControl pointer;
+  std::filesystem::path branch_path;
+  BranchDebrief branch_debrief;
+  bool end_branch_asked = false;  // Esc in a branch: its summary, then out
   const auto branch_here = [&] {
     replay.set_paused(true);
     std::filesystem::path file = ro.branch_file.value_or(std::filesystem::path{});
@@ -56,6 +80,7 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
       file.replace_filename(name);
     }
     replay.branch(file);
+    branch_path = file;
     takeover.emplace(replay.scene(), replay.state().tools);
     pointer = PointerControl(takeover->initial_input());
     spdlog::info(
@@ -76,6 +101,14 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
     current_mark = static_cast<int>(*k);
     replay.seek(std::max(marks[*k].time_s - kJumpLeadS, 0.0));
   };
+  const auto jump_to_previous_error = [&](const std::vector<render::TimelineMark>& marks) {
+    if (replay.branched()) return;
+    const std::optional<std::size_t> k = mark_to_jump_back_to(marks, replay.time_s());
+    if (!k) return;
+    current_mark = static_cast<int>(*k);
+    replay.seek(std::max(marks[*k].time_s - kJumpLeadS, 0.0));
+  };
+  std::optional<render::SessionSummary> debrief;  // once the timeline has assessed the run
 
   const InterruptGuard interrupts;
   render::Window window(scene.render.width, scene.render.height, "Serosa replay");
@@ -98,7 +131,12 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
   auto last = start;
   while (!window.should_close() && !interrupts.interrupted()) {
     window.poll_events();
-    if (window.pressed(render::Key::kEscape)) window.close();
+    if (window.pressed(render::Key::kEscape)) {
+      if (replay.branched())
+        end_branch_asked = true;
+      else
+        window.close();
+    }
     if (window.pressed(render::Key::kSpace)) replay.set_paused(!replay.paused());
     if (window.pressed(render::Key::kLeft)) replay.seek(replay.time_s() - 1.0);
     if (window.pressed(render::Key::kRight)) replay.seek(replay.time_s() + 1.0);
@@ -120,6 +158,9 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
     }
     const TimelineData known = timeline.data();
     if (window.pressed(render::Key::kN)) jump_to_next_error(known.marks);
+    if (window.pressed(render::Key::kP) && !replay.branched()) jump_to_previous_error(known.marks);
+    if (!debrief && known.done && known.report.contains("assessment"))
+      debrief = session_summary(known.report, &known.failures);
 
     // Play: the steps that became due over the wall time since the last frame (at most 0.1 s of
     // it, so that a slow step plays in slow motion rather than in a catch-up burst).
@@ -137,6 +178,12 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
       branch_here();
       replay.set_paused(false);  // scripted checks: the branch records at rest input
     }
+
+    const bool last_frame =
+        seconds > 0.0 && std::chrono::duration<double>(now - start).count() > seconds;
+    const bool leaving =
+        last_frame || end_branch_asked || window.should_close() || interrupts.interrupted();
+    if (replay.branched()) branch_debrief.update(replay, known.marks, leaving);
 
     const SimState& state = replay.state();
     fill_render_frame(state.mesh, drawn.of(state), names, true, frame, &state.handoff.coagulated,
@@ -163,12 +210,7 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
     stats.replay_position_s = replay.time_s();
     stats.replay_duration_s = replay.duration_s();
     stats.replay_speed = replay.speed();
-    nlohmann::json metrics;
-    if (replay.composition().metrics != nullptr) {
-      metrics = replay.composition().metrics->report();
-      stats.metrics = &metrics;
-    }
-    frame.overlay = overlay_data(stats);
+    frame.overlay = overlay_data(stats);  // the metrics are the debrief's, by domain
     if (takeover)
       frame.overlay.branch = branch_banner(scene, *takeover,
                                            {*replay.branch_step(), replay.dt_s(), pointer.active(),
@@ -177,6 +219,11 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
     frame.overlay.timeline = {known.force_n, known.marks,
                               static_cast<double>(known.computed) * replay.dt_s(), known.done,
                               current_mark};
+    frame.overlay.debrief = debrief;
+    if (replay.branched()) {
+      frame.overlay.timeline.marks = branch_debrief.marks();
+      frame.overlay.debrief = branch_debrief.summary();
+    }
 
     window.bind_framebuffer();
     renderer.draw(frame, options, w, h);
@@ -189,30 +236,30 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
     if (r.tessellation) options.tessellation = *r.tessellation;
     if (r.toggle_pause) replay.set_paused(!replay.paused());
     if (r.seek_s) replay.seek(*r.seek_s);
-    const bool last_frame =
-        seconds > 0.0 && std::chrono::duration<double>(now - start).count() > seconds;
-    if (!snapshot.empty() && (last_frame || window.should_close() || interrupts.interrupted()))
-      render::write_png(window.read_image(), snapshot);
+    if (!snapshot.empty() && leaving) render::write_png(window.read_image(), snapshot);
+    if (!ro.layout_log.empty() && leaving) write_layout_log(ro.layout_log, w, h, r, frame.overlay);
     window.swap_buffers();
 
     // The errors' count once the timeline is known, and the one last jumped to.
     char errors[64] = "";
     if (known.done && current_mark >= 0)
-      std::snprintf(errors, sizeof errors, "  errors %zu  error %d/%zu", known.marks.size(),
-                    current_mark + 1, known.marks.size());
+      std::snprintf(errors, sizeof errors, "  errors %zu  error %d/%zu",
+                    frame.overlay.timeline.marks.size(), current_mark + 1,
+                    frame.overlay.timeline.marks.size());
     else if (known.done)
-      std::snprintf(errors, sizeof errors, "  errors %zu", known.marks.size());
+      std::snprintf(errors, sizeof errors, "  errors %zu", frame.overlay.timeline.marks.size());
     char title[224];
     std::snprintf(title, sizeof title, "Serosa replay  %.2f / %.2f s  x%.3g%s  %s%s",
                   replay.time_s(), replay.duration_s(), replay.speed(),
                   replay.paused() ? "  [paused]" : "", render::view_name(options.view), errors);
     window.set_title(title);
-    if (last_frame) break;
+    if (last_frame || end_branch_asked) break;
   }
   if (replay.branched()) {
-    replay.end_branch();
-    spdlog::info("replay: branch of {} steps recorded (from step {})", replay.steps_taken(),
-                 *replay.branch_step());
+    const nlohmann::json report = finish_branch(replay, branch_path);
+    if (end_branch_asked && !interrupts.interrupted() && report.contains("assessment"))
+      show_summary(window, renderer, frame, options, overlay, session_summary(report), 0.0, {},
+                   interrupts.flag());
   } else {
     spdlog::info("replay: {} of {} steps shown", replay.steps_taken(), replay.num_steps());
   }

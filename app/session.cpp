@@ -458,9 +458,8 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
     // Ctrl-C or a solver error.
     if (report.contains("assessment") && !window.should_close() && !interrupts.interrupted() &&
         !loop.error() && (ended || (timed_out && so.summary_seconds > 0.0)))
-      show_summary(window, renderer, frames.front(), options, overlay,
-                   session_summary(report["assessment"]), timed_out ? so.summary_seconds : 0.0,
-                   snapshot, interrupts.flag());
+      show_summary(window, renderer, frames.front(), options, overlay, session_summary(report),
+                   timed_out ? so.summary_seconds : 0.0, snapshot, interrupts.flag());
   }
   if (loop.error()) std::rethrow_exception(loop.error());
   return 0;

@@ -1,5 +1,6 @@
 // Overlay (see overlay.h): ImGui layout and a minimal OpenGL 3 renderer for ImDrawData.
 #include "render/overlay.h"
+#include "render/overlay_debrief.h"
 #include "render/overlay_timeline.h"
 
 #include <epoxy/gl.h>
@@ -178,9 +179,12 @@ OverlayText overlay_text(const OverlayData& data) {
     t.timeline = line;
     const OverlayTimeline& tl = data.timeline;
     const auto n = static_cast<int>(tl.marks.size());
-    t.errors = "errors " + std::to_string(n);
-    if (!tl.done) t.errors += " so far";
-    if (n > 0) t.errors += " (N: next)";
+    if (!tl.done)
+      t.errors = "assessing the recording ... (its errors are marked when it is done)";
+    else if (n == 0)
+      t.errors = "no errors: every criterion passed";
+    else
+      t.errors = "errors " + std::to_string(n) + " (N: next, P: previous)";
     if (tl.current >= 0 && tl.current < n) {
       const TimelineMark& m = tl.marks[static_cast<std::size_t>(tl.current)];
       format_time(m.time_s, now, sizeof now);
@@ -312,10 +316,15 @@ OverlayResult Overlay::layout(const OverlayData& data, const SnapshotOptions& op
                                  ImGuiWindowFlags_NoSavedSettings |
                                  ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav;
   if (data.help) layout_help(panel, width, height);
+  // H hides the panels; a replay's timeline stays (it is how the instructor finds the way).
+  if (data.replay) layout_replay(data, panel, width, height, result);
   if (!data.visible) return result;
   if (!data.hands.empty()) layout_hands(data, panel, width);
-  // Statistics, top left.
+  // Statistics, top left (above the replay's panel: at most down to its top).
+  const float bottom = data.replay ? result.replay_bar[1] : static_cast<float>(height);
   ImGui::SetNextWindowPos(ImVec2(10.0f, 10.0f), ImGuiCond_Always);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(0.0f, 0.0f),
+                                      ImVec2(0.3f * static_cast<float>(width), bottom - 20.0f));
   ImGui::SetNextWindowBgAlpha(0.55f);
   if (ImGui::Begin("Statistics", nullptr, panel)) {
     const OverlayText text = overlay_text(data);
@@ -346,35 +355,67 @@ OverlayResult Overlay::layout(const OverlayData& data, const SnapshotOptions& op
     result.stats_rect = {pos.x, pos.y, pos.x + size.x, pos.y + size.y};
   }
   ImGui::End();
-
-  // Replay timeline, along the bottom.
-  if (data.replay) {
-    const float margin = 10.0f;
-    ImGui::SetNextWindowPos(ImVec2(margin, static_cast<float>(height) - margin), ImGuiCond_Always,
-                            ImVec2(0.0f, 1.0f));
-    ImGui::SetNextWindowSize(ImVec2(static_cast<float>(width) - 2.0f * margin, 0.0f),
-                             ImGuiCond_Always);
-    ImGui::SetNextWindowBgAlpha(0.55f);
-    const ImGuiWindowFlags bar = panel & ~ImGuiWindowFlags_AlwaysAutoResize;
-    if (ImGui::Begin("Replay", nullptr, bar)) {
-      draw_timeline(data, overlay_text(data).errors);
-      if (ImGui::Button(data.paused ? " Play  " : " Pause ")) result.toggle_pause = true;
-      result.pause_button = last_item_rect();
-      ImGui::SameLine();
-      const std::string label = overlay_text(data).timeline;
-      const double duration = std::max(data.replay_duration_s, 1e-6);
-      auto position =
-          static_cast<float>(std::clamp(data.replay_position_s, 0.0, duration) / duration);
-      ImGui::SetNextItemWidth(-1.0f);
-      if (ImGui::SliderFloat("##timeline", &position, 0.0f, 1.0f, label.c_str(),
-                             ImGuiSliderFlags_AlwaysClamp)) {
-        result.seek_s = static_cast<double>(position) * duration;
-      }
-      result.timeline = last_item_rect();
-    }
-    ImGui::End();
-  }
+  if (data.replay) layout_debrief(data, panel, width, bottom, result);
   return result;
+}
+
+void Overlay::layout_replay(const OverlayData& data, int panel, int width, int height,
+                            OverlayResult& result) {
+  const float margin = 10.0f;
+  ImGui::SetNextWindowPos(ImVec2(margin, static_cast<float>(height) - margin), ImGuiCond_Always,
+                          ImVec2(0.0f, 1.0f));
+  ImGui::SetNextWindowSize(ImVec2(static_cast<float>(width) - 2.0f * margin, 0.0f),
+                           ImGuiCond_Always);
+  ImGui::SetNextWindowBgAlpha(0.55f);
+  const ImGuiWindowFlags bar = panel & ~ImGuiWindowFlags_AlwaysAutoResize;
+  if (ImGui::Begin("Replay", nullptr, bar)) {
+    if (!data.branch.empty()) draw_branch_band(data.branch);
+    draw_timeline(data, overlay_text(data).errors);
+    if (ImGui::Button(data.paused ? " Play  " : " Pause ")) result.toggle_pause = true;
+    result.pause_button = last_item_rect();
+    ImGui::SameLine();
+    const std::string label = overlay_text(data).timeline;
+    const double duration = std::max(data.replay_duration_s, 1e-6);
+    auto position =
+        static_cast<float>(std::clamp(data.replay_position_s, 0.0, duration) / duration);
+    ImGui::SetNextItemWidth(-1.0f);
+    if (ImGui::SliderFloat("##timeline", &position, 0.0f, 1.0f, label.c_str(),
+                           ImGuiSliderFlags_AlwaysClamp)) {
+      result.seek_s = static_cast<double>(position) * duration;
+    }
+    result.timeline = last_item_rect();
+    const ImVec2 pos = ImGui::GetWindowPos();
+    const ImVec2 size = ImGui::GetWindowSize();
+    result.replay_bar = {pos.x, pos.y, pos.x + size.x, pos.y + size.y};
+  }
+  ImGui::End();
+}
+
+// The debrief, top right: at most a quarter of the view's width, and never down over the replay's
+// panel (what does not fit scrolls).
+void Overlay::layout_debrief(const OverlayData& data, int panel, int width, float bottom,
+                             OverlayResult& result) {
+  const float w = 0.25f * static_cast<float>(width) - 10.0f;
+  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(width) - 10.0f, 10.0f), ImGuiCond_Always,
+                          ImVec2(1.0f, 0.0f));
+  ImGui::SetNextWindowSize(ImVec2(w, 0.0f), ImGuiCond_Always);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(w, 0.0f), ImVec2(w, std::max(bottom - 20.0f, 40.0f)));
+  ImGui::SetNextWindowBgAlpha(0.6f);
+  const ImGuiWindowFlags flags = (panel & ~ImGuiWindowFlags_AlwaysAutoResize);
+  if (ImGui::Begin("Debrief", nullptr, flags)) {
+    if (data.debrief) {
+      debrief_contents(*data.debrief, false);
+    } else {
+      ImGui::PushTextWrapPos(0.0f);
+      ImGui::TextDisabled("%s", data.timeline.done ? "this recording is scored by no rubric"
+                                                   : "assessing the recording ...");
+      ImGui::PopTextWrapPos();
+    }
+    const ImVec2 pos = ImGui::GetWindowPos();
+    const ImVec2 size = ImGui::GetWindowSize();
+    result.debrief = {pos.x, pos.y, pos.x + size.x, pos.y + size.y};
+  }
+  ImGui::End();
 }
 
 void Overlay::layout_hands(const OverlayData& data, int panel, int width) {

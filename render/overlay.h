@@ -38,6 +38,8 @@ struct OverlayResult {
   std::array<float, 4> stats_rect{};    ///< the statistics panel
   std::array<float, 4> pause_button{};  ///< the replay's pause/play button
   std::array<float, 4> timeline{};      ///< the replay's timeline slider
+  std::array<float, 4> replay_bar{};    ///< the replay's whole panel along the bottom
+  std::array<float, 4> debrief{};       ///< the replay's debrief panel (right)
 };
 
 /// Owns an ImGui context and the GL objects that draw it. Construct, use and destroy it with the
@@ -66,6 +68,10 @@ class Overlay {
                        int height);
   void layout_hands(const OverlayData& data, int panel, int width);
   void layout_help(int panel, int width, int height);
+  void layout_replay(const OverlayData& data, int panel, int width, int height,
+                     OverlayResult& result);
+  void layout_debrief(const OverlayData& data, int panel, int width, float bottom,
+                      OverlayResult& result);
   void render_draw_data();
 
   ImGuiContext* imgui_ = nullptr;
@@ -88,8 +94,9 @@ struct OverlayText {
   /// The replay timeline's label, "0:15.0 / 1:00.0  x1.0" (with "  [paused]"); empty outside
   /// replays.
   std::string timeline;
-  /// The errors line under it: "errors 3 (N: next)" ("errors 0", "errors 1 so far" while the
-  /// timeline is being computed), then the mark last jumped to, "  2/3 0:03.2 grasper over 5 N".
+  /// The errors line under it: "errors 3 (N: next, P: previous)" ("no errors: every criterion
+  /// passed"; "assessing the recording ..." while the timeline is being computed), then the mark
+  /// last jumped to, "  2/3 0:08.0 bleeding: the artery was cut before it was secured".
   std::string errors;
   /// The instruments panel, a line per hand: "> right: scissors  jaws 1.20 of 1.20 rad  tissue
   /// 4 mm" ('>' marks the active one; "jaws closed", "pedal DOWN", "6 mm IN JAWS", "touching",

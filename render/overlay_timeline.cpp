@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 namespace serosa::render {
@@ -12,6 +13,37 @@ constexpr float kPlotHeight = 36.0f;  // px
 constexpr ImU32 kMarkColour = IM_COL32(235, 64, 52, 255);
 constexpr ImU32 kCurrentColour = IM_COL32(255, 214, 10, 255);
 constexpr ImU32 kPositionColour = IM_COL32(255, 255, 255, 220);
+constexpr ImU32 kStepColours[2] = {IM_COL32(52, 101, 164, 230), IM_COL32(78, 154, 6, 230)};
+constexpr ImU32 kBranchColour = IM_COL32(196, 120, 0, 235);
+constexpr float kStepRowHeight = 18.0f;  // px
+
+// The procedure's steps under the plot, between lo.x and hi.x (the plot's width).
+void draw_steps(const std::vector<SummaryStep>& steps, double duration, float lo_x, float hi_x) {
+  const ImVec2 at = ImGui::GetCursorScreenPos();
+  ImGui::Dummy(ImVec2(hi_x - lo_x, kStepRowHeight));
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const auto x_at = [&](double t) {
+    return lo_x + static_cast<float>(std::clamp(t / duration, 0.0, 1.0)) * (hi_x - lo_x);
+  };
+  std::string not_done;
+  int k = 0;
+  for (const SummaryStep& st : steps) {
+    if (!st.done) {
+      not_done.append(not_done.empty() ? "not done: " : ", ").append(st.name);
+      continue;
+    }
+    const ImVec2 a(x_at(st.start_s) + 1.0f, at.y);
+    const ImVec2 b(std::max(x_at(st.start_s + st.duration_s) - 1.0f, a.x + 2.0f),
+                   at.y + kStepRowHeight);
+    draw->AddRectFilled(a, b, kStepColours[k++ % 2], 3.0f);
+    const std::string label = st.name + " (" + st.tool + ")";
+    draw->PushClipRect(a, b, true);
+    draw->AddText(ImVec2(a.x + 4.0f, a.y + 2.0f), IM_COL32(255, 255, 255, 255), label.c_str());
+    draw->PopClipRect();
+  }
+  if (!not_done.empty())
+    ImGui::TextColored(ImVec4(1.0f, 0.55f, 0.45f, 1.0f), "%s", not_done.c_str());
+}
 
 }  // namespace
 
@@ -44,7 +76,20 @@ void draw_timeline(const OverlayData& data, const std::string& errors_line) {
   }
   const float now = x_at(data.replay_position_s);
   draw->AddLine(ImVec2(now, lo.y), ImVec2(now, hi.y), kPositionColour, 1.0f);
+  if (data.debrief && !data.debrief->steps.empty())
+    draw_steps(data.debrief->steps, duration, lo.x, hi.x);
   ImGui::TextUnformatted(errors_line.c_str());
+}
+
+void draw_branch_band(const std::string& text) {
+  const ImVec2 at = ImGui::GetCursorScreenPos();
+  const float h = ImGui::GetTextLineHeightWithSpacing() + 4.0f;
+  ImGui::GetWindowDrawList()->AddRectFilled(
+      at, ImVec2(at.x + ImGui::GetContentRegionAvail().x, at.y + h), kBranchColour, 3.0f);
+  ImGui::SetCursorScreenPos(ImVec2(at.x + 6.0f, at.y + 2.0f));
+  ImGui::TextUnformatted(text.c_str());
+  ImGui::SetCursorScreenPos(ImVec2(at.x, at.y + h + 2.0f));
+  ImGui::Dummy(ImVec2(0.0f, 0.0f));
 }
 
 }  // namespace serosa::render

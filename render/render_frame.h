@@ -6,8 +6,11 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "render/session_summary.h"
 
 namespace serosa::render {
 
@@ -100,8 +103,9 @@ struct OverlayMetric {
 
 /// An error marked on the replay's timeline.
 struct TimelineMark {
-  double time_s = 0.0;  ///< when it happened, s
-  std::string what;     ///< "grasper over 5 N", ...
+  double time_s = 0.0;    ///< when it happened, s
+  std::string what;       ///< in words: "bleeding: the artery was cut before it was secured"
+  std::string criterion;  ///< the rubric's criterion it shows ("bleeding_events"); may be empty
 };
 
 /// The replay's metric timeline: the tools' force on the tissue over the recording, pooled into
@@ -160,14 +164,17 @@ struct OverlayData {
   bool slow_motion = false;  ///< the solver cannot keep up with real time
   /// Replay timeline (instructors): shown when `replay` is true.
   bool replay = false;
-  double replay_position_s = 0.0;      ///< position in the recording, s
-  double replay_duration_s = 0.0;      ///< length of the recording, s
-  double replay_speed = 1.0;           ///< playback speed, x real time (> 0)
-  OverlayTimeline timeline;            ///< the metric timeline and its error marks (replays)
+  double replay_position_s = 0.0;  ///< position in the recording, s
+  double replay_duration_s = 0.0;  ///< length of the recording, s
+  double replay_speed = 1.0;       ///< playback speed, x real time (> 0)
+  OverlayTimeline timeline;        ///< the metric timeline and its error marks (replays)
   /// A branch taken over from the replay: who drives what, one line ("BRANCH at 0:05.2 (step
   /// 1041): the mouse drives grasper (left), scissors (right); the recording drives the rest");
   /// empty: not branched. Shown in a coloured band above the timeline.
   std::string branch;
+  /// The run's debrief beside the replay (render/session_summary.h), once the timeline has
+  /// assessed the recording; none before (or without a rubric).
+  std::optional<SessionSummary> debrief;
   std::vector<OverlayMetric> metrics;  ///< listed under the statistics, in this order
 };
 

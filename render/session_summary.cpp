@@ -2,10 +2,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace serosa::render {
 
-std::vector<std::string> summary_text(const SessionSummary& s) {
+std::string clock_text(double seconds) {
+  seconds = std::max(seconds, 0.0);
+  const int minutes = static_cast<int>(seconds / 60.0);
+  char out[32];
+  std::snprintf(out, sizeof out, "%d:%04.1f", minutes, seconds - 60.0 * minutes);
+  return out;
+}
+
+std::vector<std::string> summary_text(const SessionSummary& s, bool with_way_out) {
   std::vector<std::string> out;
   out.push_back(s.title.empty() ? std::string("Session") : s.title);
   out.emplace_back(s.passed ? "PASSED" : "NOT PASSED");
@@ -24,7 +33,17 @@ std::vector<std::string> summary_text(const SessionSummary& s) {
     out.emplace_back("To work on:");
     for (const std::string& b : more) out.push_back("  " + b);
   }
-  out.emplace_back("Esc, Space or close the window to leave");
+  if (!s.steps.empty()) out.emplace_back("Steps:");
+  for (const SummaryStep& st : s.steps) {
+    char line[160];
+    if (st.done)
+      std::snprintf(line, sizeof line, "  %s  %s + %.1f s  %s", st.name.c_str(),
+                    clock_text(st.start_s).c_str(), st.duration_s, st.tool.c_str());
+    else
+      std::snprintf(line, sizeof line, "  %s  not done", st.name.c_str());
+    out.emplace_back(line);
+  }
+  if (with_way_out) out.emplace_back("Esc, Space or close the window to leave");
   return out;
 }
 

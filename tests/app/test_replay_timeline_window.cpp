@@ -16,8 +16,31 @@ namespace {
 
 using namespace serosa::app::testing;
 
-// The default scene with a force limit of 0.5 N (both the grasper and the scissors cross it),
-// its relative paths made absolute.
+std::string file_text(const fs::path& file) {
+  std::ifstream in(file);
+  std::ostringstream all;
+  all << in.rdbuf();
+  return all.str();
+}
+
+void replace_all(std::string& text, const std::string& from, const std::string& to) {
+  for (auto at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+    text.replace(at, from.size(), to);
+}
+
+// The transection's rubric with a grasp of 1 N and 2 s as their limits: the expert's first 3.8 s
+// fail both, the grasp where the grasper pulls hardest, the time at the end.
+fs::path strict_rubric(const fs::path& dir) {
+  std::string text = file_text(source("config/assessment/appendectomy.toml"));
+  replace_all(text, "good = 12.0\npoor = 30.0\nlimit = 20.0",
+              "good = 0.5\npoor = 2.0\nlimit = 1.0");
+  replace_all(text, "good = 4.0\npoor = 15.0\nlimit = 10.0", "good = 1.0\npoor = 3.0\nlimit = 2.0");
+  const fs::path rubric = dir / "strict_rubric.toml";
+  std::ofstream(rubric) << text;
+  return rubric;
+}
+
+// The transection scene scored by strict_rubric, its relative paths made absolute.
 fs::path strict_scene(const fs::path& dir) {
   std::ifstream in(source("config/transection.toml"));
   std::ostringstream all;
@@ -33,10 +56,10 @@ fs::path strict_scene(const fs::path& dir) {
     to.append(source(folder).string()).append("/");
     return to;
   };
-  replace("force_limit = 5.0", "force_limit = 0.5");
   replace("\"../assets/", under("\"", "assets"));
   replace("script:paths/", under("script:", "config/paths"));
-  replace("\"assessment/", under("\"", "config/assessment"));
+  replace("\"assessment/appendectomy.toml\"",
+          std::string("\"").append(strict_rubric(dir).string()).append("\""));
   const fs::path scene = dir / "strict.toml";
   std::ofstream(scene) << text;
   return scene;
@@ -51,8 +74,8 @@ double title_position(const std::string& title) {
 }
 
 // In the replay window, once the timeline is known and the replay has played to its end, N jumps
-// to a second before the first error, then to a second before the second (the grasper and the
-// scissors both press harder than 0.5 N in the first 3.8 s).
+// to a second before the first error, then to a second before the second (the strict rubric's
+// grasp and time).
 TEST(ReplayTimeline, TheNKeyJumpsToEachErrorInTheWindow) {
   const fs::path dir = out_dir("replay_timeline_window");
   const fs::path recording = dir / "strict.lapr";
