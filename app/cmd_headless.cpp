@@ -6,7 +6,8 @@
 // Prints a short summary (app/run_summary.h), or with --json the whole report, on stdout.
 // Exit codes: 0 done; 1 bad input; 3 the report differs from the golden (or it is missing);
 // 4 with --strict, the run warned (app/run_warnings.h: the solver left steps above its tolerance,
-// gained energy or rejected a step, a fixed selection picked nothing). A golden mismatch wins.
+// gained energy or rejected a step, a fixed selection picked nothing, a --path outlasted the
+// scene's steps). A golden mismatch wins.
 // Ctrl-C or SIGTERM stops after the current step with the recording closed and the report written.
 #include <atomic>
 #include <csignal>
@@ -95,7 +96,8 @@ void add_headless_command(CLI::App& app, Action& action) {
   add_trainee_options(*cmd, *trainee);
   cmd->add_flag("--strict", *strict,
                 "Exit 4 when the run warned: steps the solver left above its tolerance, energy "
-                "gained, steps rejected, a fixed selection that picked no node");
+                "gained, steps rejected, a fixed selection that picked no node, a --path the "
+                "scene's steps cut off");
   cmd->add_option("--set", *sets,
                   "Override a scene key, KEY=VALUE with a TOML value (solver.tolerance=1e-4); "
                   "repeatable");

@@ -5,7 +5,9 @@
 // pause, seek, speed). With --headless: re-simulates as fast as it can (app/replay.h).
 //
 // --from T (headless): restore the last whole-state snapshot at or before T and replay from there
-// (the report's start_step); without one that early, from step 0.
+// (the report's start_step); without one that early, from step 0. A T past the recording's end
+// warns (stderr and the report's "warnings") and starts from the last snapshot. stdout carries the
+// report alone: logs and warnings go to stderr.
 // Exit codes: 0 replayed (and, with --verify, every recorded hash and snapshot matched up to
 // where the recording ends); 1 bad input (not a recording, damaged header, scene unreadable);
 // 3 --verify found a divergence (the step, and for a snapshot the part, is named); 4 --verify on a

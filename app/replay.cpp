@@ -15,6 +15,7 @@
 #include "app/frame_pictures.h"
 #include "app/headless.h"
 #include "app/output_paths.h"
+#include "app/run_warnings.h"
 #include "app/version.h"
 #include "engine/input_error.h"
 #include "engine/record_stage.h"
@@ -58,6 +59,22 @@ std::string first_difference(std::span<const std::uint8_t> replayed,
   return "layout";
 }
 
+// --from past the recording's end: said, naming both, before the replay does what it always
+// does (from the last snapshot, else from step 0).
+std::vector<RunWarning> from_warnings(const std::string& file, double from_s, std::size_t steps,
+                                      double dt_s, std::uint64_t start_step) {
+  const double length_s = static_cast<double>(steps) * dt_s;
+  if (!(from_s > length_s)) return {};
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "--from %.4g s is past the end of %s, which lasts %.4g s (%zu steps): replaying "
+                "from step %llu (%.4g s)%s",
+                from_s, file.c_str(), length_s, steps, static_cast<unsigned long long>(start_step),
+                static_cast<double>(start_step) * dt_s,
+                start_step > 0 ? ", its last snapshot" : ", the recording has no snapshot");
+  return {{"from_past_end", text}};
+}
+
 }  // namespace
 
 ReplayResult run_replay(const ReplayOptions& options) {
@@ -95,6 +112,7 @@ ReplayResult run_replay(const ReplayOptions& options) {
     comp.runner->add(Slot::record, std::move(v));
   }
   SimState& state = assembled.state;
+  std::vector<RunWarning> warnings;
   if (options.from_s) {
     const auto* snap = snapshot_before(rec, *options.from_s, scene.settings.dt_s);
     if (snap == nullptr) {
@@ -105,6 +123,9 @@ ReplayResult run_replay(const ReplayOptions& options) {
                            file + ": snapshot after step " + std::to_string(snap->first));
       result.start_step = snap->first;
     }
+    warnings = from_warnings(file, *options.from_s, rec.inputs.size(), scene.settings.dt_s,
+                             result.start_step);
+    print_warnings(warnings);
   }
 
   // Pictures spread over the replay, first and last included.
@@ -168,6 +189,7 @@ ReplayResult run_replay(const ReplayOptions& options) {
     report["recording"]["corrupt"] = rec.corrupt;
   }
   report["scene"] = scene_path;
+  if (!warnings.empty()) report["warnings"] = warnings_json(warnings);  // as the headless report's
   report["start_step"] = result.start_step;
   report["steps"] = result.steps;
   report["simulated_time_s"] = state.time_s;

@@ -86,11 +86,36 @@ void ReplayController::set_speed(double speed) {
 bool ReplayController::step_forward() {
   if (at_end()) return false;
   SimState& s = m_sim->assembled.state;
+  if (m_branch_step) feed_recorded_inputs();
   m_sim->comp.runner->step(s);
+  if (m_branch_step) {
+    record_branch_snapshot_if_due();
+    return true;
+  }
   if (s.step % m_snapshot_every == 0 && m_exact && s.handoff.cuts.empty() &&
       !m_snapshots.contains(s.step))
     m_snapshots.emplace(s.step, Snapshot{m_sim->comp.runner->snapshot(s), last_step_hash()});
   return true;
+}
+
+// The tools no one took over go on as recorded; past the recording's end they keep its last input.
+void ReplayController::feed_recorded_inputs() {
+  const std::uint64_t k = steps_taken();
+  if (k >= num_steps()) return;
+  const std::vector<ToolState>& recorded = m_rec.inputs[k];
+  for (std::size_t i = 0; i < m_driven.size() && i < recorded.size(); ++i)
+    if (!m_driven[i]) m_sim->input->set_live(i, recorded[i]);
+}
+
+// As Runner::record_snapshots: at the first step on or after each multiple of the cadence that has
+// no cut in flight (the FEM stage takes a step's cuts at the next one).
+void ReplayController::record_branch_snapshot_if_due() {
+  const SimState& s = m_sim->assembled.state;
+  if (m_branch_closed || m_branch_snapshot_every == 0 || s.step < m_branch_next_snapshot ||
+      !s.handoff.cuts.empty())
+    return;
+  m_branch_writer->record_snapshot(s.step, m_sim->comp.runner->snapshot(s));
+  m_branch_next_snapshot = (s.step / m_branch_snapshot_every + 1) * m_branch_snapshot_every;
 }
 
 std::uint64_t ReplayController::advance(double wall_dt_s) {
@@ -143,22 +168,44 @@ void ReplayController::branch(const std::filesystem::path& branch_file) {
   h.set("branch_step", std::to_string(k));
   h.set("steps_planned", "0");
   m_branch_writer = std::make_unique<recording::RecordingWriter>(branch_file, h);
-  // The parent's prefix, so that the branch replays from step 0.
-  for (std::uint64_t s = 0; s < k; ++s) {
-    m_branch_writer->record_inputs(s, m_rec.inputs[s]);
-    const auto it = m_rec.hashes.find(s);
-    if (it != m_rec.hashes.end()) m_branch_writer->record_hash(s, it->second);
-  }
+  copy_prefix(k);
   m_branch_writer->record_event(k, "branch");
+  // The branch's snapshots go on at the recording's cadence, from the parent's last one before it.
+  m_branch_snapshot_every = static_cast<std::uint64_t>(
+      std::max<long long>(0, std::llround(m_scene.record.snapshot_every_s / dt_s())));
+  std::uint64_t last = 0;
+  for (const auto& [steps, bytes] : m_rec.snapshots)
+    if (steps <= k) last = steps;
+  if (m_branch_snapshot_every > 0)
+    m_branch_next_snapshot = (last / m_branch_snapshot_every + 1) * m_branch_snapshot_every;
   m_branch_step = k;
   m_exact = false;  // from here on the run is the branch, not the recording
+  m_driven.assign(m_scene.tools.size(), false);
   m_sim->input->go_live(m_sim->assembled.state.tools);
   m_sim->record->attach(m_branch_writer.get());
+}
+
+// The parent's inputs, hashes and snapshots before step k, so that the branch replays from step 0
+// and starts late from the parent's snapshots as well as its own.
+void ReplayController::copy_prefix(std::uint64_t k) {
+  for (std::uint64_t s = 0; s < k; ++s) {
+    m_branch_writer->record_inputs(s, m_rec.inputs[s]);
+    if (const auto it = m_rec.hashes.find(s); it != m_rec.hashes.end())
+      m_branch_writer->record_hash(s, it->second);
+    if (const auto it = m_rec.snapshots.find(s + 1); it != m_rec.snapshots.end())
+      m_branch_writer->record_snapshot(s + 1, it->second);
+  }
 }
 
 void ReplayController::set_tool_input(std::size_t i, const ToolState& input) {
   if (!m_branch_step || m_branch_closed) throw std::logic_error("not in a branch");
   m_sim->input->set_live(i, input);
+  m_driven.at(i) = true;
+}
+
+bool ReplayController::recording_drives(std::size_t i) const {
+  if (i >= m_scene.tools.size()) return false;
+  return !m_branch_step || !m_driven[i];
 }
 
 void ReplayController::end_branch() {

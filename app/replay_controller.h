@@ -8,6 +8,14 @@
 // restores the nearest one at or before the target into a fresh pipeline and re-simulates from
 // there, O(snapshot interval), and every later state hash equals the recording's. from_start
 // re-simulates from step 0 instead (O(t); the snapshot-free cross-check).
+//
+// Branching. After branch() each tool follows the recording until set_tool_input() first drives
+// it (the mouse's instruments, the instructor's endoscope); from then on it keeps the input it was
+// last given. So the hands the instructor did not take go on as the trainee moved them, and the
+// branch recording writes whole-state snapshots at the recording's own cadence ([record]
+// snapshot_every_s, at the first step on or after each multiple with no cut in flight, as
+// Runner::record_snapshots does), after the parent's own up to the branch: `serosa replay
+// BRANCH --from T` starts from the nearest one.
 #pragma once
 
 #include <cstdint>
@@ -71,13 +79,19 @@ class ReplayController {
   /// (the parent's inputs and hashes up to here, then the new ones), so that `serosa replay
   /// branch_file --verify` re-simulates it; its header holds the parent's scene and keys plus
   /// "parent" (the parent's path) and "branch_step" (steps taken when it branched), and an event
-  /// "branch" marks the step. Playback may then go past the parent's end; seeks are refused.
+  /// "branch" marks the step; the parent's snapshots up to the branch are copied into it and the
+  /// branch's own follow at the recording's cadence (above). Playback may then go past the
+  /// parent's end; seeks are refused.
   /// Throws std::logic_error unless exact() (the state must be the recorded one) or when already
   /// branched; std::runtime_error when the file cannot be written.
   void branch(const std::filesystem::path& branch_file);
-  /// Sets tool `i`'s input (scene order) for the next steps of a branch.
-  /// Throws std::logic_error when not branched, std::out_of_range for a bad index.
+  /// Sets tool `i`'s input (scene order) for the next steps of a branch: from now on the
+  /// recording no longer drives it. Throws std::logic_error when not branched, std::out_of_range
+  /// for a bad index.
   void set_tool_input(std::size_t i, const ToolState& input);
+  /// Whether tool `i` still follows the recording (before a branch: every tool; in a branch: those
+  /// set_tool_input() never drove; past the recording's end they hold its last input).
+  [[nodiscard]] bool recording_drives(std::size_t i) const;
   /// Closes the branch's recording (end record); playback stops. Idempotent.
   void end_branch();
   [[nodiscard]] bool branched() const { return m_branch_writer != nullptr; }
@@ -130,9 +144,16 @@ class ReplayController {
   bool m_exact = true;
   std::uint64_t m_restarts = 0;
   std::filesystem::path m_path;
+  void copy_prefix(std::uint64_t k);     // the parent's records before step k, to the branch
+  void record_branch_snapshot_if_due();  // after a branch step
+  void feed_recorded_inputs();           // before a branch step: the tools the recording drives
+
   std::unique_ptr<recording::RecordingWriter> m_branch_writer;
   std::optional<std::uint64_t> m_branch_step;
   bool m_branch_closed = false;
+  std::vector<bool> m_driven;                 // (tools) set_tool_input() drove it in the branch
+  std::uint64_t m_branch_snapshot_every = 0;  // steps ([record] snapshot_every_s; 0: none)
+  std::uint64_t m_branch_next_snapshot = 0;   // steps at or after which the next is written
 };
 
 }  // namespace serosa::app

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "app/branch_assessment.h"
+#include "app/branch_banner.h"
 #include "app/compose.h"
 #include "app/drawn_surface.h"
 #include "app/mouse_takeover.h"
@@ -82,8 +83,10 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
     branch_path = file;
     takeover.emplace(replay.scene(), replay.state().tools);
     pointer = PointerControl(takeover->initial_input());
-    spdlog::info("replay: branched at {:.3f} s (step {}) into {}; the mouse drives the tools",
-                 replay.time_s(), replay.steps_taken(), file.string());
+    spdlog::info(
+        "replay: branched at {:.3f} s (step {}) into {}; the mouse takes over (Tab: other "
+        "hand, X: next instrument)",
+        replay.time_s(), replay.steps_taken(), file.string());
   };
   const Scene& scene = replay.scene();
   const std::map<int, std::string> names = drawn_group_names(scene, replay.group_names());
@@ -149,7 +152,10 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
     if (window.pressed(render::Key::kH)) show_overlay = !show_overlay;
     if (window.pressed(render::Key::kB) && !replay.branched()) branch_here();
     const PointerEvents events = pointer_events(window);  // taken every frame: none pile up
-    if (takeover) takeover->apply(pointer.update(events, screen_axes(frame.camera)), replay);
+    if (takeover) {
+      if (ScopeControl* scope_control = takeover->scope()) scope_control->update(window);
+      takeover->apply(pointer.update(events, screen_axes(frame.camera)), replay);
+    }
     const TimelineData known = timeline.data();
     if (window.pressed(render::Key::kN)) jump_to_next_error(known.marks);
     if (window.pressed(render::Key::kP) && !replay.branched()) jump_to_previous_error(known.marks);
@@ -205,6 +211,10 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
     stats.replay_duration_s = replay.duration_s();
     stats.replay_speed = replay.speed();
     frame.overlay = overlay_data(stats);  // the metrics are the debrief's, by domain
+    if (takeover)
+      frame.overlay.branch = branch_banner(scene, *takeover,
+                                           {*replay.branch_step(), replay.dt_s(), pointer.active(),
+                                            replay.steps_taken() < replay.num_steps()});
     frame.overlay.visible = show_overlay;
     frame.overlay.timeline = {known.force_n, known.marks,
                               static_cast<double>(known.computed) * replay.dt_s(), known.done,

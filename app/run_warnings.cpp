@@ -1,6 +1,11 @@
 #include "app/run_warnings.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <optional>
+
+#include "engine/tool_path.h"
 
 namespace serosa::app {
 namespace {
@@ -9,6 +14,27 @@ std::string figure(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.3g", v);
   return buf;
+}
+
+// Seconds to four figures: a path a step longer than the run still reads longer.
+std::string seconds(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g s", v);
+  return buf;
+}
+
+// When the last of the scene's tools that `path` plays stops moving in it, s (nullopt: it plays
+// none of them).
+std::optional<double> path_end_s(const Scene& scene, const ToolPath& path) {
+  std::optional<double> end;
+  for (const Tool& t : scene.tools) {
+    const bool plays = t.device.kind == DeviceKind::kScript ||
+                       (t.device.kind == DeviceKind::kRigEmulated && !t.device.script.empty());
+    const std::optional<std::size_t> k = plays ? path.index_of(t.name) : std::nullopt;
+    if (!k || path.samples[*k].empty()) continue;
+    end = std::max(end.value_or(0.0), path.samples[*k].back().time_s);
+  }
+  return end;
 }
 
 std::string where(const fem::StepTrouble& t) {
@@ -42,6 +68,27 @@ std::vector<RunWarning> selection_warnings(const Scene& scene, const AssembledSc
                                             c.organ + "' selects no node"});
   }
   return out;
+}
+
+std::vector<RunWarning> path_warnings(const Scene& scene, const std::filesystem::path& csv,
+                                      std::int64_t steps) {
+  const std::optional<double> end = path_end_s(scene, read_tool_path(csv));
+  const double dt = scene.settings.dt_s;
+  const double run_s = static_cast<double>(steps) * dt;
+  if (!end || !(dt > 0.0) || *end <= run_s + 0.5 * dt) return {};
+  const auto all = static_cast<long long>(std::ceil(*end / dt - 1e-9));
+  std::string text("the scripted path ");
+  text.append(csv.string())
+      .append(" lasts ")
+      .append(seconds(*end))
+      .append(" but the run stops at ")
+      .append(seconds(run_s))
+      .append(" (")
+      .append(std::to_string(steps))
+      .append(" steps, the scene's [headless] steps): --steps ")
+      .append(std::to_string(all))
+      .append(" runs all of it");
+  return {{"path_cut_short", std::move(text)}};
 }
 
 std::vector<RunWarning> solver_warnings(const SolverSettings& solver,

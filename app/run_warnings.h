@@ -1,9 +1,12 @@
 // What a run did that the scene did not ask for, said out loud: steps the solver left above its
-// tolerance, steps that gained energy or were rejected, fixed selections that picked no node.
+// tolerance, steps that gained energy or were rejected, fixed selections that picked no node, a
+// tool path given in place of the scene's that the scene's steps cut off.
 // `serosa headless` prints each on stderr as "warning: ...", lists them in the report
 // ("warnings") and, with --strict, exits 4 (docs/headless-report.md).
 #pragma once
 
+#include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -16,13 +19,22 @@
 namespace serosa::app {
 
 struct RunWarning {
-  std::string kind;  ///< "not_converged" | "energy_gain" | "rejected" | "empty_selection"
+  /// "not_converged" | "energy_gain" | "rejected" | "empty_selection" | "path_cut_short"
+  std::string kind;
   std::string text;  ///< one line: what, where first, the figures, what to change
 };
 
 /// Fixed selections that picked no node: known before the first step.
 [[nodiscard]] std::vector<RunWarning> selection_warnings(const Scene& scene,
                                                          const AssembledScene& assembled);
+
+/// The tool path `csv` (--path, played by the scene's scripted tools) when it lasts longer than
+/// the run's `steps` (the scene's [headless] steps): the run stops before its end. None when it
+/// ends first (the tools then rest at its last pose, as a path means them to). Known before the
+/// first step. Throws InputError when the file does not read as a tool path.
+[[nodiscard]] std::vector<RunWarning> path_warnings(const Scene& scene,
+                                                    const std::filesystem::path& csv,
+                                                    std::int64_t steps);
 
 /// What the FEM stage counted over the run.
 [[nodiscard]] std::vector<RunWarning> solver_warnings(const SolverSettings& solver,

@@ -149,6 +149,11 @@ Simulation::Simulation(Scene scene, const HeadlessOptions& options)
                  effect_name(e), m_scene.file.string());
   start_report();
   m_warnings = selection_warnings(m_scene, m_pipe->assembled);
+  // A path given in place of the scene's may outlast the steps the scene planned for its own.
+  if (options.tool_path && !options.steps && !options.seconds) {
+    const std::vector<RunWarning> cut = path_warnings(m_scene, *options.tool_path, m_planned);
+    m_warnings.insert(m_warnings.end(), cut.begin(), cut.end());
+  }
   print_warnings(m_warnings);  // before the run: an empty selection is known now
   if (options.frames) plan_pictures(*options.frames);
   const auto p0 = Clock::now();

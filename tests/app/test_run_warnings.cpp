@@ -1,16 +1,20 @@
 // A run that did not do what its scene asked says so (app/run_warnings.h): a solver that stops
 // above its tolerance and a fixed box that selects nothing are warnings on stderr and in the
 // report, naming the first step and the figures, and `--strict` turns them into exit 4 with the
-// report still written; a run with neither is silent, strict or not.
+// report still written; a run with neither is silent, strict or not. A tool path given in place of
+// the scene's that outlasts the scene's steps is said too, with the steps that play all of it.
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "app/run_warnings.h"
 #include "app/shell_command.h"
 #include "app_test_util.h"
+#include "engine/scene.h"
 
 namespace serosa::app {
 namespace {
@@ -94,6 +98,60 @@ TEST(RunWarnings, ASoundRunIsSilentEvenUnderStrict) {
                                  shell_quote((dir / "r.json").string()) + " --strict");
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_EQ(r.out.find("warning:"), std::string::npos) << r.out;
+  EXPECT_TRUE(read_report(dir / "r.json")["warnings"].empty());
+}
+
+// The novice's appendectomy (14.1 s) in place of the expert's (9.4 s, the scene's 1880 steps): cut
+// off, and said; the expert's own length is not.
+TEST(RunWarnings, APathLongerThanTheScenesStepsIsSaid) {
+  const Scene scene = load_scene(source("config/appendectomy.toml"));
+  const fs::path novice = source("config/paths/appendectomy_procedure_novice.csv");
+  const std::vector<RunWarning> w = path_warnings(scene, novice, scene.headless.steps);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0].kind, "path_cut_short");
+  EXPECT_EQ(w[0].text, "the scripted path " + novice.string() +
+                           " lasts 14.1 s but the run stops at 9.4 s (1880 steps, the scene's "
+                           "[headless] steps): --steps 2820 runs all of it");
+  EXPECT_TRUE(path_warnings(scene, novice, 2820).empty());
+  EXPECT_TRUE(
+      path_warnings(scene, source("config/paths/appendectomy_procedure.csv"), 1880).empty());
+}
+
+// `serosa headless --path` with the scene's steps: the warning on stderr, in the report and in
+// the summary's warnings line; with --steps, or a path that ends before the run, none.
+TEST(RunWarnings, APathCutShortWarnsOnTheCommandLineAndAShortOneDoesNot) {
+  const fs::path dir = out_dir("warn_path");
+  const std::string head = "headless " + shell_quote(source("config/cut_line.toml").string()) +
+                           " --set headless.steps=20 --report " +
+                           shell_quote((dir / "r.json").string());
+  const fs::path novice = source("config/paths/appendectomy_novice.csv");
+  const CliResult cut = run_serosa(head + " --path " + shell_quote(novice.string()));
+  EXPECT_EQ(cut.code, 0) << cut.out;
+  const std::string text = "the scripted path " + novice.string() +
+                           " lasts 12 s but the run stops at 0.1 s (20 steps, the scene's "
+                           "[headless] steps): --steps 2400 runs all of it";
+  EXPECT_NE(cut.out.find("warning: " + text), std::string::npos) << cut.out;
+  EXPECT_NE(cut.out.find("warnings   1; the first: " + text), std::string::npos) << cut.out;
+  nlohmann::json r = read_report(dir / "r.json");
+  ASSERT_EQ(r["warnings"].size(), 1u) << r["warnings"].dump(1);
+  EXPECT_EQ(r["warnings"][0]["kind"], "path_cut_short");
+
+  const CliResult asked =
+      run_serosa(head + " --steps 20 --path " + shell_quote(novice.string()) + " --strict");
+  EXPECT_EQ(asked.code, 0) << asked.out;
+  EXPECT_EQ(asked.out.find("warning:"), std::string::npos) << asked.out;
+
+  // The first 0.05 s of the expert's path: it ends before the run's 0.1 s.
+  std::ofstream shorter(dir / "short.csv");
+  std::istringstream rows(file_text(source("config/paths/appendectomy.csv")));
+  for (std::string line; std::getline(rows, line);)
+    if (line.empty() || line[0] == '#' || line[0] == 't' || std::stod(line) <= 0.05)
+      shorter << line << '\n';
+  shorter.close();
+  const CliResult ends =
+      run_serosa(head + " --path " + shell_quote((dir / "short.csv").string()) + " --strict");
+  EXPECT_EQ(ends.code, 0) << ends.out;
+  EXPECT_EQ(ends.out.find("warning:"), std::string::npos) << ends.out;
   EXPECT_TRUE(read_report(dir / "r.json")["warnings"].empty());
 }
 
