@@ -27,10 +27,10 @@ using namespace serosa::app::testing;
 fs::path novice_recording() {
   static const fs::path recording = [] {
     const fs::path file = out_dir("replay_debrief_novice") / "novice.lapr";
-    const CliResult run =
-        run_serosa("headless --task appendectomy --path " +
-                   shell_quote(source("config/paths/appendectomy_procedure_novice.csv").string()) +
-                   " --steps 1700 --record " + shell_quote(file.string()));
+    const CliResult run = run_serosa(
+        "headless " + shell_quote(source("config/appendectomy.toml").string()) + " --path " +
+        shell_quote(source("config/paths/appendectomy_procedure_novice.csv").string()) +
+        " --steps 1700 --record " + shell_quote(file.string()));
     EXPECT_EQ(run.code, 0) << run.out;
     return file;
   }();
@@ -54,12 +54,8 @@ bool has_line(const nlohmann::json& lines, const std::string& part) {
 // none over the timeline), and the picture shows the verdict's red banner.
 TEST(ReplayDebrief, ANovicesDebriefStandsBesideThePictureAndLeavesTheTimelineClear) {
   const fs::path dir = out_dir("replay_debrief_window");
-  const fs::path recording = dir / "novice.lapr";
-  const CliResult run =
-      run_serosa("headless --task appendectomy --path " +
-                 shell_quote(source("config/paths/appendectomy_procedure_novice.csv").string()) +
-                 " --steps 1700 --record " + shell_quote(recording.string()));
-  ASSERT_EQ(run.code, 0) << run.out;
+  const fs::path recording = novice_recording();
+  ASSERT_TRUE(fs::exists(recording));
   const fs::path png = dir / "last.png";
   const fs::path json = dir / "layout.json";
   const Command window =

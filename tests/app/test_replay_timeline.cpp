@@ -104,16 +104,17 @@ TEST(ReplayTimeline, TheNovicesTransectionMarksExactlyItsFailedCriteria) {
   }
 }
 
-// The shipped procedure's novice (docs/procedure.md): the bleeding at 8.0 s, the steps it never
-// did and the rest of what it failed are marked, nothing else; the expert's procedure has none.
+// The shipped procedure's novice (docs/procedure.md; the appendectomy task's scene and paths): the
+// bleeding at 8.0 s, the steps it never did and the rest of what it failed are marked, nothing
+// else; the expert's procedure has none.
 TEST(ReplayTimeline, TheProcedureNovicesMarksAreItsFailedCriteriaAndTheExpertHasNone) {
   const auto record = [](const std::string& name, const std::string& path, int steps) {
     const fs::path dir = out_dir("replay_timeline_procedure_" + name);
     Recorded r{dir / "run.lapr", {}};
     const CliResult run = run_serosa(
-        "headless --task appendectomy --path " + shell_quote(source(path).string()) + " --steps " +
-        std::to_string(steps) + " --record " + shell_quote(r.recording.string()) + " --report " +
-        shell_quote((dir / "r.json").string()));
+        "headless " + shell_quote(source("config/appendectomy.toml").string()) + " --path " +
+        shell_quote(source(path).string()) + " --steps " + std::to_string(steps) + " --record " +
+        shell_quote(r.recording.string()) + " --report " + shell_quote((dir / "r.json").string()));
     EXPECT_EQ(run.code, 0) << run.out;
     std::ifstream(dir / "r.json") >> r.report;
     return r;
