@@ -83,11 +83,14 @@ void draw_timeline(const OverlayData& data, const std::string& errors_line) {
 
 void draw_branch_band(const std::string& text) {
   const ImVec2 at = ImGui::GetCursorScreenPos();
-  const float h = ImGui::GetTextLineHeightWithSpacing() + 4.0f;
-  ImGui::GetWindowDrawList()->AddRectFilled(
-      at, ImVec2(at.x + ImGui::GetContentRegionAvail().x, at.y + h), kBranchColour, 3.0f);
-  ImGui::SetCursorScreenPos(ImVec2(at.x + 6.0f, at.y + 2.0f));
+  const float w = ImGui::GetContentRegionAvail().x;
+  // As many lines as the text takes at the band's width.
+  const float h = ImGui::CalcTextSize(text.c_str(), nullptr, false, w - 12.0f).y + 6.0f;
+  ImGui::GetWindowDrawList()->AddRectFilled(at, ImVec2(at.x + w, at.y + h), kBranchColour, 3.0f);
+  ImGui::SetCursorScreenPos(ImVec2(at.x + 6.0f, at.y + 3.0f));
+  ImGui::PushTextWrapPos(ImGui::GetCursorPos().x + w - 12.0f);
   ImGui::TextUnformatted(text.c_str());
+  ImGui::PopTextWrapPos();
   ImGui::SetCursorScreenPos(ImVec2(at.x, at.y + h + 2.0f));
   ImGui::Dummy(ImVec2(0.0f, 0.0f));
 }
