@@ -56,214 +56,270 @@ void write_layout_log(const std::filesystem::path& file, int width, int height,
   std::ofstream(file) << log.dump(1) << "\n";
 }
 
-}  // namespace
+// The replay window's state from frame to frame, and what each frame does.
+class ReplayWindow {
+ public:
+  ReplayWindow(const std::filesystem::path& recording, const ReplayWindowOptions& ro)
+      : m_recording(recording),
+        m_ro(ro),
+        m_replay(recording, controller_options(ro)),
+        m_names(drawn_group_names(m_replay.scene(), m_replay.group_names())),
+        m_drawn(m_replay.state().mesh),
+        m_timeline(recording),
+        m_window(m_replay.scene().render.width, m_replay.scene().render.height, "Serosa replay"),
+        m_version0(m_replay.state().mesh.topology_version) {
+    const Scene& scene = m_replay.scene();
+    m_options.tessellation = scene.render.tessellation;
+    m_options.shape_factor = static_cast<float>(scene.render.shape_factor);
+    m_frame.scenery = scenery_from_scene(scene, m_replay.state().mesh);  // once: it never changes
+    fill_taenia(m_replay.state().mesh, m_names, m_frame);                // nor does this
+  }
 
-int run_replay_window(const std::filesystem::path& recording, const ReplayWindowOptions& ro) {
-  const double seconds = ro.seconds;
-  const std::filesystem::path& snapshot = ro.snapshot;
-  ReplayControllerOptions co;
-  co.snapshot_every_s = 1.0;  // seeks back restore the nearest snapshot: exact and quick
-  co.speed = ro.speed;
-  ReplayController replay(recording, co);
-  std::optional<MouseTakeover> takeover;
-  PointerControl pointer;
-  std::filesystem::path branch_path;
-  BranchDebrief branch_debrief;
-  bool end_branch_asked = false;  // Esc in a branch: its summary, then out
-  const auto branch_here = [&] {
-    replay.set_paused(true);
-    std::filesystem::path file = ro.branch_file.value_or(std::filesystem::path{});
+  int run() {
+    const auto start = Clock::now();
+    m_last = start;
+    while (!m_window.should_close() && !m_interrupts.interrupted()) {
+      m_window.poll_events();
+      keys();
+      const TimelineData known = m_timeline.data();
+      timeline_keys(known);
+      const auto now = Clock::now();
+      const double wall_dt = play(now);
+      const bool last_frame =
+          m_ro.seconds > 0.0 && std::chrono::duration<double>(now - start).count() > m_ro.seconds;
+      const bool leaving =
+          last_frame || m_end_branch_asked || m_window.should_close() || m_interrupts.interrupted();
+      if (m_replay.branched()) m_branch_debrief.update(m_replay, known.marks, leaving);
+      fill_frame(known);
+      draw(wall_dt, leaving);
+      m_window.set_title(title(known));
+      if (last_frame || m_end_branch_asked) break;
+    }
+    finish();
+    return 0;
+  }
+
+ private:
+  static ReplayControllerOptions controller_options(const ReplayWindowOptions& ro) {
+    ReplayControllerOptions co;
+    co.snapshot_every_s = 1.0;  // seeks back restore the nearest snapshot: exact and quick
+    co.speed = ro.speed;
+    return co;
+  }
+
+  void keys() {
+    if (m_window.pressed(render::Key::kEscape)) {
+      if (m_replay.branched())
+        m_end_branch_asked = true;  // its summary first
+      else
+        m_window.close();
+    }
+    if (m_window.pressed(render::Key::kSpace)) m_replay.set_paused(!m_replay.paused());
+    if (m_window.pressed(render::Key::kLeft)) m_replay.seek(m_replay.time_s() - 1.0);
+    if (m_window.pressed(render::Key::kRight)) m_replay.seek(m_replay.time_s() + 1.0);
+    if (m_window.pressed(render::Key::kPlus)) m_replay.set_speed(2.0 * m_replay.speed());
+    if (m_window.pressed(render::Key::kMinus)) m_replay.set_speed(0.5 * m_replay.speed());
+    if (m_window.pressed(render::Key::kV))
+      m_options.view =
+          static_cast<render::SnapshotOptions::View>((static_cast<int>(m_options.view) + 1) % 3);
+    if (m_window.pressed(render::Key::kUp))
+      m_options.tessellation = std::min(m_options.tessellation + 1, 16);
+    if (m_window.pressed(render::Key::kDown))
+      m_options.tessellation = std::max(m_options.tessellation - 1, 1);
+    if (m_window.pressed(render::Key::kH)) m_show_overlay = !m_show_overlay;
+    if (m_window.pressed(render::Key::kB) && !m_replay.branched()) branch_here();
+    const PointerEvents events = pointer_events(m_window);  // taken every frame: none pile up
+    if (m_takeover) {
+      if (ScopeControl* scope_control = m_takeover->scope()) scope_control->update(m_window);
+      m_takeover->apply(m_pointer.update(events, screen_axes(m_frame.camera)), m_replay);
+    }
+  }
+
+  // N and P jump between the errors (not in a branch: it plays on, no seeking; P is its pedal).
+  void timeline_keys(const TimelineData& known) {
+    if (m_window.pressed(render::Key::kN) && !m_replay.branched())
+      jump_to(mark_to_jump_to(known.marks, m_current_mark, m_replay.time_s()), known.marks);
+    if (m_window.pressed(render::Key::kP) && !m_replay.branched())
+      jump_to(mark_to_jump_back_to(known.marks, m_replay.time_s()), known.marks);
+    if (!m_debrief && known.done && known.report.contains("assessment"))
+      m_debrief = session_summary(known.report, &known.failures);
+  }
+
+  // A second before the mark, so that the instructor sees what led up to it.
+  void jump_to(std::optional<std::size_t> k, const std::vector<render::TimelineMark>& marks) {
+    if (!k) return;
+    m_current_mark = static_cast<int>(*k);
+    m_replay.seek(std::max(marks[*k].time_s - kJumpLeadS, 0.0));
+  }
+
+  // Takes the steps that became due over the wall time since the last frame (at most 0.1 s of it,
+  // so that a slow step plays in slow motion rather than in a catch-up burst); that wall time, s.
+  double play(Clock::time_point now) {
+    const double wall_dt = std::chrono::duration<double>(now - m_last).count();
+    m_last = now;
+    const auto t0 = Clock::now();
+    const std::uint64_t taken = m_replay.advance(std::min(wall_dt, 0.1));
+    if (taken > 0)
+      m_step_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count() /
+                  static_cast<double>(taken);
+    if (wall_dt > 0.0) m_rate_hz = 0.9 * m_rate_hz + 0.1 * static_cast<double>(taken) / wall_dt;
+    if (m_replay.at_end()) m_replay.set_paused(true);
+    if (m_ro.branch_at_s && !m_replay.branched() && m_replay.time_s() >= *m_ro.branch_at_s) {
+      branch_here();
+      m_replay.set_paused(false);  // scripted checks: the branch records at rest input
+    }
+    return wall_dt;
+  }
+
+  void branch_here() {
+    m_replay.set_paused(true);
+    std::filesystem::path file = m_ro.branch_file.value_or(std::filesystem::path{});
     if (file.empty()) {
-      file = recording;
-      std::string name = recording.stem().string();
-      name.append(".branch-").append(std::to_string(replay.steps_taken())).append(".lapr");
+      file = m_recording;
+      std::string name = m_recording.stem().string();
+      name.append(".branch-").append(std::to_string(m_replay.steps_taken())).append(".lapr");
       file.replace_filename(name);
     }
-    replay.branch(file);
-    branch_path = file;
-    takeover.emplace(replay.scene(), replay.state().tools);
-    pointer = PointerControl(takeover->initial_input());
+    m_replay.branch(file);
+    m_branch_path = file;
+    m_takeover.emplace(m_replay.scene(), m_replay.state().tools);
+    m_pointer = PointerControl(m_takeover->initial_input());
     spdlog::info(
         "replay: branched at {:.3f} s (step {}) into {}; the mouse takes over (Tab: other "
         "hand, X: next instrument)",
-        replay.time_s(), replay.steps_taken(), file.string());
-  };
-  const Scene& scene = replay.scene();
-  const std::map<int, std::string> names = drawn_group_names(scene, replay.group_names());
-  DrawnSurface drawn(replay.state().mesh);
-  // The metric timeline, computed beside the replay; N jumps to a second before the next error.
-  const TimelineBuilder timeline(recording);
-  int current_mark = -1;
-  const auto jump_to_next_error = [&](const std::vector<render::TimelineMark>& marks) {
-    if (replay.branched()) return;  // a branch plays on: no seeking
-    const std::optional<std::size_t> k = mark_to_jump_to(marks, current_mark, replay.time_s());
-    if (!k) return;
-    current_mark = static_cast<int>(*k);
-    replay.seek(std::max(marks[*k].time_s - kJumpLeadS, 0.0));
-  };
-  const auto jump_to_previous_error = [&](const std::vector<render::TimelineMark>& marks) {
-    if (replay.branched()) return;
-    const std::optional<std::size_t> k = mark_to_jump_back_to(marks, replay.time_s());
-    if (!k) return;
-    current_mark = static_cast<int>(*k);
-    replay.seek(std::max(marks[*k].time_s - kJumpLeadS, 0.0));
-  };
-  std::optional<render::SessionSummary> debrief;  // once the timeline has assessed the run
+        m_replay.time_s(), m_replay.steps_taken(), file.string());
+  }
 
-  const InterruptGuard interrupts;
-  render::Window window(scene.render.width, scene.render.height, "Serosa replay");
-  render::FrameRenderer renderer;
-  render::Overlay overlay;
-  render::SnapshotOptions options;
-  options.tessellation = scene.render.tessellation;
-  options.shape_factor = static_cast<float>(scene.render.shape_factor);
-  bool show_overlay = true;
-  render::RenderFrame frame;
-  frame.scenery = scenery_from_scene(scene, replay.state().mesh);  // once: it never changes
-  fill_taenia(replay.state().mesh, names, frame);                  // nor does this
-  std::optional<render::Camera> fitted;
-  // Every cut bumps the topology version, which snapshots keep: cuts survive seeks.
-  const std::uint64_t version0 = replay.state().mesh.topology_version;
-  double step_ms = 0.0;
-  double rate_hz = 0.0;
-
-  const auto start = Clock::now();
-  auto last = start;
-  while (!window.should_close() && !interrupts.interrupted()) {
-    window.poll_events();
-    if (window.pressed(render::Key::kEscape)) {
-      if (replay.branched())
-        end_branch_asked = true;
-      else
-        window.close();
-    }
-    if (window.pressed(render::Key::kSpace)) replay.set_paused(!replay.paused());
-    if (window.pressed(render::Key::kLeft)) replay.seek(replay.time_s() - 1.0);
-    if (window.pressed(render::Key::kRight)) replay.seek(replay.time_s() + 1.0);
-    if (window.pressed(render::Key::kPlus)) replay.set_speed(2.0 * replay.speed());
-    if (window.pressed(render::Key::kMinus)) replay.set_speed(0.5 * replay.speed());
-    if (window.pressed(render::Key::kV))
-      options.view =
-          static_cast<render::SnapshotOptions::View>((static_cast<int>(options.view) + 1) % 3);
-    if (window.pressed(render::Key::kUp))
-      options.tessellation = std::min(options.tessellation + 1, 16);
-    if (window.pressed(render::Key::kDown))
-      options.tessellation = std::max(options.tessellation - 1, 1);
-    if (window.pressed(render::Key::kH)) show_overlay = !show_overlay;
-    if (window.pressed(render::Key::kB) && !replay.branched()) branch_here();
-    const PointerEvents events = pointer_events(window);  // taken every frame: none pile up
-    if (takeover) {
-      if (ScopeControl* scope_control = takeover->scope()) scope_control->update(window);
-      takeover->apply(pointer.update(events, screen_axes(frame.camera)), replay);
-    }
-    const TimelineData known = timeline.data();
-    if (window.pressed(render::Key::kN)) jump_to_next_error(known.marks);
-    if (window.pressed(render::Key::kP) && !replay.branched()) jump_to_previous_error(known.marks);
-    if (!debrief && known.done && known.report.contains("assessment"))
-      debrief = session_summary(known.report, &known.failures);
-
-    // Play: the steps that became due over the wall time since the last frame (at most 0.1 s of
-    // it, so that a slow step plays in slow motion rather than in a catch-up burst).
-    const auto now = Clock::now();
-    const double wall_dt = std::chrono::duration<double>(now - last).count();
-    last = now;
-    const auto t0 = Clock::now();
-    const std::uint64_t taken = replay.advance(std::min(wall_dt, 0.1));
-    if (taken > 0)
-      step_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count() /
-                static_cast<double>(taken);
-    if (wall_dt > 0.0) rate_hz = 0.9 * rate_hz + 0.1 * static_cast<double>(taken) / wall_dt;
-    if (replay.at_end()) replay.set_paused(true);
-    if (ro.branch_at_s && !replay.branched() && replay.time_s() >= *ro.branch_at_s) {
-      branch_here();
-      replay.set_paused(false);  // scripted checks: the branch records at rest input
-    }
-
-    const bool last_frame =
-        seconds > 0.0 && std::chrono::duration<double>(now - start).count() > seconds;
-    const bool leaving =
-        last_frame || end_branch_asked || window.should_close() || interrupts.interrupted();
-    if (replay.branched()) branch_debrief.update(replay, known.marks, leaving);
-
-    const SimState& state = replay.state();
-    fill_render_frame(state.mesh, drawn.of(state), names, true, frame, &state.handoff.coagulated,
-                      state.handoff.coagulated_version, &state.handoff.stain);
-    fill_render_tools(scene, state, frame);
-    const int w = window.width();
-    const int h = window.height();
+  void fill_frame(const TimelineData& known) {
+    const Scene& scene = m_replay.scene();
+    const SimState& state = m_replay.state();
+    fill_render_frame(state.mesh, m_drawn.of(state), m_names, true, m_frame,
+                      &state.handoff.coagulated, state.handoff.coagulated_version,
+                      &state.handoff.stain);
+    fill_render_tools(scene, state, m_frame);
     std::optional<render::Camera> cam = endoscope_view(scene, state);
     if (!cam) {
-      if (!fitted)
-        fitted =
-            render::auto_camera(frame, static_cast<float>(w) / static_cast<float>(std::max(h, 1)));
-      cam = fitted;
+      if (!m_fitted)
+        m_fitted =
+            render::auto_camera(m_frame, static_cast<float>(m_window.width()) /
+                                             static_cast<float>(std::max(m_window.height(), 1)));
+      cam = m_fitted;
     }
-    frame.camera = *cam;
+    m_frame.camera = *cam;
+    m_frame.overlay = overlay_data(frame_stats());  // the metrics are the debrief's, by domain
+    if (m_takeover)
+      m_frame.overlay.branch =
+          branch_banner(scene, *m_takeover,
+                        {*m_replay.branch_step(), m_replay.dt_s(), m_pointer.active(),
+                         m_replay.steps_taken() < m_replay.num_steps()});
+    m_frame.overlay.visible = m_show_overlay;
+    m_frame.overlay.timeline = {known.force_n, known.marks,
+                                static_cast<double>(known.computed) * m_replay.dt_s(), known.done,
+                                m_current_mark};
+    m_frame.overlay.debrief = m_debrief;
+    if (m_replay.branched()) {  // its own errors and assessment
+      m_frame.overlay.timeline.marks = m_branch_debrief.marks();
+      m_frame.overlay.debrief = m_branch_debrief.summary();
+    }
+  }
 
+  [[nodiscard]] FrameStats frame_stats() const {
+    const SimState& state = m_replay.state();
     FrameStats stats;
     stats.sim_time_s = state.time_s;
-    stats.fem_ms_per_step = step_ms;
-    stats.solver_rate_hz = rate_hz;
-    stats.cuts = static_cast<std::int64_t>(state.mesh.topology_version - version0);
-    stats.paused = replay.paused();
+    stats.fem_ms_per_step = m_step_ms;
+    stats.solver_rate_hz = m_rate_hz;
+    // Every cut bumps the topology version, which snapshots keep: cuts survive seeks.
+    stats.cuts = static_cast<std::int64_t>(state.mesh.topology_version - m_version0);
+    stats.paused = m_replay.paused();
     stats.replay = true;
-    stats.replay_position_s = replay.time_s();
-    stats.replay_duration_s = replay.duration_s();
-    stats.replay_speed = replay.speed();
-    frame.overlay = overlay_data(stats);  // the metrics are the debrief's, by domain
-    if (takeover)
-      frame.overlay.branch = branch_banner(scene, *takeover,
-                                           {*replay.branch_step(), replay.dt_s(), pointer.active(),
-                                            replay.steps_taken() < replay.num_steps()});
-    frame.overlay.visible = show_overlay;
-    frame.overlay.timeline = {known.force_n, known.marks,
-                              static_cast<double>(known.computed) * replay.dt_s(), known.done,
-                              current_mark};
-    frame.overlay.debrief = debrief;
-    if (replay.branched()) {
-      frame.overlay.timeline.marks = branch_debrief.marks();
-      frame.overlay.debrief = branch_debrief.summary();
-    }
+    stats.replay_position_s = m_replay.time_s();
+    stats.replay_duration_s = m_replay.duration_s();
+    stats.replay_speed = m_replay.speed();
+    return stats;
+  }
 
-    window.bind_framebuffer();
-    renderer.draw(frame, options, w, h);
+  void draw(double wall_dt, bool leaving) {
+    const int w = m_window.width();
+    const int h = m_window.height();
+    m_window.bind_framebuffer();
+    m_renderer.draw(m_frame, m_options, w, h);
     render::OverlayInput input;
-    window.cursor(input.mouse_x, input.mouse_y);
-    input.mouse_down = window.mouse_down();
+    m_window.cursor(input.mouse_x, input.mouse_y);
+    input.mouse_down = m_window.mouse_down();
     input.dt_s = static_cast<float>(std::max(wall_dt, 1e-3));
-    const render::OverlayResult r = overlay.draw(frame.overlay, options, w, h, input);
-    if (r.view) options.view = *r.view;
-    if (r.tessellation) options.tessellation = *r.tessellation;
-    if (r.toggle_pause) replay.set_paused(!replay.paused());
-    if (r.seek_s) replay.seek(*r.seek_s);
-    if (!snapshot.empty() && leaving) render::write_png(window.read_image(), snapshot);
-    if (!ro.layout_log.empty() && leaving) write_layout_log(ro.layout_log, w, h, r, frame.overlay);
-    window.swap_buffers();
+    const render::OverlayResult r = m_overlay.draw(m_frame.overlay, m_options, w, h, input);
+    if (r.view) m_options.view = *r.view;
+    if (r.tessellation) m_options.tessellation = *r.tessellation;
+    if (r.toggle_pause) m_replay.set_paused(!m_replay.paused());
+    if (r.seek_s) m_replay.seek(*r.seek_s);
+    if (!m_ro.snapshot.empty() && leaving) render::write_png(m_window.read_image(), m_ro.snapshot);
+    if (!m_ro.layout_log.empty() && leaving)
+      write_layout_log(m_ro.layout_log, w, h, r, m_frame.overlay);
+    m_window.swap_buffers();
+  }
 
-    // The errors' count once the timeline is known, and the one last jumped to.
+  // "Serosa replay  2.53 / 5.00 s  x1  [paused]  visual  errors 3  error 1/3": what scripts read.
+  [[nodiscard]] std::string title(const TimelineData& known) const {
+    const std::size_t n = m_frame.overlay.timeline.marks.size();
     char errors[64] = "";
-    if (known.done && current_mark >= 0)
-      std::snprintf(errors, sizeof errors, "  errors %zu  error %d/%zu",
-                    frame.overlay.timeline.marks.size(), current_mark + 1,
-                    frame.overlay.timeline.marks.size());
+    if (known.done && m_current_mark >= 0)
+      std::snprintf(errors, sizeof errors, "  errors %zu  error %d/%zu", n, m_current_mark + 1, n);
     else if (known.done)
-      std::snprintf(errors, sizeof errors, "  errors %zu", frame.overlay.timeline.marks.size());
+      std::snprintf(errors, sizeof errors, "  errors %zu", n);
     char title[224];
     std::snprintf(title, sizeof title, "Serosa replay  %.2f / %.2f s  x%.3g%s  %s%s",
-                  replay.time_s(), replay.duration_s(), replay.speed(),
-                  replay.paused() ? "  [paused]" : "", render::view_name(options.view), errors);
-    window.set_title(title);
-    if (last_frame || end_branch_asked) break;
+                  m_replay.time_s(), m_replay.duration_s(), m_replay.speed(),
+                  m_replay.paused() ? "  [paused]" : "", render::view_name(m_options.view), errors);
+    return title;
   }
-  if (replay.branched()) {
-    const nlohmann::json report = finish_branch(replay, branch_path);
-    if (end_branch_asked && !interrupts.interrupted() && report.contains("assessment"))
-      show_summary(window, renderer, frame, options, overlay, session_summary(report), 0.0, {},
-                   interrupts.flag());
-  } else {
-    spdlog::info("replay: {} of {} steps shown", replay.steps_taken(), replay.num_steps());
+
+  // A branch ends with its report, and with its summary when the instructor ended it (Esc).
+  void finish() {
+    if (!m_replay.branched()) {
+      spdlog::info("replay: {} of {} steps shown", m_replay.steps_taken(), m_replay.num_steps());
+      return;
+    }
+    const nlohmann::json report = finish_branch(m_replay, m_branch_path);
+    if (m_end_branch_asked && !m_interrupts.interrupted() && report.contains("assessment"))
+      show_summary(m_window, m_renderer, m_frame, m_options, m_overlay, session_summary(report),
+                   0.0, {}, m_interrupts.flag());
   }
-  return 0;
+
+  std::filesystem::path m_recording;
+  const ReplayWindowOptions& m_ro;
+  ReplayController m_replay;
+  std::map<int, std::string> m_names;
+  DrawnSurface m_drawn;
+  // The timeline, computed beside the replay (app/replay_timeline.h).
+  const TimelineBuilder m_timeline;
+  std::optional<render::SessionSummary> m_debrief;  // once the timeline has assessed the run
+  int m_current_mark = -1;                          // the mark last jumped to
+  // The branch: the mouse's takeover, its file, its own marks and assessment.
+  std::optional<MouseTakeover> m_takeover;
+  PointerControl m_pointer;
+  std::filesystem::path m_branch_path;
+  BranchDebrief m_branch_debrief;
+  bool m_end_branch_asked = false;
+  const InterruptGuard m_interrupts;
+  render::Window m_window;
+  render::FrameRenderer m_renderer;
+  render::Overlay m_overlay;
+  render::SnapshotOptions m_options;
+  bool m_show_overlay = true;
+  render::RenderFrame m_frame;
+  std::optional<render::Camera> m_fitted;
+  std::uint64_t m_version0;
+  double m_step_ms = 0.0;  // wall time of a step, ms
+  double m_rate_hz = 0.0;  // steps per wall second
+  Clock::time_point m_last;
+};
+
+}  // namespace
+
+int run_replay_window(const std::filesystem::path& recording, const ReplayWindowOptions& ro) {
+  ReplayWindow window(recording, ro);
+  return window.run();
 }
 
 }  // namespace serosa::app
