@@ -174,12 +174,19 @@ OverlayText overlay_text(const OverlayData& data) {
     char total[32];
     format_time(data.replay_position_s, now, sizeof now);
     format_time(data.replay_duration_s, total, sizeof total);
-    std::snprintf(line, sizeof line, "%s / %s  x%.2g%s", now, total, data.replay_speed,
-                  data.paused ? "  [paused]" : "");
+    // A branch may play on past the recording's end: its clock is its own.
+    std::snprintf(
+        line, sizeof line,
+        data.branch.empty() ? "%s / %s  x%.2g%s" : "%s in the branch (recording %s)  x%.2g%s", now,
+        total, data.replay_speed, data.paused ? "  [paused]" : "");
     t.timeline = line;
     const OverlayTimeline& tl = data.timeline;
     const auto n = static_cast<int>(tl.marks.size());
-    if (!tl.done)
+    if (!data.branch.empty())
+      t.errors = "errors " + std::to_string(n) +
+                 " (the recording's before the branch, the branch's own after; no seeking in a "
+                 "branch)";
+    else if (!tl.done)
       t.errors = "assessing the recording ... (its errors are marked when it is done)";
     else if (n == 0)
       t.errors = "no errors: every criterion passed";

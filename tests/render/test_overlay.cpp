@@ -218,6 +218,30 @@ TEST(OverlayText, ReplayTimelineShowsPositionDurationSpeedAndPause) {
   EXPECT_EQ(overlay_text(d).timeline, "0:00.0 / 2:10.0  x2  [paused]");
 }
 
+// The errors line says how far the assessment has got, how many errors and which keys reach
+// them; a branch's clock and errors are its own.
+TEST(OverlayText, TheErrorsLineAndABranchsClock) {
+  OverlayData d;
+  d.replay = true;
+  d.replay_duration_s = 14.1;
+  EXPECT_EQ(overlay_text(d).errors.rfind("assessing the recording", 0), 0u);
+  d.timeline.done = true;
+  EXPECT_EQ(overlay_text(d).errors, "no errors: every criterion passed");
+  d.timeline.marks = {
+      {8.025, "bleeding: the artery was cut before it was secured", "bleeding_events"},
+      {14.1, "step not done: transect", "procedure.steps_done"}};
+  EXPECT_EQ(overlay_text(d).errors, "errors 2 (N: next, P: previous)");
+  d.timeline.current = 0;
+  EXPECT_EQ(overlay_text(d).errors,
+            "errors 2 (N: next, P: previous)  1/2 0:08.0 bleeding: the artery was cut before it "
+            "was secured");
+  d.branch = "BRANCH at 0:07.5 ...";
+  d.replay_position_s = 15.6;
+  d.timeline.current = -1;
+  EXPECT_EQ(overlay_text(d).timeline, "0:15.6 in the branch (recording 0:14.1)  x1");
+  EXPECT_EQ(overlay_text(d).errors.rfind("errors 2 (the recording's before the branch", 0), 0u);
+}
+
 // The instruments panel names what each hand holds and marks the active one, with its jaws, its
 // pedal, the tissue between its jaws and its tip's distance to tissue; the controls panel lists
 // every key the session reads.
