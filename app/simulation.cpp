@@ -14,6 +14,7 @@
 #include "app/instrument_devices.h"
 #include "app/preset_report.h"
 #include "app/provenance.h"
+#include "app/run_report.h"
 #include "app/version.h"
 #include "contact/tool_contact_stage.h"
 #include "cutting/cutting_stage.h"

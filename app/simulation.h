@@ -17,8 +17,9 @@
 
 #include "app/assemble_state.h"
 #include "app/compose.h"
-#include "app/headless.h"
+#include "app/headless_options.h"
 #include "app/output_paths.h"
+#include "app/run_report.h"
 #include "app/run_series.h"
 #include "app/run_warnings.h"
 #include "cutting/convex_polygon.h"

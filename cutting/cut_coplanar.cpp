@@ -6,7 +6,7 @@
 #include <limits>
 #include <optional>
 
-#include "cutting/cut_emit.h"
+#include "cutting/cut_emit_tet.h"
 
 namespace serosa::cutting::detail {
 namespace {

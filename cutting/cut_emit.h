@@ -9,15 +9,6 @@
 
 namespace serosa::cutting::detail {
 
-/// The node(s) of the cut point on crossing edge (a, b): the id on side pos (the same on both
-/// sides when the edge is welded). Adds the point's parents to combo.
-std::int32_t edge_point_id(CutState& cs, std::int32_t a, std::int32_t b, bool pos, Combo& combo);
-
-/// Adds tet `ids` (points `combos`, in group g) to the delta, swapping two nodes when its rest
-/// volume is negative; counts it as degenerate when the volume is zero.
-void emit_tet(CutState& cs, std::array<std::int32_t, 4> ids,
-              const std::array<const Combo*, 4>& combos, std::uint16_t g);
-
 /// Pieces of every touched tet, in ascending tet id, and the delta's node list and counts.
 /// After decide_edges and decide_clones.
 void emit(CutState& cs);

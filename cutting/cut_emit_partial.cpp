@@ -5,7 +5,7 @@
 #include "cutting/cut_emit_partial.h"
 
 #include "cutting/cut_coplanar.h"
-#include "cutting/cut_emit.h"
+#include "cutting/cut_emit_tet.h"
 #include "cutting/cut_partial.h"
 #include "cutting/subdivide.h"
 

@@ -9,7 +9,6 @@
 #include "cutting/cut_second_pass.h"
 #include "cutting/cut_state.h"
 #include "cutting/cut_welding.h"
-#include "engine/geometry/tet_extent.h"
 
 namespace serosa::cutting {
 
@@ -28,16 +27,6 @@ CutResult cut_pass(const TetMesh& mesh, const ConvexPolygon& blade, const CutOpt
 }
 
 }  // namespace detail
-
-TetBoxQuery brute_force_query(const TetMesh& mesh) {
-  return [&mesh](const Vec3& lo, const Vec3& hi, std::vector<std::int32_t>& out) {
-    for (std::int32_t i = 0; i < mesh.num_tets(); ++i) {
-      Vec3 tlo, thi;
-      geometry::tet_box(mesh, mesh.tets[i], tlo, thi);
-      if ((tlo.array() <= hi.array()).all() && (thi.array() >= lo.array()).all()) out.push_back(i);
-    }
-  };
-}
 
 CutResult cut_mesh(const TetMesh& mesh, const ConvexPolygon& blade, const CutOptions& options,
                    const TetBoxQuery& query) {

@@ -3,7 +3,8 @@
 // one against the input mesh.
 #pragma once
 
-#include "cutting/cut_mesh.h"
+#include "cutting/convex_polygon.h"
+#include "cutting/cut_types.h"
 
 namespace serosa::cutting::detail {
 

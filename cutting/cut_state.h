@@ -16,7 +16,7 @@
 
 #include "cutting/case_table.h"
 #include "cutting/convex_polygon.h"
-#include "cutting/cut_mesh.h"
+#include "cutting/cut_types.h"
 #include "cutting/section_triangulation.h"
 #include "cutting/weld_map.h"
 #include "engine/tet_faces.h"
