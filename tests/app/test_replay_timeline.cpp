@@ -11,6 +11,7 @@
 #include <string>
 
 #include "app/replay_timeline.h"
+#include "app/session_summary.h"
 #include "app/shell_command.h"
 #include "app_test_util.h"
 
@@ -143,6 +144,23 @@ TEST(ReplayTimeline, TheProcedureNovicesMarksAreItsFailedCriteriaAndTheExpertHas
   EXPECT_GT(clip->time_s, 3.0);
   EXPECT_LT(clip->time_s, bleeding->time_s);
   for (const auto& m : t.marks) std::printf("mark %.3f s  %s\n", m.time_s, m.what.c_str());
+
+  // The trainee's summary of the same run says the same in the same words: the critical
+  // failures under "Why", the others under "To work on", the five steps, the metrics by domain.
+  const render::SessionSummary s = session_summary(novice.report);
+  const auto listed = [](const std::vector<std::string>& lines, const std::string& part) {
+    return std::any_of(lines.begin(), lines.end(),
+                       [&](const std::string& l) { return l.find(part) != std::string::npos; });
+  };
+  EXPECT_FALSE(s.passed);
+  EXPECT_TRUE(listed(s.failed, "bleeding: the artery was cut before it was secured"));
+  EXPECT_TRUE(listed(s.failed, "step not done: transect"));
+  EXPECT_TRUE(listed(s.below, "clip missed"));
+  ASSERT_EQ(s.steps.size(), 5u);
+  EXPECT_EQ(s.steps[0].name, "expose");
+  EXPECT_TRUE(s.steps[0].done);
+  EXPECT_FALSE(s.steps[3].done);
+  EXPECT_FALSE(s.groups.empty());
 
   const Recorded expert = record("expert", "config/paths/appendectomy_procedure.csv", 1880);
   const TimelineData e = compute_timeline(expert.recording, 400);
