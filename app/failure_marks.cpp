@@ -76,28 +76,32 @@ void steps_not_done(const Criterion& c, std::vector<Failure>& out) {
          false});
 }
 
+// The criteria the report's error list times (metrics/procedure_errors.h), and their words.
+struct ErrorCriterion {
+  std::string_view criterion, kind, words;
+};
+constexpr ErrorCriterion kErrorCriteria[] = {
+    {"bleeding_events", "bleeding", "bleeding: the artery was cut before it was secured"},
+    {"thermal_injuries", "thermal_injury",
+     "thermal injury: the live hook burnt tissue it must spare"},
+    {"transections_above_securing", "transection_above_securing",
+     "transected above the loop or clip that secures the base"},
+    {"specimens_dropped", "specimen_dropped", "the specimen was dropped"},
+};
+
 // The words and times of the criteria that have an event of their own.
 bool event_failure(const Criterion& c, Failure& f) {
   const std::string& n = c.name;
-  if (n == "bleeding_events") {
-    f.words = "bleeding: the artery was cut before it was secured";
-    f.at_s = error_times(c.metrics, "bleeding");
-  } else if (n == "thermal_injuries") {
-    f.words = "thermal injury: the live hook burnt tissue it must spare";
-    f.at_s = error_times(c.metrics, "thermal_injury");
-  } else if (n == "transections_above_securing") {
-    f.words = "transected above the loop or clip that secures the base";
-    f.at_s = error_times(c.metrics, "transection_above_securing");
-  } else if (n == "specimens_dropped") {
-    f.words = "the specimen was dropped";
-    f.at_s = error_times(c.metrics, "specimen_dropped");
-  } else if (n == "tears") {
-    f.words = fmt::format("tissue torn {:.0f} time{} (pulled past its strength)", c.value(),
-                          c.value() == 1.0 ? "" : "s");
-    f.at_s = json_times(c.metrics.value("tear_times_s", Json::array()));
-  } else {
-    return false;
+  for (const ErrorCriterion& e : kErrorCriteria) {
+    if (n != e.criterion) continue;
+    f.words = e.words;
+    f.at_s = error_times(c.metrics, e.kind);
+    return true;
   }
+  if (n != "tears") return false;
+  f.words = fmt::format("tissue torn {:.0f} time{} (pulled past its strength)", c.value(),
+                        c.value() == 1.0 ? "" : "s");
+  f.at_s = json_times(c.metrics.value("tear_times_s", Json::array()));
   return true;
 }
 

@@ -25,12 +25,13 @@ struct Recorded {
   nlohmann::json report;
 };
 
-// The default scene run headless along `path` for `steps` steps, recorded.
-Recorded record_default(const std::string& name, const std::string& path, int steps) {
+// `scene` run headless along `path` for `steps` steps, recorded.
+Recorded record(const std::string& name, const std::string& scene, const std::string& path,
+                int steps) {
   const fs::path dir = out_dir("replay_timeline_" + name);
   Recorded r{dir / "run.lapr", {}};
   const CliResult run = run_serosa(
-      "headless " + shell_quote(source("config/transection.toml").string()) + " --path " +
+      "headless " + shell_quote(source(scene).string()) + " --path " +
       shell_quote(source(path).string()) + " --steps " + std::to_string(steps) + " --record " +
       shell_quote(r.recording.string()) + " --report " + shell_quote((dir / "r.json").string()));
   EXPECT_EQ(run.code, 0) << run.out;
@@ -53,12 +54,6 @@ std::set<std::string> failed_criteria(const nlohmann::json& report) {
   return names;
 }
 
-std::set<std::string> marked_criteria(const TimelineData& t) {
-  std::set<std::string> names;
-  for (const render::TimelineMark& m : t.marks) names.insert(m.criterion);
-  return names;
-}
-
 // The replay's assessment is the run's: same score, same failures.
 void expect_same_assessment(const TimelineData& t, const nlohmann::json& report) {
   ASSERT_TRUE(t.report.contains("assessment"));
@@ -69,7 +64,8 @@ void expect_same_assessment(const TimelineData& t, const nlohmann::json& report)
 // The expert's transection: the force plot's peak is the run's largest force, and a run that
 // passes every criterion has nothing marked (its 5 N crossings are within the rubric's limits).
 TEST(ReplayTimeline, TheForcePlotPeaksAtTheRunsLargestForceAndAPassHasNoMarks) {
-  const Recorded run = record_default("expert", "config/paths/appendectomy.csv", 1000);
+  const Recorded run =
+      record("expert", "config/transection.toml", "config/paths/appendectomy.csv", 1000);
   const TimelineData t = compute_timeline(run.recording, 400);
   ASSERT_TRUE(t.done);
   EXPECT_TRUE(t.error.empty()) << t.error;
@@ -86,10 +82,17 @@ TEST(ReplayTimeline, TheForcePlotPeaksAtTheRunsLargestForceAndAPassHasNoMarks) {
 }
 
 #if !defined(__SANITIZE_ADDRESS__)  // the 12 s novice runs: ASan+UBSan is ~15x slower
+std::set<std::string> marked_criteria(const TimelineData& t) {
+  std::set<std::string> names;
+  for (const render::TimelineMark& m : t.marks) names.insert(m.criterion);
+  return names;
+}
+
 // The novice's transection strays from the planned line: its marks are exactly the criteria it
 // failed, the cut off the line marked while the blades were in the tissue.
 TEST(ReplayTimeline, TheNovicesTransectionMarksExactlyItsFailedCriteria) {
-  const Recorded run = record_default("novice", "config/paths/appendectomy_novice.csv", 2400);
+  const Recorded run =
+      record("novice", "config/transection.toml", "config/paths/appendectomy_novice.csv", 2400);
   const TimelineData t = compute_timeline(run.recording, 400);
   ASSERT_TRUE(t.done);
   expect_same_assessment(t, run.report);
@@ -109,18 +112,8 @@ TEST(ReplayTimeline, TheNovicesTransectionMarksExactlyItsFailedCriteria) {
 // bleeding at 8.0 s, the steps it never did and the rest of what it failed are marked, nothing
 // else; the expert's procedure has none.
 TEST(ReplayTimeline, TheProcedureNovicesMarksAreItsFailedCriteriaAndTheExpertHasNone) {
-  const auto record = [](const std::string& name, const std::string& path, int steps) {
-    const fs::path dir = out_dir("replay_timeline_procedure_" + name);
-    Recorded r{dir / "run.lapr", {}};
-    const CliResult run = run_serosa(
-        "headless " + shell_quote(source("config/appendectomy.toml").string()) + " --path " +
-        shell_quote(source(path).string()) + " --steps " + std::to_string(steps) + " --record " +
-        shell_quote(r.recording.string()) + " --report " + shell_quote((dir / "r.json").string()));
-    EXPECT_EQ(run.code, 0) << run.out;
-    std::ifstream(dir / "r.json") >> r.report;
-    return r;
-  };
-  const Recorded novice = record("novice", "config/paths/appendectomy_procedure_novice.csv", 2820);
+  const Recorded novice = record("procedure_novice", "config/appendectomy.toml",
+                                 "config/paths/appendectomy_procedure_novice.csv", 2820);
   const TimelineData t = compute_timeline(novice.recording, 400);
   ASSERT_TRUE(t.done);
   expect_same_assessment(t, novice.report);
@@ -162,7 +155,8 @@ TEST(ReplayTimeline, TheProcedureNovicesMarksAreItsFailedCriteriaAndTheExpertHas
   EXPECT_FALSE(s.steps[3].done);
   EXPECT_FALSE(s.groups.empty());
 
-  const Recorded expert = record("expert", "config/paths/appendectomy_procedure.csv", 1880);
+  const Recorded expert = record("procedure_expert", "config/appendectomy.toml",
+                                 "config/paths/appendectomy_procedure.csv", 1880);
   const TimelineData e = compute_timeline(expert.recording, 400);
   ASSERT_TRUE(e.done);
   expect_same_assessment(e, expert.report);
