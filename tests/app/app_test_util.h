@@ -1,6 +1,8 @@
 // Helpers shared by the app tests: output folders and running the built `serosa` executable.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -22,6 +24,16 @@ inline fs::path out_dir(const std::string& name) {
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
+}
+
+/// A folder of the running test's own, `name` followed by the test's name: CTest runs each test
+/// in its own process, side by side, and a shared folder would be wiped and rewritten by one
+/// test while another reads from it.
+inline fs::path own_dir(const std::string& name) {
+  const ::testing::TestInfo* t = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string full = name;
+  if (t != nullptr) full.append("_").append(t->name());
+  return out_dir(full);
 }
 
 inline fs::path source(const std::string& rel) {

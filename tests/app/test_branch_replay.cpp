@@ -35,14 +35,6 @@ using namespace serosa::app::testing;
 constexpr std::int64_t kSteps = 40;  // 0.2 s of the scripted transection
 constexpr double kDt = 0.005;
 
-// A folder of this test's own (CTest runs each test in its own process, in parallel).
-fs::path own_dir(const std::string& name) {
-  const ::testing::TestInfo* t = ::testing::UnitTest::GetInstance()->current_test_info();
-  std::string full = name;
-  if (t != nullptr) full.append("_").append(t->name());
-  return out_dir(full);
-}
-
 // `text` with `from` replaced by `to` everywhere.
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
   for (std::size_t at = text.find(from); at != std::string::npos;

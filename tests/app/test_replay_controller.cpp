@@ -25,15 +25,6 @@ using namespace serosa::app::testing;
 
 constexpr std::int64_t kSteps = 40;  // hashes recorded after steps 19 and 39 (hash_every 20)
 
-// A folder of this test's own: CTest runs each test in its own process, in parallel, and a
-// shared folder would be wiped and rewritten by one test while another reads from it.
-fs::path own_dir(const std::string& name) {
-  const ::testing::TestInfo* t = ::testing::UnitTest::GetInstance()->current_test_info();
-  std::string full = name;
-  if (t != nullptr) full.append("_").append(t->name());
-  return out_dir(full);
-}
-
 // Records the scripted transection once per test process.
 const fs::path& recording() {
   static const fs::path file = [] {

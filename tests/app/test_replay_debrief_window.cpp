@@ -23,10 +23,12 @@ namespace {
 using namespace serosa::app::testing;
 
 #if !defined(__SANITIZE_THREAD__) && !defined(__SANITIZE_ADDRESS__)  // an 8.5 s run, replayed twice
-// The shipped procedure's novice up to 8.5 s (its bleeding at 8.0 s), recorded once for the tests.
+// The shipped procedure's novice up to 8.5 s (its bleeding at 8.0 s), recorded once per test
+// process into the test's own folder: CTest runs the tests of this file side by side, and a
+// shared file would be written by one while the other reads it.
 fs::path novice_recording() {
   static const fs::path recording = [] {
-    const fs::path file = out_dir("replay_debrief_novice") / "novice.lapr";
+    const fs::path file = own_dir("replay_debrief_novice") / "novice.lapr";
     const CliResult run = run_serosa(
         "headless " + shell_quote(source("config/appendectomy.toml").string()) + " --path " +
         shell_quote(source("config/paths/appendectomy_procedure_novice.csv").string()) +
