@@ -193,16 +193,26 @@ class ImplicitIntegrator {
   void update_free_mask(const TetMesh& mesh);
   /// m_node_rot from this step's element rotations (fem/lagged_factor.h, warping).
   void update_node_rotations(const TetMesh& mesh);
+  /// Node i's rotation from the tets' rotations tet_rot ((m), or fewer: the others are skipped):
+  /// the normalized sum of its active tets' quaternions, turned into one hemisphere.
+  [[nodiscard]] Quat node_rotation(std::size_t i, std::span<const Quat> tet_rot) const;
   /// pcg_lagged's part of cg_preconditioner: the install schedule, the patch after a cut, a grasp
   /// or a release.
   void lagged_preconditioner(const TetMesh& mesh, double dt_s, StepStatus& st,
                              Preconditioner& precond);
+  /// Nodes the preconditioner no longer fits: all of them, and those the patch in use does not
+  /// solve (a patch one of whose tets turned since it was made counts as solving none).
+  struct Misfit {
+    int nodes = 0;
+    int unpatched = 0;
+  };
   /// Marks in m_kind_changed the nodes the installed factor's warp no longer fits (a tet of theirs
-  /// turned otherwise than they did since its step, SolverSettings::misfit_rad); returns how many.
-  int mark_misfit_nodes(const TetMesh& mesh);
-  /// Its two parts: the patch's nodes (not warped) and the factor's; cos_half: cos(misfit_rad / 2).
+  /// turned otherwise than they did since its step, SolverSettings::misfit_rad), and those of the
+  /// patch's tets that turned since the patch was made.
+  Misfit mark_misfit_nodes(const TetMesh& mesh);
+  /// Its two parts: the patch's nodes and the factor's; cos_half: cos(misfit_rad / 2).
   int mark_patch_misfit(const TetMesh& mesh, double cos_half);
-  int mark_factor_misfit(const TetMesh& mesh, double cos_half);
+  Misfit mark_factor_misfit(const TetMesh& mesh, double cos_half);
   /// Patches the lagged factor with the rows of m_kind_changed and their rings (factors the whole
   /// matrix instead if that submatrix is not SPD).
   void patch_lagged_factor(const TetMesh& mesh, double dt_s, StepStatus& st);

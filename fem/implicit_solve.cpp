@@ -153,10 +153,10 @@ void ImplicitIntegrator::lagged_preconditioner(const TetMesh& mesh, double dt_s,
     const bool kinds = m_lagged.kinds_changed(m_free, m_kind_changed);
     m_patch_for_change = stale || kinds;
     m_patch_new = m_patch_for_change && !m_lagged.patch_fits(m_structure, m_free);
-    const bool misfit = m_config.solver.misfit_rad > 0.0 && mark_misfit_nodes(mesh) > 0;
-    if (!m_patch_for_change && !misfit) {
+    const Misfit misfit = m_config.solver.misfit_rad > 0.0 ? mark_misfit_nodes(mesh) : Misfit{};
+    if (!m_patch_for_change && misfit.nodes == 0) {
       m_lagged.drop_patch();  // the installed factor fits again
-    } else if (misfit || m_patch_new) {
+    } else if (misfit.unpatched > 0 || m_patch_new) {
       if (stale)  // the cut's touched nodes too
         for (std::size_t i = 0; i < n; ++i) m_kind_changed[i] |= m_changed[i];
       patch_lagged_factor(mesh, dt_s, st);
@@ -170,9 +170,14 @@ void ImplicitIntegrator::lagged_preconditioner(const TetMesh& mesh, double dt_s,
   };
 }
 
-int ImplicitIntegrator::mark_misfit_nodes(const TetMesh& mesh) {
+// The patch in use is kept while it still fits (none of its tets turned since it was made) and
+// solves every node the factor's warp no longer fits: the misfit lasts for tens of steps after a
+// cut, and a patch made anew on each of them costs a factorization of hundreds of rows.
+ImplicitIntegrator::Misfit ImplicitIntegrator::mark_misfit_nodes(const TetMesh& mesh) {
   const double cos_half = std::cos(0.5 * m_config.solver.misfit_rad);
-  return mark_patch_misfit(mesh, cos_half) + mark_factor_misfit(mesh, cos_half);
+  const int patch = mark_patch_misfit(mesh, cos_half);
+  const Misfit factor = mark_factor_misfit(mesh, cos_half);
+  return {patch + factor.nodes, patch + factor.unpatched};
 }
 
 // The patch is not warped: every node of a tet with a node in it that turned since the patch's
@@ -195,13 +200,14 @@ int ImplicitIntegrator::mark_patch_misfit(const TetMesh& mesh, double cos_half) 
 }
 
 // A node whose tet turned otherwise than the node's warp W_i = R_i R0_i^T since the factor's step.
-int ImplicitIntegrator::mark_factor_misfit(const TetMesh& mesh, double cos_half) {
+ImplicitIntegrator::Misfit ImplicitIntegrator::mark_factor_misfit(const TetMesh& mesh,
+                                                                  double cos_half) {
   const std::span<const Quat> tet0 = m_lagged.tet_rotations();
   const std::span<const Quat> node0 = m_lagged.node_rotations();
   const std::size_t nw = std::min(node0.size(), m_node_rot.size());
   m_node_warp.resize(nw);  // each node's warp once, not once per corner
   for (std::size_t i = 0; i < nw; ++i) m_node_warp[i] = m_node_rot[i] * node0[i].conjugate();
-  int marked = 0;
+  Misfit marked;
   for (std::size_t t = 0; t < std::min(m_q.size(), tet0.size()); ++t) {
     // Tets a cut added since the factor's step have no rotation of its (zero): a cut's patch
     // holds their nodes.
@@ -210,10 +216,10 @@ int ImplicitIntegrator::mark_factor_misfit(const TetMesh& mesh, double cos_half)
     for (const std::int32_t i : mesh.tets[t]) {
       const auto u = static_cast<std::size_t>(i);
       if (u >= nw || m_kind_changed[u] != 0) continue;
-      if (std::abs(turn.dot(m_node_warp[u])) < cos_half) {
-        m_kind_changed[u] = 1;
-        ++marked;
-      }
+      if (std::abs(turn.dot(m_node_warp[u])) >= cos_half) continue;
+      m_kind_changed[u] = 1;
+      ++marked.nodes;
+      marked.unpatched += m_lagged.patched(u) ? 0 : 1;
     }
   }
   return marked;
@@ -282,17 +288,19 @@ void ImplicitIntegrator::update_free_mask(const TetMesh& mesh) {
 void ImplicitIntegrator::update_node_rotations(const TetMesh& mesh) {
   const auto n = static_cast<std::size_t>(mesh.num_nodes());
   m_node_rot.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    Eigen::Vector4d sum = Eigen::Vector4d::Zero();
-    for (const std::int32_t ic : m_pattern.incident_of(i)) {
-      const auto t = static_cast<std::size_t>(ic) / 4;
-      if (!m_el.elements[t].active()) continue;
-      const Eigen::Vector4d q = m_q[t].coeffs();
-      sum += sum.dot(q) < 0.0 ? Eigen::Vector4d(-q) : q;
-    }
-    const double norm = sum.norm();
-    m_node_rot[i] = norm > 0.0 ? Quat(Eigen::Vector4d(sum / norm)) : Quat::Identity();
+  for (std::size_t i = 0; i < n; ++i) m_node_rot[i] = node_rotation(i, m_q);
+}
+
+Quat ImplicitIntegrator::node_rotation(std::size_t i, std::span<const Quat> tet_rot) const {
+  Eigen::Vector4d sum = Eigen::Vector4d::Zero();
+  for (const std::int32_t ic : m_pattern.incident_of(i)) {
+    const auto t = static_cast<std::size_t>(ic) / 4;
+    if (t >= tet_rot.size() || !m_el.elements[t].active()) continue;
+    const Eigen::Vector4d q = tet_rot[t].coeffs();
+    sum += sum.dot(q) < 0.0 ? Eigen::Vector4d(-q) : q;
   }
+  const double norm = sum.norm();
+  return norm > 0.0 ? Quat(Eigen::Vector4d(sum / norm)) : Quat::Identity();
 }
 
 void ImplicitIntegrator::schedule_refresh(const TetMesh& mesh, double dt_s, int iterations,

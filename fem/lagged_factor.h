@@ -43,8 +43,10 @@
 // pieces recoil. So the factor keeps its tets' rotations too, and a node one of whose tets turned
 // otherwise than the node since the factor's step, by more than SolverSettings::misfit_rad, is
 // patched on this step like a cut's (the patch itself, not warped, is made anew once one of its
-// tets turned that much since it was made). On the default procedure this took the steps after
-// the transection from 110 CG iterations to under 10, and the cinch's from up to 100 to 3-6.
+// tets turned that much since it was made, or a node the factor no longer fits lies outside it;
+// a patch that still fits and holds every such node is kept). On the default procedure this took
+// the steps after the transection from 110 CG iterations to under 10, and the cinch's from up to
+// 100 to 3-6.
 // The patch keeps its analysis while its rows stay the same (CHOLMOD orders by pattern alone),
 // and a refresh of the installed factor's structure copies its analysis, leaving the background
 // thread only the numeric factorization.
