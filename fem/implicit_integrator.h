@@ -193,15 +193,13 @@ class ImplicitIntegrator {
   void update_free_mask(const TetMesh& mesh);
   /// m_node_rot from this step's element rotations (fem/lagged_factor.h, warping).
   void update_node_rotations(const TetMesh& mesh);
-  /// Node i's rotation from the tets' rotations tet_rot ((m), or fewer: the others are skipped):
-  /// the normalized sum of its active tets' quaternions, turned into one hemisphere.
-  [[nodiscard]] Quat node_rotation(std::size_t i, std::span<const Quat> tet_rot) const;
   /// pcg_lagged's part of cg_preconditioner: the install schedule, the patch after a cut, a grasp
   /// or a release.
   void lagged_preconditioner(const TetMesh& mesh, double dt_s, StepStatus& st,
                              Preconditioner& precond);
-  /// Nodes the preconditioner no longer fits: all of them, and those the patch in use does not
-  /// solve (a patch one of whose tets turned since it was made counts as solving none).
+  /// What no longer fits the preconditioner: nodes the factor's warp does not fit plus the patch's
+  /// tets that turned since it was made (nodes), and of those the nodes outside the patch plus
+  /// the same tets (unpatched: a patch that no longer fits itself is made anew).
   struct Misfit {
     int nodes = 0;
     int unpatched = 0;

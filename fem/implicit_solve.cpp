@@ -288,19 +288,17 @@ void ImplicitIntegrator::update_free_mask(const TetMesh& mesh) {
 void ImplicitIntegrator::update_node_rotations(const TetMesh& mesh) {
   const auto n = static_cast<std::size_t>(mesh.num_nodes());
   m_node_rot.resize(n);
-  for (std::size_t i = 0; i < n; ++i) m_node_rot[i] = node_rotation(i, m_q);
-}
-
-Quat ImplicitIntegrator::node_rotation(std::size_t i, std::span<const Quat> tet_rot) const {
-  Eigen::Vector4d sum = Eigen::Vector4d::Zero();
-  for (const std::int32_t ic : m_pattern.incident_of(i)) {
-    const auto t = static_cast<std::size_t>(ic) / 4;
-    if (t >= tet_rot.size() || !m_el.elements[t].active()) continue;
-    const Eigen::Vector4d q = tet_rot[t].coeffs();
-    sum += sum.dot(q) < 0.0 ? Eigen::Vector4d(-q) : q;
+  for (std::size_t i = 0; i < n; ++i) {
+    Eigen::Vector4d sum = Eigen::Vector4d::Zero();
+    for (const std::int32_t ic : m_pattern.incident_of(i)) {
+      const auto t = static_cast<std::size_t>(ic) / 4;
+      if (!m_el.elements[t].active()) continue;
+      const Eigen::Vector4d q = m_q[t].coeffs();
+      sum += sum.dot(q) < 0.0 ? Eigen::Vector4d(-q) : q;
+    }
+    const double norm = sum.norm();
+    m_node_rot[i] = norm > 0.0 ? Quat(Eigen::Vector4d(sum / norm)) : Quat::Identity();
   }
-  const double norm = sum.norm();
-  return norm > 0.0 ? Quat(Eigen::Vector4d(sum / norm)) : Quat::Identity();
 }
 
 void ImplicitIntegrator::schedule_refresh(const TetMesh& mesh, double dt_s, int iterations,
