@@ -1,6 +1,6 @@
 // serosa batch MANIFEST.toml --out DIR [--jobs N] [--resume] [--slurm [--partition P]]
 //                                      [--index I] [--update-golden]
-// Runs a manifest's headless runs (app/batch_manifest.h), N at once here or as one Slurm job
+// Runs a manifest's headless runs (batch/batch_manifest.h), N at once here or as one Slurm job
 // array, and merges their results into DIR/summary.json, DIR/junit.xml and DIR/summary.md
 // (docs/batch.md). --index I runs run I alone (what each array task does; a Kubernetes Indexed
 // Job passes $JOB_COMPLETION_INDEX) and merges nothing.
@@ -9,16 +9,18 @@
 #include <cstdio>
 #include <memory>
 
-#include "app/batch_manifest.h"
-#include "app/batch_runner.h"
-#include "app/batch_slurm.h"
-#include "app/batch_summary.h"
 #include "app/command.h"
 #include "app/version.h"
+#include "batch/batch_manifest.h"
+#include "batch/batch_runner.h"
+#include "batch/batch_slurm.h"
+#include "batch/batch_summary.h"
 #include "engine/input_error.h"
 
 namespace serosa::app {
 namespace {
+
+using namespace serosa::batch;
 
 struct BatchArgs {
   std::string manifest, out, partition;

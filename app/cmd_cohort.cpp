@@ -1,23 +1,25 @@
 // serosa cohort [--db FILE] --html DIR [--csv FILE] [--tasks FILE]: the instructor's page of the
-// whole group (app/cohort_html.h) as DIR/index.html, and with --csv the trainee x task table for
-// a spreadsheet (app/cohort_csv.h). Tasks are named as `serosa tasks` names them. A recording or
-// report that moved is a warning naming it, shown as missing on the page, which is written all
-// the same. Exit codes: 0 written; 1 bad input (a missing, locked, damaged or foreign database, a
-// folder or file that cannot be written).
+// whole group (trainee/cohort_html.h) as DIR/index.html, and with --csv the trainee x task table
+// for a spreadsheet (trainee/cohort_csv.h). Tasks are named as `serosa tasks` names them. A
+// recording or report that moved is a warning naming it, shown as missing on the page, which is
+// written all the same. Exit codes: 0 written; 1 bad input (a missing, locked, damaged or foreign
+// database, a folder or file that cannot be written).
 #include <cstdio>
 #include <fstream>
 #include <memory>
 
-#include "app/cohort.h"
-#include "app/cohort_csv.h"
-#include "app/cohort_html.h"
 #include "app/command.h"
-#include "app/progress_db.h"
-#include "app/task_names.h"
-#include "app/trainee_session.h"
 #include "engine/input_error.h"
+#include "trainee/cohort.h"
+#include "trainee/cohort_csv.h"
+#include "trainee/cohort_html.h"
+#include "trainee/progress_db.h"
+#include "trainee/task_names.h"
+#include "trainee/trainee_session.h"
 
 namespace serosa::app {
+
+using namespace serosa::trainee;
 
 namespace {
 

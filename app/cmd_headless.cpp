@@ -17,15 +17,17 @@
 #include "app/camera_option.h"
 #include "app/command.h"
 #include "app/emulated_rig_process.h"
-#include "app/golden.h"
 #include "app/headless.h"
 #include "app/run_summary.h"
-#include "app/task_option.h"
-#include "app/trainee_session.h"
+#include "batch/golden.h"
 #include "engine/input_error.h"
 #include "engine/scene.h"
+#include "trainee/task_option.h"
+#include "trainee/trainee_session.h"
 
 namespace serosa::app {
+
+using namespace serosa::trainee;
 namespace {
 
 // Ctrl-C (SIGINT) or SIGTERM ends the run after the current step, cleanly: the recording is
@@ -131,7 +133,7 @@ void add_headless_command(CLI::App& app, Action& action) {
       if (kept)             // after the recording and the report are written
         file_session(*kept, opts->scene, json, opts->record, opts->report);
       if (golden->empty()) return strict_exit(json, *strict);
-      const GoldenComparison g = check_golden(json, *golden, *update_golden);
+      const batch::GoldenComparison g = batch::check_golden(json, *golden, *update_golden);
       for (const std::string& n : g.notes) std::fprintf(stderr, "note: %s\n", n.c_str());
       for (const std::string& f : g.failures)
         std::fprintf(stderr, "golden mismatch: %s\n", f.c_str());

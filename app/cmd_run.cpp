@@ -8,14 +8,16 @@
 
 #include "app/command.h"
 #include "app/emulated_rig_process.h"
-#include "app/help_seen.h"
 #include "app/session.h"
-#include "app/task_option.h"
-#include "app/trainee_session.h"
 #include "engine/input_error.h"
 #include "engine/scene.h"
+#include "trainee/help_seen.h"
+#include "trainee/task_option.h"
+#include "trainee/trainee_session.h"
 
 namespace serosa::app {
+
+using namespace serosa::trainee;
 
 void add_run_command(CLI::App& app, Action& action) {
   auto scene = std::make_shared<std::string>();

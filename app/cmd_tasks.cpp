@@ -3,9 +3,11 @@
 #include <memory>
 
 #include "app/command.h"
-#include "app/task_list.h"
+#include "trainee/task_list.h"
 
 namespace serosa::app {
+
+using namespace serosa::trainee;
 
 void add_tasks_command(CLI::App& app, Action& action) {
   auto list = std::make_shared<std::string>(kDefaultTaskList);

@@ -1,20 +1,22 @@
 // serosa trainee [NAME] [--db FILE] [--tasks FILE] [--plot PNG]: a trainee's progress
-// (app/trainee_progress.h): per task the sessions, passes, best and last score, the pass score and
-// the first pass, then every session and why each failed one failed; --plot draws the learning
+// (trainee/trainee_progress.h): per task the sessions, passes, best and last score, the pass score
+// and the first pass, then every session and why each failed one failed; --plot draws the learning
 // curve with gnuplot. Without a name: every trainee with their sessions, and where to go next.
-// Tasks are named as `serosa tasks` names them (app/task_names.h). Exit codes: 0 done; 1 bad
+// Tasks are named as `serosa tasks` names them (trainee/task_names.h). Exit codes: 0 done; 1 bad
 // input (a missing, locked, damaged or foreign database, an unknown trainee, gnuplot failing).
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
 
 #include "app/command.h"
-#include "app/progress_db.h"
-#include "app/task_names.h"
-#include "app/trainee_progress.h"
 #include "engine/input_error.h"
+#include "trainee/progress_db.h"
+#include "trainee/task_names.h"
+#include "trainee/trainee_progress.h"
 
 namespace serosa::app {
+
+using namespace serosa::trainee;
 
 namespace {
 

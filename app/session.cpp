@@ -20,7 +20,6 @@
 #include "app/frame_pacer.h"
 #include "app/hand_overlay.h"
 #include "app/headless.h"
-#include "app/help_seen.h"
 #include "app/instrument_devices.h"
 #include "app/output_paths.h"
 #include "app/overlay_stats.h"
@@ -53,6 +52,7 @@
 #include "render/scaled_target.h"
 #include "render/window.h"
 #include "surface/cut_faces.h"
+#include "trainee/help_seen.h"
 
 namespace serosa::app {
 namespace {
@@ -296,7 +296,8 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
     view_log.emplace(*so.view_log, std::move(names));
   }
   // The controls show by themselves the first time a trainee (or this machine) drives.
-  bool show_help = in_hands && !so.help_file.empty() && first_time_help(so.help_file, so.trainee);
+  bool show_help =
+      in_hands && !so.help_file.empty() && trainee::first_time_help(so.help_file, so.trainee);
 
   const InterruptGuard interrupts;
   render::Window window(scene.render.width, scene.render.height, "Serosa");

@@ -25,7 +25,7 @@ struct SessionOptions {
   /// finished) shows it until they leave it.
   double summary_seconds = 0.0;
   /// Who drives (--trainee; empty: no name) and the file remembering who has seen the controls
-  /// (app/help_seen.h; empty: the controls panel never shows by itself).
+  /// (trainee/help_seen.h; empty: the controls panel never shows by itself).
   std::string trainee;
   std::filesystem::path help_file;
   /// Where each frame's instruments, guide and organs were drawn, as JSON lines

@@ -1,10 +1,13 @@
 # Fails when a file includes a folder it may not (docs/ARCHITECTURE.md "The three floors"):
 # engine/ includes no other floor; fem, cutting, surface, haptics, render, metrics, contact
-# include only engine; python/ (the module on top of app/) is included by no floor.
+# include only engine; batch/ and trainee/ (beside app/ on the top floor, which composes nothing)
+# include only engine too, and only app/ includes them; python/ (the module on top of app/) is
+# included by no floor.
 cmake_policy(SET CMP0057 NEW)  # if(IN_LIST) in script mode
 set(domains fem cutting surface haptics render metrics contact)
+set(beside_app batch trainee)
 set(bad "")
-foreach(folder engine ${domains} app)
+foreach(folder engine ${domains} ${beside_app} app)
   file(GLOB_RECURSE files ${ROOT}/${folder}/*.h ${ROOT}/${folder}/*.cpp ${ROOT}/${folder}/*.cu
                           ${ROOT}/${folder}/*.cuh)
   foreach(f ${files})
@@ -17,7 +20,8 @@ foreach(folder engine ${domains} app)
       endif()
       if(target STREQUAL "python")
         list(APPEND bad "${f}: ${line}")
-      elseif(NOT folder STREQUAL "app" AND (target STREQUAL "app" OR target IN_LIST domains))
+      elseif(NOT folder STREQUAL "app" AND (target STREQUAL "app" OR target IN_LIST domains OR
+                                            target IN_LIST beside_app))
         list(APPEND bad "${f}: ${line}")
       endif()
     endforeach()

@@ -13,7 +13,7 @@
 #include <stdexcept>
 
 #include "app/bench/bench_registry.h"
-#include "app/shell_command.h"
+#include "engine/shell_command.h"
 
 namespace serosa::app::bench {
 

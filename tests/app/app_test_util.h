@@ -10,9 +10,9 @@
 #include <utility>
 #include <vector>
 
-#include "app/shell_command.h"
 #include "engine/input_error.h"
 #include "engine/scene.h"
+#include "engine/shell_command.h"
 #include "support/test_paths.h"
 
 namespace serosa::app::testing {

@@ -14,14 +14,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/batch_manifest.h"
-#include "app/batch_runner.h"
-#include "app/path_perturb.h"
-#include "app/shell_command.h"
 #include "app_test_util.h"
+#include "batch/batch_manifest.h"
+#include "batch/batch_runner.h"
+#include "batch/path_perturb.h"
 #include "engine/input_error.h"
+#include "engine/shell_command.h"
 
-namespace serosa::app {
+namespace serosa::batch {
 namespace {
 
 using namespace serosa::app::testing;
@@ -231,7 +231,7 @@ TEST(Batch, AMismatchNamesTheFirstAndTheLargestDifference) {
 }
 
 // A scene with the rig in the loop steps at the wall clock's pace: the manifest marks it, and
-// the batch runs it with nothing beside it (app/run_gate.h); scripted scenes share the machine.
+// the batch runs it with nothing beside it (batch/run_gate.h); scripted scenes share the machine.
 TEST(Batch, ARigInTheLoopMarksItsRunPaced) {
   const fs::path dir = out_dir("batch_paced");
   std::ofstream(dir / "m.toml") << "[[run]]\nname = \"rig\"\nscene = \""
@@ -337,4 +337,4 @@ TEST(Batch, SeedsPerturbPathsSmoothlyBoundedAndReproducibly) {
 }
 
 }  // namespace
-}  // namespace serosa::app
+}  // namespace serosa::batch

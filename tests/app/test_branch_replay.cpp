@@ -19,11 +19,11 @@
 #include "app/pointer_control.h"
 #include "app/replay.h"
 #include "app/replay_controller.h"
-#include "app/shell_command.h"
 #include "app_test_util.h"
 #include "engine/hook.h"
 #include "engine/instrument_hold.h"
 #include "engine/recording_reader.h"
+#include "engine/shell_command.h"
 #include "engine/sim_state.h"
 #include "engine/tool_path.h"
 

@@ -1,10 +1,10 @@
-// The cohort (app/cohort.h, app/cohort_csv.h, app/cohort_html.h) from hand-made sessions and
-// databases, fast: the trainee x task table, the pass rates and the criteria counted; task names
-// as the task list says them; the CSV quoted; every text on the page escaped and nothing on it
-// fetched; links relative where they can be. Bad input: a missing, foreign or non-SQLite database
-// is a clear error (exit 1); a moved recording is a warning and shows as missing on the page,
-// which is written all the same. A version 1 database is upgraded with the reasons its reports
-// still hold. The whole path through headless runs and a browser: test_cohort_browser.cpp.
+// The cohort (trainee/cohort.h, trainee/cohort_csv.h, trainee/cohort_html.h) from hand-made
+// sessions and databases, fast: the trainee x task table, the pass rates and the criteria counted;
+// task names as the task list says them; the CSV quoted; every text on the page escaped and nothing
+// on it fetched; links relative where they can be. Bad input: a missing, foreign or non-SQLite
+// database is a clear error (exit 1); a moved recording is a warning and shows as missing on the
+// page, which is written all the same. A version 1 database is upgraded with the reasons its
+// reports still hold. The whole path through headless runs and a browser: test_cohort_browser.cpp.
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 
@@ -12,17 +12,19 @@
 #include <fstream>
 #include <string>
 
-#include "app/cohort.h"
-#include "app/cohort_csv.h"
-#include "app/cohort_html.h"
-#include "app/cohort_markup.h"
-#include "app/progress_db.h"
-#include "app/task_names.h"
 #include "app_test_util.h"
 #include "engine/input_error.h"
+#include "trainee/cohort.h"
+#include "trainee/cohort_csv.h"
+#include "trainee/cohort_html.h"
+#include "trainee/cohort_markup.h"
+#include "trainee/progress_db.h"
+#include "trainee/task_names.h"
 
 namespace serosa::app {
 namespace {
+
+using namespace serosa::trainee;
 
 using namespace serosa::app::testing;
 

@@ -10,8 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/shell_command.h"
 #include "app_test_util.h"
+#include "engine/shell_command.h"
 
 namespace serosa::app {
 namespace {

@@ -4,10 +4,10 @@
 
 #include <fstream>
 
-#include "app/golden.h"
 #include "app_test_util.h"
+#include "batch/golden.h"
 
-namespace serosa::app {
+namespace serosa::batch {
 namespace {
 
 using namespace serosa::app::testing;
@@ -193,4 +193,4 @@ TEST(Golden, CliExitsThreeOnMismatchOrMissingGolden) {
 }
 
 }  // namespace
-}  // namespace serosa::app
+}  // namespace serosa::batch

@@ -1,15 +1,17 @@
-// The controls panel shows by itself once per trainee (app/help_seen.h): the first session of a
+// The controls panel shows by itself once per trainee (trainee/help_seen.h): the first session of a
 // name, or of this machine without one, and never again for them; a file that cannot be written
 // shows it every time rather than never.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
-#include "app/help_seen.h"
 #include "app_test_util.h"
+#include "trainee/help_seen.h"
 
 namespace serosa::app {
 namespace {
+
+using namespace serosa::trainee;
 
 using testing::out_dir;
 

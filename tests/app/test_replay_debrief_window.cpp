@@ -12,8 +12,8 @@
 #include <fstream>
 #include <string>
 
-#include "app/shell_command.h"
 #include "app_test_util.h"
+#include "engine/shell_command.h"
 #include "read_png.h"
 #include "render/session_summary.h"
 

@@ -12,8 +12,8 @@
 
 #include "app/replay_timeline.h"
 #include "app/session_summary.h"
-#include "app/shell_command.h"
 #include "app_test_util.h"
+#include "engine/shell_command.h"
 
 namespace serosa::app {
 namespace {

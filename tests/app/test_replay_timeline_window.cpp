@@ -8,8 +8,8 @@
 #include <string>
 
 #include "app/replay_timeline.h"
-#include "app/shell_command.h"
 #include "app_test_util.h"
+#include "engine/shell_command.h"
 
 namespace serosa::app {
 namespace {

@@ -1,4 +1,4 @@
-// The batch's run gate (app/run_gate.h): a paced run never overlaps another run, ordinary runs
+// The batch's run gate (batch/run_gate.h): a paced run never overlaps another run, ordinary runs
 // overlap each other, and a paced run that waits is not overtaken by runs that start after it.
 #include <gtest/gtest.h>
 
@@ -8,9 +8,9 @@
 #include <thread>
 #include <vector>
 
-#include "app/run_gate.h"
+#include "batch/run_gate.h"
 
-namespace serosa::app {
+namespace serosa::batch {
 namespace {
 
 using namespace std::chrono_literals;
@@ -72,4 +72,4 @@ TEST(RunGate, AWaitingPacedRunGoesBeforeRunsThatComeAfterIt) {
 }
 
 }  // namespace
-}  // namespace serosa::app
+}  // namespace serosa::batch

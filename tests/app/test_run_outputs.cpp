@@ -12,9 +12,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/shell_command.h"
 #include "app_test_util.h"
 #include "engine/mesh_io.h"
+#include "engine/shell_command.h"
 
 namespace serosa::app {
 namespace {

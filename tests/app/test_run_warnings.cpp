@@ -12,9 +12,9 @@
 #include <nlohmann/json.hpp>
 
 #include "app/run_warnings.h"
-#include "app/shell_command.h"
 #include "app_test_util.h"
 #include "engine/scene.h"
+#include "engine/shell_command.h"
 
 namespace serosa::app {
 namespace {

@@ -1,6 +1,6 @@
-// The curriculum (app/task_list.h, config/tasks.toml): every shipped task's expert path passes its
-// rubric and its novice path fails it; `serosa tasks` lists them, basic first; `--task NAME` runs
-// the task's scene; a bad task list or name is a clear error naming the line.
+// The curriculum (trainee/task_list.h, config/tasks.toml): every shipped task's expert path passes
+// its rubric and its novice path fails it; `serosa tasks` lists them, basic first; `--task NAME`
+// runs the task's scene; a bad task list or name is a clear error naming the line.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -9,13 +9,15 @@
 #include <nlohmann/json.hpp>
 
 #include "app/headless.h"
-#include "app/shell_command.h"
-#include "app/task_list.h"
 #include "app_test_util.h"
 #include "engine/input_error.h"
+#include "engine/shell_command.h"
+#include "trainee/task_list.h"
 
 namespace serosa::app {
 namespace {
+
+using namespace serosa::trainee;
 
 using namespace serosa::app::testing;
 

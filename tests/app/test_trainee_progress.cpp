@@ -1,4 +1,4 @@
-// The trainees' progress in real SQLite (app/progress_db.h): sessions round-trip; the per-task
+// The trainees' progress in real SQLite (trainee/progress_db.h): sessions round-trip; the per-task
 // progress agrees with an independent count over random histories; `serosa headless --trainee`
 // files each session with its recording and report; `serosa trainee` prints the table and draws
 // the learning curve (leaving nothing beside it but the picture) and why each session failed; a
@@ -12,14 +12,16 @@
 #include <random>
 #include <string>
 
-#include "app/progress_db.h"
-#include "app/trainee_progress.h"
 #include "app_test_util.h"
 #include "engine/input_error.h"
 #include "engine/recording_reader.h"
+#include "trainee/progress_db.h"
+#include "trainee/trainee_progress.h"
 
 namespace serosa::app {
 namespace {
+
+using namespace serosa::trainee;
 
 using namespace serosa::app::testing;
 

@@ -15,13 +15,15 @@
 #include <vector>
 
 #include "app/app_test_util.h"
-#include "app/cohort_markup.h"
-#include "app/progress_db.h"
 #include "app/read_png.h"
-#include "app/task_list.h"
+#include "trainee/cohort_markup.h"
+#include "trainee/progress_db.h"
+#include "trainee/task_list.h"
 
 namespace serosa::app {
 namespace {
+
+using namespace serosa::trainee;
 
 using namespace serosa::app::testing;
 
