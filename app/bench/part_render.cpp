@@ -15,9 +15,9 @@
 
 #include "app/assemble_state.h"
 #include "app/bench/bench_parts.h"
-#include "app/compose.h"
 #include "app/render_frame_from_surface.h"
 #include "app/scenery_from_scene.h"
+#include "app/simulation.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"
 #include "render/frame_renderer.h"
@@ -39,16 +39,20 @@ struct Features {
   bool antialias = false;
 };
 
-// The default scene's frame after `seconds` of its scripted procedure, through its endoscope.
+// The default scene's frame after `seconds` of its scripted procedure, through its endoscope,
+// stepped by the headless driver.
 render::RenderFrame scene_frame(const BenchOptions& options, double seconds) {
-  const Scene scene = load_scene(options.assets_dir / ".." / "config" / "appendectomy.toml");
-  AssembledScene assembled = assemble_state(scene);
-  const TetMesh initial = assembled.state.mesh;
-  Composition comp = compose(scene, assembled);
-  SimState& state = assembled.state;
-  comp.runner->prepare(state);
-  const auto steps = static_cast<std::int64_t>(std::llround(seconds / scene.settings.dt_s));
-  for (std::int64_t k = 0; k < steps; ++k) comp.runner->step(state);
+  HeadlessOptions o;
+  o.scene = options.assets_dir / ".." / "config" / "appendectomy.toml";
+  o.progress = false;
+  o.scene_record = false;
+  o.seconds = seconds;
+  Simulation sim(o);
+  const Scene& scene = sim.scene();
+  const AssembledScene& assembled = sim.assembled();
+  const TetMesh initial = sim.state().mesh;
+  for (std::int64_t k = 0; k < sim.planned_steps(); ++k) sim.step();
+  const SimState& state = sim.state();
   render::RenderFrame f;
   fill_render_frame(
       state.mesh, state.handoff.surface, drawn_group_names(scene, assembled.group_names()), false,
