@@ -9,13 +9,12 @@
 #include <fstream>
 #include <span>
 
-#include "app/assemble_state.h"
 #include "app/assessment_report.h"
 #include "app/compose.h"
-#include "app/frame_pictures.h"
 #include "app/headless.h"
 #include "app/output_paths.h"
 #include "app/run_warnings.h"
+#include "app/simulation.h"
 #include "app/version.h"
 #include "engine/input_error.h"
 #include "engine/record_stage.h"
@@ -101,17 +100,27 @@ ReplayResult run_replay(const ReplayOptions& options) {
   if (!rec.complete)
     spdlog::warn("{}: {}; replaying the {} steps before it", file, rec.stopped, rec.inputs.size());
 
-  AssembledScene assembled = assemble_state(scene);
-  ComposeOptions co;
-  co.tool_input = std::make_unique<ReplayInputStage>(rec.inputs);
-  Composition comp = compose(scene, assembled, std::move(co));
+  // The headless driver, fed the recorded inputs instead of the scene's devices and, with
+  // verify, checking each recorded hash after the record slot.
   VerifyStage* verify = nullptr;
-  if (options.verify) {
-    auto v = std::make_unique<VerifyStage>(rec.hashes);
-    verify = v.get();
-    comp.runner->add(Slot::record, std::move(v));
-  }
-  SimState& state = assembled.state;
+  SimulationHooks hooks;
+  hooks.tool_input = [&rec] { return std::make_unique<ReplayInputStage>(rec.inputs); };
+  if (options.verify)
+    hooks.extend = [&rec, &verify](Runner& runner) {
+      auto v = std::make_unique<VerifyStage>(rec.hashes);
+      verify = v.get();
+      runner.add(Slot::record, std::move(v));
+    };
+  hooks.quiet = true;
+  const auto n = static_cast<std::uint64_t>(rec.inputs.size());
+  HeadlessOptions driven;
+  driven.steps = static_cast<std::int64_t>(n);
+  driven.frames = options.frames;  // pictures spread over the replay, first and last included
+  driven.frame_count = options.frame_count;
+  driven.fitted_camera = options.fitted_camera;
+  driven.progress = false;
+  driven.scene_record = false;
+  Simulation sim(scene, driven, std::move(hooks));
   std::vector<RunWarning> warnings;
   if (options.from_s) {
     const auto* snap = snapshot_before(rec, *options.from_s, scene.settings.dt_s);
@@ -119,8 +128,7 @@ ReplayResult run_replay(const ReplayOptions& options) {
       spdlog::info("{}: no snapshot at or before {} s; replaying from step 0", file,
                    *options.from_s);
     } else {
-      comp.runner->restore(snap->second, state,
-                           file + ": snapshot after step " + std::to_string(snap->first));
+      sim.restore(snap->second, file + ": snapshot after step " + std::to_string(snap->first));
       result.start_step = snap->first;
     }
     warnings = from_warnings(file, *options.from_s, rec.inputs.size(), scene.settings.dt_s,
@@ -128,55 +136,28 @@ ReplayResult run_replay(const ReplayOptions& options) {
     print_warnings(warnings);
   }
 
-  // Pictures spread over the replay, first and last included.
-  std::unique_ptr<FramePictures> pictures;
-  std::vector<std::uint64_t> picture_steps;
-  const auto n = static_cast<std::uint64_t>(rec.inputs.size());
-  Json report;
-  if (options.frames) {
-    pictures = std::make_unique<FramePictures>(*options.frames, scene, state.mesh,
-                                               assembled.group_names());
-    pictures->set_endoscope(!options.fitted_camera);
-    const int count = std::max(options.frame_count, 1);
-    for (int k = 0; k < count; ++k)
-      picture_steps.push_back(count == 1 ? n
-                                         : n * static_cast<std::uint64_t>(k) /
-                                               static_cast<std::uint64_t>(std::max(count - 1, 1)));
-  }
-  auto maybe_picture = [&](std::uint64_t step) {
-    if (!pictures) return;
-    if (std::find(picture_steps.begin(), picture_steps.end(), step) == picture_steps.end()) return;
-    char stem[32];
-    std::snprintf(stem, sizeof stem, "step_%06llu", static_cast<unsigned long long>(step));
-    for (const auto& png : pictures->take(state, stem)) report["frames"].push_back(png.string());
-    report["frames_camera"] = pictures->camera_used();
-    report["frames_flat"].push_back(pictures->flat_fraction());
-    report["frames_blood"].push_back(pictures->blood_fraction());
-  };
-
-  comp.runner->prepare(state);
+  const SimState& state = sim.state();
+  const Composition& comp = sim.composition();
   const auto t0 = std::chrono::steady_clock::now();
-  maybe_picture(state.step);
   for (std::uint64_t i = state.step; i < n; ++i) {
-    comp.runner->step(state);
+    sim.step();
     ++result.steps;
     if (verify && verify->divergence()) break;  // the first divergence ends the replay
-    if (verify) {
-      if (const auto it = rec.snapshots.find(state.step); it != rec.snapshots.end()) {
-        ++result.snapshots_checked;
-        result.snapshot_part =
-            first_difference(comp.runner->snapshot(state), it->second,
-                             file + ": snapshot after step " + std::to_string(it->first));
-        if (!result.snapshot_part.empty()) {
-          result.snapshot_diverged_at = state.step;
-          break;
-        }
+    if (!verify) continue;
+    if (const auto it = rec.snapshots.find(state.step); it != rec.snapshots.end()) {
+      ++result.snapshots_checked;
+      result.snapshot_part =
+          first_difference(comp.runner->snapshot(state), it->second,
+                           file + ": snapshot after step " + std::to_string(it->first));
+      if (!result.snapshot_part.empty()) {
+        result.snapshot_diverged_at = state.step;
+        break;
       }
     }
-    maybe_picture(i + 1);
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
+  Json report = sim.picture_blocks();
   report["serosa"] = std::string(version_string());
   report["recording"] = {{"file", file},
                          {"recorded_by", rec.header.get("serosa")},
@@ -197,7 +178,7 @@ ReplayResult run_replay(const ReplayOptions& options) {
   report["state_hash"] = hash_hex(state_hash(state));
   report["mesh_final"] = {{"nodes", state.mesh.num_nodes()}, {"tets", state.mesh.num_tets()}};
   if (comp.cutting) report["cutting"] = cutting_json(comp);
-  add_metrics_blocks(report, scene, comp.metrics, state.mesh, assembled.group_names());
+  add_metrics_blocks(report, scene, comp.metrics, state.mesh, sim.assembled().group_names());
   if (verify) {
     result.hashes_checked = verify->checked();
     report["verify"] = {{"hashes_recorded", rec.hashes.size()},

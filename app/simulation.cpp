@@ -128,8 +128,9 @@ Scene checked_scene(const HeadlessOptions& o) {
 Simulation::Simulation(const HeadlessOptions& options)
     : Simulation(checked_scene(options), options) {}
 
-Simulation::Simulation(Scene scene, const HeadlessOptions& options)
+Simulation::Simulation(Scene scene, const HeadlessOptions& options, SimulationHooks hooks)
     : m_options(options),
+      m_hooks(std::move(hooks)),
       m_final_format(check_outputs(options)),
       m_scene(std::move(scene)),
       m_wall0(Clock::now()) {
@@ -145,11 +146,12 @@ Simulation::Simulation(Scene scene, const HeadlessOptions& options)
   if (options.record || options.scene_record)
     m_writer = record_run(m_pipe->comp, m_scene, options.record,
                           recording_header(m_scene, m_planned), "run");
-  for (Effect e : m_pipe->comp.unavailable)
-    spdlog::warn("effect '{}' is listed by {} but not implemented in this build: not simulated",
-                 effect_name(e), m_scene.file.string());
+  if (!m_hooks.quiet)
+    for (Effect e : m_pipe->comp.unavailable)
+      spdlog::warn("effect '{}' is listed by {} but not implemented in this build: not simulated",
+                   effect_name(e), m_scene.file.string());
   start_report();
-  m_warnings = selection_warnings(m_scene, m_pipe->assembled);
+  if (!m_hooks.quiet) m_warnings = selection_warnings(m_scene, m_pipe->assembled);
   // A path given in place of the scene's may outlast the steps the scene planned for its own.
   if (options.tool_path && !options.steps && !options.seconds) {
     const std::vector<RunWarning> cut = path_warnings(m_scene, *options.tool_path, m_planned);
@@ -188,7 +190,9 @@ std::unique_ptr<Simulation::Pipeline> Simulation::build() const {
   co.validate_cuts = m_options.validate_cuts;
   for (std::size_t i = 0; i < m_python_poses.size(); ++i)
     if (m_python_poses[i]) co.live_poses.push_back({i, m_python_poses[i].get()});
+  if (m_hooks.tool_input) co.tool_input = m_hooks.tool_input();
   p->comp = compose(m_scene, p->assembled, std::move(co));
+  if (m_hooks.extend) m_hooks.extend(*p->comp.runner);
   return p;
 }
 
@@ -206,6 +210,13 @@ void Simulation::start_report() {
   if (auto preset = preset_report(m_scene)) r["preset"] = std::move(*preset);
   r["fixed"] = fixed_json(m_pipe->assembled);
   r["provenance"] = provenance_json(m_scene, m_options.overrides, m_pipe->assembled);
+}
+
+nlohmann::json Simulation::picture_blocks() const {
+  Json j = Json::object();
+  for (const char* key : {"frames", "frames_camera", "frames_flat", "frames_blood"})
+    if (m_report.contains(key)) j[key] = m_report[key];
+  return j;
 }
 
 void Simulation::plan_pictures(const std::filesystem::path& folder) {

@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -30,6 +31,20 @@ namespace serosa::app {
 
 class FramePictures;
 
+/// A run driven by something other than its scene's devices (a replay: the recorded inputs in
+/// the tools slot, a verifier after the record slot). Both are called at load and again at each
+/// restore, which composes the stages anew, so what they add always belongs to the pipeline in
+/// use.
+struct SimulationHooks {
+  /// Replaces the scripted tools stage as the source of tool inputs (ComposeOptions::tool_input).
+  std::function<std::unique_ptr<Stage>()> tool_input;
+  /// Adds stages to the composed runner.
+  std::function<void(Runner&)> extend;
+  /// Prints nothing of the scene's own (its empty selections, its effects this build lacks):
+  /// the run that was recorded said it.
+  bool quiet = false;
+};
+
 class Simulation {
  public:
   /// Checks every output `options` names, loads the scene with its overrides and tool path
@@ -38,7 +53,7 @@ class Simulation {
   explicit Simulation(const HeadlessOptions& options);
   /// The same with `scene` already loaded (a benchmark sets its solver fields directly); the
   /// options' scene and overrides are not read.
-  Simulation(Scene scene, const HeadlessOptions& options);
+  Simulation(Scene scene, const HeadlessOptions& options, SimulationHooks hooks = {});
   ~Simulation();
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
@@ -48,6 +63,9 @@ class Simulation {
   /// The steps the options asked for (--steps, --seconds, else the scene's headless.steps).
   [[nodiscard]] std::int64_t planned_steps() const noexcept { return m_planned; }
 
+  /// The pictures drawn so far: "frames" (their files), "frames_camera", "frames_flat",
+  /// "frames_blood" (docs/headless-report.md); empty without options.frames.
+  [[nodiscard]] nlohmann::json picture_blocks() const;
   /// The run's report so far (docs/headless-report.md), without the blocks only the end writes
   /// ("haptics", "recording", "export_final", "series", "vtu_series").
   [[nodiscard]] nlohmann::json report() const;
@@ -101,6 +119,7 @@ class Simulation {
   void add_stage_blocks(nlohmann::json& report) const;
 
   HeadlessOptions m_options;
+  SimulationHooks m_hooks;
   std::optional<MeshOutputFormat> m_final_format;
   Scene m_scene;
   std::int64_t m_planned = 0;
