@@ -4,20 +4,12 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "app/assemble_state.h"
 #include "app/compose.h"
+#include "app/simulation.h"
 #include "engine/input_error.h"
 #include "engine/record_stage.h"
 
 namespace serosa::app {
-
-struct ReplayController::Pipeline {
-  AssembledScene assembled;
-  Composition comp;
-  ReplayInputStage* input = nullptr;
-  RecordStage* record = nullptr;  // records only once a branch attaches its writer
-  VerifyStage* hash = nullptr;
-};
 
 ReplayController::ReplayController(const std::filesystem::path& recording,
                                    ReplayControllerOptions options)
@@ -39,7 +31,6 @@ ReplayController::ReplayController(const std::filesystem::path& recording,
   m_snapshot_every = std::max<std::uint64_t>(
       1, static_cast<std::uint64_t>(std::llround(options.snapshot_every_s / dt_s())));
   set_speed(options.speed);
-  m_initial = std::make_unique<AssembledScene>(assemble_state(m_scene));
   // The recording's own snapshots, with the hash of the step before each where one was recorded.
   for (const auto& [steps, bytes] : m_rec.snapshots) {
     if (steps == 0 || steps > num_steps()) continue;
@@ -53,30 +44,42 @@ ReplayController::ReplayController(const std::filesystem::path& recording,
 
 ReplayController::~ReplayController() = default;
 
+// A whole-state snapshot restores every stage's part too: the run goes on as recorded.
 void ReplayController::restart(const Snapshot* from) {
-  m_sim.reset();
-  auto sim = std::make_unique<Pipeline>();
-  sim->assembled = *m_initial;
-  ComposeOptions co;
-  auto input = std::make_unique<ReplayInputStage>(m_rec.inputs);
-  sim->input = input.get();
-  co.tool_input = std::move(input);
-  sim->comp = compose(m_scene, sim->assembled, std::move(co));
-  auto record = std::make_unique<RecordStage>(nullptr, m_scene.record.hash_every);
-  sim->record = record.get();
-  sim->comp.runner->add(Slot::record, std::move(record));
-  auto hash = std::make_unique<VerifyStage>(m_rec.hashes, /*every_step=*/true);
-  sim->hash = hash.get();
-  sim->comp.runner->add(Slot::record, std::move(hash));
-  // A whole-state snapshot restores every stage's part too: the run goes on as recorded.
-  if (from != nullptr) {
-    sim->comp.runner->restore(from->bytes, sim->assembled.state, m_path.string() + ": snapshot");
-    sim->hash->set_last_hash(from->hash);
+  if (!m_sim) {
+    HeadlessOptions o;
+    o.steps = static_cast<std::int64_t>(num_steps());
+    o.progress = false;
+    o.scene_record = false;
+    m_sim = std::make_unique<Simulation>(m_scene, o, hooks());
+  } else if (from == nullptr) {
+    m_sim->reset();
+  } else {
+    m_sim->restore(from->bytes, m_path.string() + ": snapshot");
   }
-  sim->comp.runner->prepare(sim->assembled.state);
-  m_sim = std::move(sim);
+  m_stages = m_next;  // the pipeline built last is in use (a restore that threw kept the old)
+  if (from != nullptr) m_stages.hash->set_last_hash(from->hash);
   ++m_restarts;
   m_exact = true;
+}
+
+SimulationHooks ReplayController::hooks() {
+  SimulationHooks h;
+  h.tool_input = [this] {
+    auto input = std::make_unique<ReplayInputStage>(m_rec.inputs);
+    m_next.input = input.get();
+    return input;
+  };
+  h.extend = [this](Runner& runner) {
+    auto record = std::make_unique<RecordStage>(nullptr, m_scene.record.hash_every);
+    m_next.record = record.get();
+    runner.add(Slot::record, std::move(record));
+    auto hash = std::make_unique<VerifyStage>(m_rec.hashes, /*every_step=*/true);
+    m_next.hash = hash.get();
+    runner.add(Slot::record, std::move(hash));
+  };
+  h.quiet = true;  // the recorded run said what there was to say of its scene
+  return h;
 }
 
 void ReplayController::set_speed(double speed) {
@@ -85,16 +88,16 @@ void ReplayController::set_speed(double speed) {
 
 bool ReplayController::step_forward() {
   if (at_end()) return false;
-  SimState& s = m_sim->assembled.state;
+  const SimState& s = m_sim->state();
   if (m_branch_step) feed_recorded_inputs();
-  m_sim->comp.runner->step(s);
+  m_sim->step();
   if (m_branch_step) {
     record_branch_snapshot_if_due();
     return true;
   }
   if (s.step % m_snapshot_every == 0 && m_exact && s.handoff.cuts.empty() &&
       !m_snapshots.contains(s.step))
-    m_snapshots.emplace(s.step, Snapshot{m_sim->comp.runner->snapshot(s), last_step_hash()});
+    m_snapshots.emplace(s.step, Snapshot{m_sim->snapshot(), last_step_hash()});
   return true;
 }
 
@@ -104,17 +107,17 @@ void ReplayController::feed_recorded_inputs() {
   if (k >= num_steps()) return;
   const std::vector<ToolState>& recorded = m_rec.inputs[k];
   for (std::size_t i = 0; i < m_driven.size() && i < recorded.size(); ++i)
-    if (!m_driven[i]) m_sim->input->set_live(i, recorded[i]);
+    if (!m_driven[i]) m_stages.input->set_live(i, recorded[i]);
 }
 
 // As Runner::record_snapshots: at the first step on or after each multiple of the cadence that has
 // no cut in flight (the FEM stage takes a step's cuts at the next one).
 void ReplayController::record_branch_snapshot_if_due() {
-  const SimState& s = m_sim->assembled.state;
+  const SimState& s = m_sim->state();
   if (m_branch_closed || m_branch_snapshot_every == 0 || s.step < m_branch_next_snapshot ||
       !s.handoff.cuts.empty())
     return;
-  m_branch_writer->record_snapshot(s.step, m_sim->comp.runner->snapshot(s));
+  m_branch_writer->record_snapshot(s.step, m_sim->snapshot());
   m_branch_next_snapshot = (s.step / m_branch_snapshot_every + 1) * m_branch_snapshot_every;
 }
 
@@ -181,8 +184,8 @@ void ReplayController::branch(const std::filesystem::path& branch_file) {
   m_branch_step = k;
   m_exact = false;  // from here on the run is the branch, not the recording
   m_driven.assign(m_scene.tools.size(), false);
-  m_sim->input->go_live(m_sim->assembled.state.tools);
-  m_sim->record->attach(m_branch_writer.get());
+  m_stages.input->go_live(m_sim->state().tools);
+  m_stages.record->attach(m_branch_writer.get());
 }
 
 // The parent's inputs, hashes and snapshots before step k, so that the branch replays from step 0
@@ -199,7 +202,7 @@ void ReplayController::copy_prefix(std::uint64_t k) {
 
 void ReplayController::set_tool_input(std::size_t i, const ToolState& input) {
   if (!m_branch_step || m_branch_closed) throw std::logic_error("not in a branch");
-  m_sim->input->set_live(i, input);
+  m_stages.input->set_live(i, input);
   m_driven.at(i) = true;
 }
 
@@ -210,25 +213,25 @@ bool ReplayController::recording_drives(std::size_t i) const {
 
 void ReplayController::end_branch() {
   if (!m_branch_writer || m_branch_closed) return;
-  m_sim->record->attach(nullptr);
+  m_stages.record->attach(nullptr);
   m_branch_writer->close(steps_taken());
   m_branch_closed = true;
 }
 
-std::uint64_t ReplayController::steps_taken() const { return m_sim->assembled.state.step; }
-double ReplayController::time_s() const { return m_sim->assembled.state.time_s; }
+std::uint64_t ReplayController::steps_taken() const { return m_sim->state().step; }
+double ReplayController::time_s() const { return m_sim->state().time_s; }
 std::optional<std::uint64_t> ReplayController::last_step_hash() const {
-  return m_sim->hash->last_hash();
+  return m_stages.hash->last_hash();
 }
-std::uint64_t ReplayController::hashes_checked() const { return m_sim->hash->checked(); }
+std::uint64_t ReplayController::hashes_checked() const { return m_stages.hash->checked(); }
 std::optional<std::uint64_t> ReplayController::diverged_at() const {
-  const auto& d = m_sim->hash->divergence();
+  const auto& d = m_stages.hash->divergence();
   return d ? std::optional<std::uint64_t>(d->step) : std::nullopt;
 }
-const SimState& ReplayController::state() const { return m_sim->assembled.state; }
-const Composition& ReplayController::composition() const { return m_sim->comp; }
+const SimState& ReplayController::state() const { return m_sim->state(); }
+const Composition& ReplayController::composition() const { return m_sim->composition(); }
 std::map<int, std::string> ReplayController::group_names() const {
-  return m_initial->group_names();
+  return m_sim->assembled().group_names();
 }
 
 }  // namespace serosa::app

@@ -31,10 +31,17 @@
 #include "engine/scene.h"
 #include "engine/sim_state.h"
 
+namespace serosa::recording {
+class RecordStage;
+class ReplayInputStage;
+class VerifyStage;
+}  // namespace serosa::recording
+
 namespace serosa::app {
 
-struct AssembledScene;
 struct Composition;
+class Simulation;
+struct SimulationHooks;
 
 struct ReplayControllerOptions {
   double snapshot_every_s = 1.0;  ///< simulated time between snapshots, s (> 0)
@@ -124,18 +131,27 @@ class ReplayController {
   [[nodiscard]] std::map<int, std::string> group_names() const;
 
  private:
-  struct Pipeline;
+  /// The stages the controller talks to, in the driver's pipeline.
+  struct Stages {
+    recording::ReplayInputStage* input = nullptr;
+    recording::RecordStage* record = nullptr;  // records only once a branch attaches its writer
+    recording::VerifyStage* hash = nullptr;
+  };
   struct Snapshot {
     std::vector<std::uint8_t> bytes;    // Runner::snapshot
     std::optional<std::uint64_t> hash;  // last_step_hash() there, when known
   };
   void restart(const Snapshot* from);
+  /// The recorded inputs, the record stage and the hash check, composed into each pipeline the
+  /// driver builds (into m_next: m_stages once the pipeline is in use).
+  SimulationHooks hooks();
 
   recording::Recording m_rec;
   Scene m_scene;
   ReplayControllerOptions m_options;
-  std::unique_ptr<AssembledScene> m_initial;  // the scene at step 0, copied on restarts
-  std::unique_ptr<Pipeline> m_sim;
+  std::unique_ptr<Simulation> m_sim;              // the headless driver, fed the recorded inputs
+  Stages m_stages;                                // of the pipeline in use
+  Stages m_next;                                  // of the pipeline the driver built last
   std::map<std::uint64_t, Snapshot> m_snapshots;  // steps taken -> snapshot
   std::uint64_t m_snapshot_every = 1;             // steps
   double m_speed = 1.0;

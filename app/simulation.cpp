@@ -312,6 +312,17 @@ void Simulation::restore(std::span<const std::uint8_t> bytes, const std::string&
   m_details.resize(m_pipe->assembled.state.step);
 }
 
+void Simulation::reset() {
+  if (m_writer)
+    throw std::logic_error("this run records to " + m_writer->path().string() +
+                           ": a reset would break the recording");
+  std::unique_ptr<Pipeline> fresh = build();
+  fresh->comp.runner->prepare(fresh->assembled.state);
+  m_pipe = std::move(fresh);
+  m_step_ms.clear();
+  m_details.clear();
+}
+
 void Simulation::add_run_blocks(Json& report) const {
   const SimState& state = m_pipe->assembled.state;
   report["steps_taken"] = state.step;

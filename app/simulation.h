@@ -90,6 +90,9 @@ class Simulation {
   /// run goes on bit for bit as from where the snapshot was taken. InputError naming `what` on
   /// damaged bytes. Not while recording (the recording would no longer be one run).
   void restore(std::span<const std::uint8_t> bytes, const std::string& what);
+  /// Back to the scene's initial state in freshly composed stages, as at load. Not while
+  /// recording.
+  void reset();
 
   [[nodiscard]] const Scene& scene() const noexcept { return m_scene; }
   [[nodiscard]] const SimState& state() const noexcept { return m_pipe->assembled.state; }
