@@ -28,6 +28,7 @@
 #include "app/scenery_from_scene.h"
 #include "app/scope_control.h"
 #include "app/session_summary.h"
+#include "app/simulation.h"
 #include "app/summary_screen.h"
 #include "app/view_log.h"
 #include "app/window_interrupt.h"
@@ -72,15 +73,17 @@ struct Control {
   std::atomic<bool> finished{false};  // set by the solver thread when it stops (error or stop)
 };
 
-// The solver thread: fixed dt, paced to real time, one published frame per step.
+// The solver thread: fixed dt, paced to real time, one published frame per step, stepping the
+// headless driver.
 class SolverLoop {
  public:
-  SolverLoop(const Scene& scene, AssembledScene& assembled, Composition& comp, float aspect,
-             TripleBuffer<render::RenderFrame>& frames, Control& control)
-      : m_scene(scene),
-        m_state(assembled.state),
-        m_comp(comp),
-        m_names(drawn_group_names(scene, assembled.group_names())),
+  SolverLoop(Simulation& sim, float aspect, TripleBuffer<render::RenderFrame>& frames,
+             Control& control)
+      : m_scene(sim.scene()),
+        m_sim(sim),
+        m_state(sim.state()),
+        m_comp(sim.composition()),
+        m_names(drawn_group_names(sim.scene(), sim.assembled().group_names())),
         m_aspect(aspect),
         m_frames(frames),
         m_control(control) {}
@@ -98,19 +101,15 @@ class SolverLoop {
   [[nodiscard]] std::int64_t steps() const { return m_steps; }
   /// Whether the last frame published was the endoscope's view (read once the loop has stopped).
   [[nodiscard]] bool through_scope() const { return m_through_scope; }
-  /// Wall time of each solver step taken, ms (read after the loop's thread has ended).
-  [[nodiscard]] const std::vector<double>& step_ms() const { return m_step_times; }
 
  private:
   void loop(const std::stop_token& stop) {
     m_drawn.emplace(m_state.mesh);  // the uncut mesh: the wound reference
     m_scenery = scenery_from_scene(m_scene, m_state.mesh);
     m_version = m_state.mesh.topology_version;
-    m_comp.runner->prepare(m_state);  // before the clock starts
-    publish();
+    publish();  // the driver prepared the first step before the clock starts
     const auto dt = std::chrono::duration_cast<Clock::duration>(
         std::chrono::duration<double>(m_scene.settings.dt_s));
-    m_step_times.reserve(1 << 18);  // 22 min at 200 Hz before the solver thread allocates
     // The state at simulated time t is published no earlier than wall time t: each step starts
     // one dt after the one before (the first one dt after the start, or after a pause), so the
     // trainee never sees the solver ahead of the clock.
@@ -126,11 +125,9 @@ class SolverLoop {
       }
       std::this_thread::sleep_until(next);  // returns at once when behind
       if (stop.stop_requested()) break;
-      const auto t0 = Clock::now();
-      m_comp.runner->step(m_state);
-      const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+      m_sim.step();
+      const double ms = m_sim.step_ms().back();
       m_step_ms = m_step_ms == 0.0 ? ms : 0.9 * m_step_ms + 0.1 * ms;
-      m_step_times.push_back(ms);
       ++rate_steps;
       const auto now = Clock::now();
       ++m_steps;
@@ -227,8 +224,9 @@ class SolverLoop {
   }
 
   const Scene& m_scene;
-  SimState& m_state;
-  Composition& m_comp;
+  Simulation& m_sim;
+  const SimState& m_state;  // the driver's (a session never restores: always the same)
+  const Composition& m_comp;
   std::map<int, std::string> m_names;
   bool m_through_scope = false;  // the last frame published was the endoscope's view
   float m_aspect;
@@ -239,7 +237,6 @@ class SolverLoop {
   std::uint64_t m_version = 0;          // topology the last frame showed (counts cuts)
   std::optional<render::Camera> m_fitted;
   double m_step_ms = 0.0;
-  std::vector<double> m_step_times;  // (steps) wall time of each step, ms
   double m_rate_hz = 0.0;
   std::int64_t m_cuts = 0;
   bool m_slow = false;
@@ -262,29 +259,40 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
   if (so.report) check_output_file("--report", *so.report);
   if (so.view_log) check_output_file("--view-log", *so.view_log);
   if (!snapshot.empty()) check_output_file("--snapshot", snapshot);
-  Scene scene = load_scene(scene_path);
-  ComposeOptions co;
+  Scene loaded = load_scene(scene_path);
+  std::vector<std::optional<ToolState>> rest_pose;  // how the mouse's instruments rest
+  std::vector<LivePoseStage::Source> live_poses;
   std::unique_ptr<ScopeControl> scope;  // the endoscope in the trainee's hands
   if (so.tool_path) {
-    play_tool_path(scene, *so.tool_path);
-  } else if (auto given = give_instruments_to_trainee(scene, haptics::rig_plugged_in())) {
+    play_tool_path(loaded, *so.tool_path);
+  } else if (auto given = give_instruments_to_trainee(loaded, haptics::rig_plugged_in())) {
     spdlog::info("the instruments follow the {} (serosa headless plays the scene's script)",
                  given->device == DeviceKind::kRig ? "rig" : "mouse and keyboard");
-    co.mouse_rest_pose = std::move(given->start_pose);
+    rest_pose = std::move(given->start_pose);
     for (std::size_t i = 0; i < given->scope_start.size() && !scope; ++i) {
       if (!given->scope_start[i]) continue;
-      scope = std::make_unique<ScopeControl>(scene.tools[i], *given->scope_start[i]);
-      co.live_poses.push_back({i, &scope->pose()});
+      scope = std::make_unique<ScopeControl>(loaded.tools[i], *given->scope_start[i]);
+      live_poses.push_back({i, &scope->pose()});
       spdlog::info("the endoscope follows the right mouse button, I/K and ,/.");
     }
   }
-  AssembledScene assembled = assemble_state(scene);
-  co.realtime_haptics = true;  // the trainee's machine: SCHED_FIFO when granted
-  Composition comp = compose(scene, assembled, std::move(co));
-  const std::unique_ptr<recording::RecordingWriter> writer =
-      record_run(comp, scene, so.record, recording_header(scene, 0), "session");
-  for (Effect e : comp.unavailable)
-    spdlog::warn("effect '{}' is not implemented in this build: not simulated", effect_name(e));
+  SimulationHooks hooks;
+  hooks.compose = [&rest_pose, &live_poses](ComposeOptions& co) {
+    co.mouse_rest_pose = rest_pose;
+    co.live_poses = live_poses;
+    co.realtime_haptics = true;  // the trainee's machine: SCHED_FIFO when granted
+  };
+  hooks.caller_paces = true;
+  hooks.run_name = "session";
+  HeadlessOptions driven;
+  driven.steps = 0;  // open-ended: the trainee ends it
+  driven.record = so.record;
+  driven.progress = false;
+  Simulation sim(std::move(loaded), driven, std::move(hooks));
+  sim.reserve(std::int64_t{1} << 18);  // 22 min at 200 Hz before the solver thread allocates
+  const Scene& scene = sim.scene();
+  const Composition& comp = sim.composition();
+  const SimState& state = sim.state();
   const bool mouse = comp.haptics != nullptr && comp.haptics->device_kind() == DeviceKind::kMouse;
   const bool in_hands =
       comp.haptics != nullptr && comp.haptics->device_kind() != DeviceKind::kScript;
@@ -318,9 +326,8 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
   TripleBuffer<render::RenderFrame> frames;
   Control control;
   SolverLoop loop(
-      scene, assembled, comp,
-      static_cast<float>(window.width()) / static_cast<float>(std::max(window.height(), 1)), frames,
-      control);
+      sim, static_cast<float>(window.width()) / static_cast<float>(std::max(window.height(), 1)),
+      frames, control);
   {
     // Before the solver starts, so that the report's wall time covers every step it paced.
     const auto start = Clock::now();
@@ -421,17 +428,17 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
     solver.join();
     const double wall = std::chrono::duration<double>(Clock::now() - start).count();
     spdlog::info("session: {} frames drawn in {:.1f} s, simulated {:.2f} s{}", frames_drawn, wall,
-                 assembled.state.time_s, interrupts.interrupted() ? " (interrupted)" : "");
+                 state.time_s, interrupts.interrupted() ? " (interrupted)" : "");
     // The solver has stopped: the haptic loop next (motors off), then the recording.
     nlohmann::json report;
     report["scene"] = std::filesystem::absolute(scene.file).lexically_normal().string();
     report["frames_drawn"] = frames_drawn;
     report["wall_time_s"] = wall;
     report["steps_taken"] = loop.steps();
-    report["simulated_time_s"] = assembled.state.time_s;
+    report["simulated_time_s"] = state.time_s;
     // Paced to the clock, so at most 1: below it the trainee saw slow motion.
-    report["real_time_factor"] = wall > 0.0 ? assembled.state.time_s / wall : 0.0;
-    report["step_time_ms"] = step_time_json(loop.step_ms());
+    report["real_time_factor"] = wall > 0.0 ? state.time_s / wall : 0.0;
+    report["step_time_ms"] = step_time_json(sim.step_ms());
     report["frames_per_s"] = wall > 0.0 ? static_cast<double>(frames_drawn) / wall : 0.0;
     report["render"] = {{"tessellation_asked", asked_tessellation},
                         {"tessellation_drawn", pacer.tessellation()},
@@ -443,10 +450,9 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
                         {"camera", loop.through_scope() ? "endoscope" : "fitted"}};
     if (snapshot_flat) report["render"]["snapshot_flat"] = *snapshot_flat;
     report["interrupted"] = interrupts.interrupted();
-    if (comp.haptics != nullptr) report["haptics"] = comp.haptics->telemetry_json();
-    if (writer) report["recording"] = close_recording(*writer, scene, assembled.state.step);
-    add_metrics_blocks(report, scene, comp.metrics, assembled.state.mesh, assembled.group_names());
-    report["state_hash"] = hash_hex(state_hash(assembled.state));
+    report.update(sim.stop());  // the haptic loop (motors off), then the recording
+    add_metrics_blocks(report, scene, comp.metrics, state.mesh, sim.assembled().group_names());
+    report["state_hash"] = hash_hex(state_hash(state));
     if (comp.cutting) report["cutting"] = cutting_json(comp);  // as headless reports it
     if (so.report) {
       std::ofstream out(*so.report);

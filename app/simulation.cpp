@@ -145,7 +145,7 @@ Simulation::Simulation(Scene scene, const HeadlessOptions& options, SimulationHo
   // Record: the last stage, after everything the step changed.
   if (options.record || options.scene_record)
     m_writer = record_run(m_pipe->comp, m_scene, options.record,
-                          recording_header(m_scene, m_planned), "run");
+                          recording_header(m_scene, m_planned), m_hooks.run_name);
   if (!m_hooks.quiet)
     for (Effect e : m_pipe->comp.unavailable)
       spdlog::warn("effect '{}' is listed by {} but not implemented in this build: not simulated",
@@ -166,7 +166,7 @@ Simulation::Simulation(Scene scene, const HeadlessOptions& options, SimulationHo
   if (options.series) m_series.emplace(*options.series, m_scene);
   if (options.vtu_series) m_vtu.emplace(*options.vtu_series, options.vtu_every);
   if (m_vtu) m_vtu->add(m_pipe->assembled.state);
-  m_paced = m_pipe->comp.haptics && m_pipe->comp.haptics->driven_by_rig();
+  m_paced = !m_hooks.caller_paces && m_pipe->comp.haptics && m_pipe->comp.haptics->driven_by_rig();
   m_step_ms.reserve(static_cast<std::size_t>(m_planned));  // no growth while the run steps
   m_details.reserve(static_cast<std::size_t>(m_planned));
 }
@@ -174,7 +174,7 @@ Simulation::Simulation(Scene scene, const HeadlessOptions& options, SimulationHo
 Simulation::~Simulation() {
   // A run dropped without finish() (an exception, a Python object collected) still leaves a
   // readable recording behind.
-  if (m_writer && !m_finished) {
+  if (m_writer && !m_stopped) {
     try {
       m_writer->close(m_pipe->assembled.state.step);
     } catch (const std::exception& e) {
@@ -191,6 +191,7 @@ std::unique_ptr<Simulation::Pipeline> Simulation::build() const {
   for (std::size_t i = 0; i < m_python_poses.size(); ++i)
     if (m_python_poses[i]) co.live_poses.push_back({i, m_python_poses[i].get()});
   if (m_hooks.tool_input) co.tool_input = m_hooks.tool_input();
+  if (m_hooks.compose) m_hooks.compose(co);
   p->comp = compose(m_scene, p->assembled, std::move(co));
   if (m_hooks.extend) m_hooks.extend(*p->comp.runner);
   return p;
@@ -310,6 +311,20 @@ void Simulation::restore(std::span<const std::uint8_t> bytes, const std::string&
   // The per-step timings follow the steps: those after the snapshot's are no longer this run's.
   m_step_ms.resize(m_pipe->assembled.state.step, 0.0);
   m_details.resize(m_pipe->assembled.state.step);
+}
+
+Json Simulation::stop() {
+  Json j = Json::object();
+  if (m_stopped) return j;
+  m_stopped = true;
+  if (m_pipe->comp.haptics) j["haptics"] = m_pipe->comp.haptics->telemetry_json();  // stops it
+  if (m_writer) j["recording"] = close_recording(*m_writer, m_scene, m_pipe->assembled.state.step);
+  return j;
+}
+
+void Simulation::reserve(std::int64_t steps) {
+  m_step_ms.reserve(static_cast<std::size_t>(std::max<std::int64_t>(steps, 0)));
+  m_details.reserve(static_cast<std::size_t>(std::max<std::int64_t>(steps, 0)));
 }
 
 void Simulation::reset() {
@@ -432,9 +447,7 @@ Json Simulation::finish(bool interrupted) {
   SimState& state = m_pipe->assembled.state;
   if (!m_step0) take_picture_if_due(static_cast<std::int64_t>(state.step));
   Json report = m_report;
-  if (m_pipe->comp.haptics)
-    report["haptics"] = m_pipe->comp.haptics->telemetry_json();  // stops the loop
-  if (m_writer) report["recording"] = close_recording(*m_writer, m_scene, state.step);
+  report.update(stop());
   add_run_blocks(report);
   if (interrupted) report["interrupted"] = true;
   if (m_pipe->comp.fem) print_warnings(solver_warnings(m_scene.solver, m_pipe->comp.fem->stats()));

@@ -40,6 +40,14 @@ struct SimulationHooks {
   std::function<std::unique_ptr<Stage>()> tool_input;
   /// Adds stages to the composed runner.
   std::function<void(Runner&)> extend;
+  /// Sets what else the composition needs (a trainee session: the mouse's rest poses, the
+  /// endoscope in the trainee's hands, real-time haptics).
+  std::function<void(ComposeOptions&)> compose;
+  /// The caller keeps the wall-clock pace (the session's solver loop): step() never waits for
+  /// a rig's hands.
+  bool caller_paces = false;
+  /// Names the run in the message that it is not recorded ("run", "session").
+  const char* run_name = "run";
   /// Prints nothing of the scene's own (its empty selections, its effects this build lacks):
   /// the run that was recorded said it.
   bool quiet = false;
@@ -73,6 +81,13 @@ class Simulation {
   /// mesh and the report file the options name; returns the whole report. Once. `interrupted`:
   /// the run stopped before its planned steps (the report says so).
   nlohmann::json finish(bool interrupted = false);
+  /// Stops the haptic loop (motors off), then closes the recording; returns their blocks of the
+  /// report ("haptics", "recording"), those the run has. Once (finish() calls it; later calls
+  /// return nothing).
+  nlohmann::json stop();
+  /// Room for `steps` steps' timings: an open-ended run (a session) allocates none while it
+  /// steps, up to that many.
+  void reserve(std::int64_t steps);
 
   /// Poses tool `tool` (index into Scene::tools) for the next step. Throws std::invalid_argument
   /// naming it unless its device is "python".
@@ -148,6 +163,7 @@ class Simulation {
   std::vector<StepDetail> m_details;                             // (steps) where it went
   bool m_paced = false;  // a rig's hand moves in wall-clock time: no faster than real time
   bool m_finished = false;
+  bool m_stopped = false;  // stop(): the haptic loop stopped, the recording closed
 };
 
 }  // namespace serosa::app
