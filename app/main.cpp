@@ -8,6 +8,7 @@
 
 #include "app/command.h"
 #include "app/heap_policy.h"
+#include "bench/suite/cmd_bench.h"
 #include "engine/input_error.h"
 
 int main(int argc, char** argv) {
@@ -25,7 +26,7 @@ int main(int argc, char** argv) {
   serosa::app::add_run_command(cli, action);
   serosa::app::add_replay_command(cli, action);
   serosa::app::add_cut_command(cli, action);
-  serosa::app::add_bench_command(cli, action);
+  serosa::bench::add_bench_command(cli, action);
   serosa::app::add_trainee_command(cli, action);
   serosa::app::add_cohort_command(cli, action);
   serosa::app::add_tasks_command(cli, action);

@@ -1,5 +1,5 @@
 // Measurement helpers shared by the FEM benchmarks (bench/fem) and `serosa bench fem`
-// (app/bench/part_fem.cpp), so that both measure accuracy and time the same way: a structured
+// (bench/suite/part_fem.cpp), so that both measure accuracy and time the same way: a structured
 // bar of Kuhn-subdivided cubes, a timed run of implicit steps, the displacement error against a
 // reference run, and the sag of a free end.
 #pragma once

@@ -1,4 +1,4 @@
-// The `serosa bench` framework (app/bench/bench_table.h, bench_registry.h): CSV writing and
+// The `serosa bench` framework (bench/suite/bench_table.h, bench_registry.h): CSV writing and
 // quoting, check_monotone catching violations and honouring its tolerances, the gnuplot script
 // naming the right columns and refusing missing tables or columns, the runner reporting a part
 // that throws, an empty table, a failed check, and summary.json.
@@ -11,10 +11,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "app/bench/bench_registry.h"
 #include "app_test_util.h"
+#include "bench/suite/bench_registry.h"
 
-namespace serosa::app::bench {
+namespace serosa::bench {
 namespace {
 
 namespace fs = std::filesystem;
@@ -34,7 +34,7 @@ Table sweep(std::vector<double> knob, std::vector<double> value) {
 }
 
 TEST(BenchTable, CsvQuotesSettingsAndWritesNineDigits) {
-  const fs::path dir = testing::out_dir("bench_csv");
+  const fs::path dir = app::testing::out_dir("bench_csv");
   Table t{"t", {"ms_per_step", "rel_error"}, {}, {}};
   t.add("cg tol=1e-4, warm", {1.5, 1.0 / 3.0});
   t.add("say \"hi\"", {2.0, 1e-12});
@@ -145,7 +145,7 @@ PartResult bad_part(const BenchOptions&) {
 PartResult throwing_part(const BenchOptions&) { throw std::runtime_error("solver exploded"); }
 
 TEST(BenchRunner, ReportsEachFailureByPartAndWritesSummaryJson) {
-  const fs::path dir = testing::out_dir("bench_runner");
+  const fs::path dir = app::testing::out_dir("bench_runner");
   RunnerOptions o;
   o.bench.out = dir;
   o.plots = false;  // the CLI test draws; here only the scripts
@@ -197,4 +197,4 @@ TEST(BenchRegistry, ListsTheBuiltPartsOnceEach) {
 }
 
 }  // namespace
-}  // namespace serosa::app::bench
+}  // namespace serosa::bench

@@ -1,5 +1,5 @@
-// `serosa bench` parts cutting, surface, tessellation and haptics (app/bench/part_*.cpp), each run
-// with quick = true: the tables' shapes, the plots and checks naming real columns, every
+// `serosa bench` parts cutting, surface, tessellation and haptics (bench/suite/part_*.cpp), each
+// run with quick = true: the tables' shapes, the plots and checks naming real columns, every
 // monotone check holding, the CSV files written, and the physics each part claims.
 #include <gtest/gtest.h>
 
@@ -8,11 +8,11 @@
 #include <filesystem>
 #include <string>
 
-#include "app/bench/bench_parts.h"
 #include "app_test_util.h"
+#include "bench/suite/bench_parts.h"
 #include "surface/extract_surface.h"
 
-namespace serosa::app::bench {
+namespace serosa::bench {
 namespace {
 
 namespace fs = std::filesystem;
@@ -20,8 +20,8 @@ namespace fs = std::filesystem;
 BenchOptions quick_options(const std::string& name) {
   BenchOptions o;
   o.quick = true;
-  o.out = testing::out_dir("bench_parts_b_" + name);
-  o.assets_dir = testing::source("assets");
+  o.out = app::testing::out_dir("bench_parts_b_" + name);
+  o.assets_dir = app::testing::source("assets");
   return o;
 }
 
@@ -161,4 +161,4 @@ TEST(BenchPartsB, HapticsErrorFallsAndStabilityIsLostNearColgatesBound) {
 }
 
 }  // namespace
-}  // namespace serosa::app::bench
+}  // namespace serosa::bench

@@ -2,7 +2,7 @@
 // A part measures one or more knobs; for each knob setting it adds a row to a Table (accuracy
 // and time side by side), names the Plots to draw from the tables (accuracy on one axis, time on
 // the other), and the MonotoneChecks that must hold on accuracy (never on timings: they drift).
-// The command (app/bench/cmd_bench.cpp) writes every table as CSV, draws every plot with
+// The command (bench/suite/cmd_bench.cpp) writes every table as CSV, draws every plot with
 // gnuplot, runs the checks and fails on a violated one.
 #pragma once
 
@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-namespace serosa::app::bench {
+namespace serosa::bench {
 
 /// How a part runs.
 struct BenchOptions {
@@ -85,4 +85,4 @@ struct PartResult {
 /// has fewer than two rows).
 [[nodiscard]] std::string check_monotone(const Table& table, const MonotoneCheck& check);
 
-}  // namespace serosa::app::bench
+}  // namespace serosa::bench

@@ -14,13 +14,15 @@
 #include <vector>
 
 #include "app/assemble_state.h"
-#include "app/bench/bench_parts.h"
 #include "app/compose.h"
 #include "app/simulation.h"
+#include "bench/suite/bench_parts.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"
 
-namespace serosa::app::bench {
+namespace serosa::bench {
+
+using namespace serosa::app;  // the driver and the composition the scenes run on
 
 namespace {
 
@@ -182,4 +184,4 @@ PartResult run_scenes_part(const BenchOptions& options) {
   return result;
 }
 
-}  // namespace serosa::app::bench
+}  // namespace serosa::bench

@@ -12,14 +12,14 @@
 #include <string>
 #include <vector>
 
-#include "app/bench/bench_parts.h"
+#include "bench/suite/bench_parts.h"
 #include "cutting/cut_accuracy.h"
 #include "cutting/cut_method.h"
 #include "cutting/tet_bvh.h"
 #include "engine/kuhn_grid.h"
 #include "engine/topology_delta.h"
 
-namespace serosa::app::bench {
+namespace serosa::bench {
 namespace {
 
 using cutting::ConvexPolygon;
@@ -178,4 +178,4 @@ PartResult run_cutting_part(const BenchOptions& options) {
   return result;
 }
 
-}  // namespace serosa::app::bench
+}  // namespace serosa::bench

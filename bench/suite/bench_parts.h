@@ -1,11 +1,11 @@
-// The parts of `serosa bench`, one file each (app/bench/part_<name>.cpp). Each measures
+// The parts of `serosa bench`, one file each (bench/suite/part_<name>.cpp). Each measures
 // its knobs, accuracy against time, and returns tables, plots and monotonicity checks
 // (bench_table.h). With options.quick a part must finish in well under 30 s on the 2-core machine.
 #pragma once
 
-#include "app/bench/bench_table.h"
+#include "bench/suite/bench_table.h"
 
-namespace serosa::app::bench {
+namespace serosa::bench {
 
 /// Cutting: pattern vs element removal vs node snapping — volume lost, distance of the cut surface
 /// from the blade path, tets created, minimum quality — against ms per cut.
@@ -29,4 +29,4 @@ PartResult run_render_part(const BenchOptions& options);
 /// Surface extraction full vs incremental, CPU vs GPU: the same result, time only.
 PartResult run_surface_part(const BenchOptions& options);
 
-}  // namespace serosa::app::bench
+}  // namespace serosa::bench

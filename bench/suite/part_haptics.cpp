@@ -20,11 +20,11 @@
 #include <string>
 #include <vector>
 
-#include "app/bench/bench_parts.h"
+#include "bench/suite/bench_parts.h"
 #include "haptics/contact_model.h"
 #include "haptics/force_renderer.h"
 
-namespace serosa::app::bench {
+namespace serosa::bench {
 namespace {
 
 using haptics::ContactModel;
@@ -197,4 +197,4 @@ PartResult run_haptics_part(const BenchOptions& options) {
   return result;
 }
 
-}  // namespace serosa::app::bench
+}  // namespace serosa::bench

@@ -23,14 +23,16 @@
 #include <vector>
 
 #include "app/assemble_state.h"
-#include "app/bench/bench_parts.h"
 #include "app/compose.h"
+#include "bench/suite/bench_parts.h"
 #include "engine/presets.h"
 #include "engine/scene.h"
 #include "fem/bench_support.h"
 #include "fem/implicit_integrator.h"
 
-namespace serosa::app::bench {
+namespace serosa::bench {
+
+using namespace serosa::app;  // the driver and the composition the scenes run on
 
 namespace {
 
@@ -328,4 +330,4 @@ PartResult run_fem_part(const BenchOptions& options) {
   return result;
 }
 
-}  // namespace serosa::app::bench
+}  // namespace serosa::bench

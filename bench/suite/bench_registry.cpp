@@ -1,7 +1,7 @@
-#include "app/bench/bench_registry.h"
-#include "app/bench/bench_parts.h"
+#include "bench/suite/bench_registry.h"
+#include "bench/suite/bench_parts.h"
 
-namespace serosa::app::bench {
+namespace serosa::bench {
 
 // One line per part, in run order. A part's file adds its line here once it compiles.
 const std::vector<PartEntry>& registered_parts() {
@@ -14,4 +14,4 @@ const std::vector<PartEntry>& registered_parts() {
   return parts;
 }
 
-}  // namespace serosa::app::bench
+}  // namespace serosa::bench

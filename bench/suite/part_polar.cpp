@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "app/bench/bench_parts.h"
+#include "bench/suite/bench_parts.h"
 #include "fem/rotation.h"
 
-namespace serosa::app::bench {
+namespace serosa::bench {
 
 namespace {
 
@@ -159,4 +159,4 @@ PartResult run_polar_part(const BenchOptions& options) {
   return result;
 }
 
-}  // namespace serosa::app::bench
+}  // namespace serosa::bench

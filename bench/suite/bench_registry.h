@@ -1,4 +1,4 @@
-// The parts `serosa bench` knows (app/bench/bench_registry.cpp lists them, in run order) and the
+// The parts `serosa bench` knows (bench/suite/bench_registry.cpp lists them, in run order) and the
 // runner that executes a selection of them: runs each part, writes its tables as CSV, draws its
 // plots with gnuplot, runs its monotonicity checks, and reports everything (summary.json).
 #pragma once
@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "app/bench/bench_table.h"
+#include "bench/suite/bench_table.h"
 
-namespace serosa::app::bench {
+namespace serosa::bench {
 
 /// One part: its command-line name and the function that measures it.
 struct PartEntry {
@@ -80,4 +80,4 @@ void write_summary_json(const BenchReport& report, const std::filesystem::path& 
 /// Prints the human summary: per part its wall time, files, checks (ok / FAILED and why), notes.
 void print_summary(const BenchReport& report, std::ostream& os);
 
-}  // namespace serosa::app::bench
+}  // namespace serosa::bench

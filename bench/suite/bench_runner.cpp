@@ -12,10 +12,10 @@
 #include <set>
 #include <stdexcept>
 
-#include "app/bench/bench_registry.h"
+#include "bench/suite/bench_registry.h"
 #include "engine/shell_command.h"
 
-namespace serosa::app::bench {
+namespace serosa::bench {
 
 namespace fs = std::filesystem;
 
@@ -254,4 +254,4 @@ void print_summary(const BenchReport& report, std::ostream& os) {
      << '\n';
 }
 
-}  // namespace serosa::app::bench
+}  // namespace serosa::bench

@@ -1,10 +1,10 @@
 // serosa bench [PART...] [--out DIR] [--quick] [--assets DIR] [--no-plots]
 // The accuracy-versus-time suite: runs the named parts (none: all of them, in the
-// registry's order, app/bench/bench_registry.cpp), writes each part's tables as <out>/<table>.csv,
-// a gnuplot script <out>/<plot>.gp per plot and, with gnuplot, <out>/<plot>.png; runs every
-// monotonicity check; prints a summary and writes <out>/summary.json. Exit 0 only when every part
-// returned, every curve was produced and every check held; 1 otherwise (an unknown part, an
-// output folder that cannot be written, missing gnuplot without --no-plots, a failed part).
+// registry's order, bench/suite/bench_registry.cpp), writes each part's tables as
+// <out>/<table>.csv, a gnuplot script <out>/<plot>.gp per plot and, with gnuplot, <out>/<plot>.png;
+// runs every monotonicity check; prints a summary and writes <out>/summary.json. Exit 0 only when
+// every part returned, every curve was produced and every check held; 1 otherwise (an unknown part,
+// an output folder that cannot be written, missing gnuplot without --no-plots, a failed part).
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -13,11 +13,12 @@
 #include <string>
 #include <vector>
 
-#include "app/bench/bench_registry.h"
-#include "app/command.h"
+#include "bench/suite/cmd_bench.h"
+
+#include "bench/suite/bench_registry.h"
 #include "engine/input_error.h"
 
-namespace serosa::app {
+namespace serosa::bench {
 
 namespace {
 
@@ -93,7 +94,7 @@ int run_bench(const BenchArgs& args) {
 
 }  // namespace
 
-void add_bench_command(CLI::App& app, Action& action) {
+void add_bench_command(CLI::App& app, app::Action& action) {
   auto args = std::make_shared<BenchArgs>();
   CLI::App* cmd = app.add_subcommand(
       "bench", "Accuracy versus time: CSV tables, gnuplot plots and monotonicity checks per knob");
@@ -105,4 +106,4 @@ void add_bench_command(CLI::App& app, Action& action) {
   cmd->callback([&action, args] { action = [args] { return run_bench(*args); }; });
 }
 
-}  // namespace serosa::app
+}  // namespace serosa::bench

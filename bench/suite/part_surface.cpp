@@ -16,14 +16,14 @@
 #include <tuple>
 #include <vector>
 
-#include "app/bench/bench_parts.h"
+#include "bench/suite/bench_parts.h"
 #include "cutting/cut_mesh.h"
 #include "engine/kuhn_grid.h"
 #include "engine/topology_delta.h"
 #include "surface/extract_surface.h"
 #include "surface/update_surface.h"
 
-namespace serosa::app::bench {
+namespace serosa::bench {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -171,4 +171,4 @@ PartResult run_surface_part(const BenchOptions& options) {
   return result;
 }
 
-}  // namespace serosa::app::bench
+}  // namespace serosa::bench

@@ -14,10 +14,10 @@
 #include <vector>
 
 #include "app/assemble_state.h"
-#include "app/bench/bench_parts.h"
 #include "app/render_frame_from_surface.h"
 #include "app/scenery_from_scene.h"
 #include "app/simulation.h"
+#include "bench/suite/bench_parts.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"
 #include "render/frame_renderer.h"
@@ -27,7 +27,9 @@
 #include "render/render_frame.h"
 #include "render/snapshot_options.h"
 
-namespace serosa::app::bench {
+namespace serosa::bench {
+
+using namespace serosa::app;  // the driver and the composition the scenes run on
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -151,4 +153,4 @@ PartResult run_render_part(const BenchOptions& options) {
   return result;
 }
 
-}  // namespace serosa::app::bench
+}  // namespace serosa::bench

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "app/bench/bench_parts.h"
+#include "bench/suite/bench_parts.h"
 #include "engine/mesh_io.h"
 #include "render/frame_renderer.h"
 #include "render/gl_context.h"
@@ -27,7 +27,7 @@
 #include "render/surface_distance.h"
 #include "render/vertex_normals.h"
 
-namespace serosa::app::bench {
+namespace serosa::bench {
 namespace {
 
 using render::TriMesh;
@@ -189,4 +189,4 @@ PartResult run_tessellation_part(const BenchOptions& options) {
   return result;
 }
 
-}  // namespace serosa::app::bench
+}  // namespace serosa::bench

@@ -1,4 +1,4 @@
-#include "app/bench/bench_table.h"
+#include "bench/suite/bench_table.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <numeric>
 #include <stdexcept>
 
-namespace serosa::app::bench {
+namespace serosa::bench {
 
 std::string fmt_double(const char* format, ...) {
   char buf[64];
@@ -103,4 +103,4 @@ std::string check_monotone(const Table& table, const MonotoneCheck& check) {
   return {};
 }
 
-}  // namespace serosa::app::bench
+}  // namespace serosa::bench
