@@ -1,7 +1,9 @@
 // Simulation: one scene loaded, assembled, composed and prepared, stepped one solver step at a
-// time and reported on. It is the driver of `serosa headless` (run_headless: construct, step,
-// finish) and the object the Python module wraps (python/serosa_module.cpp, docs/python.md):
-// a program steps the same stages, in the same order, to the same bits as the command.
+// time and reported on. It is the one driver of every run: `serosa headless` (run_headless:
+// construct, step, finish), the trainee session's solver thread, the replay headless and in a
+// window (their additions through SimulationHooks), `serosa bench`, and the object the Python
+// module wraps (python/serosa_module.cpp, docs/python.md): a program steps the same stages, in
+// the same order, to the same bits as the command.
 // Tools whose device is "python" take the pose set_tool gives them at the next step boundary
 // (a LivePoseStage in the tools place, so a recording records what the solver consumed).
 #pragma once
@@ -31,10 +33,10 @@ namespace serosa::app {
 
 class FramePictures;
 
-/// A run driven by something other than its scene's devices (a replay: the recorded inputs in
-/// the tools slot, a verifier after the record slot). Both are called at load and again at each
-/// restore, which composes the stages anew, so what they add always belongs to the pipeline in
-/// use.
+/// What a caller adds to a run: a replay drives the tools by the recorded inputs and checks
+/// hashes after the record slot, a trainee session puts tools in the trainee's hands and keeps
+/// the pace itself. The functions are called at load and again at each restore or reset, which
+/// compose the stages anew, so that what they add always belongs to the pipeline in use.
 struct SimulationHooks {
   /// Replaces the scripted tools stage as the source of tool inputs (ComposeOptions::tool_input).
   std::function<std::unique_ptr<Stage>()> tool_input;
