@@ -16,7 +16,6 @@ void add_check_command(CLI::App& app, Action& action);
 void add_surface_command(CLI::App& app, Action& action);
 void add_headless_command(CLI::App& app, Action& action);
 void add_run_command(CLI::App& app, Action& action);
-void add_replay_command(CLI::App& app, Action& action);
 void add_cut_command(CLI::App& app, Action& action);
 void add_trainee_command(CLI::App& app, Action& action);
 void add_cohort_command(CLI::App& app, Action& action);

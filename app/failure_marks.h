@@ -14,7 +14,7 @@
 namespace serosa::app {
 
 /// When things happened that the report keeps only as totals (watched step by step by the
-/// replay's timeline, app/replay_timeline.h). Times in s of simulated time; < 0: never.
+/// replay's timeline, replay/replay_timeline.h). Times in s of simulated time; < 0: never.
 struct RunEvents {
   std::map<std::string, double> force_max_at_s;  ///< tool name -> when its largest force was
   double peak_stress_at_s = -1.0;                ///< when the largest stress was reached

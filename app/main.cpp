@@ -10,6 +10,7 @@
 #include "app/heap_policy.h"
 #include "bench/suite/cmd_bench.h"
 #include "engine/input_error.h"
+#include "replay/cmd_replay.h"
 
 int main(int argc, char** argv) {
   serosa::app::keep_freed_memory();
@@ -24,7 +25,7 @@ int main(int argc, char** argv) {
   serosa::app::add_surface_command(cli, action);
   serosa::app::add_headless_command(cli, action);
   serosa::app::add_run_command(cli, action);
-  serosa::app::add_replay_command(cli, action);
+  serosa::replay::add_replay_command(cli, action);
   serosa::app::add_cut_command(cli, action);
   serosa::bench::add_bench_command(cli, action);
   serosa::app::add_trainee_command(cli, action);

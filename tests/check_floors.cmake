@@ -1,8 +1,9 @@
 # Fails when a file includes a folder it may not (docs/ARCHITECTURE.md "The three floors"):
 # engine/ includes no other floor; fem, cutting, surface, haptics, render, metrics, contact
 # include only engine; batch/ and trainee/ (beside app/ on the top floor, which composes nothing)
-# include only engine too, and only app/ includes them; python/ (the module on top of app/) is
-# included by no floor.
+# include only engine too, and only app/ includes them; replay/ and bench/suite/ stand on top of
+# app/, and only the command line's main (app/main.cpp) includes them; python/ (the module on top
+# of app/) is included by no floor.
 cmake_policy(SET CMP0057 NEW)  # if(IN_LIST) in script mode
 set(domains fem cutting surface haptics render metrics contact)
 set(beside_app batch trainee)
@@ -19,6 +20,10 @@ foreach(folder engine ${domains} ${beside_app} app)
         continue()
       endif()
       if(target STREQUAL "python")
+        list(APPEND bad "${f}: ${line}")
+      elseif((target STREQUAL "replay" OR target STREQUAL "bench") AND
+             NOT f STREQUAL "${ROOT}/app/main.cpp")
+        # On top of app/: only the command line's main registers their commands.
         list(APPEND bad "${f}: ${line}")
       elseif(NOT folder STREQUAL "app" AND (target STREQUAL "app" OR target IN_LIST domains OR
                                             target IN_LIST beside_app))

@@ -1,8 +1,8 @@
 // Replay and branching an instructor can trust: a branch recording carries whole-state snapshots
 // at the recording's cadence and starts late from them to the same bits as from step 0; the tools
 // no one took over go on as recorded; --from past the end says so, and stdout then holds the
-// report alone; the mouse can take over every instrument of the scene (app/mouse_takeover.h), and
-// the branch's line on screen says who drives what (app/branch_banner.h).
+// report alone; the mouse can take over every instrument of the scene (replay/mouse_takeover.h),
+// and the branch's line on screen says who drives what (replay/branch_banner.h).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,12 +13,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/branch_banner.h"
 #include "app/headless.h"
-#include "app/mouse_takeover.h"
 #include "app/pointer_control.h"
-#include "app/replay.h"
-#include "app/replay_controller.h"
 #include "app_test_util.h"
 #include "engine/hook.h"
 #include "engine/instrument_hold.h"
@@ -26,9 +22,15 @@
 #include "engine/shell_command.h"
 #include "engine/sim_state.h"
 #include "engine/tool_path.h"
+#include "replay/branch_banner.h"
+#include "replay/mouse_takeover.h"
+#include "replay/replay.h"
+#include "replay/replay_controller.h"
 
 namespace serosa::app {
 namespace {
+
+using namespace serosa::replay;
 
 using namespace serosa::app::testing;
 

@@ -6,12 +6,14 @@
 #include <fstream>
 
 #include "app/headless.h"
-#include "app/replay.h"
 #include "app_test_util.h"
 #include "engine/recording_reader.h"
+#include "replay/replay.h"
 
 namespace serosa::app {
 namespace {
+
+using namespace serosa::replay;
 
 using namespace serosa::app::testing;
 

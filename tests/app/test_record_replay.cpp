@@ -14,13 +14,15 @@
 #include <vector>
 
 #include "app/headless.h"
-#include "app/replay.h"
 #include "app_test_util.h"
 #include "engine/recording_reader.h"
 #include "engine/recording_writer.h"
+#include "replay/replay.h"
 
 namespace serosa::app {
 namespace {
+
+using namespace serosa::replay;
 
 using namespace serosa::app::testing;
 

@@ -1,4 +1,4 @@
-// The replay window's core without a window (app/replay_controller.h): play, pause, speed and
+// The replay window's core without a window (replay/replay_controller.h): play, pause, speed and
 // seek over a recorded scripted transection (cuts included). Exact seeks land on the recorded
 // state hashes, backwards equals forwards; snapshot seeks are bit-exact at the snapshot and stay
 // close after it.
@@ -12,14 +12,16 @@
 #include <map>
 
 #include "app/headless.h"
-#include "app/replay.h"
-#include "app/replay_controller.h"
 #include "app_test_util.h"
 #include "engine/input_error.h"
+#include "replay/replay.h"
+#include "replay/replay_controller.h"
 #include "support/test_paths.h"
 
 namespace serosa::app {
 namespace {
+
+using namespace serosa::replay;
 
 using namespace serosa::app::testing;
 

@@ -1,4 +1,4 @@
-// The instructor's replay window under Xvfb (app/replay_window.cpp): a failed novice's debrief
+// The instructor's replay window under Xvfb (replay/replay_window.cpp): a failed novice's debrief
 // (app/session_summary.h) stands beside the picture once the timeline has assessed the recording,
 // within its quarter of the view and off the timeline.
 #include <gtest/gtest.h>

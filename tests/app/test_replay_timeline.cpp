@@ -1,4 +1,4 @@
-// The replay's timeline (app/replay_timeline.h): computed from a recording by replaying it, its
+// The replay's timeline (replay/replay_timeline.h): computed from a recording by replaying it, its
 // force plot agrees with the run's own report, its assessment is the run's, and its marks are
 // exactly the criteria the run failed. (In the window: test_replay_timeline_window.cpp.)
 #include <gtest/gtest.h>
@@ -10,13 +10,15 @@
 #include <set>
 #include <string>
 
-#include "app/replay_timeline.h"
 #include "app/session_summary.h"
 #include "app_test_util.h"
 #include "engine/shell_command.h"
+#include "replay/replay_timeline.h"
 
 namespace serosa::app {
 namespace {
+
+using namespace serosa::replay;
 
 using namespace serosa::app::testing;
 

@@ -1,4 +1,4 @@
-// The replay window's metric timeline under Xvfb (app/replay_timeline.h, built on a thread of
+// The replay window's metric timeline under Xvfb (replay/replay_timeline.h, built on a thread of
 // its own beside the window's replay): once it is known, the N key jumps to each error.
 #include <gtest/gtest.h>
 
@@ -7,12 +7,14 @@
 #include <sstream>
 #include <string>
 
-#include "app/replay_timeline.h"
 #include "app_test_util.h"
 #include "engine/shell_command.h"
+#include "replay/replay_timeline.h"
 
 namespace serosa::app {
 namespace {
+
+using namespace serosa::replay;
 
 using namespace serosa::app::testing;
 

@@ -17,10 +17,7 @@
 #include "app/assemble_state.h"
 #include "app/compose.h"
 #include "app/headless.h"
-#include "app/mouse_takeover.h"
 #include "app/pointer_control.h"
-#include "app/replay.h"
-#include "app/replay_controller.h"
 #include "app_test_util.h"
 #include "contact/tool_contact_stage.h"
 #include "engine/jaw_range.h"
@@ -30,9 +27,14 @@
 #include "haptics/haptic_loop.h"
 #include "haptics/haptics_stage.h"
 #include "haptics/trocar_kinematics.h"
+#include "replay/mouse_takeover.h"
+#include "replay/replay.h"
+#include "replay/replay_controller.h"
 
 namespace serosa::app {
 namespace {
+
+using namespace serosa::replay;
 
 using namespace serosa::app::testing;
 using contact::kHapticStiffness;

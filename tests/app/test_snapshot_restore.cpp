@@ -12,13 +12,15 @@
 #include "app/assemble_state.h"
 #include "app/compose.h"
 #include "app/headless.h"
-#include "app/replay.h"
 #include "app_test_util.h"
 #include "engine/input_error.h"
 #include "engine/sim_state.h"
+#include "replay/replay.h"
 
 namespace serosa::app {
 namespace {
+
+using namespace serosa::replay;
 
 using namespace serosa::app::testing;
 

@@ -1,11 +1,13 @@
-#include "app/branch_banner.h"
+#include "replay/branch_banner.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
-namespace serosa::app {
+namespace serosa::replay {
+
+using namespace serosa::app;  // the driver, the composition and the window's parts
 namespace {
 
 // "a", "a and b", "a, b and c".
@@ -74,4 +76,4 @@ std::string branch_banner(const Scene& scene, const MouseTakeover& takeover,
   return out;
 }
 
-}  // namespace serosa::app
+}  // namespace serosa::replay

@@ -1,4 +1,4 @@
-#include "app/branch_assessment.h"
+#include "replay/branch_assessment.h"
 
 #include <spdlog/spdlog.h>
 
@@ -10,11 +10,13 @@
 
 #include "app/assessment_report.h"
 #include "app/compose.h"
-#include "app/replay_controller.h"
-#include "app/replay_timeline.h"
 #include "app/session_summary.h"
+#include "replay/replay_controller.h"
+#include "replay/replay_timeline.h"
 
-namespace serosa::app {
+namespace serosa::replay {
+
+using namespace serosa::app;  // the driver, the composition and the window's parts
 namespace {
 
 // The criteria an error fails for good the moment it happens.
@@ -78,4 +80,4 @@ nlohmann::json finish_branch(ReplayController& replay, const std::filesystem::pa
   return report;
 }
 
-}  // namespace serosa::app
+}  // namespace serosa::replay

@@ -10,16 +10,11 @@
 #include <optional>
 #include <string>
 
-#include "app/branch_assessment.h"
-#include "app/branch_banner.h"
 #include "app/compose.h"
 #include "app/drawn_surface.h"
-#include "app/mouse_takeover.h"
 #include "app/overlay_stats.h"
 #include "app/pointer_control.h"
 #include "app/render_frame_from_surface.h"
-#include "app/replay_controller.h"
-#include "app/replay_timeline.h"
 #include "app/scenery_from_scene.h"
 #include "app/session.h"
 #include "app/session_summary.h"
@@ -33,8 +28,16 @@
 #include "render/overlay.h"
 #include "render/png_writer.h"
 #include "render/window.h"
+#include "replay/branch_assessment.h"
+#include "replay/branch_banner.h"
+#include "replay/mouse_takeover.h"
+#include "replay/replay_controller.h"
+#include "replay/replay_timeline.h"
+#include "replay/replay_window.h"
 
-namespace serosa::app {
+namespace serosa::replay {
+
+using namespace serosa::app;  // the driver, the composition and the window's parts
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -291,7 +294,7 @@ class ReplayWindow {
   ReplayController m_replay;
   std::map<int, std::string> m_names;
   DrawnSurface m_drawn;
-  // The timeline, computed beside the replay (app/replay_timeline.h).
+  // The timeline, computed beside the replay (replay/replay_timeline.h).
   const TimelineBuilder m_timeline;
   std::optional<render::SessionSummary> m_debrief;  // once the timeline has assessed the run
   int m_current_mark = -1;                          // the mark last jumped to
@@ -322,4 +325,4 @@ int run_replay_window(const std::filesystem::path& recording, const ReplayWindow
   return window.run();
 }
 
-}  // namespace serosa::app
+}  // namespace serosa::replay

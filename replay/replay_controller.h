@@ -38,10 +38,16 @@ class VerifyStage;
 }  // namespace serosa::recording
 
 namespace serosa::app {
-
 struct Composition;
 class Simulation;
 struct SimulationHooks;
+}  // namespace serosa::app
+
+namespace serosa::replay {
+
+using app::Composition;
+using app::Simulation;
+using app::SimulationHooks;
 
 struct ReplayControllerOptions {
   double snapshot_every_s = 1.0;  ///< simulated time between snapshots, s (> 0)
@@ -172,4 +178,4 @@ class ReplayController {
   std::uint64_t m_branch_next_snapshot = 0;   // steps at or after which the next is written
 };
 
-}  // namespace serosa::app
+}  // namespace serosa::replay

@@ -2,7 +2,7 @@
 //               [--report OUT.json]
 //
 // Without --headless: the instructor's replay in a window (app/session.h run_replay_window:
-// pause, seek, speed). With --headless: re-simulates as fast as it can (app/replay.h).
+// pause, seek, speed). With --headless: re-simulates as fast as it can (replay/replay.h).
 //
 // --from T (headless): restore the last whole-state snapshot at or before T and replay from there
 // (the report's start_step); without one that early, from step 0. A T past the recording's end
@@ -19,14 +19,17 @@
 #include <memory>
 
 #include "app/camera_option.h"
-#include "app/command.h"
-#include "app/replay.h"
 #include "app/session.h"
 #include "engine/input_error.h"
+#include "replay/cmd_replay.h"
+#include "replay/replay.h"
+#include "replay/replay_window.h"
 
-namespace serosa::app {
+namespace serosa::replay {
 
-void add_replay_command(CLI::App& app, Action& action) {
+using namespace serosa::app;  // the driver, the composition and the window's parts
+
+void add_replay_command(CLI::App& app, app::Action& action) {
   auto opts = std::make_shared<ReplayOptions>();
   auto headless = std::make_shared<bool>(false);
   auto speed = std::make_shared<double>(1.0);
@@ -117,4 +120,4 @@ void add_replay_command(CLI::App& app, Action& action) {
   });
 }
 
-}  // namespace serosa::app
+}  // namespace serosa::replay

@@ -1,4 +1,4 @@
-#include "app/replay_timeline.h"
+#include "replay/replay_timeline.h"
 
 #include <algorithm>
 #include <limits>
@@ -6,10 +6,12 @@
 
 #include "app/assessment_report.h"
 #include "app/compose.h"
-#include "app/replay_controller.h"
 #include "metrics/metrics_stage.h"
+#include "replay/replay_controller.h"
 
-namespace serosa::app {
+namespace serosa::replay {
+
+using namespace serosa::app;  // the driver, the composition and the window's parts
 namespace {
 
 constexpr std::uint64_t kProgressEvery = 200;  // steps between progress calls
@@ -177,4 +179,4 @@ TimelineData TimelineBuilder::data() const {
   return m_data;
 }
 
-}  // namespace serosa::app
+}  // namespace serosa::replay

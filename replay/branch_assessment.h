@@ -15,7 +15,7 @@
 #include "app/failure_marks.h"
 #include "render/render_frame.h"
 
-namespace serosa::app {
+namespace serosa::replay {
 
 class ReplayController;
 
@@ -49,4 +49,4 @@ class BranchDebrief {
 /// branch's step, its "metrics", "procedure" and "assessment"); returns that report.
 nlohmann::json finish_branch(ReplayController& replay, const std::filesystem::path& recording);
 
-}  // namespace serosa::app
+}  // namespace serosa::replay

@@ -1,4 +1,4 @@
-#include "app/replay.h"
+#include "replay/replay.h"
 
 #include <spdlog/spdlog.h>
 #include <unistd.h>
@@ -24,7 +24,9 @@
 #include "engine/sim_state.h"
 #include "metrics/metrics_stage.h"
 
-namespace serosa::app {
+namespace serosa::replay {
+
+using namespace serosa::app;  // the driver, the composition and the window's parts
 namespace {
 
 using Json = nlohmann::json;
@@ -205,4 +207,4 @@ ReplayResult run_replay(const ReplayOptions& options) {
   return result;
 }
 
-}  // namespace serosa::app
+}  // namespace serosa::replay

@@ -13,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace serosa::app {
+namespace serosa::replay {
 
 struct ReplayOptions {
   std::filesystem::path recording;              ///< the .lapr file
@@ -48,4 +48,4 @@ struct ReplayResult {
 /// wrong magic or version, damaged header, scene unreadable, tool count differs from the scene).
 [[nodiscard]] ReplayResult run_replay(const ReplayOptions& options);
 
-}  // namespace serosa::app
+}  // namespace serosa::replay

@@ -1,4 +1,4 @@
-#include "app/replay_controller.h"
+#include "replay/replay_controller.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,9 @@
 #include "engine/input_error.h"
 #include "engine/record_stage.h"
 
-namespace serosa::app {
+namespace serosa::replay {
+
+using namespace serosa::app;  // the driver, the composition and the window's parts
 
 ReplayController::ReplayController(const std::filesystem::path& recording,
                                    ReplayControllerOptions options)
@@ -234,4 +236,4 @@ std::map<int, std::string> ReplayController::group_names() const {
   return m_sim->assembled().group_names();
 }
 
-}  // namespace serosa::app
+}  // namespace serosa::replay

@@ -25,7 +25,9 @@
 #include "app/failure_marks.h"
 #include "render/render_frame.h"
 
-namespace serosa::app {
+namespace serosa::replay {
+
+using app::Failure;
 
 /// The timeline so far.
 struct TimelineData {
@@ -92,4 +94,4 @@ class TimelineBuilder {
   std::jthread m_thread;  // declared last: stopped and joined first
 };
 
-}  // namespace serosa::app
+}  // namespace serosa::replay

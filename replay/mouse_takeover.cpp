@@ -1,4 +1,4 @@
-#include "app/mouse_takeover.h"
+#include "replay/mouse_takeover.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,13 +6,15 @@
 #include <stdexcept>
 #include <string>
 
-#include "app/replay_controller.h"
 #include "engine/hook.h"
 #include "engine/instrument_hold.h"
 #include "engine/jaw_range.h"
 #include "engine/scope_view.h"
+#include "replay/replay_controller.h"
 
-namespace serosa::app {
+namespace serosa::replay {
+
+using namespace serosa::app;  // the driver, the composition and the window's parts
 namespace {
 
 static_assert(haptics::kHandles == 2, "a hand's other hand is 1 - h");
@@ -222,4 +224,4 @@ std::vector<std::size_t> MouseTakeover::left_tools() const {
   return out;
 }
 
-}  // namespace serosa::app
+}  // namespace serosa::replay

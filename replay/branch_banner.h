@@ -12,10 +12,10 @@
 #include <cstdint>
 #include <string>
 
-#include "app/mouse_takeover.h"
 #include "engine/scene.h"
+#include "replay/mouse_takeover.h"
 
-namespace serosa::app {
+namespace serosa::replay {
 
 struct BranchBannerInfo {
   std::uint64_t branch_step = 0;  ///< steps taken when it branched
@@ -31,4 +31,4 @@ struct BranchBannerInfo {
 /// Simulated time as the banner writes it, minutes:seconds to a tenth ("0:05.2", "12:00.0").
 [[nodiscard]] std::string clock_time(double t_s);
 
-}  // namespace serosa::app
+}  // namespace serosa::replay

@@ -42,7 +42,9 @@
 #include "engine/tool_state.h"
 #include "haptics/mouse_device.h"
 
-namespace serosa::app {
+namespace serosa::replay {
+
+using app::ScopeControl;
 
 class ReplayController;
 
@@ -129,4 +131,4 @@ class MouseTakeover {
   haptics::PointerInput m_initial{};
 };
 
-}  // namespace serosa::app
+}  // namespace serosa::replay
