@@ -3,8 +3,6 @@
 // recording, and branching from a replay with the mouse (controller level and in the window).
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -23,6 +21,7 @@
 #include "engine/jaw_range.h"
 #include "engine/recording_reader.h"
 #include "engine/scene.h"
+#include "engine/shell_command.h"
 #include "engine/sim_state.h"
 #include "haptics/haptic_loop.h"
 #include "haptics/haptics_stage.h"
@@ -62,22 +61,6 @@ std::string beam_scene(const std::string& effects, const std::string& device,
       .append(device)
       .append("\"\ntrocar = [0.05, 0.1, 0.0]\n");
   return toml;
-}
-
-struct Shell {
-  int code = -1;
-  std::string out;
-};
-Shell shell(const std::string& cmd) {
-  Shell r;
-  FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
-  if (pipe == nullptr) return r;
-  std::array<char, 4096> buf{};
-  std::size_t n = 0;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
 }
 
 Vec3 tip_of(const ToolState& t) { return Vec3(t.tip_m[0], t.tip_m[1], t.tip_m[2]); }
@@ -302,10 +285,10 @@ TEST(SessionHaptics, SessionUnderXvfbRecordsAndReportsTheLoop) {
       << beam_scene("\"fem\", \"surface\", \"contact\", \"render\", \"haptics\"", "mouse");
   const std::string xvfb =
       "xvfb-run -a -s '-screen 0 1280x720x24' '" + serosa_exe().string() + "' ";
-  const Shell run =
-      shell(xvfb + "run '" + (dir / "scene.toml").string() + "' --seconds 2 " + "--record '" +
-            (dir / "s.lapr").string() + "' --report '" + (dir / "s.json").string() + "'");
-  ASSERT_EQ(run.code, 0) << run.out;
+  const Command run =
+      run_command(xvfb + "run '" + (dir / "scene.toml").string() + "' --seconds 2 " + "--record '" +
+                  (dir / "s.lapr").string() + "' --report '" + (dir / "s.json").string() + "'");
+  ASSERT_EQ(run.code, 0) << run.output;
   nlohmann::json rep;
   std::ifstream(dir / "s.json") >> rep;
   ASSERT_TRUE(rep.contains("haptics")) << rep.dump(1);
@@ -330,11 +313,11 @@ TEST(SessionHaptics, SessionUnderXvfbRecordsAndReportsTheLoop) {
       run_serosa("replay '" + (dir / "s.lapr").string() + "' --headless --verify");
   EXPECT_EQ(verify.code, 0) << verify.out;
 
-  const Shell branch =
-      shell(xvfb + "replay '" + (dir / "s.lapr").string() +
-            "' --seconds 1.5 --branch-at 0.05 --branch '" + (dir / "b.lapr").string() + "'");
-  ASSERT_EQ(branch.code, 0) << branch.out;
-  EXPECT_NE(branch.out.find("branched at"), std::string::npos) << branch.out;
+  const Command branch =
+      run_command(xvfb + "replay '" + (dir / "s.lapr").string() +
+                  "' --seconds 1.5 --branch-at 0.05 --branch '" + (dir / "b.lapr").string() + "'");
+  ASSERT_EQ(branch.code, 0) << branch.output;
+  EXPECT_NE(branch.output.find("branched at"), std::string::npos) << branch.output;
   const recording::Recording b = recording::read_recording(dir / "b.lapr");
   EXPECT_TRUE(b.complete);
   ASSERT_FALSE(b.events.empty());
@@ -357,11 +340,11 @@ TEST(SessionHaptics, TheDefaultSceneInAWindowIsDrivenByTheTrainee) {
       "xvfb-run -a -s '-screen 0 1280x720x24' '" + serosa_exe().string() + "' ";
   std::string scene = "'";  // (one append at a time: GCC 12 warns on "'" + string + "'")
   scene.append(source("config/transection.toml").string()).append("'");
-  const Shell run =
-      shell(xvfb + "run " + scene + " --seconds 2 --record '" + (dir / "s.lapr").string() +
-            "' --report '" + (dir / "s.json").string() + "'");
-  ASSERT_EQ(run.code, 0) << run.out;
-  EXPECT_NE(run.out.find("the instruments follow the mouse"), std::string::npos) << run.out;
+  const Command run =
+      run_command(xvfb + "run " + scene + " --seconds 2 --record '" + (dir / "s.lapr").string() +
+                  "' --report '" + (dir / "s.json").string() + "'");
+  ASSERT_EQ(run.code, 0) << run.output;
+  EXPECT_NE(run.output.find("the instruments follow the mouse"), std::string::npos) << run.output;
   nlohmann::json rep;
   std::ifstream(dir / "s.json") >> rep;
   ASSERT_TRUE(rep.contains("haptics")) << rep.dump(1);
@@ -373,10 +356,10 @@ TEST(SessionHaptics, TheDefaultSceneInAWindowIsDrivenByTheTrainee) {
   EXPECT_EQ(verify.code, 0) << verify.out;
 
   // 5 s: a sanitizer build under load takes its first steps only after a second or more.
-  const Shell scripted = shell(xvfb + "run " + scene + " --seconds 5 --path '" +
-                               source("config/paths/appendix_transection.csv").string() +
-                               "' --report '" + (dir / "p.json").string() + "'");
-  ASSERT_EQ(scripted.code, 0) << scripted.out;
+  const Command scripted = run_command(xvfb + "run " + scene + " --seconds 5 --path '" +
+                                       source("config/paths/appendix_transection.csv").string() +
+                                       "' --report '" + (dir / "p.json").string() + "'");
+  ASSERT_EQ(scripted.code, 0) << scripted.output;
   nlohmann::json prep;
   std::ifstream(dir / "p.json") >> prep;
   EXPECT_FALSE(prep.contains("haptics")) << prep.dump(1);
@@ -396,8 +379,8 @@ TEST(SessionHaptics, DraggingTheMouseInTheWindowMovesTheInstrument) {
     cmd.append(serosa_exe().string()).append("' '");
     cmd.append(source("config/transection.toml").string()).append("' '");
     cmd.append(report.string()).append(drag ? "' 1" : "' 0");
-    const Shell run = shell(cmd);
-    EXPECT_EQ(run.code, 0) << run.out;
+    const Command run = run_command(cmd);
+    EXPECT_EQ(run.code, 0) << run.output;
     nlohmann::json rep;
     std::ifstream(report) >> rep;
     return rep;
@@ -428,8 +411,8 @@ TEST(SessionHaptics, PressingXBringsInTheNextInstrument) {
   cmd.append(serosa_exe().string()).append("' '");
   cmd.append(source("config/appendectomy.toml").string()).append("' '");
   cmd.append(report.string()).append("' '").append(recording.string()).append("'");
-  const Shell run = shell(cmd);
-  ASSERT_EQ(run.code, 0) << run.out;
+  const Command run = run_command(cmd);
+  ASSERT_EQ(run.code, 0) << run.output;
   nlohmann::json rep;
   std::ifstream(report) >> rep;
   const nlohmann::json& m = rep["metrics"];
