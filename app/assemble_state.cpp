@@ -125,7 +125,7 @@ AssembledScene assemble_state(const Scene& scene) {
   // The boundary comes with the state: contact, which runs before the surface stage, reads it
   // from the first step on.
   if (scene.settings.has(Effect::kSurface) || scene.settings.has(Effect::kContact))
-    out.state.handoff.surface = surface::extract_surface(mesh);
+    out.state.shared.surface = surface::extract_surface(mesh);
   return out;
 }
 

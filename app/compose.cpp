@@ -66,7 +66,7 @@ fem::FemConfig fem_config(const Scene& scene, const AssembledScene& assembled) {
   // (docs/BENCHMARKS.md "Real time": 25 % less FEM time a step on the default scene).
   c.solver.matrix_free = c.solver.kind == fem::SolverKind::pcg_lagged;
   // A capped CG's energy gains are taken back out (the grasper, the one stage that moves nodes
-  // between steps, says so in SimState::handoff.nodes_moved).
+  // between steps, says so in SimState::events.nodes_moved).
   c.solver.remove_energy_gain = true;
   c.gravity_on = scene.settings.has(Effect::kGravity);
   // Plastic flow with each group's material parameters (organ-wide, or the group's override).

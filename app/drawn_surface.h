@@ -1,5 +1,5 @@
 // DrawnSurface: the surface the window and the pictures draw for a state. It is the surface
-// stage's (SimState::handoff.surface, kept incrementally with its wound flags) whenever that is
+// stage's (SimState::shared.surface, kept incrementally with its wound flags) whenever that is
 // current; only a scene without a surface stage gets one extracted here, once per topology change,
 // against the uncut boundary of the initial mesh.
 #pragma once

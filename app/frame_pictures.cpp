@@ -35,8 +35,8 @@ FramePictures::~FramePictures() = default;
 
 const render::RenderFrame& FramePictures::frame(const SimState& state) {
   fill_render_frame(state.mesh, m_drawn.of(state), m_names, /*with_edges=*/true, m_frame,
-                    &state.handoff.coagulated, state.handoff.coagulated_version,
-                    &state.handoff.stain);
+                    &state.blocks.cutting.coagulated, state.blocks.cutting.coagulated_version,
+                    &state.blocks.bleeding.stain);
   fill_render_tools(m_scene, state, m_frame);
   const auto scope = m_endoscope ? endoscope_view(m_scene, state) : std::nullopt;
   m_used_scope = scope.has_value();

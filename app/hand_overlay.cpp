@@ -26,7 +26,7 @@ std::vector<render::OverlayHand> overlay_hands(const Scene& scene, const SimStat
     o.jaw_max_rad = max_jaw_rad(tool.kind);
     o.has_pedal = tool.kind == ToolKind::kHook;
     o.pedal = pedal_down(state.tools[i]);
-    if (i < state.handoff.grasped.size()) o.holding_nodes = state.handoff.grasped[i].size();
+    if (i < state.shared.grasped.size()) o.holding_nodes = state.shared.grasped[i].size();
     o.entering = in_port(state.tools[i]);
     for (const render::RenderTool& t : frame.tools) {
       if (t.scene_tool != i || !t.has_tissue) continue;

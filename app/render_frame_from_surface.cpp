@@ -195,7 +195,7 @@ float tissue_in_jaws(const SimState& state, const ToolState& tool) {
   const ToolFrame f = tool_frame(tool);
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e9), hi = -lo;
   int n = 0;
-  for (const Tri& face : state.handoff.surface.faces) {
+  for (const Tri& face : state.shared.surface.faces) {
     for (const std::int32_t v : face) {
       const Vec3& p = state.mesh.x[static_cast<std::size_t>(v)];
       if (!between_jaws(f, tool.jaw_rad, p, kJawSlabM)) continue;
@@ -216,14 +216,14 @@ namespace {
 // them; without it, a drop that wells up over kBleedGrowS to kBleedRadius where it was cut.
 void fill_render_bleeds(const Scene& scene, const SimState& state, render::RenderFrame& frame) {
   frame.bleeds.clear();
-  for (std::size_t k = 0; k < state.handoff.bleeds.size(); ++k) {
-    const auto& [where, since] = state.handoff.bleeds[k];
+  for (std::size_t k = 0; k < state.shared.bleeds.size(); ++k) {
+    const auto& [where, since] = state.shared.bleeds[k];
     const double grown = std::clamp((state.time_s - since) / kBleedGrowS, 0.0, 1.0);
     render::RenderBleed rb;
     rb.at = to_float(where);
     rb.radius = static_cast<float>(kBleedRadius * (0.2 + 0.8 * grown));
-    if (k < state.handoff.blood.size()) {
-      const Blood& b = state.handoff.blood[k];
+    if (k < state.shared.blood.size()) {
+      const Blood& b = state.shared.blood[k];
       rb.at = to_float(b.source_m);
       rb.radius = static_cast<float>(0.3 * kBleedRadius);
       rb.pool = to_float(b.pool_m);
@@ -290,7 +290,7 @@ void fill_render_tools(const Scene& scene, const SimState& state, render::Render
   frame.tools.clear();
   frame.guide.clear();
   frame.clips.clear();
-  for (const Clip& c : state.handoff.clips) {
+  for (const Clip& c : state.shared.clips) {
     render::RenderClip rc;
     rc.start = to_float(c.end(0));
     rc.end = to_float(c.end(1));
@@ -302,7 +302,7 @@ void fill_render_tools(const Scene& scene, const SimState& state, render::Render
   }
   fill_render_bleeds(scene, state, frame);
   frame.smoke.clear();
-  for (const SmokePuff& p : state.handoff.smoke)
+  for (const SmokePuff& p : state.shared.smoke)
     frame.smoke.push_back(
         {to_float(p.at_m), static_cast<float>(p.radius_m), static_cast<float>(p.density)});
   for (const Vec3& p : scene.metrics.planned_cut_m) frame.guide.push_back(to_float(p));
@@ -334,7 +334,7 @@ void fill_render_tools(const Scene& scene, const SimState& state, render::Render
     t.jaw_rad = std::clamp(static_cast<float>(in.jaw_rad), 0.0f, 3.14159265f);
     t.scene_tool = static_cast<std::uint32_t>(i);
     t.tissue_in_jaws_m = tissue_in_jaws(state, in);
-    const auto& planes = state.handoff.tissue_near;
+    const auto& planes = state.events.tissue_near;
     if (i < planes.size() && planes[i]) {
       const Vec3 p(planes[i]->point_m[0], planes[i]->point_m[1], planes[i]->point_m[2]);
       const Vec3 n(planes[i]->normal[0], planes[i]->normal[1], planes[i]->normal[2]);

@@ -22,9 +22,9 @@ namespace serosa::app {
 /// vertices; tri_group and tri_cut (the wound) come from the surface (tri_cut all 0 when the
 /// surface has no flags). Group names by id. Tet edges are recomputed only when the topology
 /// version changed. topology_version = the surface's. The camera, tools and overlay are left.
-/// With `coagulated` ((n) node marks, SimState::handoff.coagulated): faces whose three nodes are
-/// marked are tri_cut 2 (a hook's wound is dry; so is a cut through coagulated tissue), and
-/// material_version = `coagulated_version`. With `stain` ((n) SimState::handoff.stain, not
+/// With `coagulated` ((n) node marks, SimState::blocks.cutting.coagulated): faces whose three nodes
+/// are marked are tri_cut 2 (a hook's wound is dry; so is a cut through coagulated tissue), and
+/// material_version = `coagulated_version`. With `stain` ((n) SimState::blocks.bleeding.stain, not
 /// empty): each vertex takes its node's stain of blood (frame.stain), else frame.stain is empty.
 void fill_render_frame(const TetMesh& mesh, const surface::SurfaceMesh& surface,
                        const std::map<int, std::string>& group_names, bool with_edges,

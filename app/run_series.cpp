@@ -22,7 +22,7 @@ void StepSeries::add(const SimState& state, double step_ms, double fem_ms,
                 static_cast<unsigned long long>(state.step), step_ms, fem_ms, status.iterations,
                 status.residual, status.energy_j);
   m_out << row;
-  const auto& force = state.handoff.tool_force_n;
+  const auto& force = state.events.tool_force_n;
   for (std::size_t i = 0; i < m_tools; ++i) {
     std::snprintf(row, sizeof row, ",%.6g", i < force.size() ? force[i].norm() : 0.0);
     m_out << row;

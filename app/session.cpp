@@ -163,8 +163,8 @@ class SolverLoop {
     count_cuts();
     render::RenderFrame& f = m_frames.back();
     fill_render_frame(m_state.mesh, m_drawn->of(m_state), m_names, true, f,
-                      &m_state.handoff.coagulated, m_state.handoff.coagulated_version,
-                      &m_state.handoff.stain);
+                      &m_state.blocks.cutting.coagulated, m_state.blocks.cutting.coagulated_version,
+                      &m_state.blocks.bleeding.stain);
     fill_render_tools(m_scene, m_state, f);
     // Each of the triple buffer's slots takes the scenery and the taeniae once; they never change.
     if (f.scenery.version != m_scenery.version) {

@@ -50,10 +50,10 @@ Json mesh_json(const TetMesh& mesh) {
 
 // Each placed ligature (clip or loop: when, by which tool, what it clamps, where it is now) and
 // the clips each applier closed on no tissue and the loops cinched round none.
-Json clips_json(const Scene& scene, const SimState& state, const Composition& comp,
+Json clips_json(const Scene& scene, const SimState& state,
                 const std::map<int, std::string>& group_names) {
   Json placed = Json::array();
-  for (const Clip& c : state.handoff.clips) {
+  for (const Clip& c : state.shared.clips) {
     Json groups = Json::array();
     for (int g : c.groups) {
       const auto it = group_names.find(g);
@@ -73,8 +73,8 @@ Json clips_json(const Scene& scene, const SimState& state, const Composition& co
   for (std::size_t i = 0; i < scene.tools.size(); ++i) {
     const ToolKind k = scene.tools[i].kind;
     if (k == ToolKind::kClipApplier || k == ToolKind::kEndoloop || k == ToolKind::kStapler)
-      dropped[scene.tools[i].name] = comp.clips->dropped()[i];
-    if (k == ToolKind::kStapler) refused[scene.tools[i].name] = comp.clips->refused()[i];
+      dropped[scene.tools[i].name] = contact::clips_dropped(state, i);
+    if (k == ToolKind::kStapler) refused[scene.tools[i].name] = contact::stapler_refused(state, i);
   }
   Json j = {{"placed", std::move(placed)}, {"dropped", std::move(dropped)}};
   if (!refused.empty()) j["refused"] = std::move(refused);  // fires on a ligature, per stapler
@@ -295,7 +295,7 @@ cutting::StrokeReport Simulation::cut(const cutting::ConvexPolygon& polygon) {
 }
 
 std::vector<std::uint8_t> Simulation::snapshot() const {
-  if (!m_pipe->assembled.state.handoff.cuts.empty())
+  if (!m_pipe->assembled.state.events.cuts.empty())
     throw std::logic_error("a cut is in flight (this step cut): take one more step first");
   return m_pipe->comp.runner->snapshot(m_pipe->assembled.state);
 }
@@ -368,7 +368,7 @@ void Simulation::add_run_blocks(Json& report) const {
     report["nodes_final_m"] = std::move(nodes);
     report["binary_id"] = binary_id();
   }
-  for (const Blood& b : state.handoff.blood)
+  for (const Blood& b : state.shared.blood)
     report["bleeding"].push_back({{"since_s", b.since_s},
                                   {"shed_m3", b.shed_m3},
                                   {"pool_radius_m", b.pool_radius_m},
@@ -396,17 +396,17 @@ void Simulation::add_run_blocks(Json& report) const {
 void Simulation::add_stage_blocks(Json& report) const {
   const SimState& state = m_pipe->assembled.state;
   if (m_pipe->comp.contact) {
-    const auto held = m_pipe->comp.contact->grasped_counts();
+    const auto held = contact::grasped_counts(state);
     for (std::size_t i = 0; i < m_scene.tools.size() && i < held.size(); ++i)
       if (m_scene.tools[i].kind == ToolKind::kGrasper)
         report["contact"]["held_nodes"][m_scene.tools[i].name] = held[i];
   }
   if (m_pipe->comp.clips)
-    report["clips"] = clips_json(m_scene, state, m_pipe->comp, m_pipe->assembled.group_names());
+    report["clips"] = clips_json(m_scene, state, m_pipe->assembled.group_names());
   if (m_pipe->comp.surface) {
     const auto& ss = m_pipe->comp.surface->stats();
     report["surface"] = {
-        {"faces", state.handoff.surface.num_faces()},
+        {"faces", state.shared.surface.num_faces()},
         {"rebuilds", ss.rebuilds},
         {"updates", ss.updates},
         {"failed_updates", ss.failed_updates},

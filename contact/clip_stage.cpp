@@ -9,23 +9,9 @@
 #include "engine/geometry/rigid_fit.h"
 #include "engine/instrument_hold.h"
 #include "engine/sim_state.h"
-#include "engine/state_codec.h"
 #include "engine/tool_geometry.h"
 
 namespace serosa::contact {
-namespace {
-
-void write_vec3(StateWriter& out, const Vec3& v) {
-  for (int k = 0; k < 3; ++k) out.f64(v(k));
-}
-Vec3 read_vec3(StateReader& in) {
-  Vec3 v;
-  for (int k = 0; k < 3; ++k) v(k) = in.f64();
-  return v;
-}
-
-}  // namespace
-
 ClipStage::ClipStage(const Scene& scene) {
   const bool clips = scene.settings.has(Effect::kClips);
   const bool loops = scene.settings.has(Effect::kLoops);
@@ -34,45 +20,59 @@ ClipStage::ClipStage(const Scene& scene) {
                      : loops && t.kind == ToolKind::kEndoloop  ? Role::kLoop
                      : clips && t.kind == ToolKind::kStapler   ? Role::kStapler
                                                                : Role::kNone);
-    m_staplers = m_staplers || m_role.back() == Role::kStapler;
   }
-  m_widest.assign(scene.tools.size(), 0.0);
-  m_dropped.assign(scene.tools.size(), 0);
-  m_refused.assign(scene.tools.size(), 0);
-  m_triggers.assign(scene.tools.size(), StaplerTrigger{});
+}
+
+std::int64_t clips_dropped(const SimState& state, std::size_t tool) {
+  const auto& d = state.blocks.clips.dropped;
+  return tool < d.size() ? d[tool] : 0;
+}
+
+std::int64_t stapler_refused(const SimState& state, std::size_t tool) {
+  const auto& r = state.blocks.clips.refused;
+  return tool < r.size() ? r[tool] : 0;
 }
 
 void ClipStage::step(const StepContext& ctx, SimState& state) {
+  ClipsBlock& b = state.blocks.clips;
+  if (b.widest_rad.empty()) {  // the first step
+    b.widest_rad.assign(m_role.size(), 0.0);
+    b.dropped.assign(m_role.size(), 0);
+    b.refused.assign(m_role.size(), 0);
+    b.triggers.assign(m_role.size(), StaplerTrigger{});
+  }
   clamp_clones(state);
-  if (!state.handoff.cuts.empty())
-    for (Placed& p : m_clips) prune_anchors(state.mesh, p);
+  if (!state.events.cuts.empty())
+    for (Placed& p : state.blocks.clips.placed) prune_anchors(state.mesh, p);
   for (std::size_t i = 0; i < m_role.size() && i < state.tools.size(); ++i) {
     if (m_role[i] == Role::kNone) continue;
     const ToolState& ts = state.tools[i];
     if (in_port(ts)) {  // withdrawn: an open clip, loop or stapler goes out unplaced, unfired
-      m_widest[i] = 0.0;
-      m_triggers[i] = StaplerTrigger{};
+      state.blocks.clips.widest_rad[i] = 0.0;
+      state.blocks.clips.triggers[i] = StaplerTrigger{};
       continue;
     }
     if (m_role[i] == Role::kStapler) {
-      if (const std::optional<double> fired = m_triggers[i].update(ts.jaw_rad))
+      if (const std::optional<double> fired = state.blocks.clips.triggers[i].update(ts.jaw_rad))
         staple(ctx, state, i, ts, *fired);
       continue;
     }
     const bool loop = m_role[i] == Role::kLoop;
-    m_widest[i] = std::max(m_widest[i], ts.jaw_rad);
+    state.blocks.clips.widest_rad[i] = std::max(state.blocks.clips.widest_rad[i], ts.jaw_rad);
     if (ts.jaw_rad <= (loop ? kLoopCloseRad : kClipCloseRad) &&
-        m_widest[i] >= (loop ? kLoopArmRad : kClipArmRad)) {
+        state.blocks.clips.widest_rad[i] >= (loop ? kLoopArmRad : kClipArmRad)) {
       place(ctx, state, i, ts);
-      m_widest[i] = ts.jaw_rad;  // the next one needs the jaws (the loop) opened again
+      state.blocks.clips.widest_rad[i] =
+          ts.jaw_rad;  // the next one needs the jaws (the loop) opened again
     }
   }
-  for (Placed& p : m_clips) {
+  for (Placed& p : state.blocks.clips.placed) {
     const double age = ctx.time_s - p.clip.placed_s;
     carry(p, state, age);
     hold(p, state, age);
   }
-  if (!m_clips.empty()) state.handoff.nodes_moved = true;  // the clips' work, not the solve's
+  if (!state.blocks.clips.placed.empty())
+    state.events.nodes_moved = true;  // the clips' work, not the solve's
   publish(state);
 }
 
@@ -86,11 +86,11 @@ void ClipStage::place(const StepContext& ctx, SimState& state, std::size_t tool,
   else
     clamp_between_jaws(state, tool, ts, p);
   if (p.nodes.empty()) {
-    ++m_dropped[tool];
+    ++state.blocks.clips.dropped[tool];
     return;
   }
   find_anchors(state.mesh, p);
-  m_clips.push_back(std::move(p));
+  state.blocks.clips.placed.push_back(std::move(p));
 }
 
 // Jaws closed on a ligature misfire: the staples would meet titanium or suture and the knife
@@ -99,11 +99,12 @@ void ClipStage::place(const StepContext& ctx, SimState& state, std::size_t tool,
 void ClipStage::staple(const StepContext& ctx, SimState& state, std::size_t tool,
                        const ToolState& ts, double opening_rad) {
   const StaplerJaws jaws = stapler_jaws(ts, opening_rad);
-  const bool on_ligature = std::any_of(m_clips.begin(), m_clips.end(), [&](const Placed& p) {
-    return segment_meets_stapled_region(jaws, p.clip.end(0), p.clip.end(1), p.clip.reach_m());
-  });
+  const bool on_ligature = std::any_of(
+      state.blocks.clips.placed.begin(), state.blocks.clips.placed.end(), [&](const Placed& p) {
+        return segment_meets_stapled_region(jaws, p.clip.end(0), p.clip.end(1), p.clip.reach_m());
+      });
   if (on_ligature) {
-    ++m_refused[tool];
+    ++state.blocks.clips.refused[tool];
     return;
   }
   std::array<Placed, 2> lines;
@@ -116,13 +117,13 @@ void ClipStage::staple(const StepContext& ctx, SimState& state, std::size_t tool
     for (std::int32_t n : p.nodes) state.mesh.fixed[static_cast<std::size_t>(n)] = 1;
   }
   if (lines[0].nodes.empty() && lines[1].nodes.empty()) {
-    ++m_dropped[tool];
+    ++state.blocks.clips.dropped[tool];
     return;
   }
   for (Placed& p : lines) {
     if (p.nodes.empty()) continue;  // tissue on one side of the knife only: one line holds it
     find_anchors(state.mesh, p);
-    m_clips.push_back(std::move(p));
+    state.blocks.clips.placed.push_back(std::move(p));
   }
 }
 
@@ -155,7 +156,7 @@ void ClipStage::clamp_between_jaws(const SimState& state, std::size_t tool, cons
   p.clip.frame.col(1) = f.pin;
   p.clip.frame.col(2) = f.forward;
   const Mat3 rt = p.clip.frame.transpose();
-  const double tan_half = std::tan(0.5 * std::min(m_widest[tool], 3.0));
+  const double tan_half = std::tan(0.5 * std::min(state.blocks.clips.widest_rad[tool], 3.0));
   const TetMesh& mesh = state.mesh;
   double widest = 0.0;  // the clamped tissue's half thickness across the clip, m
   for (std::int32_t n = 0; n < mesh.num_nodes(); ++n) {
@@ -175,7 +176,7 @@ void ClipStage::clamp_between_jaws(const SimState& state, std::size_t tool, cons
 void ClipStage::cinch(const SimState& state, std::size_t tool, const ToolState& ts,
                       Placed& p) const {
   ToolState open = ts;
-  open.jaw_rad = m_widest[tool];  // the ring as it went round the tissue
+  open.jaw_rad = state.blocks.clips.widest_rad[tool];  // the ring as it went round the tissue
   const LoopRing ring = loop_ring(open);
   const TetMesh& mesh = state.mesh;
   Vec3 sum = Vec3::Zero();
@@ -259,17 +260,17 @@ void ClipStage::prune_anchors(const TetMesh& mesh, Placed& p) {
 
 // A cut of the last step may have cloned a clamped node (the clone takes the tets on one side):
 // it is held where its original is.
-void ClipStage::clamp_clones(const SimState& state) {
-  if (state.handoff.cuts.empty() || m_clips.empty()) return;
+void ClipStage::clamp_clones(SimState& state) {
+  if (state.events.cuts.empty() || state.blocks.clips.placed.empty()) return;
   std::int64_t added = 0;
-  for (const CutEvent& c : state.handoff.cuts)
+  for (const CutEvent& c : state.events.cuts)
     added += static_cast<std::int64_t>(c.delta.added_nodes.size());
   std::int64_t first_new = state.mesh.num_nodes() - added;  // id of the first cut's first node
-  for (const CutEvent& c : state.handoff.cuts) {
+  for (const CutEvent& c : state.events.cuts) {
     for (std::size_t k = 0; k < c.delta.added_nodes.size(); ++k) {
       const NodeParent& parent = c.delta.added_nodes[k];
       if (parent.count != 1) continue;
-      for (Placed& p : m_clips) {
+      for (Placed& p : state.blocks.clips.placed) {
         const auto it = std::find(p.nodes.begin(), p.nodes.end(), parent.nodes[0]);
         if (it == p.nodes.end()) continue;
         const Vec3 l = p.local[static_cast<std::size_t>(it - p.nodes.begin())];
@@ -317,79 +318,30 @@ void ClipStage::hold(Placed& p, SimState& state, double age_s) const {
 }
 
 void ClipStage::publish(SimState& state) const {
-  state.handoff.clips.resize(m_clips.size());
-  for (std::size_t i = 0; i < m_clips.size(); ++i) state.handoff.clips[i] = m_clips[i].clip;
+  state.shared.clips.resize(state.blocks.clips.placed.size());
+  for (std::size_t i = 0; i < state.blocks.clips.placed.size(); ++i)
+    state.shared.clips[i] = state.blocks.clips.placed[i].clip;
 }
 
-void ClipStage::save(StateWriter& out) const {
-  out.array(m_widest);
-  out.array(m_dropped);
-  if (m_staplers) {  // (a scene without staplers keeps the block it always had)
-    out.array(m_refused);
-    for (const StaplerTrigger& t : m_triggers) out.f64(t.widest_rad);
-  }
-  out.u32(static_cast<std::uint32_t>(m_clips.size()));
-  for (const Placed& p : m_clips) {
-    out.u8(static_cast<std::uint8_t>(p.clip.kind));
-    write_vec3(out, p.clip.hinge_m);
-    for (int c = 0; c < 3; ++c) write_vec3(out, p.clip.frame.col(c));
-    out.u64(p.clip.tool);
-    out.f64(p.clip.placed_s);
-    out.array(p.clip.groups);
-    write_vec3(out, p.clip.rest_centre_m);
-    out.array(p.nodes);
-    out.array(p.local);
-    out.f64(p.press);
-    out.array(p.anchors);
-    out.array(p.anchor_ref);
-    write_vec3(out, p.ref_hinge);
-    for (int c = 0; c < 3; ++c) write_vec3(out, p.ref_frame.col(c));
-    out.u8(p.settled ? 1 : 0);
-  }
-}
-
-void ClipStage::restore(StateReader& in, SimState& state) {
-  in.array(m_widest);
-  in.array(m_dropped);
-  if (m_widest.size() != m_role.size() || m_dropped.size() != m_role.size())
-    in.fail("another number of tools than the scene's");
-  if (m_staplers) {
-    in.array(m_refused);
-    if (m_refused.size() != m_role.size()) in.fail("another number of tools than the scene's");
-    for (StaplerTrigger& t : m_triggers) t.widest_rad = in.f64();
-  }
-  const std::uint32_t count = in.u32();
-  m_clips.clear();
-  for (std::uint32_t i = 0; i < count; ++i) {
-    Placed p;
-    const std::uint8_t kind = in.u8();
-    if (kind > static_cast<std::uint8_t>(Clip::Kind::kStaple))
-      in.fail("an unknown kind of ligature");
-    p.clip.kind = static_cast<Clip::Kind>(kind);
-    p.clip.hinge_m = read_vec3(in);
-    for (int c = 0; c < 3; ++c) p.clip.frame.col(c) = read_vec3(in);
-    p.clip.tool = static_cast<std::size_t>(in.u64());
-    p.clip.placed_s = in.f64();
-    in.array(p.clip.groups);
-    p.clip.rest_centre_m = read_vec3(in);
-    in.array(p.nodes);
-    in.array(p.local);
-    p.press = in.f64();
-    in.array(p.anchors);
-    in.array(p.anchor_ref);
-    p.ref_hinge = read_vec3(in);
-    for (int c = 0; c < 3; ++c) p.ref_frame.col(c) = read_vec3(in);
-    p.settled = in.u8() != 0;
+void ClipStage::adopt(SimState& state) {
+  const ClipsBlock& b = state.blocks.clips;
+  const std::size_t tools = m_role.size();
+  for (std::size_t size :
+       {b.widest_rad.size(), b.dropped.size(), b.refused.size(), b.triggers.size()})
+    if (size != 0 && size != tools)
+      throw BlockMismatch("ligatures of " + std::to_string(size) + " tools, the scene has " +
+                          std::to_string(tools));
+  for (const Placed& p : b.placed) {
+    if (p.clip.kind > Clip::Kind::kStaple) throw BlockMismatch("an unknown kind of ligature");
     if (p.local.size() != p.nodes.size() ||
-        (p.settled && p.anchor_ref.size() != p.anchors.size()) || p.clip.tool >= m_role.size())
-      in.fail("a clip's arrays disagree in size");
+        (p.settled && p.anchor_ref.size() != p.anchors.size()) || p.clip.tool >= tools)
+      throw BlockMismatch("a clip's arrays disagree in size");
     for (const std::vector<std::int32_t>* ids : {&p.nodes, &p.anchors})
       for (std::int32_t n : *ids)
-        if (n < 0 || n >= state.mesh.num_nodes()) in.fail("a clip holds a node out of range");
-    if (p.nodes.empty()) in.fail("a clip clamps no node");
-    p.clip.nodes = p.nodes.size();
-    p.clip.node = p.nodes.front();
-    m_clips.push_back(std::move(p));
+        if (n < 0 || n >= state.mesh.num_nodes())
+          throw BlockMismatch("a clip holds node " + std::to_string(n) + " of " +
+                              std::to_string(state.mesh.num_nodes()));
+    if (p.nodes.empty()) throw BlockMismatch("a clip clamps no node");
   }
   publish(state);
 }

@@ -30,7 +30,7 @@
 //   later in the same step, divides between the lines only when this stage laid them.
 // - A cut's clone of a clamped node is clamped too (closing scissors never cut through a clip:
 //   the cutting stage reads the clips in the hand-off).
-// Every placed clip is handed on each step (SimState::handoff.clips) for the cutting stage, the
+// Every placed clip is handed on each step (SimState::shared.clips) for the cutting stage, the
 // renderer and the metrics.
 #pragma once
 
@@ -43,6 +43,7 @@
 #include "engine/scene.h"
 #include "engine/stage.h"
 #include "engine/stapler.h"
+#include "engine/state_blocks.h"
 #include "engine/tet_mesh.h"
 #include "engine/tool_state.h"
 
@@ -72,34 +73,24 @@ inline constexpr double kStapleSettleS = 0.3;    ///< after this the tissue carr
                                        : kClipSettleS;
 }
 
+/// Clips tool `tool` closed on no tissue, loops it cinched round none and stapler fires on none
+/// (scene tool order; 0 for other tools and before the first step).
+[[nodiscard]] std::int64_t clips_dropped(const SimState& state, std::size_t tool);
+/// Stapler fires of tool `tool` refused because its jaws closed on a placed ligature.
+[[nodiscard]] std::int64_t stapler_refused(const SimState& state, std::size_t tool);
+
 class ClipStage final : public Stage {
  public:
   explicit ClipStage(const Scene& scene);
 
   [[nodiscard]] std::string_view name() const noexcept override { return "clips"; }
   void step(const StepContext& ctx, SimState& state) override;
-  /// The appliers' openings, the clips and what each clamps (the hand-off's clips are rebuilt).
-  void save(StateWriter& out) const override;
-  void restore(StateReader& in, SimState& state) override;
-
-  /// Clips closed on no tissue, loops cinched round none and staplers fired on none, per tool
-  /// (scene tool order; 0 for other tools).
-  [[nodiscard]] const std::vector<std::int64_t>& dropped() const noexcept { return m_dropped; }
-  /// Stapler fires refused because the jaws closed on a placed ligature, per tool (scene order).
-  [[nodiscard]] const std::vector<std::int64_t>& refused() const noexcept { return m_refused; }
+  /// The appliers' openings, the clips and what each clamps are SimState::blocks.clips; a
+  /// restored block is checked against the scene and the mesh, and SharedState::clips rebuilt.
+  void adopt(SimState& state) override;
 
  private:
-  struct Placed {
-    Clip clip;                        // as handed on
-    std::vector<std::int32_t> nodes;  // (c) clamped node ids
-    std::vector<Vec3> local;          // (c) where each was in the clip's frame at placing, m
-    double press = 1.0;  // the across-coordinate's (a loop's: radial) final scale, (0, 1]
-    std::vector<std::int32_t> anchors;  // (a) free nodes sharing a tet with a clamped node
-    std::vector<Vec3> anchor_ref;       // (a) their positions when the clip settled, m
-    Vec3 ref_hinge = Vec3::Zero();      // the clip's hinge then, m
-    Mat3 ref_frame = Mat3::Identity();  // and its frame
-    bool settled = false;
-  };
+  using Placed = ClipsBlock::Placed;
 
   enum class Role : std::uint8_t { kNone, kApplier, kLoop, kStapler };
 
@@ -117,7 +108,7 @@ class ClipStage final : public Stage {
   static void clamp_staple_line(const SimState& state, const StaplerJaws& jaws, int k, Placed& p);
   /// The anchors and the groups around p's nodes.
   static void find_anchors(const TetMesh& mesh, Placed& p);
-  void clamp_clones(const SimState& state);
+  void clamp_clones(SimState& state);
   /// After a cut: drops the anchors that share no tet with a clamped node any more (the cut took
   /// them to the other side), so a piece cut free beside the clip does not drag it.
   static void prune_anchors(const TetMesh& mesh, Placed& p);
@@ -125,14 +116,8 @@ class ClipStage final : public Stage {
   void hold(Placed& p, SimState& state, double age_s) const;
   void publish(SimState& state) const;
 
-  std::vector<Role> m_role;                // (tools) what it places, if anything
-  std::vector<double> m_widest;            // (tools) widest opening since its last clip, rad
-  std::vector<std::int64_t> m_dropped;     // (tools)
-  std::vector<std::int64_t> m_refused;     // (tools) stapler fires on a ligature
-  std::vector<StaplerTrigger> m_triggers;  // (tools) each stapler's jaw channel
-  bool m_staplers = false;                 // the scene has a stapler (its state is saved)
-  std::vector<Placed> m_clips;             // in the order placed
-  std::vector<Vec3> m_to;                  // scratch: the anchors now, for the fit
+  std::vector<Role> m_role;  // (tools) what it places, if anything
+  std::vector<Vec3> m_to;    // scratch: the anchors now, for the fit
 };
 
 }  // namespace serosa::contact

@@ -12,7 +12,7 @@ SupportStage::SupportStage(const Scene& scene, bool owns_forces)
 void SupportStage::step(const StepContext& ctx, SimState& state) {
   const TetMesh& mesh = state.mesh;
   const auto n = static_cast<std::size_t>(mesh.num_nodes());
-  std::vector<Vec3>& force = state.handoff.external_force_n;
+  std::vector<Vec3>& force = state.events.external_force_n;
   if (m_owns_forces) force.clear();
   m_contacts = 0;
   const double inv_dt = 1.0 / ctx.dt_s;

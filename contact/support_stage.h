@@ -28,7 +28,7 @@ inline constexpr double kSupportDamping = 0.5;      ///< normal damping: this ti
 
 class SupportStage final : public Stage {
  public:
-  /// `owns_forces`: no contact stage writes SimState::handoff.external_force_n before this one,
+  /// `owns_forces`: no contact stage writes SimState::events.external_force_n before this one,
   /// so it starts each step's forces itself (else it adds to the contact stage's).
   SupportStage(const Scene& scene, bool owns_forces);
 

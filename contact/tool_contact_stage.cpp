@@ -6,7 +6,6 @@
 #include "engine/geometry/point_triangle.h"
 #include "engine/instrument_hold.h"
 #include "engine/sim_state.h"
-#include "engine/state_codec.h"
 #include "engine/tool_geometry.h"
 
 namespace serosa::contact {
@@ -30,7 +29,6 @@ ToolContactStage::ToolContactStage(const Scene& scene, LameTable lame, ContactOu
     m_kinds.push_back(t.kind);
     m_trocars.push_back(t.trocar_m);
   }
-  m_grasps.resize(scene.tools.size());
   m_tool_force.assign(scene.tools.size(), Vec3::Zero());
   m_planes.resize(scene.tools.size());
   m_near.resize(scene.tools.size());
@@ -39,7 +37,7 @@ ToolContactStage::ToolContactStage(const Scene& scene, LameTable lame, ContactOu
 
 void ToolContactStage::update_planes(SimState& state) {
   const TetMesh& mesh = state.mesh;
-  const SurfaceMesh& s = state.handoff.surface;
+  const SurfaceMesh& s = state.shared.surface;
   if (m_bvh_version != s.topology_version) {
     m_bvh.build(s, mesh.x);
     m_bvh_version = s.topology_version;
@@ -67,8 +65,8 @@ void ToolContactStage::update_planes(SimState& state) {
     m_near[i] = p;
     if (hit->distance <= kHapticRange) m_planes[i] = p;
   }
-  state.handoff.contact_planes = m_planes;
-  state.handoff.tissue_near = m_near;
+  state.events.contact_planes = m_planes;
+  state.events.tissue_near = m_near;
 }
 
 // A scissors stroke begins where the jaws last opened (the widest opening since, kept in the
@@ -76,7 +74,7 @@ void ToolContactStage::update_planes(SimState& state) {
 // the hand-off (the cutting stage runs after this one). The tissue closed on in between resists.
 void ToolContactStage::resist_blades(const SimState& state, std::size_t tool, Grasp& g) {
   const ToolState& ts = state.tools[tool];
-  const bool cut = std::any_of(state.handoff.cuts.begin(), state.handoff.cuts.end(),
+  const bool cut = std::any_of(state.events.cuts.begin(), state.events.cuts.end(),
                                [&](const CutEvent& c) { return c.tool == tool; });
   if (cut || ts.jaw_rad >= g.widest_rad) g.widest_rad = ts.jaw_rad;
   if (!m_blade_load) return;
@@ -90,16 +88,17 @@ void ToolContactStage::resist_blades(const SimState& state, std::size_t tool, Gr
   m_reactions[tool].blade_force_n = load.force_n;
 }
 
-std::vector<std::size_t> ToolContactStage::grasped_counts() const {
-  std::vector<std::size_t> c;
-  for (const Grasp& g : m_grasps) c.push_back(g.nodes.size());
+std::vector<std::size_t> grasped_counts(const SimState& state) {
+  std::vector<std::size_t> c(state.tools.size(), 0);
+  const auto& grasps = state.blocks.contact.grasps;
+  for (std::size_t i = 0; i < grasps.size() && i < c.size(); ++i) c[i] = grasps[i].nodes.size();
   return c;
 }
 
 void ToolContactStage::refresh_boundary(const SimState& state) {
   // The surface stage's surface: it runs after this stage, so it is the one of the last step
   // (the assembled state carries the first one), current since no cut comes between.
-  const SurfaceMesh& s = state.handoff.surface;
+  const SurfaceMesh& s = state.shared.surface;
   if (m_boundary_version == s.topology_version && m_boundary_nodes == state.mesh.num_nodes())
     return;
   std::vector<std::uint8_t> on(static_cast<std::size_t>(state.mesh.num_nodes()), 0);
@@ -112,6 +111,14 @@ void ToolContactStage::refresh_boundary(const SimState& state) {
   m_boundary_version = s.topology_version;
   m_boundary_nodes = state.mesh.num_nodes();
 }
+
+namespace {
+// The node's own Dirichlet flag, from before the grasp took it (a node it holds).
+std::uint8_t flag_of(const ContactBlock::Grasp& g, std::int32_t node) {
+  const auto it = std::find(g.nodes.begin(), g.nodes.end(), node);
+  return g.was_fixed[static_cast<std::size_t>(it - g.nodes.begin())];
+}
+}  // namespace
 
 void ToolContactStage::grab(SimState& state, std::size_t tool, Grasp& g) {
   const ToolFrame f = tool_frame(state.tools[tool]);
@@ -128,32 +135,28 @@ void ToolContactStage::grab(SimState& state, std::size_t tool, Grasp& g) {
     if (std::abs(l.x()) > l.z() * tan_half + kJawRadius) continue;
     g.nodes.push_back(n);
     g.local.push_back(l);
-    const Grasp* other = held_elsewhere(n, g);
-    g.was_fixed.push_back(other != nullptr ? other->flag_of(n) : state.mesh.fixed[un]);
+    const Grasp* other = held_elsewhere(state, n, g);
+    g.was_fixed.push_back(other != nullptr ? flag_of(*other, n) : state.mesh.fixed[un]);
   }
   g.holding = true;
 }
 
 // Two graspers can hold the same node (one hands tissue to the other): each keeps the node's own
 // flag, from before either took it, and only the last to let go gives it back.
-const ToolContactStage::Grasp* ToolContactStage::held_elsewhere(std::int32_t node,
-                                                                const Grasp& self) const {
-  for (const Grasp& o : m_grasps)
+const ToolContactStage::Grasp* ToolContactStage::held_elsewhere(const SimState& state,
+                                                                std::int32_t node,
+                                                                const Grasp& self) {
+  for (const Grasp& o : state.blocks.contact.grasps)
     if (&o != &self && o.holding &&
         std::find(o.nodes.begin(), o.nodes.end(), node) != o.nodes.end())
       return &o;
   return nullptr;
 }
 
-std::uint8_t ToolContactStage::Grasp::flag_of(std::int32_t node) const {
-  const auto it = std::find(nodes.begin(), nodes.end(), node);
-  return was_fixed[static_cast<std::size_t>(it - nodes.begin())];
-}
-
 void ToolContactStage::release(SimState& state, Grasp& g) {
   for (std::size_t k = 0; k < g.nodes.size(); ++k) {
     const auto un = static_cast<std::size_t>(g.nodes[k]);
-    if (un < state.mesh.fixed.size() && held_elsewhere(g.nodes[k], g) == nullptr)
+    if (un < state.mesh.fixed.size() && held_elsewhere(state, g.nodes[k], g) == nullptr)
       state.mesh.fixed[un] = g.was_fixed[k];
   }
   g.nodes.clear();
@@ -170,14 +173,16 @@ void ToolContactStage::step(const StepContext& ctx, SimState& state) {
   m_force.assign(n, Vec3::Zero());
   m_contacts = 0;
   bool any_force = false;
-  state.handoff.nodes_moved = false;
+  state.events.nodes_moved = false;
+  auto& grasps = state.blocks.contact.grasps;
+  if (grasps.empty()) grasps.resize(m_kinds.size());
 
   for (std::size_t i = 0; i < m_kinds.size() && i < state.tools.size(); ++i) {
     const ToolState& ts = state.tools[i];
     m_tool_force[i].setZero();
     m_reactions[i] = ToolReaction{};
     if (m_kinds[i] == ToolKind::kEndoscope) continue;
-    Grasp& g = m_grasps[i];
+    Grasp& g = grasps[i];
     if (in_port(ts)) {  // withdrawn: it lets go and touches nothing
       withdraw(state, g);
       continue;
@@ -220,7 +225,7 @@ void ToolContactStage::step(const StepContext& ctx, SimState& state) {
           mesh.x[un] = target;
           mesh.fixed[un] = 1;
         }
-        state.handoff.nodes_moved = true;  // the jaws' work, not the solve's
+        state.events.nodes_moved = true;  // the jaws' work, not the solve's
       }
     }
 
@@ -267,12 +272,12 @@ void ToolContactStage::step(const StepContext& ctx, SimState& state) {
       m_reactions[i].shaft_lever = std::clamp(shaft_at / shaft_weight / reach, 0.0, 1.0);
   }
   if (m_haptic) update_planes(state);
-  if (m_blade_load) state.handoff.tool_reactions = m_reactions;
-  state.handoff.tool_force_n = m_tool_force;
+  if (m_blade_load) state.events.tool_reactions = m_reactions;
+  state.events.tool_force_n = m_tool_force;
   if (any_force)
-    state.handoff.external_force_n = m_force;
+    state.events.external_force_n = m_force;
   else
-    state.handoff.external_force_n.clear();
+    state.events.external_force_n.clear();
 }
 
 void ToolContactStage::withdraw(SimState& state, Grasp& g) {
@@ -283,29 +288,18 @@ void ToolContactStage::withdraw(SimState& state, Grasp& g) {
   g.widest_rad = 0.0;  // inserted again, its jaws must open before they grasp
 }
 
-void ToolContactStage::save(StateWriter& out) const {
-  out.u32(static_cast<std::uint32_t>(m_grasps.size()));
-  for (const Grasp& g : m_grasps) {
-    out.array(g.nodes);
-    out.array(g.local);
-    out.array(g.was_fixed);
-    out.u8(g.holding ? 1 : 0);
-    out.f64(g.widest_rad);
-  }
-}
-
-void ToolContactStage::restore(StateReader& in, SimState& state) {
-  if (in.u32() != m_grasps.size()) in.fail("another number of tools than the scene's");
-  for (Grasp& g : m_grasps) {
-    in.array(g.nodes);
-    in.array(g.local);
-    in.array(g.was_fixed);
-    g.holding = in.u8() != 0;
-    g.widest_rad = in.f64();
+void ToolContactStage::adopt(SimState& state) {
+  const auto& grasps = state.blocks.contact.grasps;
+  if (!grasps.empty() && grasps.size() != m_kinds.size())
+    throw BlockMismatch("grasps of " + std::to_string(grasps.size()) + " tools, the scene has " +
+                        std::to_string(m_kinds.size()));
+  for (const Grasp& g : grasps) {
     if (g.local.size() != g.nodes.size() || g.was_fixed.size() != g.nodes.size())
-      in.fail("a grasp's arrays disagree in size");
+      throw BlockMismatch("a grasp's arrays disagree in size");
     for (std::int32_t n : g.nodes)
-      if (n < 0 || n >= state.mesh.num_nodes()) in.fail("a grasp holds a node out of range");
+      if (n < 0 || n >= state.mesh.num_nodes())
+        throw BlockMismatch("a grasp holds node " + std::to_string(n) + " of " +
+                            std::to_string(state.mesh.num_nodes()));
   }
   m_boundary_version = ~0ull;
   m_bvh_version = ~0ull;
@@ -313,9 +307,10 @@ void ToolContactStage::restore(StateReader& in, SimState& state) {
   publish_grasps(state);
 }
 
-void ToolContactStage::publish_grasps(SimState& state) const {
-  state.handoff.grasped.resize(m_grasps.size());
-  for (std::size_t i = 0; i < m_grasps.size(); ++i) state.handoff.grasped[i] = m_grasps[i].nodes;
+void ToolContactStage::publish_grasps(SimState& state) {
+  const auto& grasps = state.blocks.contact.grasps;
+  state.shared.grasped.resize(grasps.size());
+  for (std::size_t i = 0; i < grasps.size(); ++i) state.shared.grasped[i] = grasps[i].nodes;
 }
 
 }  // namespace serosa::contact

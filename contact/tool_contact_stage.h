@@ -13,10 +13,10 @@
 //   that move with the tool). Opening past kGraspCloseRad + kGraspHysteresisRad lets go and
 //   restores their original Dirichlet flags. The grasp force is the tissue's elastic pull on the
 //   grabbed nodes (engine/tissue_stress.h).
-// Each tool's total force on the tissue (N) is handed on (SimState::handoff.tool_force_n) for
-// metrics and the haptic model; the node forces go to FEM (handoff.external_force_n).
+// Each tool's total force on the tissue (N) is handed on (SimState::events.tool_force_n) for
+// metrics and the haptic model; the node forces go to FEM (events.external_force_n).
 // - Reactions (with the haptic planes): what each tool feels besides its tip's contact plane,
-//   handed on in SimState::handoff.tool_reactions: a grasper's held tissue's pull (the elastic
+//   handed on in SimState::events.tool_reactions: a grasper's held tissue's pull (the elastic
 //   force on its held nodes), the tissue's push on the shaft and where along it (the shaft
 //   capsule's contact forces, reversed), and the torque of the tissue between closing scissor
 //   blades (contact/blade_resistance.h; a stroke begins at the widest opening and ends with its
@@ -25,12 +25,12 @@
 //   forces, per tool the organ surface point nearest its tip within kHapticRange (collision BVH,
 //   engine/geometry/surface_bvh.h, rebuilt on topology changes and refitted every step) with its
 //   face's outward normal and kHapticStiffness: the local contact plane the 1 kHz loop renders
-//   (haptics/contact_model.h), handed on in SimState::handoff.contact_planes. A tip pressed into
+//   (haptics/contact_model.h), handed on in SimState::events.contact_planes. A tip pressed into
 //   the tissue is below that plane and feels a force along the outward normal, opposing the
 //   penetration. The same query out to kCueRange gives each tool's nearest tissue for the
-//   picture's depth cue (SimState::handoff.tissue_near): a plane that far from the tip would
+//   picture's depth cue (SimState::events.tissue_near): a plane that far from the tip would
 //   stand for the wrong part of a curved organ, so only the nearer ones reach the hand.
-// The boundary is the surface stage's (SimState::handoff.surface): app builds a surface stage
+// The boundary is the surface stage's (SimState::shared.surface): app builds a surface stage
 // wherever it builds this one, and the assembled state carries the first surface.
 #pragma once
 
@@ -46,6 +46,7 @@
 #include "engine/scene.h"
 #include "engine/sim_state.h"
 #include "engine/stage.h"
+#include "engine/state_blocks.h"
 #include "engine/surface_mesh.h"
 #include "engine/tissue_stress.h"
 
@@ -71,49 +72,40 @@ struct ContactOutputs {
   bool blade_load = false;
 };
 
+/// (tools) number of nodes each tool holds (graspers; none for every tool without a contact stage).
+[[nodiscard]] std::vector<std::size_t> grasped_counts(const SimState& state);
+
 class ToolContactStage final : public Stage {
  public:
   ToolContactStage(const Scene& scene, LameTable lame, ContactOutputs outputs = {});
 
   [[nodiscard]] std::string_view name() const noexcept override { return "contact"; }
   void step(const StepContext& ctx, SimState& state) override;
-  /// The grasps: which nodes each grasper holds, where in its frame, their own Dirichlet flags,
-  /// and the widest opening since it let go (the BVH and the boundary are rebuilt).
-  void save(StateWriter& out) const override;
-  void restore(StateReader& in, SimState& state) override;
+  /// The grasps are SimState::blocks.contact; a restored state's are checked against the mesh
+  /// and the tools, and the BVH and the boundary are rebuilt.
+  void adopt(SimState& state) override;
 
-  /// (tools) number of nodes each tool holds (graspers).
-  [[nodiscard]] std::vector<std::size_t> grasped_counts() const;
   /// Nodes pushed by contact in the last step, over all tools.
   [[nodiscard]] std::int64_t contacts() const noexcept { return m_contacts; }
 
  private:
-  struct Grasp {
-    std::vector<std::int32_t> nodes;  // grabbed node ids
-    std::vector<Vec3> local;          // their positions in the tool frame at the grab, m
-    std::vector<std::uint8_t> was_fixed;
-    bool holding = false;
-    double widest_rad = 0.0;  // grasper: widest opening since the last release; scissors: the
-                              // opening the stroke began with
-    /// The node's own Dirichlet flag, from before it was grabbed (a node it holds).
-    [[nodiscard]] std::uint8_t flag_of(std::int32_t node) const;
-  };
+  using Grasp = ContactBlock::Grasp;
   /// Another grasper's grasp that holds the node, if any.
-  [[nodiscard]] const Grasp* held_elsewhere(std::int32_t node, const Grasp& self) const;
+  [[nodiscard]] static const Grasp* held_elsewhere(const SimState& state, std::int32_t node,
+                                                   const Grasp& self);
   void refresh_boundary(const SimState& state);
   void resist_blades(const SimState& state, std::size_t tool, Grasp& g);
   void grab(SimState& state, std::size_t tool, Grasp& g);
   void release(SimState& state, Grasp& g);
   /// An instrument withdrawn into its port: lets go of what it held.
   void withdraw(SimState& state, Grasp& g);
-  /// What each grasper holds, for the metrics (SimState::handoff.grasped).
-  void publish_grasps(SimState& state) const;
+  /// What each grasper holds, for the metrics (SimState::shared.grasped).
+  static void publish_grasps(SimState& state);
   void update_planes(SimState& state);
 
   std::vector<ToolKind> m_kinds;
   std::vector<std::optional<Vec3>> m_trocars;
   LameTable m_lame;
-  std::vector<Grasp> m_grasps;               // (tools)
   std::vector<std::int32_t> m_boundary;      // surface node ids
   std::uint64_t m_boundary_version = ~0ull;  // surface the boundary was taken from
   std::int32_t m_boundary_nodes = -1;

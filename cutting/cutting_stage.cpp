@@ -12,19 +12,15 @@
 #include "engine/hook.h"
 #include "engine/instrument_hold.h"
 #include "engine/sim_state.h"
-#include "engine/state_codec.h"
 #include "engine/tool_geometry.h"
 
 namespace serosa::cutting {
 
 CuttingStage::CuttingStage(const Scene& scene, CuttingStageOptions options) : m_options(options) {
   for (std::size_t i = 0; i < scene.tools.size(); ++i) {
-    if (options.scissors && scene.tools[i].kind == ToolKind::kScissors)
-      m_scissors.push_back(Scissors{i, std::nullopt, std::nullopt, std::nullopt, 0});
-    if (options.hooks && scene.tools[i].kind == ToolKind::kHook)
-      m_hooks.push_back(Hook{i, std::nullopt, std::nullopt, 0});
-    if (options.staplers && scene.tools[i].kind == ToolKind::kStapler)
-      m_staplers.push_back(Stapler{i, StaplerTrigger{}});
+    if (options.scissors && scene.tools[i].kind == ToolKind::kScissors) m_scissors.push_back(i);
+    if (options.hooks && scene.tools[i].kind == ToolKind::kHook) m_hooks.push_back(i);
+    if (options.staplers && scene.tools[i].kind == ToolKind::kStapler) m_staplers.push_back(i);
   }
   m_cut_options.classify_rel = scene.cutting.tolerance;
   m_swept_strokes = scene.cutting.strokes == StrokeSurfaceKind::kSwept;
@@ -47,11 +43,11 @@ namespace {
 
 // What a stroke's report says before it is cut.
 StrokeReport stroke_report(std::uint64_t first_step, std::uint64_t last_step,
-                           const ScissorsStroke& stroke, const StrokePolygons& polygons) {
+                           const StrokeRecord& stroke, const StrokePolygons& polygons) {
   StrokeReport r;
   r.first_step = first_step;
   r.last_step = last_step;
-  r.steps = stroke.steps();
+  r.steps = stroke.steps;
   r.polygons = polygons.polygons.size();
   r.deviation_m = polygons.fit.deviation_m;
   return r;
@@ -64,34 +60,42 @@ double hinge_distance(const ToolState& a, const ToolState& b) {
 }  // namespace
 
 void CuttingStage::step(const StepContext& ctx, SimState& state) {
-  state.handoff.cuts.clear();  // the FEM stage of this step has taken the last step's
+  state.events.cuts.clear();  // the FEM stage of this step has taken the last step's
   if (!m_scissors.empty() || !m_hooks.empty() || !m_staplers.empty() || !m_queued.empty())
     cutting::reserve_for_cuts(state.mesh);  // no realloc in the first cut
   cut_queued(ctx, state);
-  for (Scissors& s : m_scissors) {
-    if (s.tool >= state.tools.size()) continue;
-    const ToolState now = state.tools[s.tool];
+  CuttingBlock& b = state.blocks.cutting;
+  if (b.scissors.size() != m_scissors.size()) b.scissors.resize(m_scissors.size());  // the first
+  if (b.hooks.size() != m_hooks.size()) b.hooks.resize(m_hooks.size());              // step
+  if (b.staplers.size() != m_staplers.size()) b.staplers.resize(m_staplers.size());
+  for (std::size_t k = 0; k < m_scissors.size(); ++k) {
+    const std::size_t tool = m_scissors[k];
+    if (tool >= state.tools.size()) continue;
+    Follow& s = b.scissors[k];
+    const ToolState now = state.tools[tool];
     if (in_port(now)) {  // withdrawn: the blades left the tissue; what they closed on stays whole
-      s = Scissors{s.tool, {}, {}, {}, 0};
+      s = Follow{};
       continue;
     }
     const std::optional<ToolState> before = s.before;
     s.before = now;
-    if (before) follow(ctx, state, s, *before, now);
+    if (before) follow(ctx, state, tool, s, *before, now);
   }
-  for (Stapler& st : m_staplers) {
-    if (st.tool >= state.tools.size()) continue;
-    const ToolState now = state.tools[st.tool];
-    if (const std::optional<double> fired = st.trigger.update(now.jaw_rad))
-      fire(ctx, state, st.tool, now, *fired);
+  for (std::size_t k = 0; k < m_staplers.size(); ++k) {
+    const std::size_t tool = m_staplers[k];
+    if (tool >= state.tools.size()) continue;
+    const ToolState now = state.tools[tool];
+    if (const std::optional<double> fired = b.staplers[k].update(now.jaw_rad))
+      fire(ctx, state, tool, now, *fired);
   }
   if (m_hooks.empty()) return;
-  m_coagulated.resize(static_cast<std::size_t>(state.mesh.num_nodes()), 0);
-  for (Hook& h : m_hooks)
-    if (h.tool < state.tools.size()) follow_hook(ctx, state, h, live_hook(h, state.tools[h.tool]));
+  b.coagulated.resize(static_cast<std::size_t>(state.mesh.num_nodes()), 0);
+  for (std::size_t k = 0; k < m_hooks.size(); ++k) {
+    const std::size_t tool = m_hooks[k];
+    if (tool < state.tools.size())
+      follow_hook(ctx, state, tool, b.hooks[k], live_hook(b.hooks[k], state.tools[tool]));
+  }
   inherit_coagulation(state, 0);
-  state.handoff.coagulated = m_coagulated;  // (no allocation once it has its size)
-  state.handoff.coagulated_version = m_coagulated_version;
 }
 
 void CuttingStage::cut_queued(const StepContext& ctx, SimState& state) {
@@ -108,7 +112,7 @@ void CuttingStage::cut_queued(const StepContext& ctx, SimState& state) {
 
 // A hook withdrawn into its port: the current goes off where it left the tissue (what it burnt
 // through opens), and it burns nothing out there.
-ToolState CuttingStage::live_hook(const Hook& h, const ToolState& now) {
+ToolState CuttingStage::live_hook(const Follow& h, const ToolState& now) {
   if (!in_port(now)) return now;
   ToolState off = h.before && !in_port(*h.before) ? *h.before : now;
   off.buttons &= ~kPedalButton;
@@ -116,7 +120,7 @@ ToolState CuttingStage::live_hook(const Hook& h, const ToolState& now) {
   return off;
 }
 
-void CuttingStage::follow_hook(const StepContext& ctx, SimState& state, Hook& h,
+void CuttingStage::follow_hook(const StepContext& ctx, SimState& state, std::size_t tool, Follow& h,
                                const ToolState& now) {
   const std::optional<ToolState> before = h.before;
   h.before = now;
@@ -124,14 +128,15 @@ void CuttingStage::follow_hook(const StepContext& ctx, SimState& state, Hook& h,
     if (!h.stroke) return;
     ToolState end = now;
     end.jaw_rad = 0.0;  // one region over every sample
-    const StrokePolygons polys = h.stroke->polygons(state.mesh, end, kStrokeClosedRad);
+    const StrokePolygons polys =
+        ScissorsStroke(*h.stroke).polygons(state.mesh, end, kStrokeClosedRad);
     StrokeReport report = stroke_report(h.first_step, ctx.step, *h.stroke, polys);
     h.stroke.reset();
     ++m_stats.strokes;
     ++m_stats.hook_strokes;
     if (polys.polygons.empty()) ++m_stats.degenerate_sweeps;
-    const std::size_t first_cut = state.handoff.cuts.size();
-    cut_stroke(ctx, state, h.tool, polys, report);
+    const std::size_t first_cut = state.events.cuts.size();
+    cut_stroke(ctx, state, tool, polys, report);
     coagulate_cut(state, first_cut);  // what the current divided it also dried
     return;
   }
@@ -139,11 +144,12 @@ void CuttingStage::follow_hook(const StepContext& ctx, SimState& state, Hook& h,
   coagulate(ctx, state, seg.a, seg.b);
   if (!before || !pedal_down(*before)) return;  // the stroke starts with the next step
   refresh_bvh(ctx, state.mesh);
+  ScissorsStroke stroke = h.stroke ? ScissorsStroke(std::move(*h.stroke))
+                                   : ScissorsStroke(*before, state.mesh.topology_version);
   if (!h.stroke) {
-    h.stroke.emplace(*before, state.mesh.topology_version);
     h.first_step = ctx.step;
     const HookSegment s0 = hook_segment(*before);
-    h.stroke->add_segment(s0.a, s0.b, state.mesh, *m_bvh);
+    stroke.add_segment(s0.a, s0.b, state.mesh, *m_bvh);
   }
   // Samples along the way, close enough that their hull is the path the crook swept.
   const HookSegment s0 = hook_segment(*before);
@@ -153,18 +159,19 @@ void CuttingStage::follow_hook(const StepContext& ctx, SimState& state, Hook& h,
   for (int j = 1; j <= n; ++j) {
     const HookSegment sj =
         hook_segment(interpolate(*before, now, static_cast<double>(j) / static_cast<double>(n)));
-    h.stroke->add_segment(sj.a, sj.b, state.mesh, *m_bvh);
+    stroke.add_segment(sj.a, sj.b, state.mesh, *m_bvh);
   }
-  h.stroke->count_step();
+  stroke.count_step();
+  h.stroke = stroke.release();
 }
 
-void CuttingStage::coagulate(const StepContext& ctx, const SimState& state, const Vec3& a,
+void CuttingStage::coagulate(const StepContext& ctx, SimState& state, const Vec3& a,
                              const Vec3& b) {
   refresh_bvh(ctx, state.mesh);
   const Vec3 r = Vec3::Constant(kCoagulationRadius);
   m_near.clear();
   m_bvh->query(a.cwiseMin(b) - r, a.cwiseMax(b) + r, m_near);
-  std::vector<std::uint8_t>& marks = m_coagulated;
+  std::vector<std::uint8_t>& marks = state.blocks.cutting.coagulated;
   marks.resize(static_cast<std::size_t>(state.mesh.num_nodes()), 0);  // after a cut this step
   bool added = false;
   for (std::int32_t t : m_near)
@@ -176,33 +183,34 @@ void CuttingStage::coagulate(const StepContext& ctx, const SimState& state, cons
       ++m_stats.coagulated_nodes;
       added = true;
     }
-  if (added) ++m_coagulated_version;
+  if (added) ++state.blocks.cutting.coagulated_version;
 }
 
-void CuttingStage::coagulate_cut(const SimState& state, std::size_t first_cut) {
-  m_coagulated.resize(static_cast<std::size_t>(state.mesh.num_nodes()), 0);
+void CuttingStage::coagulate_cut(SimState& state, std::size_t first_cut) {
+  std::vector<std::uint8_t>& marks = state.blocks.cutting.coagulated;
+  marks.resize(static_cast<std::size_t>(state.mesh.num_nodes()), 0);
   std::size_t added = 0;
-  for (std::size_t c = first_cut; c < state.handoff.cuts.size(); ++c)
-    added += state.handoff.cuts[c].delta.added_nodes.size();
-  for (std::size_t n = m_coagulated.size() - added; n < m_coagulated.size(); ++n)
-    if (m_coagulated[n] == 0) {
-      m_coagulated[n] = 1;
+  for (std::size_t c = first_cut; c < state.events.cuts.size(); ++c)
+    added += state.events.cuts[c].delta.added_nodes.size();
+  for (std::size_t n = marks.size() - added; n < marks.size(); ++n)
+    if (marks[n] == 0) {
+      marks[n] = 1;
       ++m_stats.coagulated_nodes;
     }
-  if (added > 0) ++m_coagulated_version;
+  if (added > 0) ++state.blocks.cutting.coagulated_version;
 }
 
 // New nodes are numbered after the old ones, cut by cut: each takes a mark if a parent has one.
-void CuttingStage::inherit_coagulation(const SimState& state, std::size_t first_cut) {
-  std::vector<std::uint8_t>& marks = m_coagulated;
+void CuttingStage::inherit_coagulation(SimState& state, std::size_t first_cut) {
+  std::vector<std::uint8_t>& marks = state.blocks.cutting.coagulated;
   marks.resize(static_cast<std::size_t>(state.mesh.num_nodes()), 0);
   std::size_t added = 0;
-  for (std::size_t c = first_cut; c < state.handoff.cuts.size(); ++c)
-    added += state.handoff.cuts[c].delta.added_nodes.size();
+  for (std::size_t c = first_cut; c < state.events.cuts.size(); ++c)
+    added += state.events.cuts[c].delta.added_nodes.size();
   std::size_t next = marks.size() - added;
   bool changed = false;
-  for (std::size_t c = first_cut; c < state.handoff.cuts.size(); ++c)
-    for (const NodeParent& p : state.handoff.cuts[c].delta.added_nodes) {
+  for (std::size_t c = first_cut; c < state.events.cuts.size(); ++c)
+    for (const NodeParent& p : state.events.cuts[c].delta.added_nodes) {
       for (int k = 0; k < p.count && marks[next] == 0; ++k)
         if (marks[static_cast<std::size_t>(p.nodes[static_cast<std::size_t>(k)])] != 0) {
           marks[next] = 1;
@@ -212,10 +220,10 @@ void CuttingStage::inherit_coagulation(const SimState& state, std::size_t first_
         }
       ++next;
     }
-  if (changed) ++m_coagulated_version;
+  if (changed) ++state.blocks.cutting.coagulated_version;
 }
 
-void CuttingStage::follow(const StepContext& ctx, SimState& state, Scissors& s,
+void CuttingStage::follow(const StepContext& ctx, SimState& state, std::size_t tool, Follow& s,
                           const ToolState& before, const ToolState& now) {
   // Only closing jaws cut: the blades slide past each other over the tissue between them.
   const bool closing = now.jaw_rad < before.jaw_rad;
@@ -223,45 +231,47 @@ void CuttingStage::follow(const StepContext& ctx, SimState& state, Scissors& s,
     // Jaws that only held still (a device sample that did not come in time for this step, a
     // hand that hesitates) have not reopened, however little they had closed.
     const bool reopened = now.jaw_rad > s.paused->jaw_rad &&
-                          now.jaw_rad >= s.stroke->start().jaw_rad - kStrokeReopenTol;
+                          now.jaw_rad >= s.stroke->start.jaw_rad - kStrokeReopenTol;
     const bool drawn_away = hinge_distance(now, *s.paused) > kStrokeDriftTol;
     if (reopened || drawn_away) {  // cut what it swept, up to where the jaws were most closed
-      end_stroke(ctx, state, s, *s.paused);
+      end_stroke(ctx, state, tool, s, *s.paused);
       return;
     }
   }
   if (!closing || before.jaw_rad <= kStrokeClosedRad) return;  // (closed already: nothing between)
   extend(ctx, state, s, before, now);
-  if (now.jaw_rad <= kStrokeClosedRad) end_stroke(ctx, state, s, now);  // the blades met
+  if (now.jaw_rad <= kStrokeClosedRad) end_stroke(ctx, state, tool, s, now);  // the blades met
 }
 
-void CuttingStage::extend(const StepContext& ctx, const SimState& state, Scissors& s,
+void CuttingStage::extend(const StepContext& ctx, const SimState& state, Follow& s,
                           const ToolState& before, const ToolState& now) {
   const TetMesh& mesh = state.mesh;
   refresh_bvh(ctx, mesh);
-  if (!s.stroke) {
-    s.stroke.emplace(before, mesh.topology_version);
-    s.first_step = ctx.step;
-  }
-  s.stroke->sweep(before, now, mesh, *m_bvh);
+  if (!s.stroke) s.first_step = ctx.step;
+  ScissorsStroke stroke = s.stroke ? ScissorsStroke(std::move(*s.stroke))
+                                   : ScissorsStroke(before, mesh.topology_version);
+  stroke.sweep(before, now, mesh, *m_bvh);
+  s.stroke = stroke.release();
   if (!s.paused || now.jaw_rad <= s.paused->jaw_rad) s.paused = now;
 }
 
-void CuttingStage::end_stroke(const StepContext& ctx, SimState& state, Scissors& s, ToolState end) {
+void CuttingStage::end_stroke(const StepContext& ctx, SimState& state, std::size_t tool, Follow& s,
+                              ToolState end) {
   if (!s.stroke) return;
-  const StrokePolygons cut_with_these = s.stroke->polygons(state.mesh, end, kStrokeClosedRad);
+  const StrokePolygons cut_with_these =
+      ScissorsStroke(*s.stroke).polygons(state.mesh, end, kStrokeClosedRad);
   StrokeReport report = stroke_report(s.first_step, ctx.step, *s.stroke, cut_with_these);
   s.stroke.reset();
   s.paused.reset();
   ++m_stats.strokes;
   if (cut_with_these.polygons.empty()) ++m_stats.degenerate_sweeps;
-  cut_stroke(ctx, state, s.tool, cut_with_these, report);
+  cut_stroke(ctx, state, tool, cut_with_these, report);
 }
 
 void CuttingStage::fire(const StepContext& ctx, SimState& state, std::size_t tool,
                         const ToolState& ts, double opening_rad) {
   const bool laid =
-      std::any_of(state.handoff.clips.begin(), state.handoff.clips.end(), [&](const Clip& c) {
+      std::any_of(state.shared.clips.begin(), state.shared.clips.end(), [&](const Clip& c) {
         return c.kind == Clip::Kind::kStaple && c.tool == tool && c.placed_s == ctx.time_s;
       });
   if (!laid) {
@@ -292,7 +302,7 @@ void CuttingStage::cut_stroke(const StepContext& ctx, SimState& state, std::size
   // Blades that closed on a clip met titanium: the tissue they hold is not divided.
   report.on_clip = std::any_of(
       polygons.polygons.begin(), polygons.polygons.end(),
-      [&](const ConvexPolygon& p) { return polygon_meets_clips(p, state.handoff.clips); });
+      [&](const ConvexPolygon& p) { return polygon_meets_clips(p, state.shared.clips); });
   if (report.on_clip) {
     ++m_stats.strokes_on_clip;
   } else {
@@ -414,69 +424,21 @@ void CuttingStage::cut(const StepContext& ctx, SimState& state, std::size_t tool
     }
   }
   applied.delta = std::move(result.delta);
-  state.handoff.cuts.push_back(std::move(applied));
+  state.events.cuts.push_back(std::move(applied));
 }
 
-namespace {
-
-void write_pose(StateWriter& out, const std::optional<ToolState>& t) {
-  out.u8(t ? 1 : 0);
-  if (t) out.tool_state(*t);
-}
-
-std::optional<ToolState> read_pose(StateReader& in) {
-  if (in.u8() == 0) return std::nullopt;
-  return in.tool_state();
-}
-
-}  // namespace
-
-void CuttingStage::save(StateWriter& out) const {
-  out.u32(static_cast<std::uint32_t>(m_scissors.size()));
-  for (const Scissors& s : m_scissors) {
-    write_pose(out, s.before);
-    write_pose(out, s.paused);
-    out.u64(s.first_step);
-    out.u8(s.stroke ? 1 : 0);
-    if (s.stroke) s.stroke->save(out);
-  }
-  // (a scene without staplers, or hooks, keeps the block it always had)
-  for (const Stapler& st : m_staplers) out.f64(st.trigger.widest_rad);
-  if (m_hooks.empty()) return;
-  for (const Hook& h : m_hooks) {
-    write_pose(out, h.before);
-    out.u64(h.first_step);
-    out.u8(h.stroke ? 1 : 0);
-    if (h.stroke) h.stroke->save(out);
-  }
-  out.array(m_coagulated);
-  out.u64(m_coagulated_version);
-}
-
-void CuttingStage::restore(StateReader& in, SimState& state) {
-  if (in.u32() != m_scissors.size()) in.fail("another number of scissors than the scene's");
-  for (Scissors& s : m_scissors) {
-    s.before = read_pose(in);
-    s.paused = read_pose(in);
-    s.first_step = in.u64();
-    s.stroke.reset();
-    if (in.u8() != 0) s.stroke = ScissorsStroke::load(in);
-  }
-  for (Stapler& st : m_staplers) st.trigger.widest_rad = in.f64();
-  if (!m_hooks.empty()) {
-    for (Hook& h : m_hooks) {
-      h.before = read_pose(in);
-      h.first_step = in.u64();
-      h.stroke.reset();
-      if (in.u8() != 0) h.stroke = ScissorsStroke::load(in);
-    }
-    in.array(m_coagulated);
-    m_coagulated_version = in.u64();
-    if (m_coagulated.size() > static_cast<std::size_t>(state.mesh.num_nodes()))
-      in.fail("coagulation marks for more nodes than the mesh has");
-    state.handoff.coagulated = m_coagulated;
-    state.handoff.coagulated_version = m_coagulated_version;
-  }
+void CuttingStage::adopt(SimState& state) {
+  const CuttingBlock& b = state.blocks.cutting;
+  const auto fits = [](std::size_t size, std::size_t scene, const char* what) {
+    if (size != 0 && size != scene)
+      throw BlockMismatch(std::string("strokes of ") + std::to_string(size) + " " + what +
+                          ", the scene has " + std::to_string(scene));
+  };
+  fits(b.scissors.size(), m_scissors.size(), "scissors");
+  fits(b.hooks.size(), m_hooks.size(), "hooks");
+  fits(b.staplers.size(), m_staplers.size(), "staplers");
+  if (b.coagulated.size() > static_cast<std::size_t>(state.mesh.num_nodes()))
+    throw BlockMismatch("coagulation marks for more nodes than the mesh has");
   m_bvh.reset();  // candidates are sorted: a fresh tree finds the same ones
 }
 

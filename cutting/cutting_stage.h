@@ -2,7 +2,7 @@
 // (docs/ARCHITECTURE.md "Cutting, in the paper's terms"). Each blade's edge runs from the jaw hinge
 // to the blade tip (engine/tool_geometry.h); closing jaws sweep it. The swept polygon goes to
 // cutting::cut_mesh (candidates from a TetBvh over current positions), the resulting TopologyDelta
-// is applied to the mesh between FEM steps and handed on in SimState::handoff.cuts, from which the
+// is applied to the mesh between FEM steps and handed on in SimState::events.cuts, from which the
 // surface and metrics stages of this step and the FEM stage of the next update themselves.
 //
 // One closing stroke, one cut, however the scissors move while they close. Cut step by step,
@@ -45,7 +45,7 @@
 // crook's path is one stroke (the same pinned samples), cut as one polygon when the pedal comes
 // up. The nodes within kCoagulationRadius of the live crook and the nodes its cut creates are
 // marked coagulated, and clones and cut points take their parents' marks
-// (SimState::handoff.coagulated, for the renderer). Neither tool cuts through a clip
+// (SimState::blocks.cutting.coagulated, for the renderer). Neither tool cuts through a clip
 // (cutting/clip_guard.h).
 #pragma once
 
@@ -65,6 +65,7 @@
 #include "engine/scene.h"
 #include "engine/stage.h"
 #include "engine/stapler.h"
+#include "engine/state_blocks.h"
 #include "engine/tool_geometry.h"
 #include "engine/tool_state.h"
 #include "engine/topology_delta.h"
@@ -98,7 +99,7 @@ struct CuttingStageOptions {
   bool scissors = true;
   /// Follow the hooks (the scene lists "cautery"): while a hook's pedal is down, its crook's
   /// path is one stroke, cut when the pedal comes up, and the nodes within kCoagulationRadius of
-  /// the live crook are coagulated (SimState::handoff.coagulated).
+  /// the live crook are coagulated (SimState::blocks.cutting.coagulated).
   bool hooks = false;
   /// Follow the staplers (the scene lists "cutting"; a stapler needs "clips" too): each fire's
   /// knife cut.
@@ -164,9 +165,9 @@ class CuttingStage final : public Stage {
 
   [[nodiscard]] std::string_view name() const noexcept override { return "cutting"; }
   void step(const StepContext& ctx, SimState& state) override;
-  /// Each scissors' last pose and the stroke in progress (the tet BVH is rebuilt).
-  void save(StateWriter& out) const override;
-  void restore(StateReader& in, SimState& state) override;
+  /// Each instrument's last pose and stroke in progress and the coagulation are
+  /// SimState::blocks.cutting; a restored block is checked and the tet BVH rebuilt.
+  void adopt(SimState& state) override;
 
   /// Cuts `polygon` (convex, planar, world coordinates, m) by the scene's [cutting] method in the
   /// next step, before the tools cut: a cut no tool made (CutEvent::tool is kNoTool), asked for
@@ -182,38 +183,21 @@ class CuttingStage final : public Stage {
   [[nodiscard]] std::size_t num_staplers() const noexcept { return m_staplers.size(); }
 
  private:
-  struct Scissors {
-    std::size_t tool = 0;                  // index into Scene::tools / SimState::tools
-    std::optional<ToolState> before;       // pose consumed at the previous step
-    std::optional<ScissorsStroke> stroke;  // the closing stroke in progress
-    std::optional<ToolState> paused;       // pose where its jaws last closed
-    std::uint64_t first_step = 0;          // step of the stroke's first sweep
-  };
-
-  struct Stapler {
-    std::size_t tool = 0;    // index into Scene::tools / SimState::tools
-    StaplerTrigger trigger;  // its jaw channel, as the clips stage follows it
-  };
-
-  struct Hook {
-    std::size_t tool = 0;                  // index into Scene::tools / SimState::tools
-    std::optional<ToolState> before;       // pose consumed at the previous step
-    std::optional<ScissorsStroke> stroke;  // the crook's path since the pedal went down
-    std::uint64_t first_step = 0;
-  };
+  using Follow = CuttingBlock::Follow;
 
   /// What a hook's electrode does this step: `now`, or with the current off where it left the
   /// tissue when it was withdrawn into its port.
-  static ToolState live_hook(const Hook& h, const ToolState& now);
+  static ToolState live_hook(const Follow& h, const ToolState& now);
   /// Follows one hook: coagulates around its live crook, extends its stroke, cuts it when the
   /// pedal comes up.
-  void follow_hook(const StepContext& ctx, SimState& state, Hook& h, const ToolState& now);
+  void follow_hook(const StepContext& ctx, SimState& state, std::size_t tool, Follow& h,
+                   const ToolState& now);
   /// Marks the nodes within kCoagulationRadius of [a, b] coagulated.
-  void coagulate(const StepContext& ctx, const SimState& state, const Vec3& a, const Vec3& b);
+  void coagulate(const StepContext& ctx, SimState& state, const Vec3& a, const Vec3& b);
   /// Marks the nodes the cuts from `first_cut` on created (a hook's: its wound is coagulated).
-  void coagulate_cut(const SimState& state, std::size_t first_cut);
+  void coagulate_cut(SimState& state, std::size_t first_cut);
   /// Gives the new nodes of this step's cuts the marks of their parents.
-  void inherit_coagulation(const SimState& state, std::size_t first_cut);
+  void inherit_coagulation(SimState& state, std::size_t first_cut);
   /// A stapler fired from `opening_rad`: its knife cuts between the lines laid this step.
   void fire(const StepContext& ctx, SimState& state, std::size_t tool, const ToolState& ts,
             double opening_rad);
@@ -221,13 +205,14 @@ class CuttingStage final : public Stage {
   void cut_stroke(const StepContext& ctx, SimState& state, std::size_t tool,
                   const StrokePolygons& polygons, StrokeReport& report);
   /// Follows one scissors from `before` to `now`: begins, extends or ends its stroke.
-  void follow(const StepContext& ctx, SimState& state, Scissors& s, const ToolState& before,
-              const ToolState& now);
+  void follow(const StepContext& ctx, SimState& state, std::size_t tool, Follow& s,
+              const ToolState& before, const ToolState& now);
   /// Adds the sweep before -> now to the stroke (begun here when there is none).
-  void extend(const StepContext& ctx, const SimState& state, Scissors& s, const ToolState& before,
+  void extend(const StepContext& ctx, const SimState& state, Follow& s, const ToolState& before,
               const ToolState& now);
   /// Cuts the stroke as it stands with the jaws at `end`, reports it and forgets it.
-  void end_stroke(const StepContext& ctx, SimState& state, Scissors& s, ToolState end);
+  void end_stroke(const StepContext& ctx, SimState& state, std::size_t tool, Follow& s,
+                  ToolState end);
   /// A bent stroke's flattened positions, when its surface can be cut along and the crack then
   /// lies nearer the blades' path than the plane (std::nullopt: cut in the plane). Sets the
   /// report's bent and crack_deviation_m.
@@ -241,14 +226,12 @@ class CuttingStage final : public Stage {
   void refresh_bvh(const StepContext& ctx, const TetMesh& mesh);
   /// Cuts the polygons queue_cut asked for.
   void cut_queued(const StepContext& ctx, SimState& state);
-  std::vector<Scissors> m_scissors;
+  std::vector<std::size_t> m_scissors;           // tool index of each scissors (SimState::tools)
   std::vector<cutting::ConvexPolygon> m_queued;  // queue_cut's, cut in the next step
   std::vector<StrokeReport> m_queued_reports;    // what they did
-  std::vector<Hook> m_hooks;
-  std::vector<Stapler> m_staplers;
-  std::vector<std::int32_t> m_near;        // scratch: tets near a live crook
-  std::vector<std::uint8_t> m_coagulated;  // (n) 1: coagulated by a live hook (hooks only)
-  std::uint64_t m_coagulated_version = 0;  // bumped with every mark added
+  std::vector<std::size_t> m_hooks;              // and of each hook
+  std::vector<std::size_t> m_staplers;           // and of each stapler
+  std::vector<std::int32_t> m_near;              // scratch: tets near a live crook
   cutting::CutOptions m_cut_options;
   CutMethod m_method = CutMethod::kPattern;  // the scene's [cutting] method
   bool m_swept_strokes = true;               // [cutting] strokes = "swept"

@@ -7,7 +7,6 @@
 
 #include "cutting/tet_bvh.h"
 #include "engine/geometry/tet_barycentric.h"
-#include "engine/state_codec.h"
 #include "engine/tool_geometry.h"
 
 namespace serosa::cutting {
@@ -124,8 +123,10 @@ ToolState interpolate(const ToolState& a, const ToolState& b, double s) {
   return t;
 }
 
-ScissorsStroke::ScissorsStroke(const ToolState& start, std::uint64_t topology_version)
-    : m_start(start), m_topology_version(topology_version) {}
+ScissorsStroke::ScissorsStroke(const ToolState& start, std::uint64_t topology_version) {
+  m_rec.start = start;
+  m_rec.topology_version = topology_version;
+}
 
 void ScissorsStroke::add(const Vec3& x, std::int32_t blade, const TetMesh& mesh,
                          const TetBvh& bvh) {
@@ -150,7 +151,7 @@ void ScissorsStroke::add(const Vec3& x, std::int32_t blade, const TetMesh& mesh,
       }
     }
   }
-  m_samples.push_back(s);
+  m_rec.samples.push_back(s);
 }
 
 void ScissorsStroke::sweep(const ToolState& before, const ToolState& now, const TetMesh& mesh,
@@ -161,14 +162,14 @@ void ScissorsStroke::sweep(const ToolState& before, const ToolState& now, const 
     add(jaw_tip(f, pose.jaw_rad, 0), 0, mesh, bvh);
     add(jaw_tip(f, pose.jaw_rad, 1), 1, mesh, bvh);
   };
-  if (m_samples.empty()) sample(before);
+  if (m_rec.samples.empty()) sample(before);
   const double half_angle = 0.5 * std::abs(now.jaw_rad - before.jaw_rad);
   const double turn = quat(before).angularDistance(quat(now));
   const double steps = std::ceil(std::max(half_angle, turn) / kStrokeArcStep);
   const int n = std::isfinite(steps) ? std::clamp(static_cast<int>(steps), 1, 64) : 1;
   for (int j = 1; j <= n; ++j)
     sample(interpolate(before, now, static_cast<double>(j) / static_cast<double>(n)));
-  ++m_steps;
+  ++m_rec.steps;
 }
 
 void ScissorsStroke::add_segment(const Vec3& a, const Vec3& b, const TetMesh& mesh,
@@ -179,9 +180,9 @@ void ScissorsStroke::add_segment(const Vec3& a, const Vec3& b, const TetMesh& me
 }
 
 void ScissorsStroke::carried(const TetMesh& mesh, std::vector<Vec3>& out) const {
-  const bool same_tets = mesh.topology_version == m_topology_version;
+  const bool same_tets = mesh.topology_version == m_rec.topology_version;
   out.clear();
-  for (const StrokeSample& s : m_samples) {
+  for (const StrokeSample& s : m_rec.samples) {
     if (!same_tets || s.tet < 0 || s.tet >= mesh.num_tets()) {
       out.push_back(s.x_m);
       continue;
@@ -200,10 +201,10 @@ StrokePolygons ScissorsStroke::polygons(const TetMesh& mesh, const ToolState& en
   StrokePolygons out;
   std::vector<Vec3> p;
   carried(mesh, p);
-  const auto fit = fit_plane(p, tool_frame(m_start).pin);
+  const auto fit = fit_plane(p, tool_frame(m_rec.start).pin);
   if (!fit) return out;
   out.fit = *fit;
-  out.surface_points_m = surface_points(m_samples, p);
+  out.surface_points_m = surface_points(m_rec.samples, p);
   out.surface = bent_surface(*fit, out.surface_points_m);
   std::vector<Vec2> q;
   q.reserve(p.size());
@@ -218,33 +219,18 @@ StrokePolygons ScissorsStroke::polygons(const TetMesh& mesh, const ToolState& en
     return out;
   }
   Vec2 hinge = fit->to_plane(tool_frame(end).hinge);  // the last hinge sample, carried
-  for (std::size_t i = m_samples.size(); i-- > 0;)
-    if (m_samples[i].blade < 0) {
+  for (std::size_t i = m_rec.samples.size(); i-- > 0;)
+    if (m_rec.samples[i].blade < 0) {
       hinge = q[i];
       break;
     }
   const EndAxes ax = end_axes(*fit, end, hinge);
   for (int k = 0; k < 2; ++k)
-    if (auto poly = to_polygon(*fit, blade_outline(q, m_samples, k, ax))) {
+    if (auto poly = to_polygon(*fit, blade_outline(q, m_rec.samples, k, ax))) {
       out.polygons.push_back(std::move(*poly));
       out.blades.push_back(k);
     }
   return out;
-}
-
-void ScissorsStroke::save(StateWriter& out) const {
-  out.tool_state(m_start);
-  out.u64(m_topology_version);
-  out.u64(m_steps);
-  out.array(m_samples);
-}
-
-ScissorsStroke ScissorsStroke::load(StateReader& in) {
-  const ToolState start = in.tool_state();
-  ScissorsStroke s(start, in.u64());
-  s.m_steps = in.u64();
-  in.array(s.m_samples);
-  return s;
 }
 
 }  // namespace serosa::cutting

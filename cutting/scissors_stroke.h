@@ -15,18 +15,15 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "cutting/convex_polygon.h"
 #include "cutting/planar_hull.h"
 #include "cutting/stroke_surface.h"
+#include "engine/state_blocks.h"
 #include "engine/tet_mesh.h"
 #include "engine/tool_state.h"
-
-namespace serosa {
-class StateWriter;
-class StateReader;
-}  // namespace serosa
 
 namespace serosa::cutting {
 class TetBvh;
@@ -42,14 +39,6 @@ inline constexpr double kStrokeTrackRadius = 3e-3;
 inline constexpr double kBentStrokeTol = 5e-5;
 /// Points sampled along each blade edge between the hinge and the tip for the stroke's surface.
 inline constexpr int kBladeEdgePoints = 3;
-
-/// One sampled point of the swept surface.
-struct StrokeSample {
-  Vec3 x_m = Vec3::Zero();  ///< where it was swept, world, m
-  std::int32_t blade = -1;  ///< 0 or 1: a blade tip; -1: the hinge (both blades)
-  std::int32_t tet = -1;    ///< the tet it is pinned to, -1: none
-  std::array<double, 4> bary{0.0, 0.0, 0.0, 0.0};  ///< its weights in that tet (may be < 0 outside)
-};
 
 /// The polygons a stroke is cut with, and how far its samples lie from their plane.
 struct StrokePolygons {
@@ -70,6 +59,8 @@ class ScissorsStroke {
  public:
   /// A stroke that begins at `start` on a mesh of topology version `topology_version`.
   ScissorsStroke(const ToolState& start, std::uint64_t topology_version);
+  /// Goes on with a stroke in progress (a cutting block's: engine/state_blocks.h).
+  explicit ScissorsStroke(StrokeRecord record) : m_rec(std::move(record)) {}
 
   /// Samples the blades closing from `before` to `now` (same stroke), pinned to `mesh` (current
   /// positions; `bvh` refitted to them).
@@ -79,7 +70,7 @@ class ScissorsStroke {
   /// segment [a, b] (both ends and its middle), pinned to `mesh` as sweep() pins its samples.
   void add_segment(const Vec3& a, const Vec3& b, const TetMesh& mesh, const TetBvh& bvh);
   /// Counts one step of a hook's stroke (sweep() counts its own).
-  void count_step() noexcept { ++m_steps; }
+  void count_step() noexcept { ++m_rec.steps; }
 
   /// The samples carried to `mesh`'s current positions (world positions where the mesh changed
   /// topology since the stroke began, or a sample is pinned to no tet).
@@ -89,21 +80,17 @@ class ScissorsStroke {
   [[nodiscard]] StrokePolygons polygons(const TetMesh& mesh, const ToolState& end,
                                         double closed_rad) const;
 
-  [[nodiscard]] const ToolState& start() const noexcept { return m_start; }
-  [[nodiscard]] const std::vector<StrokeSample>& samples() const noexcept { return m_samples; }
-  [[nodiscard]] std::size_t size() const noexcept { return m_samples.size(); }
-  [[nodiscard]] std::uint64_t steps() const noexcept { return m_steps; }
-
-  void save(StateWriter& out) const;
-  [[nodiscard]] static ScissorsStroke load(StateReader& in);
+  [[nodiscard]] const ToolState& start() const noexcept { return m_rec.start; }
+  [[nodiscard]] const std::vector<StrokeSample>& samples() const noexcept { return m_rec.samples; }
+  [[nodiscard]] std::size_t size() const noexcept { return m_rec.samples.size(); }
+  [[nodiscard]] std::uint64_t steps() const noexcept { return m_rec.steps; }
+  /// What it swept so far, for the state; the stroke is left empty.
+  [[nodiscard]] StrokeRecord release() noexcept { return std::move(m_rec); }
 
  private:
   void add(const Vec3& x, std::int32_t blade, const TetMesh& mesh, const TetBvh& bvh);
 
-  ToolState m_start;
-  std::uint64_t m_topology_version = 0;
-  std::uint64_t m_steps = 0;  // sweeps taken
-  std::vector<StrokeSample> m_samples;
+  StrokeRecord m_rec;
   std::vector<std::int32_t> m_candidates;  // scratch
 };
 

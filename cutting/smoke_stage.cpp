@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "engine/state_codec.h"
+#include "engine/stage.h"
 
 namespace serosa::cutting {
 namespace {
@@ -20,39 +20,41 @@ double spread(std::uint64_t n, std::uint64_t salt) {
 
 }  // namespace
 
-SmokeStage::SmokeStage(const Scene& scene) : m_puffs(kMaxPuffs) {
+SmokeStage::SmokeStage(const Scene& scene) {
   const Vec3 g = scene.settings.gravity_mps2;
   m_up = g.norm() > 0.0 ? Vec3(-g.normalized()) : Vec3::UnitY();
   m_side1 = m_up.unitOrthogonal();
   m_side2 = m_up.cross(m_side1);
 }
 
-void SmokeStage::emit(const Vec3& at, double t) {
-  Puff& p = m_puffs[static_cast<std::size_t>(m_next % kMaxPuffs)];
+void SmokeStage::emit(SmokeBlock& b, const Vec3& at, double t) {
+  Puff& p = b.puffs[static_cast<std::size_t>(b.next % kMaxPuffs)];
   p.at = {at.x(), at.y(), at.z()};
-  p.drift = {kDriftMps * spread(m_next, 1), kDriftMps * spread(m_next, 2)};
+  p.drift = {kDriftMps * spread(b.next, 1), kDriftMps * spread(b.next, 2)};
   p.born_s = t;
-  ++m_next;
+  ++b.next;
 }
 
 void SmokeStage::step(const StepContext& ctx, SimState& state) {
   const double t = ctx.time_s + ctx.dt_s;
-  const auto& coag = state.handoff.coagulated;
+  SmokeBlock& b = state.blocks.smoke;
+  if (b.puffs.empty()) b.puffs.resize(kMaxPuffs);  // the ring, sized once
+  const auto& coag = state.blocks.cutting.coagulated;
   // Nodes a cut adds take their parents' marks: born coagulated, they raise no smoke. (The marks
   // appear all at once when the first hook coagulates: those do.)
-  const bool grown = !m_seen.empty();
-  for (std::size_t i = m_seen.size(); i < coag.size(); ++i)
-    m_seen.push_back(grown ? coag[i] : std::uint8_t{0});
+  const bool grown = !b.seen.empty();
+  for (std::size_t i = b.seen.size(); i < coag.size(); ++i)
+    b.seen.push_back(grown ? coag[i] : std::uint8_t{0});
   int raised = 0;
   for (std::size_t i = 0; i < coag.size() && i < state.mesh.x.size(); ++i) {
-    if (coag[i] == 0 || m_seen[i] != 0) continue;
-    m_seen[i] = 1;
+    if (coag[i] == 0 || b.seen[i] != 0) continue;
+    b.seen[i] = 1;
     if (raised < kPuffsPerStep) {
-      emit(state.mesh.x[i], t);
+      emit(b, state.mesh.x[i], t);
       ++raised;
     }
   }
-  for (Puff& p : m_puffs) {
+  for (Puff& p : b.puffs) {
     if (p.born_s < 0.0) continue;
     if (t - p.born_s > kLifeS) {
       p.born_s = -1.0;
@@ -64,11 +66,11 @@ void SmokeStage::step(const StepContext& ctx, SimState& state) {
   publish(t, state);
 }
 
-void SmokeStage::publish(double t, SimState& state) const {
-  auto& out = state.handoff.smoke;
+void SmokeStage::publish(double t, SimState& state) {
+  auto& out = state.shared.smoke;
   if (out.capacity() < kMaxPuffs) out.reserve(kMaxPuffs);
   out.clear();
-  for (const Puff& p : m_puffs) {
+  for (const Puff& p : state.blocks.smoke.puffs) {
     if (p.born_s < 0.0) continue;
     const double age = std::clamp((t - p.born_s) / kLifeS, 0.0, 1.0);
     SmokePuff s;
@@ -79,22 +81,14 @@ void SmokeStage::publish(double t, SimState& state) const {
   }
 }
 
-void SmokeStage::save(StateWriter& out) const {
-  out.array(m_puffs);
-  out.u64(m_next);
-  out.array(m_seen);
-}
-
-void SmokeStage::restore(StateReader& in, SimState& state) {
-  in.array(m_puffs);
-  m_next = in.u64();
-  in.array(m_seen);
-  if (m_puffs.size() != kMaxPuffs)
-    in.fail("smoke of " + std::to_string(m_puffs.size()) + " puffs, not " +
-            std::to_string(kMaxPuffs));
-  if (m_seen.size() > state.mesh.x.size())
-    in.fail("smoke marks for " + std::to_string(m_seen.size()) + " nodes of " +
-            std::to_string(state.mesh.x.size()));
+void SmokeStage::adopt(SimState& state) {
+  const SmokeBlock& b = state.blocks.smoke;
+  if (!b.puffs.empty() && b.puffs.size() != kMaxPuffs)
+    throw BlockMismatch("smoke of " + std::to_string(b.puffs.size()) + " puffs, not " +
+                        std::to_string(kMaxPuffs));
+  if (b.seen.size() > state.mesh.x.size())
+    throw BlockMismatch("smoke marks for " + std::to_string(b.seen.size()) + " nodes of " +
+                        std::to_string(state.mesh.x.size()));
   publish(state.time_s, state);
 }
 

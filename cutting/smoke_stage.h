@@ -1,9 +1,10 @@
 // The "smoke" stage (after cutting, effect "smoke"): surgical smoke. Each node a live hook
-// coagulates this step (SimState::handoff.coagulated; not the nodes a cut adds, which take their
-// parents' marks) raises a puff there, at most kPuffsPerStep a step; a puff rises against gravity
-// at kRiseMps, drifts sideways, swells from kStartRadiusM by kGrowMps and thins out over kLifeS,
-// then clears. At most kMaxPuffs live at once (the oldest gives way), held in storage sized once,
-// so a step allocates nothing. It publishes SimState::handoff.smoke for the view.
+// coagulates this step (SimState::blocks.cutting.coagulated; not the nodes a cut adds, which take
+// their parents' marks) raises a puff there, at most kPuffsPerStep a step; a puff rises against
+// gravity at kRiseMps, drifts sideways, swells from kStartRadiusM by kGrowMps and thins out over
+// kLifeS, then clears. At most kMaxPuffs live at once (the oldest gives way), held in storage sized
+// once, so a step allocates nothing. Its ring is SimState::blocks.smoke. It publishes
+// SimState::shared.smoke for the view.
 #pragma once
 
 #include <array>
@@ -15,6 +16,7 @@
 #include "engine/scene.h"
 #include "engine/sim_state.h"
 #include "engine/stage.h"
+#include "engine/state_blocks.h"
 
 namespace serosa::cutting {
 
@@ -32,24 +34,15 @@ class SmokeStage final : public Stage {
   explicit SmokeStage(const Scene& scene);
   [[nodiscard]] std::string_view name() const noexcept override { return "smoke"; }
   void step(const StepContext& ctx, SimState& state) override;
-  void save(StateWriter& out) const override;
-  void restore(StateReader& in, SimState& state) override;
+  void adopt(SimState& state) override;
 
  private:
-  // One puff, every field 8 bytes (the snapshot writes the array as it is).
-  struct Puff {
-    std::array<double, 3> at{};     // centre, m
-    std::array<double, 2> drift{};  // sideways velocity in the plane across gravity, m/s
-    double born_s = -1.0;           // when it rose, s; < 0: none
-  };
-  void emit(const Vec3& at, double t);
-  void publish(double t, SimState& state) const;
+  using Puff = SmokeBlock::Puff;
+  static void emit(SmokeBlock& b, const Vec3& at, double t);
+  static void publish(double t, SimState& state);
 
-  Vec3 m_up;                         // unit, against gravity
-  Vec3 m_side1, m_side2;             // unit, across it
-  std::vector<Puff> m_puffs;         // (kMaxPuffs) a ring
-  std::uint64_t m_next = 0;          // puffs raised so far (the ring's next slot, modulo)
-  std::vector<std::uint8_t> m_seen;  // (n) coagulated marks already smoked
+  Vec3 m_up;              // unit, against gravity
+  Vec3 m_side1, m_side2;  // unit, across it
 };
 
 }  // namespace serosa::cutting

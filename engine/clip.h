@@ -60,6 +60,11 @@ struct Clip {
     if (kind == Kind::kStaple) return hinge_m + (k == 0 ? kStapleStart : kCartridgeLength) * axis();
     return hinge_m + (kClipStart + (k == 0 ? 0.0 : kClipLength)) * axis();
   }
+  template <class S, class F>
+  static void each(S& s, F&& f) {
+    f(s.kind), f(s.hinge_m), f(s.frame), f(s.tool), f(s.placed_s), f(s.groups), f(s.nodes),
+        f(s.node), f(s.rest_centre_m);
+  }
   /// Unit: a clip's length, away from its hinge; a loop's axis.
   [[nodiscard]] Vec3 axis() const { return frame.col(2); }
   /// How far beyond its centre line a ligature reaches, m: a clip's legs' half width, a loop's

@@ -5,9 +5,11 @@
 #include <map>
 #include <stdexcept>
 
+#include "engine/input_error.h"
 #include "engine/recording_writer.h"
 #include "engine/sim_state.h"
 #include "engine/state_codec.h"
+#include "engine/state_walk.h"
 
 namespace serosa {
 
@@ -35,7 +37,7 @@ void Runner::run_slot(Slot slot, const StepContext& ctx, SimState& state) {
 }
 
 // The whole solver step, in order. Each place reads what the earlier ones handed on in
-// SimState::handoff and writes its own part (engine/sim_state.h).
+// SimState::shared and writes its own part (engine/sim_state.h).
 void Runner::step(SimState& state) {
   const StepContext ctx{state.step, state.time_s, m_dt_s};
   run_slot(Slot::tools, ctx, state);
@@ -54,13 +56,13 @@ void Runner::step(SimState& state) {
 
 namespace {
 constexpr char kSnapshotMagic[4] = {'S', 'N', 'A', 'P'};
-constexpr std::uint32_t kSnapshotVersion = 5;
+constexpr std::uint32_t kSnapshotVersion = 6;
 }  // namespace
 
 // A snapshot waits for a step with no cut in flight (the FEM stage takes a step's cuts at the
 // next one; the snapshot holds the state between steps).
 void Runner::record_snapshot_if_due(const SimState& state) {
-  if (m_snapshot_writer == nullptr || state.step < m_next_snapshot || !state.handoff.cuts.empty())
+  if (m_snapshot_writer == nullptr || state.step < m_next_snapshot || !state.events.cuts.empty())
     return;
   m_snapshot_writer->record_snapshot(state.step, snapshot(state));
   m_next_snapshot = (state.step / m_snapshot_every + 1) * m_snapshot_every;
@@ -78,6 +80,11 @@ std::vector<std::uint8_t> Runner::snapshot(const SimState& state) const {
   out.u32(kSnapshotVersion);
   write_sim_state(out, state);
   std::vector<std::pair<std::string, StateWriter>> blocks;
+  StageBlocks::each_named(state.blocks, [&](const char* name, const auto& block) {
+    StateWriter w;
+    put(w, block);
+    blocks.emplace_back(name, std::move(w));
+  });
   for (const Entry& e : m_entries) {
     StateWriter block;
     e.stage->save(block);
@@ -125,6 +132,15 @@ void Runner::restore(std::span<const std::uint8_t> snapshot, SimState& state,
   std::map<std::string, std::span<const std::uint8_t>> blocks;
   for (std::size_t i = 1; i < sections.size(); ++i)
     blocks[sections[i].name] = snapshot.subspan(sections[i].offset, sections[i].size);
+  StageBlocks::each_named(restored.blocks, [&](const char* name, auto& block) {
+    const auto it = blocks.find(name);
+    if (it == blocks.end())
+      throw InputError(what, 0, std::string("the snapshot has no block '") + name + "'");
+    StateReader in(it->second, what + ": block '" + name + "'");
+    get(in, block);
+    if (in.left() != 0) in.fail("bytes after the block's last field");
+    blocks.erase(it);
+  });
   state = std::move(restored);
   // Every stage reads its block; a stage that keeps state and finds none fails on its first read
   // (a snapshot of another composition). Blocks of stages not built here (the session's haptic
@@ -137,6 +153,13 @@ void Runner::restore(std::span<const std::uint8_t> snapshot, SimState& state,
     StateReader in(bytes, what + ": stage '" + name + "'");
     e.stage->restore(in, state);
     if (in.left() != 0) in.fail("the stage left bytes of its block unread");
+  }
+  for (Entry& e : m_entries) {
+    try {
+      e.stage->adopt(state);
+    } catch (const BlockMismatch& m) {
+      throw InputError(what + ": block '" + std::string(e.stage->name()) + "'", 0, m.what());
+    }
   }
 }
 

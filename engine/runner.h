@@ -3,7 +3,7 @@
 //   tools -> haptics -> contact -> FEM -> cuts -> surface -> metrics -> record (-> snapshot)
 // (docs/ARCHITECTURE.md "The step"). A place with no stage is an effect the scene does not list:
 // it costs nothing. This is the synchronous core; the haptics and render threads attach to it
-// through the hand-off primitives (seqlock.h, triple_buffer.h) and SimState::handoff.
+// through the hand-off primitives (seqlock.h, triple_buffer.h) and SimState::shared.
 #pragma once
 
 #include <chrono>

@@ -27,8 +27,8 @@ std::uint64_t state_hash(const SimState& s) {
     f.bytes(&t.jaw_rad, sizeof t.jaw_rad);
     f.bytes(&t.buttons, sizeof t.buttons);
   }
-  f.vec(s.handoff.external_force_n);
-  f.vec(s.handoff.tool_force_n);
+  f.vec(s.events.external_force_n);
+  f.vec(s.events.tool_force_n);
   return f.h;
 }
 

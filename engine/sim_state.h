@@ -10,6 +10,7 @@
 #include "engine/clip.h"
 #include "engine/contact_plane.h"
 #include "engine/smoke.h"
+#include "engine/state_blocks.h"
 #include "engine/surface_mesh.h"
 #include "engine/tet_mesh.h"
 #include "engine/tool_state.h"
@@ -43,14 +44,12 @@ struct ToolReaction {
   double shaft_lever = 0.0;
 };
 
-/// What the stages of a step hand to each other: one stage writes a field, later stages (of this
-/// step, or the next) read it; stages never call each other (docs/ARCHITECTURE.md "The step").
-struct StepHandoff {
+/// The messages of a step: one stage writes a field every step it runs, later stages of this step
+/// (or, for the cuts, the FEM stage of the next) read it; it carries nothing from one step to the
+/// next that a stage relies on (docs/ARCHITECTURE.md "The step").
+struct StepEvents {
   /// contact -> FEM: external node forces for this step's solve, N; (n), or empty for none.
   std::vector<Vec3> external_force_n;
-  /// contact -> metrics: the nodes each grasper holds now, ids; (tools), empty for a tool that
-  /// holds nothing (written when a grasp begins or ends).
-  std::vector<std::vector<std::int32_t>> grasped;
   /// contact -> FEM: held nodes were moved with the jaws this step (the jaws' work, which the
   /// FEM's energy guard must not take for a gain of its solve).
   bool nodes_moved = false;
@@ -71,6 +70,15 @@ struct StepHandoff {
   /// cutting -> surface and metrics (this step) and FEM (the next step's): the cuts of this step,
   /// in order; cleared by the cutting stage before it cuts.
   std::vector<CutEvent> cuts;
+};
+
+/// What stages publish for the others and keep from step to step: each field is written by one
+/// stage, from its block of the state or from the mesh, and read by later stages, the view and the
+/// reports. Stages never call each other (docs/ARCHITECTURE.md "The step").
+struct SharedState {
+  /// contact -> metrics: the nodes each grasper holds now, ids; (tools), empty for a tool that
+  /// holds nothing (written when a grasp begins or ends).
+  std::vector<std::vector<std::int32_t>> grasped;
   /// clips -> cutting, render, metrics: every clip placed so far, where the tissue carries it now
   /// (contact/clip_stage.h); empty when no clips stage runs.
   std::vector<Clip> clips;
@@ -80,15 +88,9 @@ struct StepHandoff {
   /// bleeding -> render: the blood of each bleeding in `bleeds`, in the same order
   /// (metrics/bleeding_stage.h); empty when the effect is not listed.
   std::vector<Blood> blood;
-  /// bleeding -> render: (n) how much blood stains each node, [0, 1]; empty when nothing is.
-  std::vector<float> stain;
   /// smoke -> render: the puffs the hook's coagulation raised that have not cleared yet
   /// (cutting/smoke_stage.h); empty when the effect is not listed.
   std::vector<SmokePuff> smoke;
-  /// cutting (cautery) -> render, metrics: 1 for each node a live hook coagulated, else 0; (n), or
-  /// empty when no hook is simulated. coagulated_version changes whenever a mark is added.
-  std::vector<std::uint8_t> coagulated;
-  std::uint64_t coagulated_version = 0;
   /// surface -> contact, render, pictures: the boundary surface, kept up to date by the surface
   /// stage (empty when no surface stage runs).
   SurfaceMesh surface;
@@ -101,7 +103,9 @@ struct SimState {
   std::uint64_t step = 0;        ///< solver steps taken
   TetMesh mesh;                  ///< all organs of the scene in one mesh (groups tell them apart)
   std::vector<ToolState> tools;  ///< (tools) latest consumed input per scene tool, scene order
-  StepHandoff handoff;           ///< what the stages of a step hand to each other
+  StepEvents events;             ///< this step's messages between stages
+  SharedState shared;            ///< what stages publish for the others, kept between steps
+  StageBlocks blocks;            ///< each stage's own part of the state (engine/state_blocks.h)
 };
 
 /// 64-bit FNV-1a hash of the state: time, step, topology, positions, velocities and Dirichlet

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <stdexcept>
 #include <string_view>
 
 namespace serosa {
@@ -11,6 +12,13 @@ namespace serosa {
 struct SimState;
 class StateWriter;
 class StateReader;
+
+/// A restored block that does not fit the stage's scene or the restored mesh (Stage::adopt); the
+/// runner names the snapshot and the block and throws InputError.
+class BlockMismatch : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 /// What every stage knows about the step it is part of.
 struct StepContext {
@@ -49,6 +57,11 @@ class Stage {
   /// into it, as FEM its masses) and before the next step. Throws
   /// InputError (through the reader) when the block does not fit this stage.
   virtual void restore(StateReader& /*in*/, SimState& /*state*/) {}
+  /// The whole state was replaced (a snapshot restored): checks that this stage's block of it
+  /// (SimState::blocks) fits the scene and the mesh, throwing BlockMismatch when it does not, and
+  /// drops or rebuilds what the stage derives from the state (trees, tables, what it publishes in
+  /// SimState::shared), so that the next step gives the bits the uninterrupted run would.
+  virtual void adopt(SimState& /*state*/) {}
 };
 
 }  // namespace serosa

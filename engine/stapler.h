@@ -45,6 +45,10 @@ inline constexpr double kStaplerFireRad = 0.02;
 /// Follows one stapler's jaw channel: fires once per closure from an armed opening.
 struct StaplerTrigger {
   double widest_rad = 0.0;  ///< the widest opening since the last fire, rad
+  template <class S, class F>
+  static void each(S& s, F&& f) {
+    f(s.widest_rad);
+  }
 
   /// Takes this step's jaw angle (rad); returns the opening the jaws fired from when they fire
   /// now, else std::nullopt.

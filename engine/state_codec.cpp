@@ -151,17 +151,17 @@ void read_surface(StateReader& in, SurfaceMesh& s, std::size_t nodes) {
 }  // namespace
 
 void write_sim_state(StateWriter& out, const SimState& s) {
-  if (!s.handoff.cuts.empty())
+  if (!s.events.cuts.empty())
     throw std::logic_error("write_sim_state: a step's cuts are still in flight");
   out.f64(s.time_s);
   out.u64(s.step);
   write_mesh(out, s.mesh);
   out.u32(static_cast<std::uint32_t>(s.tools.size()));
   for (const ToolState& t : s.tools) out.tool_state(t);
-  out.array(s.handoff.external_force_n);
-  out.u8(s.handoff.nodes_moved ? 1 : 0);
-  out.array(s.handoff.tool_force_n);
-  write_surface(out, s.handoff.surface);
+  out.array(s.events.external_force_n);
+  out.u8(s.events.nodes_moved ? 1 : 0);
+  out.array(s.events.tool_force_n);
+  write_surface(out, s.shared.surface);
 }
 
 SimState read_sim_state(StateReader& in) {
@@ -172,13 +172,12 @@ SimState read_sim_state(StateReader& in) {
   const std::uint32_t tools = in.u32();
   if (tools > in.left()) in.fail("too many tools");
   for (std::uint32_t i = 0; i < tools; ++i) s.tools.push_back(in.tool_state());
-  in.array(s.handoff.external_force_n);
-  s.handoff.nodes_moved = in.u8() != 0;
-  in.array(s.handoff.tool_force_n);
-  read_surface(in, s.handoff.surface, s.mesh.rest.size());
-  if (!s.handoff.external_force_n.empty() &&
-      s.handoff.external_force_n.size() != s.mesh.rest.size())
-    in.fail("external forces for " + std::to_string(s.handoff.external_force_n.size()) +
+  in.array(s.events.external_force_n);
+  s.events.nodes_moved = in.u8() != 0;
+  in.array(s.events.tool_force_n);
+  read_surface(in, s.shared.surface, s.mesh.rest.size());
+  if (!s.events.external_force_n.empty() && s.events.external_force_n.size() != s.mesh.rest.size())
+    in.fail("external forces for " + std::to_string(s.events.external_force_n.size()) +
             " nodes, the mesh has " + std::to_string(s.mesh.rest.size()));
   return s;
 }

@@ -2,7 +2,7 @@
 // for the replay's seeks (docs/recording-format.md "Snapshots").
 //
 //   snapshot := "SNAP" u32:version SimState u32:blocks (string:stage_name u64:len bytes){blocks}
-//   SimState := f64:time_s u64:step TetMesh u32:tools ToolState{tools} StepHandoff
+//   SimState := f64:time_s u64:step TetMesh u32:tools ToolState{tools} SharedState
 // Integers and floats are little-endian (IEEE 754 binary64); arrays are u64:count then the
 // elements' bytes. A stage's block is whatever its save() wrote (engine/stage.h); a stage that
 // keeps nothing of its own writes none.
@@ -85,9 +85,9 @@ class StateReader {
   std::string m_what;
 };
 
-/// SimState's part of a snapshot. Not written: the step's cuts (handoff.cuts; snapshots are
+/// SimState's part of a snapshot. Not written: the step's cuts (events.cuts; snapshots are
 /// taken between steps with none in flight, write_sim_state throws std::logic_error otherwise)
-/// and the haptic contact planes and tool reactions (handoff.contact_planes, tool_reactions: only
+/// and the haptic contact planes and tool reactions (events.contact_planes, tool_reactions: only
 /// a live haptic loop reads them, and a replay, which restores snapshots, runs none).
 void write_sim_state(StateWriter& out, const SimState& s);
 /// Reads what write_sim_state wrote; checks the mesh's arrays agree in size.

@@ -14,7 +14,7 @@ FemStage::FemStage(FemConfig config) : m_integrator(std::move(config)) {}
 
 void FemStage::take_cuts(SimState& state) {
   if (!m_built) return;  // the first step builds everything anyway
-  for (const CutEvent& cut : state.handoff.cuts) {
+  for (const CutEvent& cut : state.events.cuts) {
     if (cut.delta.version_before != m_seen_version) continue;  // seen, or not ours to follow
     m_integrator.update(state.mesh, cut.delta);
     m_seen_version = cut.delta.version_after;
@@ -45,7 +45,7 @@ void FemStage::restore(StateReader& in, SimState& state) {
 
 void FemStage::step(const StepContext& ctx, SimState& state) {
   take_cuts(state);
-  if (state.handoff.nodes_moved) m_integrator.restart_energy_balance();
+  if (state.events.nodes_moved) m_integrator.restart_energy_balance();
   if (!m_built || m_seen_version != state.mesh.topology_version) {
     m_integrator.rebuild(state.mesh);
     m_seen_version = state.mesh.topology_version;
@@ -54,7 +54,7 @@ void FemStage::step(const StepContext& ctx, SimState& state) {
   }
   if (m_integrator.config().solver.threads > 0)
     omp_set_num_threads(m_integrator.config().solver.threads);
-  m_last = m_integrator.step(state.mesh, ctx.dt_s, state.handoff.external_force_n);
+  m_last = m_integrator.step(state.mesh, ctx.dt_s, state.events.external_force_n);
   ++m_stats.steps;
   const StepTrouble here{ctx.step, ctx.time_s, m_last.iterations, m_last.residual};
   const auto count = [&](bool trouble, std::uint64_t& n, std::optional<StepTrouble>& first) {

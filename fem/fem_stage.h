@@ -1,7 +1,7 @@
 // FemStage: the "fem" stage of the solver pipeline (engine/stage.h). Each step advances
 // SimState::mesh by one implicit corotational step (fem/implicit_integrator.h). It owns the
 // integrator's caches; the FEM model (FemConfig) is fixed at construction. It reads what earlier
-// stages handed over in SimState::handoff: the cuts of the previous step (their deltas update the
+// stages handed over in SimState::events: the cuts of the previous step (their deltas update the
 // integrator incrementally), the external forces and whether held nodes were moved.
 #pragma once
 
@@ -62,8 +62,8 @@ class FemStage final : public Stage {
 
   [[nodiscard]] std::string_view name() const noexcept override { return "fem"; }
   /// One implicit step of length ctx.dt_s on state.mesh: first the cuts handed over since the
-  /// last step (incremental updates), then the solve with handoff.external_force_n (ignored
-  /// unless it holds one force per node). handoff.nodes_moved: the caller set x or v of some
+  /// last step (incremental updates), then the solve with events.external_force_n (ignored
+  /// unless it holds one force per node). events.nodes_moved: the caller set x or v of some
   /// nodes (a grasper moving those it holds), which is its work, not a gain of the last solve,
   /// so the divergence guard skips its energy check (ImplicitIntegrator::restart_energy_balance)
   /// instead of flagging it and starting the solve cold.
@@ -79,7 +79,7 @@ class FemStage final : public Stage {
   [[nodiscard]] const ImplicitIntegrator& integrator() const noexcept { return m_integrator; }
 
  private:
-  /// The cuts in state.handoff that this stage has not seen, in order; a rebuild if they do not
+  /// The cuts in state.events that this stage has not seen, in order; a rebuild if they do not
   /// follow the version it holds.
   void take_cuts(SimState& state);
 

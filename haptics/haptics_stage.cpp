@@ -360,12 +360,12 @@ void HapticsStage::step(const StepContext& ctx, SimState& state) {
     if (!m_tool[h] || *m_tool[h] >= state.tools.size()) continue;
     haptics::ToolContact& tc = model.tools[h];
     tc.sim_tip_m = state.tools[*m_tool[h]].tip_m;
-    const auto& planes = state.handoff.contact_planes;
+    const auto& planes = state.events.contact_planes;
     if (*m_tool[h] < planes.size() && planes[*m_tool[h]]) {
       tc.contacts[0] = *planes[*m_tool[h]];
       tc.n_contacts = 1;
     }
-    const auto& reactions = state.handoff.tool_reactions;
+    const auto& reactions = state.events.tool_reactions;
     if (*m_tool[h] < reactions.size()) {
       const ToolReaction& r = reactions[*m_tool[h]];
       tc.held_pull_N = {r.held_pull_n.x(), r.held_pull_n.y(), r.held_pull_n.z()};
@@ -423,12 +423,12 @@ void HapticsStage::step(const StepContext& ctx, SimState& state) {
 }
 
 // The loop marks a force event when these counters move: the cuts made so far (the cutting stage
-// runs after this one, so handoff.cuts holds the previous step's), and every time a handle's tool
+// runs after this one, so events.cuts holds the previous step's), and every time a handle's tool
 // starts or stops pressing on or holding tissue (its force on the tissue becomes or stops being
 // non-zero).
 void HapticsStage::count_events(const SimState& state) noexcept {
-  m_cut_events += static_cast<std::uint32_t>(state.handoff.cuts.size());
-  const auto& force = state.handoff.tool_force_n;
+  m_cut_events += static_cast<std::uint32_t>(state.events.cuts.size());
+  const auto& force = state.events.tool_force_n;
   for (std::size_t h = 0; h < haptics::kHandles; ++h) {
     const bool touching = m_tool[h] && *m_tool[h] < force.size() && force[*m_tool[h]].norm() > 0.0;
     if (touching != m_touching[h]) ++m_contact_events;

@@ -20,7 +20,7 @@
 //     run bit for bit without the loop;
 //   solver -> loop: a ContactModel published each step: step, time, each handle's simulated tip
 //     and, with a contact stage, its local contact plane (the nearest organ surface point to the
-//     tip from the collision BVH, SimState::handoff.contact_planes). The planes are the contact
+//     tip from the collision BVH, SimState::events.contact_planes). The planes are the contact
 //     stage's of the previous step (it runs after this stage): one solver step of latency.
 //   window -> loop: the mouse device's cumulative PointerInput.
 // Handles: the first two tools that are not endoscopes (scene order) take handles 0 and 1, except

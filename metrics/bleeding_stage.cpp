@@ -6,8 +6,6 @@
 #include <numbers>
 #include <string>
 
-#include "engine/state_codec.h"
-
 namespace serosa::metrics {
 namespace {
 
@@ -46,7 +44,7 @@ double BleedingStage::pulse(double t, double since) {
 
 // A new bleeding: the node nearest the cut carries its end; the pool lies where a drop from it
 // falls onto the floor.
-void BleedingStage::begin(const Vec3& where, double since, const SimState& state) {
+void BleedingStage::begin(const Vec3& where, double since, SimState& state) const {
   Source s;
   s.since_s = since;
   double best = std::numeric_limits<double>::infinity();
@@ -68,12 +66,12 @@ void BleedingStage::begin(const Vec3& where, double since, const SimState& state
   s.pool = arr(pool);
   s.pool_normal = arr(normal);
   s.coagulated_near = coagulated_near(state.mesh.x[static_cast<std::size_t>(s.node)], state);
-  m_sources.push_back(s);
+  state.blocks.bleeding.sources.push_back(s);
 }
 
 // The coagulated nodes within kClosedByM of the cut end.
 std::int64_t BleedingStage::coagulated_near(const Vec3& end, const SimState& state) {
-  const auto& coag = state.handoff.coagulated;
+  const auto& coag = state.blocks.cutting.coagulated;
   std::int64_t n = 0;
   for (std::size_t i = 0; i < coag.size() && i < state.mesh.x.size(); ++i)
     n += coag[i] != 0 && (state.mesh.x[i] - end).norm() < kClosedByM ? 1 : 0;
@@ -84,7 +82,7 @@ std::int64_t BleedingStage::coagulated_near(const Vec3& end, const SimState& sta
 // coagulated nodes that near than when it began.
 bool BleedingStage::closed(const Source& s, const SimState& state) const {
   const Vec3& end = state.mesh.x[static_cast<std::size_t>(s.node)];
-  for (const Clip& c : state.handoff.clips)
+  for (const Clip& c : state.shared.clips)
     if (c.placed_s >= s.since_s &&
         segment_distance(end, c.end(0), c.end(1)) < c.reach_m() + kClosedByM)
       return true;
@@ -92,25 +90,27 @@ bool BleedingStage::closed(const Source& s, const SimState& state) const {
 }
 
 // Every node within the pool's reach takes its stain (kept: blood stains for good).
-void BleedingStage::stain(const Source& s, double radius, const SimState& state) {
+void BleedingStage::stain(const Source& s, double radius, SimState& state) {
   if (radius <= 0.0) return;
   const Vec3 centre = vec(s.pool);
   for (std::size_t i = 0; i < state.mesh.x.size(); ++i) {
     const double d = (state.mesh.x[i] - centre).norm();
     if (d >= radius) continue;
     const double w = std::clamp((radius - d) / (0.3 * radius), 0.0, 1.0);
-    m_stain[i] = std::max(m_stain[i], static_cast<float>(w));
+    float& st = state.blocks.bleeding.stain[i];
+    st = std::max(st, static_cast<float>(w));
   }
 }
 
 void BleedingStage::step(const StepContext& ctx, SimState& state) {
-  const auto& bleeds = state.handoff.bleeds;
-  for (std::size_t k = m_sources.size(); k < bleeds.size(); ++k)
+  const auto& bleeds = state.shared.bleeds;
+  BleedingBlock& b = state.blocks.bleeding;
+  for (std::size_t k = b.sources.size(); k < bleeds.size(); ++k)
     begin(bleeds[k].first, bleeds[k].second, state);
-  if (m_sources.empty()) return;  // nothing bleeds: nothing is stained, nothing published
-  m_stain.resize(state.mesh.x.size(), 0.0f);  // cuts add nodes (unstained)
+  if (b.sources.empty()) return;  // nothing bleeds: nothing is stained, nothing published
+  b.stain.resize(state.mesh.x.size(), 0.0f);  // cuts add nodes (unstained)
   const double t = ctx.time_s + ctx.dt_s;
-  for (Source& s : m_sources) {
+  for (Source& s : b.sources) {
     // The stroke that cut it coagulates on for a moment: only coagulation after that closes it.
     if (s.closed_s < 0.0 && t - s.since_s < kOwnStrokeS)
       s.coagulated_near =
@@ -126,11 +126,12 @@ void BleedingStage::step(const StepContext& ctx, SimState& state) {
   publish(t, state);
 }
 
-void BleedingStage::publish(double time_s, SimState& state) const {
-  state.handoff.blood.resize(m_sources.size());
-  for (std::size_t k = 0; k < m_sources.size(); ++k) {
-    const Source& s = m_sources[k];
-    Blood& b = state.handoff.blood[k];
+void BleedingStage::publish(double time_s, SimState& state) {
+  const std::vector<Source>& sources = state.blocks.bleeding.sources;
+  state.shared.blood.resize(sources.size());
+  for (std::size_t k = 0; k < sources.size(); ++k) {
+    const Source& s = sources[k];
+    Blood& b = state.shared.blood[k];
     const auto node = static_cast<std::size_t>(s.node);
     b.source_m = node < state.mesh.x.size() ? state.mesh.x[node] : vec(s.pool);
     b.pool_m = vec(s.pool);
@@ -140,27 +141,20 @@ void BleedingStage::publish(double time_s, SimState& state) const {
     b.since_s = s.since_s;
     b.shed_m3 = s.shed_m3;
   }
-  state.handoff.stain.assign(m_stain.begin(), m_stain.end());
 }
 
-void BleedingStage::save(StateWriter& out) const {
-  out.array(m_sources);
-  out.array(m_stain);
-}
-
-void BleedingStage::restore(StateReader& in, SimState& state) {
-  in.array(m_sources);
-  in.array(m_stain);
-  for (const Source& s : m_sources)
-    if (s.node < 0 || static_cast<std::size_t>(s.node) >= state.mesh.x.size())
-      in.fail("bleeding from node " + std::to_string(s.node) + " of " +
-              std::to_string(state.mesh.x.size()));
-  if (m_stain.size() > state.mesh.x.size())
-    in.fail("stain for " + std::to_string(m_stain.size()) + " nodes of " +
-            std::to_string(state.mesh.x.size()));
-  state.handoff.blood.clear();
-  state.handoff.stain.clear();
-  if (!m_sources.empty()) publish(state.time_s, state);
+void BleedingStage::adopt(SimState& state) {
+  const BleedingBlock& b = state.blocks.bleeding;
+  const std::size_t n = state.mesh.x.size();
+  for (const Source& s : b.sources)
+    if (s.node < 0 || static_cast<std::size_t>(s.node) >= n)
+      throw BlockMismatch("bleeding from node " + std::to_string(s.node) + " of " +
+                          std::to_string(n));
+  if (b.stain.size() > n)
+    throw BlockMismatch("stain for " + std::to_string(b.stain.size()) + " nodes of " +
+                        std::to_string(n));
+  state.shared.blood.clear();
+  if (!b.sources.empty()) publish(state.time_s, state);
 }
 
 }  // namespace serosa::metrics

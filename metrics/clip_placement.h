@@ -1,5 +1,5 @@
 // Where the clip applier's clips went (the clip-application drill, the procedure's first
-// securing). Looked at every step from the placed clips (SimState::handoff.clips):
+// securing). Looked at every step from the placed clips (SimState::shared.clips):
 //   clips_on_artery       clips that clamp some of the artery, 1
 //   clips_off_artery      clips closed on tissue but none of the artery (a wasted clip on the fold,
 //                         or worse, the bowel), 1

@@ -106,8 +106,8 @@ void MetricsStage::step(const StepContext& ctx, SimState& state) {
     m_path[i] += m_moved[i];
     m_last_tip[i] = tip;
   }
-  const auto& f = state.handoff.tool_force_n;
-  const auto& reactions = state.handoff.tool_reactions;
+  const auto& f = state.events.tool_force_n;
+  const auto& reactions = state.events.tool_reactions;
   for (std::size_t i = 0; i < k; ++i)  // a scissors' blades load the tissue with no net force
     m_load[i] = (i < f.size() ? f[i].norm() : 0.0) +
                 (i < reactions.size() ? reactions[i].blade_force_n : 0.0);
@@ -125,9 +125,9 @@ void MetricsStage::step(const StepContext& ctx, SimState& state) {
     }
   }
   add_view(state.tools, ctx.dt_s);
-  for (const CutEvent& cut : state.handoff.cuts) add_cut(cut);
+  for (const CutEvent& cut : state.events.cuts) add_cut(cut);
   if (m_errors.active()) m_errors.step(m_time, state);
-  m_clips.step(state.handoff.clips);
+  m_clips.step(state.shared.clips);
   m_transfer.step(m_time, state);
   follow_steps(state);
   if (static_cast<std::int64_t>(ctx.step) % m_stress_every == 0)
@@ -347,18 +347,18 @@ void MetricsStage::restore(StateReader& in, SimState& state) {
   m_splits.restore(in);
   m_clips.restore(in);
   m_transfer.restore(in);
-  state.handoff.bleeds.clear();
+  state.shared.bleeds.clear();
   publish_bleeds(state);
 }
 
 // The bleeding the view shows: appended when one begins (the list only grows).
 void MetricsStage::publish_bleeds(SimState& state) const {
   const std::int64_t k = m_errors.count(ProcedureError::Kind::kBleeding);
-  if (static_cast<std::int64_t>(state.handoff.bleeds.size()) == k) return;
-  state.handoff.bleeds.clear();
+  if (static_cast<std::int64_t>(state.shared.bleeds.size()) == k) return;
+  state.shared.bleeds.clear();
   for (const ProcedureError& e : m_errors.errors())
     if (e.kind == ProcedureError::Kind::kBleeding)
-      state.handoff.bleeds.emplace_back(e.where_m, e.time_s);
+      state.shared.bleeds.emplace_back(e.where_m, e.time_s);
 }
 
 }  // namespace serosa::metrics

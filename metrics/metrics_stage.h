@@ -87,9 +87,9 @@ inline constexpr double kTargetRange = 0.12;
 class MetricsStage final : public Stage {
  public:
   /// stress_every: peak stress is sampled every that many steps (1 = every step). The tools'
-  /// forces come from the contact stage (SimState::handoff.tool_force_n, plus closing scissors'
-  /// blade load from handoff.tool_reactions; without a contact stage, none are reported), the cuts
-  /// from the cutting stage (SimState::handoff.cuts).
+  /// forces come from the contact stage (SimState::events.tool_force_n, plus closing scissors'
+  /// blade load from events.tool_reactions; without a contact stage, none are reported), the cuts
+  /// from the cutting stage (SimState::events.cuts).
   /// group_names: the mesh's group ids by name (app::AssembledScene::group_names), which the
   /// procedure's errors need ([metrics] artery and protected name groups).
   MetricsStage(const Scene& scene, LameTable lame, std::int64_t stress_every = 1,

@@ -21,10 +21,10 @@ void ProcedureErrors::step(double time_s, const SimState& state) {
 // none).
 void ProcedureErrors::check_cuts(double time_s, const SimState& state) {
   const bool secured =
-      std::any_of(state.handoff.clips.begin(), state.handoff.clips.end(), [&](const Clip& c) {
+      std::any_of(state.shared.clips.begin(), state.shared.clips.end(), [&](const Clip& c) {
         return std::find(c.groups.begin(), c.groups.end(), *m_artery) != c.groups.end();
       });
-  for (const CutEvent& cut : state.handoff.cuts) {
+  for (const CutEvent& cut : state.events.cuts) {
     const auto& g = cut.removed_groups;
     if (secured || std::find(g.begin(), g.end(), *m_artery) == g.end()) continue;
     Vec3 where = Vec3::Zero();
@@ -49,9 +49,9 @@ void ProcedureErrors::check_burns(double time_s, const SimState& state) {
   const bool pedal = std::any_of(state.tools.begin(), state.tools.end(),
                                  [](const ToolState& t) { return pedal_down(t); });
   if (!pedal) m_counted = false;
-  const std::vector<std::uint8_t>& coag = state.handoff.coagulated;
-  if (state.handoff.coagulated_version == m_seen_coag) return;
-  m_seen_coag = state.handoff.coagulated_version;
+  const std::vector<std::uint8_t>& coag = state.blocks.cutting.coagulated;
+  if (state.blocks.cutting.coagulated_version == m_seen_coag) return;
+  m_seen_coag = state.blocks.cutting.coagulated_version;
   m_burnt.resize(n, 0);
   std::optional<Vec3> first;
   for (std::size_t v = 0; v < n && v < coag.size(); ++v) {

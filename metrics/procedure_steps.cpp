@@ -31,7 +31,7 @@ void ProcedureSteps::step(double time_s, const SimState& state, ProcedureErrors&
   m_time = time_s;
   if (!m_ready) init(state.mesh);
   refresh_groups(state.mesh);
-  const bool cut = !state.handoff.cuts.empty();
+  const bool cut = !state.events.cuts.empty();
   if (cut) m_pieces_stale = true;
   if (!m_steps[kExpose].done) expose(state);
   if (!m_steps[kSecure].done) secure(state);
@@ -87,7 +87,7 @@ void ProcedureSteps::refresh_groups(const TetMesh& mesh) {
 
 void ProcedureSteps::expose(const SimState& state) {
   const TetMesh& mesh = state.mesh;
-  const auto& held = state.handoff.grasped;
+  const auto& held = state.shared.grasped;
   for (std::size_t i = 0; i < held.size(); ++i) {
     double lift = 0.0;
     std::size_t count = 0;
@@ -120,11 +120,11 @@ void ProcedureSteps::divide(const SimState& state) {
       touches[c] |= 1;
   }
   if (std::find(touches.begin(), touches.end(), 3) != touches.end()) return;
-  mark(kDivide, m_time, static_cast<std::int64_t>(state.handoff.cuts.back().tool));
+  mark(kDivide, m_time, static_cast<std::int64_t>(state.events.cuts.back().tool));
 }
 
 void ProcedureSteps::secure(const SimState& state) {
-  for (const Clip& c : state.handoff.clips) {
+  for (const Clip& c : state.shared.clips) {
     if (!secures_base(c)) continue;
     if (std::find(c.groups.begin(), c.groups.end(), m_ids.specimen) == c.groups.end()) continue;
     if ((c.rest_centre_m - m_origin).norm() > kBaseZone) continue;
@@ -149,7 +149,7 @@ void ProcedureSteps::transect(const SimState& state, double time_s, ProcedureErr
       stump.resize(static_cast<std::size_t>(comp[v]) + 1, 0);
     stump[static_cast<std::size_t>(comp[v])] = 1;
   }
-  const CutEvent& cut = state.handoff.cuts.back();
+  const CutEvent& cut = state.events.cuts.back();
   mark(kTransect, time_s, static_cast<std::int64_t>(cut.tool));
   m_freed_at = Vec3::Zero();
   for (const Vec3& p : cut.polygon_m) m_freed_at += p;
@@ -162,7 +162,7 @@ void ProcedureSteps::transect(const SimState& state, double time_s, ProcedureErr
   }
   m_fraction = m_volume > 0.0 ? volume / m_volume : 0.0;
   const bool secured =
-      std::any_of(state.handoff.clips.begin(), state.handoff.clips.end(), [&](const Clip& c) {
+      std::any_of(state.shared.clips.begin(), state.shared.clips.end(), [&](const Clip& c) {
         if (!secures_base(c) || c.node < 0 || c.node >= mesh.num_nodes()) return false;
         const std::int32_t k = comp[static_cast<std::size_t>(c.node)];
         return k >= 0 && static_cast<std::size_t>(k) < stump.size() &&
@@ -205,7 +205,7 @@ void ProcedureSteps::follow_specimen(const SimState& state, double time_s,
 }
 
 std::int64_t ProcedureSteps::holder(const SimState& state) const {
-  const auto& held = state.handoff.grasped;
+  const auto& held = state.shared.grasped;
   for (std::size_t i = 0; i < held.size(); ++i)
     for (std::int32_t v : held[i])
       if (static_cast<std::size_t>(v) < m_in_specimen.size() &&

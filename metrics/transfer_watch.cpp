@@ -25,7 +25,7 @@ void TransferWatch::refresh_nodes(const TetMesh& mesh) {
 
 void TransferWatch::find_holders(const SimState& state, std::vector<std::int64_t>& out) const {
   out.clear();
-  const auto& held = state.handoff.grasped;
+  const auto& held = state.shared.grasped;
   for (std::size_t i = 0; i < held.size(); ++i)
     if (std::any_of(held[i].begin(), held[i].end(), [&](std::int32_t v) {
           return static_cast<std::size_t>(v) < m_in_object.size() &&

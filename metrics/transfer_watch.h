@@ -1,6 +1,6 @@
 // The grasp-and-transfer drill (after FLS's peg transfer): an object is picked up with one
 // grasper, handed to the other in the air and set down on a target. Looked at every step from
-// the grasps (SimState::handoff.grasped) and the object's nodes:
+// the grasps (SimState::shared.grasped) and the object's nodes:
 //   transfer.handoffs           times the object passed from one grasper to another without
 //                               being let go in between (both held it, then the first let go), 1
 //   transfer.drops              times every grasper let go of it away from the target (beyond

@@ -97,7 +97,7 @@ bool ReplayController::step_forward() {
     record_branch_snapshot_if_due();
     return true;
   }
-  if (s.step % m_snapshot_every == 0 && m_exact && s.handoff.cuts.empty() &&
+  if (s.step % m_snapshot_every == 0 && m_exact && s.events.cuts.empty() &&
       !m_snapshots.contains(s.step))
     m_snapshots.emplace(s.step, Snapshot{m_sim->snapshot(), last_step_hash()});
   return true;
@@ -117,7 +117,7 @@ void ReplayController::feed_recorded_inputs() {
 void ReplayController::record_branch_snapshot_if_due() {
   const SimState& s = m_sim->state();
   if (m_branch_closed || m_branch_snapshot_every == 0 || s.step < m_branch_next_snapshot ||
-      !s.handoff.cuts.empty())
+      !s.events.cuts.empty())
     return;
   m_branch_writer->record_snapshot(s.step, m_sim->snapshot());
   m_branch_next_snapshot = (s.step / m_branch_snapshot_every + 1) * m_branch_snapshot_every;

@@ -197,8 +197,8 @@ class ReplayWindow {
     const Scene& scene = m_replay.scene();
     const SimState& state = m_replay.state();
     fill_render_frame(state.mesh, m_drawn.of(state), m_names, true, m_frame,
-                      &state.handoff.coagulated, state.handoff.coagulated_version,
-                      &state.handoff.stain);
+                      &state.blocks.cutting.coagulated, state.blocks.cutting.coagulated_version,
+                      &state.blocks.bleeding.stain);
     fill_render_tools(scene, state, m_frame);
     std::optional<render::Camera> cam = endoscope_view(scene, state);
     if (!cam) {

@@ -12,15 +12,15 @@ SurfaceStage::SurfaceStage(const TetMesh& initial)
       m_original(initial, surface::extract_surface(initial, m_backend)) {}
 
 void SurfaceStage::rebuild(SimState& state) {
-  state.handoff.surface = surface::extract_surface(state.mesh, m_original, m_backend);
-  m_table = surface::build_face_table(state.mesh, state.handoff.surface);
+  state.shared.surface = surface::extract_surface(state.mesh, m_original, m_backend);
+  m_table = surface::build_face_table(state.mesh, state.shared.surface);
   m_built = true;
   ++m_stats.rebuilds;
 }
 
 void SurfaceStage::step(const StepContext& /*ctx*/, SimState& state) {
-  surface::SurfaceMesh& s = state.handoff.surface;
-  const auto& cuts = state.handoff.cuts;
+  surface::SurfaceMesh& s = state.shared.surface;
+  const auto& cuts = state.events.cuts;
   // A state that arrives with its surface (assembled, or restored from a snapshot) keeps it: the
   // table is derived from the surface and the mesh alone.
   if (!m_built && !s.faces.empty() && s.topology_version == state.mesh.topology_version &&

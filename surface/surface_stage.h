@@ -1,8 +1,8 @@
 // The "surface" stage: keeps the organs' boundary surface (surface/extract_surface.h) in step with
-// the mesh, in SimState::handoff.surface, where contact, rendering and pictures read it. Its wound
+// the mesh, in SimState::shared.surface, where contact, rendering and pictures read it. Its wound
 // flags (face_cut) are taken against the uncut boundary of the scene's initial mesh
 // (surface/cut_faces.h), so the renderer can draw wounds from it as it is. The cut of
-// the step (SimState::handoff.cuts) updates it incrementally (surface/update_surface.h); it is
+// the step (SimState::events.cuts) updates it incrementally (surface/update_surface.h); it is
 // extracted anew only on the first step and when it cannot follow the cuts (a step with several
 // cuts, whose deltas each describe the mesh between two of them: update_surface needs the mesh
 // right after its delta).
@@ -48,7 +48,7 @@ class SurfaceStage final : public Stage {
 
   surface::Backend m_backend;
   surface::OriginalSurface m_original;  // the uncut boundary, in rest coordinates
-  surface::FaceTable m_table;  // faces of handoff.surface by their tet face (update_surface)
+  surface::FaceTable m_table;  // faces of shared.surface by their tet face (update_surface)
   bool m_built = false;
   SurfaceStageStats m_stats;
 };

@@ -56,9 +56,10 @@ render::RenderFrame scene_frame(const BenchOptions& options, double seconds) {
   for (std::int64_t k = 0; k < sim.planned_steps(); ++k) sim.step();
   const SimState& state = sim.state();
   render::RenderFrame f;
-  fill_render_frame(
-      state.mesh, state.handoff.surface, drawn_group_names(scene, assembled.group_names()), false,
-      f, &state.handoff.coagulated, state.handoff.coagulated_version, &state.handoff.stain);
+  fill_render_frame(state.mesh, state.shared.surface,
+                    drawn_group_names(scene, assembled.group_names()), false, f,
+                    &state.blocks.cutting.coagulated, state.blocks.cutting.coagulated_version,
+                    &state.blocks.bleeding.stain);
   fill_render_tools(scene, state, f);
   f.scenery = scenery_from_scene(scene, initial);
   fill_taenia(initial, drawn_group_names(scene, assembled.group_names()), f);

@@ -53,10 +53,10 @@ TEST(Clip, ClosesOnTheTissueBetweenTheJawsAndPressesItToTheGap) {
   auto run = beam(dir, applier_rows());
   SimState& s = run->assembled.state;
   run->comp.runner->run(s, 18);  // t = 0.09: still opening-wide enough to be closing
-  EXPECT_TRUE(s.handoff.clips.empty());
+  EXPECT_TRUE(s.shared.clips.empty());
   run->comp.runner->run(s, 22);  // t = 0.2: closed at 0.1, pressed by 0.15
-  ASSERT_EQ(s.handoff.clips.size(), 1u);
-  const Clip& c = s.handoff.clips[0];
+  ASSERT_EQ(s.shared.clips.size(), 1u);
+  const Clip& c = s.shared.clips[0];
   EXPECT_EQ(c.tool, 0u);
   EXPECT_NEAR(c.placed_s, 0.095, 0.006);
   // The beam's nodes at x = 7 cm in the jaws: y = 5 mm (z = 0) and y = 0 (z = -5, 0, 5 mm).
@@ -97,8 +97,8 @@ TEST(Clip, HoldsUnderTractionCarriedByTheTissue) {
   auto run = beam(dir, csv, scripted_tool("grasper", "grasper"));
   SimState& s = run->assembled.state;
   run->comp.runner->run(s, 50);  // t = 0.25: settled
-  ASSERT_EQ(s.handoff.clips.size(), 1u);
-  const Clip before = s.handoff.clips[0];
+  ASSERT_EQ(s.shared.clips.size(), 1u);
+  const Clip before = s.shared.clips[0];
   std::vector<std::int32_t> clamped;
   for (std::int32_t n = 0; n < s.mesh.num_nodes(); ++n) {
     const Vec3 l = in_clip(before, s.mesh.x[static_cast<std::size_t>(n)]);
@@ -121,8 +121,8 @@ TEST(Clip, HoldsUnderTractionCarriedByTheTissue) {
   const Vec3 ring0 = ring_centre();
   const Vec3 centre0 = 0.5 * (before.end(0) + before.end(1));
   run->comp.runner->run(s, 100);  // t = 0.75: lifted and held
-  ASSERT_EQ(s.handoff.clips.size(), 1u);
-  const Clip& after = s.handoff.clips[0];
+  ASSERT_EQ(s.shared.clips.size(), 1u);
+  const Clip& after = s.shared.clips[0];
   const Vec3 moved = 0.5 * (after.end(0) + after.end(1)) - centre0;
   const Vec3 ring_moved = ring_centre() - ring0;
   EXPECT_GT(ring_moved.y(), 0.002);  // the lift reached the clip's place
@@ -143,7 +143,7 @@ TEST(Clip, ARigidMotionOfTheTissueCarriesTheClipExactly) {
   auto run = beam(dir, applier_rows());
   SimState& s = run->assembled.state;
   run->comp.runner->run(s, 50);  // settled
-  ASSERT_EQ(s.handoff.clips.size(), 1u);
+  ASSERT_EQ(s.shared.clips.size(), 1u);
   // The clip where the tissue as it is now puts it (the hand-off holds where it put it before
   // this step's FEM moved it).
   const StepContext ctx{s.step, s.time_s, 0.005};
@@ -159,8 +159,8 @@ TEST(Clip, ARigidMotionOfTheTissueCarriesTheClipExactly) {
     const Vec3 t(0.01 * n(rng), 0.01 * n(rng), 0.01 * n(rng));
     for (Vec3& x : moved.mesh.x) x = r * x + t;
     run->comp.clips->step(ctx, moved);
-    const Clip& c0 = still.handoff.clips[0];
-    const Clip& c1 = moved.handoff.clips[0];
+    const Clip& c0 = still.shared.clips[0];
+    const Clip& c1 = moved.shared.clips[0];
     ASSERT_LT((c1.frame - r * c0.frame).norm(), 1e-9) << "trial " << trial;
     ASSERT_LT((c1.hinge_m - (r * c0.hinge_m + t)).norm(), 1e-11) << "trial " << trial;
     for (std::size_t k = 0; k < s.mesh.x.size(); ++k)
@@ -178,8 +178,8 @@ TEST(Clip, ClosedOnNothingItFallsAway) {
   SimState& s = run->assembled.state;
   const std::vector<std::uint8_t> fixed0 = s.mesh.fixed;
   run->comp.runner->run(s, 40);
-  EXPECT_TRUE(s.handoff.clips.empty());
-  EXPECT_EQ(run->comp.clips->dropped()[0], 1);
+  EXPECT_TRUE(s.shared.clips.empty());
+  EXPECT_EQ(contact::clips_dropped(run->assembled.state, 0), 1);
   EXPECT_EQ(s.mesh.fixed, fixed0);
 }
 
@@ -210,7 +210,7 @@ TEST(Clip, ScissorsClosingOnAClipCutNothingAndBesideItDivide) {
   EXPECT_EQ(st.strokes_on_clip, 1u);
   EXPECT_GE(st.cuts, 1u);
   EXPECT_GT(s.mesh.num_tets(), tets0);
-  ASSERT_EQ(s.handoff.clips.size(), 1u);
+  ASSERT_EQ(s.shared.clips.size(), 1u);
 }
 
 TEST(Clip, ARestoredSnapshotWithAClipContinuesBitForBit) {
@@ -221,7 +221,7 @@ TEST(Clip, ARestoredSnapshotWithAClipContinuesBitForBit) {
   const std::vector<std::uint8_t> bytes = run->comp.runner->snapshot(s);
   auto other = restored(*run, bytes, "clip snapshot");
   SimState& o = other->assembled.state;
-  ASSERT_EQ(o.handoff.clips.size(), 1u);
+  ASSERT_EQ(o.shared.clips.size(), 1u);
   for (int k = 0; k < 40; ++k) {  // through the settling and on
     run->comp.runner->step(s);
     other->comp.runner->step(o);

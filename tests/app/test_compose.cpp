@@ -115,13 +115,13 @@ TEST(Compose, BleedingAndSmokeAreBuiltOnlyWhenListed) {
   EXPECT_EQ(std::count(names.begin(), names.end(), "smoke"), 0);
   EXPECT_EQ(std::count(c.built.begin(), c.built.end(), Effect::kBleeding), 0);
   // A bleeding the metrics found is not drawn as blood then: nothing is published or allocated.
-  a.state.handoff.bleeds.emplace_back(Vec3::Zero(), 0.0);
+  a.state.shared.bleeds.emplace_back(Vec3::Zero(), 0.0);
   c.runner->run(a.state, 2);
-  EXPECT_EQ(a.state.handoff.blood.capacity(), 0u);
-  EXPECT_EQ(a.state.handoff.stain.capacity(), 0u);
-  a.state.handoff.coagulated.assign(a.state.mesh.x.size(), 1);
+  EXPECT_EQ(a.state.shared.blood.capacity(), 0u);
+  EXPECT_EQ(a.state.blocks.bleeding.stain.capacity(), 0u);
+  a.state.blocks.cutting.coagulated.assign(a.state.mesh.x.size(), 1);
   c.runner->run(a.state, 2);
-  EXPECT_EQ(a.state.handoff.smoke.capacity(), 0u);
+  EXPECT_EQ(a.state.shared.smoke.capacity(), 0u);
 }
 
 // [render] looks: a group is drawn as the tissue the scene names for it, the others by their own

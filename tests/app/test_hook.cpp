@@ -60,11 +60,11 @@ TEST(Hook, DividesWhatItsLiveCrookPassedThroughAndCoagulatesAroundIt) {
   EXPECT_GT(st.stroke_reports[0].crack_area_m2, 0.0);
   EXPECT_EQ(st.stroke_reports[0].pinned, 0);
   // The coagulated band: every marked node near the path (or made by the hook's cut on it).
-  ASSERT_EQ(s.handoff.coagulated.size(), static_cast<std::size_t>(s.mesh.num_nodes()));
+  ASSERT_EQ(s.blocks.cutting.coagulated.size(), static_cast<std::size_t>(s.mesh.num_nodes()));
   std::size_t marked = 0;
-  for (std::size_t n = 0; n < s.handoff.coagulated.size(); ++n) {
+  for (std::size_t n = 0; n < s.blocks.cutting.coagulated.size(); ++n) {
     const double d = to_swept(s.mesh.rest[n]);
-    if (s.handoff.coagulated[n] != 0) {
+    if (s.blocks.cutting.coagulated[n] != 0) {
       ++marked;
       EXPECT_LE(d, kCoagulationRadius + 1e-3) << "node " << n;
     }
@@ -73,16 +73,16 @@ TEST(Hook, DividesWhatItsLiveCrookPassedThroughAndCoagulatesAroundIt) {
   // Drawn: faces with three coagulated nodes take the coagulated material (the hook's own
   // wound is dry: its faces' nodes are all coagulated).
   render::RenderFrame frame;
-  fill_render_frame(s.mesh, s.handoff.surface, {}, false, frame, &s.handoff.coagulated,
-                    s.handoff.coagulated_version);
-  EXPECT_EQ(frame.material_version, s.handoff.coagulated_version);
-  EXPECT_GT(s.handoff.coagulated_version, 0u);
+  fill_render_frame(s.mesh, s.shared.surface, {}, false, frame, &s.blocks.cutting.coagulated,
+                    s.blocks.cutting.coagulated_version);
+  EXPECT_EQ(frame.material_version, s.blocks.cutting.coagulated_version);
+  EXPECT_GT(s.blocks.cutting.coagulated_version, 0u);
   std::size_t charred = 0;
   for (std::size_t i = 0; i < frame.tri_cut.size(); ++i) {
     if (frame.tri_cut[i] != 2) continue;
     ++charred;
-    for (std::int32_t n : s.handoff.surface.faces[i])
-      EXPECT_EQ(s.handoff.coagulated[static_cast<std::size_t>(n)], 1);
+    for (std::int32_t n : s.shared.surface.faces[i])
+      EXPECT_EQ(s.blocks.cutting.coagulated[static_cast<std::size_t>(n)], 1);
   }
   EXPECT_GT(charred, 0u);
 }
@@ -110,7 +110,7 @@ TEST(Hook, ARestoredSnapshotMidStrokeContinuesBitForBit) {
   const std::vector<std::uint8_t> bytes = run->comp.runner->snapshot(s);
   auto other = restored(*run, bytes, "hook snapshot");
   SimState& o = other->assembled.state;
-  EXPECT_EQ(o.handoff.coagulated, s.handoff.coagulated);
+  EXPECT_EQ(o.blocks.cutting.coagulated, s.blocks.cutting.coagulated);
   for (int k = 0; k < 30; ++k) {  // through the release and the cut
     run->comp.runner->step(s);
     other->comp.runner->step(o);

@@ -46,10 +46,10 @@ TEST(Endoloop, CinchedRoundTheBeamItLigatesTheCrossSectionWithinItsTightRadius) 
   auto run = beam(dir, loop_rows());
   SimState& s = run->assembled.state;
   run->comp.runner->run(s, 18);
-  EXPECT_TRUE(s.handoff.clips.empty());
+  EXPECT_TRUE(s.shared.clips.empty());
   run->comp.runner->run(s, 58);  // t = 0.38: cinched at 0.1, pressed by 0.35 (kLoopSqueezeS)
-  ASSERT_EQ(s.handoff.clips.size(), 1u);
-  const Clip& c = s.handoff.clips[0];
+  ASSERT_EQ(s.shared.clips.size(), 1u);
+  const Clip& c = s.shared.clips[0];
   EXPECT_EQ(c.kind, Clip::Kind::kLoop);
   EXPECT_EQ(c.nodes, 9u);  // the 3 x 3 nodes of the beam's cross-section at x = 7 cm
   EXPECT_EQ(c.groups, std::vector<int>{1});
@@ -83,8 +83,8 @@ TEST(Endoloop, CinchedRoundNothingItSlipsOff) {
   SimState& s = run->assembled.state;
   const std::vector<std::uint8_t> fixed0 = s.mesh.fixed;
   run->comp.runner->run(s, 40);
-  EXPECT_TRUE(s.handoff.clips.empty());
-  EXPECT_EQ(run->comp.clips->dropped()[0], 1);
+  EXPECT_TRUE(s.shared.clips.empty());
+  EXPECT_EQ(contact::clips_dropped(run->assembled.state, 0), 1);
   EXPECT_EQ(s.mesh.fixed, fixed0);
 }
 
@@ -148,9 +148,9 @@ TEST(Endoloop, APieceCutFreeBesideTheLoopDoesNotDragIt) {
                             scripted_tool("grasper", "grasper"));
   SimState& s = run->assembled.state;
   run->comp.runner->run(s, 146);  // t = 0.73: cinched, settled, the beam divided beside it
-  ASSERT_EQ(s.handoff.clips.size(), 1u);
+  ASSERT_EQ(s.shared.clips.size(), 1u);
   ASSERT_GE(run->comp.cutting->stats().cuts, 1u);
-  const Vec3 loop0 = s.handoff.clips[0].hinge_m;
+  const Vec3 loop0 = s.shared.clips[0].hinge_m;
   const std::vector<Vec3> x0 = s.mesh.x;
   const auto moved = [&](double rest_x) {  // the largest motion of the nodes at rest_x since
     double most = 0.0;
@@ -162,7 +162,7 @@ TEST(Endoloop, APieceCutFreeBesideTheLoopDoesNotDragIt) {
   run->comp.runner->run(s, 74);    // t = 1.1: the end pulled 2 cm away
   EXPECT_GT(moved(0.1), 0.015);    // the freed end went with the grasper
   EXPECT_LT(moved(0.065), 0.001);  // the stump stayed
-  EXPECT_LT((s.handoff.clips[0].hinge_m - loop0).norm(), 0.001);
+  EXPECT_LT((s.shared.clips[0].hinge_m - loop0).norm(), 0.001);
   for (const Vec3& x : s.mesh.x) ASSERT_TRUE(x.allFinite());
 }
 
@@ -174,8 +174,8 @@ TEST(Endoloop, ARestoredSnapshotWithALoopContinuesBitForBit) {
   const std::vector<std::uint8_t> bytes = run->comp.runner->snapshot(s);
   auto other = restored(*run, bytes, "loop snapshot");
   SimState& o = other->assembled.state;
-  ASSERT_EQ(o.handoff.clips.size(), 1u);
-  EXPECT_EQ(o.handoff.clips[0].kind, Clip::Kind::kLoop);
+  ASSERT_EQ(o.shared.clips.size(), 1u);
+  EXPECT_EQ(o.shared.clips[0].kind, Clip::Kind::kLoop);
   for (int k = 0; k < 40; ++k) {
     run->comp.runner->step(s);
     other->comp.runner->step(o);

@@ -182,10 +182,10 @@ TEST(ProcedureErrors, ABleedingIsShownInTheViewWhereTheArteryWasCutAndWells) {
                         scripted_tool("scissors", "scissors"), "[metrics]\nartery = \"artery\"\n");
   SimState& s = run->assembled.state;
   run->comp.runner->run(s, 80);  // 0.4 s: not cut yet
-  EXPECT_TRUE(s.handoff.bleeds.empty());
+  EXPECT_TRUE(s.shared.bleeds.empty());
   run->comp.runner->run(s, 20);  // 0.5 s: cut
-  ASSERT_EQ(s.handoff.bleeds.size(), 1u);
-  EXPECT_NEAR(s.handoff.bleeds[0].first.x(), 0.03, 0.003);
+  ASSERT_EQ(s.shared.bleeds.size(), 1u);
+  EXPECT_NEAR(s.shared.bleeds[0].first.x(), 0.03, 0.003);
   render::RenderFrame frame;
   fill_render_tools(run->scene, s, frame);
   ASSERT_EQ(frame.bleeds.size(), 1u);

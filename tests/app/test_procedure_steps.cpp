@@ -34,7 +34,7 @@ SimState anatomy() {
   SimState s;
   s.mesh = kuhn_grid(spec);
   s.tools.resize(3);
-  s.handoff.grasped.resize(3);
+  s.shared.grasped.resize(3);
   return s;
 }
 
@@ -51,7 +51,7 @@ void cut(SimState& s, double x0, double y0, double y1) {
   e.polygon_m = blade.points();
   e.delta = cutting::cut_mesh(s.mesh, blade).delta;
   apply(s.mesh, e.delta);
-  s.handoff.cuts = {e};
+  s.events.cuts = {e};
 }
 
 std::vector<std::int32_t> nodes_where(const SimState& s, double x_min, double y_min) {
@@ -87,22 +87,22 @@ TEST(ProcedureSteps, FollowTheFiveStepsInTheirOrder) {
   const auto step = [&] {
     t += 0.1;
     p.step(t, s, errors);
-    s.handoff.cuts.clear();
+    s.events.cuts.clear();
   };
   step();
   for (const ProcedureStep& st : p.steps()) EXPECT_FALSE(st.done) << st.name;
 
   // Expose: the grasper holds the specimen's far end and lifts it 5 mm, then 12 mm.
-  s.handoff.grasped[1] = nodes_where(s, 0.05, 0.005);
-  ASSERT_FALSE(s.handoff.grasped[1].empty());
-  lift(s, s.handoff.grasped[1], 0.005);
+  s.shared.grasped[1] = nodes_where(s, 0.05, 0.005);
+  ASSERT_FALSE(s.shared.grasped[1].empty());
+  lift(s, s.shared.grasped[1], 0.005);
   step();
   EXPECT_FALSE(p.steps()[0].done);
-  lift(s, s.handoff.grasped[1], 0.007);
+  lift(s, s.shared.grasped[1], 0.007);
   step();
   EXPECT_TRUE(p.steps()[0].done);
   EXPECT_EQ(p.steps()[0].tool, 1);
-  lift(s, s.handoff.grasped[1], -0.012);
+  lift(s, s.shared.grasped[1], -0.012);
 
   // Divide the fold: a cut that stops short of the specimen leaves it joined ...
   cut(s, 0.0185, -0.021, -0.006);
@@ -114,10 +114,10 @@ TEST(ProcedureSteps, FollowTheFiveStepsInTheirOrder) {
   EXPECT_TRUE(p.steps()[1].done);
 
   // Secure the base: a loop far out on the specimen does not; one at its base does.
-  s.handoff.clips = {loop_at(s, 0.04)};
+  s.shared.clips = {loop_at(s, 0.04)};
   step();
   EXPECT_FALSE(p.steps()[2].done);
-  s.handoff.clips = {loop_at(s, 0.015)};
+  s.shared.clips = {loop_at(s, 0.015)};
   step();
   ASSERT_TRUE(p.steps()[2].done);
   EXPECT_EQ(p.steps()[2].tool, 2);
@@ -157,8 +157,8 @@ TEST(ProcedureSteps, ATransectionWithTheLoopOnTheSpecimenIsAboveTheSecuring) {
   SimState s = anatomy();
   ProcedureSteps p = steps();
   ProcedureErrors errors(kArtery, {});
-  s.handoff.grasped[1] = nodes_where(s, 0.05, 0.005);
-  s.handoff.clips = {loop_at(s, 0.04)};
+  s.shared.grasped[1] = nodes_where(s, 0.05, 0.005);
+  s.shared.clips = {loop_at(s, 0.04)};
   cut(s, 0.0225, -0.021, 0.006);
   p.step(0.1, s, errors);
   EXPECT_TRUE(p.steps()[3].done);
@@ -172,10 +172,10 @@ TEST(ProcedureSteps, AFreedSpecimenNoGrasperHoldsIsDroppedOnce) {
   SimState s = anatomy();
   ProcedureSteps p = steps();
   ProcedureErrors errors(kArtery, {});
-  s.handoff.clips = {loop_at(s, 0.015)};
+  s.shared.clips = {loop_at(s, 0.015)};
   cut(s, 0.0225, -0.021, 0.006);
   p.step(0.1, s, errors);
-  s.handoff.cuts.clear();
+  s.events.cuts.clear();
   p.step(0.2, s, errors);
   EXPECT_EQ(errors.count(ProcedureError::Kind::kSpecimenDropped), 1);
   nlohmann::json j;

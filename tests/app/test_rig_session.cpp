@@ -255,8 +255,8 @@ TEST(RigSession, UnplugMidSessionIsToldApartAndAReplugResumes) {
   ASSERT_TRUE(stage.device_connected());
   SimState s;
   s.tools.resize(1);
-  s.handoff.tool_reactions.resize(1);
-  s.handoff.tool_reactions[0].held_pull_n = Vec3(0.0, -0.5, 0.0);  // held tissue pulls down
+  s.events.tool_reactions.resize(1);
+  s.events.tool_reactions[0].held_pull_n = Vec3(0.0, -0.5, 0.0);  // held tissue pulls down
   std::uint64_t step = 0;
   const auto run_for = [&](double seconds) {
     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);

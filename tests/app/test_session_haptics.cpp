@@ -148,8 +148,8 @@ TEST(SessionHaptics, ToolPressedIntoTheOrganFeelsAForceOpposingPenetration) {
     std::this_thread::sleep_for(std::chrono::milliseconds(3));
   }
   // The plane the contact stage found for the tip.
-  ASSERT_EQ(state.handoff.contact_planes.size(), scene.tools.size());
-  const std::optional<haptics::ContactPlane> plane = state.handoff.contact_planes[0];
+  ASSERT_EQ(state.events.contact_planes.size(), scene.tools.size());
+  const std::optional<haptics::ContactPlane> plane = state.events.contact_planes[0];
   ASSERT_TRUE(plane.has_value());
   const Vec3 n(plane->normal[0], plane->normal[1], plane->normal[2]);
   EXPECT_GT(n.y(), 0.99);
@@ -186,7 +186,7 @@ TEST(SessionHaptics, ToolPressedIntoTheOrganFeelsAForceOpposingPenetration) {
   far.tip_m = {0.05, 0.05, 0.0};
   state.tools[0] = far;
   comp.contact->step(StepContext{state.step, state.time_s, scene.settings.dt_s}, state);
-  EXPECT_FALSE(state.handoff.contact_planes[0].has_value());
+  EXPECT_FALSE(state.events.contact_planes[0].has_value());
 }
 
 // Records a scripted grasper run on the beam (fem, surface, contact): 60 steps, hashes every 10.

@@ -59,8 +59,8 @@ TEST(Simulation, AnAskedCutGoesThroughTheCuttingStageAndConservesVolume) {
   const cutting::StrokeReport r = sim.cut(square);
   EXPECT_EQ(r.cuts, 1u);
   EXPECT_GT(r.tets_created, r.tets_crossed);
-  ASSERT_EQ(sim.state().handoff.cuts.size(), 1u);
-  EXPECT_EQ(sim.state().handoff.cuts[0].tool, kNoTool);
+  ASSERT_EQ(sim.state().events.cuts.size(), 1u);
+  EXPECT_EQ(sim.state().events.cuts[0].tool, kNoTool);
   EXPECT_NEAR(rest_volume(sim.state().mesh), before, 1e-12 * before);
   EXPECT_THROW((void)sim.snapshot(), std::logic_error);  // the cut is in flight
   sim.step();

@@ -66,18 +66,17 @@ TEST(Snapshot, RestoreAtRandomStepsEqualsTheUninterruptedRunBitForBit) {
   while (s.step < kSteps) {
     run->comp.runner->step(s);
     hashes[s.step] = state_hash(s);
-    const bool cut_now = !s.handoff.cuts.empty();
+    const bool cut_now = !s.events.cuts.empty();
     const bool first_after_cut = !cut_now && !cut_seen && run->comp.cutting->stats().cuts > 0;
     if (first_after_cut) cut_seen = true;
     // The step after the grasp took hold: the lagged factor is patched for the held nodes.
-    const bool first_holding = !hold_seen && run->comp.contact->grasped_counts()[grasper] > 0;
+    const bool first_holding = !hold_seen && contact::grasped_counts(s)[grasper] > 0;
     if (first_holding) hold_seen = true;
     // A snapshot waits for a step with no cut in flight.
     const bool due = !wanted.empty() && s.step >= *wanted.begin();
     if (!cut_now && (first_after_cut || first_holding || due)) {
       wanted.erase(wanted.begin(), wanted.upper_bound(s.step));
-      taken[s.step] = {run->comp.runner->snapshot(s),
-                       run->comp.contact->grasped_counts()[grasper] > 0,
+      taken[s.step] = {run->comp.runner->snapshot(s), contact::grasped_counts(s)[grasper] > 0,
                        run->comp.cutting->stats().cuts > 0};
     }
   }

@@ -63,19 +63,19 @@ TEST(Stapler, ClosedAcrossTheBeamItLaysTwoLinesAndDividesBetweenThem) {
   const std::int32_t nodes0 = s.mesh.num_nodes();
   ASSERT_EQ(pieces(s.mesh), 1);
   // Step to the fire: the step whose cut is in the hand-off.
-  for (int k = 0; k < 40 && s.handoff.cuts.empty(); ++k) run->comp.runner->step(s);
-  ASSERT_EQ(s.handoff.cuts.size(), 1u);
+  for (int k = 0; k < 40 && s.events.cuts.empty(); ++k) run->comp.runner->step(s);
+  ASSERT_EQ(s.events.cuts.size(), 1u);
   EXPECT_NEAR(s.time_s, 0.10, 0.006);
-  ASSERT_EQ(s.handoff.clips.size(), 2u);
+  ASSERT_EQ(s.shared.clips.size(), 2u);
   const StaplerJaws jaws = stapler_jaws(s.tools[0], 0.6);
-  for (const Clip& c : s.handoff.clips) {
+  for (const Clip& c : s.shared.clips) {
     EXPECT_EQ(c.kind, Clip::Kind::kStaple);
-    EXPECT_EQ(c.placed_s, s.handoff.clips[0].placed_s);
+    EXPECT_EQ(c.placed_s, s.shared.clips[0].placed_s);
     EXPECT_EQ(c.nodes, 9u);  // the beam's 3 x 3 nodes at x = 70 (75) mm
   }
   // The cut lies between the lines: every node it made, in the jaws' frame, inside the knife's
   // strip, nearer the knife than either line's band.
-  const CutEvent& cut = s.handoff.cuts[0];
+  const CutEvent& cut = s.events.cuts[0];
   EXPECT_EQ(cut.tool, 0u);
   ASSERT_FALSE(cut.delta.added_nodes.empty());
   for (std::int32_t n = nodes0; n < s.mesh.num_nodes(); ++n) {
@@ -86,8 +86,8 @@ TEST(Stapler, ClosedAcrossTheBeamItLaysTwoLinesAndDividesBetweenThem) {
   // Divided in two, one line on each piece; welded, every tet positive, volume conserved.
   const std::vector<std::int32_t> comp = node_components(s.mesh);
   EXPECT_EQ(pieces(s.mesh), 2);
-  EXPECT_NE(comp[static_cast<std::size_t>(s.handoff.clips[0].node)],
-            comp[static_cast<std::size_t>(s.handoff.clips[1].node)]);
+  EXPECT_NE(comp[static_cast<std::size_t>(s.shared.clips[0].node)],
+            comp[static_cast<std::size_t>(s.shared.clips[1].node)]);
   const MeshCheckReport check = check_mesh(s.mesh);
   EXPECT_TRUE(check.valid) << (check.problems.empty() ? "" : check.problems[0]);
   EXPECT_EQ(check.overshared_faces, 0);
@@ -99,7 +99,7 @@ TEST(Stapler, ClosedAcrossTheBeamItLaysTwoLinesAndDividesBetweenThem) {
   EXPECT_EQ(st.stapler_fires, 1u);
   EXPECT_EQ(st.stapler_fires_held, 0u);
   EXPECT_EQ(st.cuts, 1u);
-  EXPECT_EQ(s.handoff.clips.size(), 2u);
+  EXPECT_EQ(s.shared.clips.size(), 2u);
   EXPECT_EQ(pieces(s.mesh), 2);
 }
 
@@ -116,7 +116,7 @@ TEST(Stapler, ItsLinesHoldUnderTractionCarriedByTheirPieces) {
   auto run = beam(dir, rows, scripted_tool("grasper", "grasper"));
   SimState& s = run->assembled.state;
   run->comp.runner->run(s, 90);  // t = 0.45: fired, pressed and settled
-  ASSERT_EQ(s.handoff.clips.size(), 2u);
+  ASSERT_EQ(s.shared.clips.size(), 2u);
   // Each line's clamped nodes: those pressed to its plane at its place.
   std::array<std::vector<std::int32_t>, 2> clamped;
   std::array<std::vector<double>, 2> gaps;  // pairwise distances within each line, m
@@ -124,7 +124,7 @@ TEST(Stapler, ItsLinesHoldUnderTractionCarriedByTheirPieces) {
     return c.frame.transpose() * (p - c.hinge_m);
   };
   for (std::size_t k = 0; k < 2; ++k) {
-    const Clip& c = s.handoff.clips[k];
+    const Clip& c = s.shared.clips[k];
     for (std::int32_t n = 0; n < s.mesh.num_nodes(); ++n) {
       const Vec3 l = in_line(c, s.mesh.x[static_cast<std::size_t>(n)]);
       if (l.z() >= kStapleStart && l.z() <= kCartridgeLength &&
@@ -137,13 +137,13 @@ TEST(Stapler, ItsLinesHoldUnderTractionCarriedByTheirPieces) {
         gaps[k].push_back(
             (s.mesh.x[static_cast<std::size_t>(a)] - s.mesh.x[static_cast<std::size_t>(b)]).norm());
   }
-  const Vec3 distal0 = 0.5 * (s.handoff.clips[0].end(0) + s.handoff.clips[0].end(1));
-  const Vec3 proximal0 = 0.5 * (s.handoff.clips[1].end(0) + s.handoff.clips[1].end(1));
+  const Vec3 distal0 = 0.5 * (s.shared.clips[0].end(0) + s.shared.clips[0].end(1));
+  const Vec3 proximal0 = 0.5 * (s.shared.clips[1].end(0) + s.shared.clips[1].end(1));
   run->comp.runner->run(s, 100);  // t = 0.95: lifted and held
-  ASSERT_EQ(s.handoff.clips.size(), 2u);
+  ASSERT_EQ(s.shared.clips.size(), 2u);
   // The lines still hold what they clamped, together, pressed, in their frames as they are now.
   for (std::size_t k = 0; k < 2; ++k) {
-    const Clip& c = s.handoff.clips[k];
+    const Clip& c = s.shared.clips[k];
     std::size_t i = 0;
     for (std::int32_t a : clamped[k]) {
       EXPECT_EQ(s.mesh.fixed[static_cast<std::size_t>(a)], 1);
@@ -157,8 +157,8 @@ TEST(Stapler, ItsLinesHoldUnderTractionCarriedByTheirPieces) {
     EXPECT_NEAR(c.frame.determinant(), 1.0, 1e-9);
   }
   // The pulled piece carried its line up; the one on the fixed side stayed.
-  const Vec3 distal = 0.5 * (s.handoff.clips[0].end(0) + s.handoff.clips[0].end(1)) - distal0;
-  const Vec3 proximal = 0.5 * (s.handoff.clips[1].end(0) + s.handoff.clips[1].end(1)) - proximal0;
+  const Vec3 distal = 0.5 * (s.shared.clips[0].end(0) + s.shared.clips[0].end(1)) - distal0;
+  const Vec3 proximal = 0.5 * (s.shared.clips[1].end(0) + s.shared.clips[1].end(1)) - proximal0;
   EXPECT_GT(distal.y(), 0.002) << distal.transpose();
   EXPECT_LT(proximal.norm(), 0.5 * distal.norm()) << proximal.transpose();
   for (const Vec3& x : s.mesh.x) ASSERT_TRUE(x.allFinite());
@@ -171,9 +171,9 @@ TEST(Stapler, FiredOnNothingItLaysAndCutsNothing) {
   const std::vector<std::uint8_t> fixed0 = s.mesh.fixed;
   const std::int32_t tets0 = s.mesh.num_tets();
   run->comp.runner->run(s, 40);
-  EXPECT_TRUE(s.handoff.clips.empty());
-  EXPECT_EQ(run->comp.clips->dropped()[0], 1);
-  EXPECT_EQ(run->comp.clips->refused()[0], 0);
+  EXPECT_TRUE(s.shared.clips.empty());
+  EXPECT_EQ(contact::clips_dropped(run->assembled.state, 0), 1);
+  EXPECT_EQ(contact::stapler_refused(run->assembled.state, 0), 0);
   const CuttingStageStats& st = run->comp.cutting->stats();
   EXPECT_EQ(st.stapler_fires, 0u);
   EXPECT_EQ(st.stapler_fires_held, 1u);
@@ -201,18 +201,18 @@ TEST(Stapler, FiredAcrossAClipItIsRefusedAndBesideItDivides) {
   SimState& s = run->assembled.state;
   const std::int32_t tets0 = s.mesh.num_tets();
   run->comp.runner->run(s, 70);  // t = 0.35: fired on the clip
-  ASSERT_EQ(s.handoff.clips.size(), 1u);
-  EXPECT_EQ(s.handoff.clips[0].kind, Clip::Kind::kClip);
-  EXPECT_EQ(run->comp.clips->refused()[0], 1);
+  ASSERT_EQ(s.shared.clips.size(), 1u);
+  EXPECT_EQ(s.shared.clips[0].kind, Clip::Kind::kClip);
+  EXPECT_EQ(contact::stapler_refused(run->assembled.state, 0), 1);
   const CuttingStageStats& st = run->comp.cutting->stats();
   EXPECT_EQ(st.stapler_fires_held, 1u);
   EXPECT_EQ(st.cuts, 0u);
   EXPECT_EQ(s.mesh.num_tets(), tets0);
   run->comp.runner->run(s, 50);  // t = 0.6: fired beside it
-  EXPECT_EQ(run->comp.clips->refused()[0], 1);
+  EXPECT_EQ(contact::stapler_refused(run->assembled.state, 0), 1);
   EXPECT_EQ(st.stapler_fires, 1u);
   EXPECT_EQ(st.cuts, 1u);
-  EXPECT_EQ(s.handoff.clips.size(), 3u);
+  EXPECT_EQ(s.shared.clips.size(), 3u);
   EXPECT_EQ(pieces(s.mesh), 2);
 }
 
@@ -221,11 +221,11 @@ TEST(Stapler, ARestoredSnapshotWithItsLinesContinuesBitForBit) {
   auto run = beam(dir, stapler_rows(0.0725));
   SimState& s = run->assembled.state;
   run->comp.runner->run(s, 40);  // fired at 0.1 s, pressing
-  ASSERT_EQ(s.handoff.clips.size(), 2u);
+  ASSERT_EQ(s.shared.clips.size(), 2u);
   const std::vector<std::uint8_t> bytes = run->comp.runner->snapshot(s);
   auto other = restored(*run, bytes, "stapler snapshot");
   SimState& o = other->assembled.state;
-  ASSERT_EQ(o.handoff.clips.size(), 2u);
+  ASSERT_EQ(o.shared.clips.size(), 2u);
   for (int k = 0; k < 50; ++k) {  // through the settling and on
     run->comp.runner->step(s);
     other->comp.runner->step(o);

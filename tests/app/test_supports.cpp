@@ -60,8 +60,7 @@ TEST(Supports, PushOnlyAlongTheNormalOnNodesBelowThePlane) {
   std::int64_t below = 0;
   for (std::size_t i = 0; i < s.mesh.x.size(); ++i) {
     const double d = (s.mesh.x[i] - Vec3(0.05, 0, 0)).dot(n);
-    const Vec3 f =
-        s.handoff.external_force_n.empty() ? Vec3::Zero() : s.handoff.external_force_n[i];
+    const Vec3 f = s.events.external_force_n.empty() ? Vec3::Zero() : s.events.external_force_n[i];
     if (d >= 0.0 || s.mesh.fixed[i] != 0) {
       EXPECT_EQ(f.norm(), 0.0) << "node " << i;
       continue;

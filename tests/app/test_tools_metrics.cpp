@@ -252,12 +252,12 @@ TEST(Grasper, GrabsLiftsAndLetsGo) {
   const std::int32_t tip = tip_node(s.mesh);
   const double y0 = s.mesh.x[static_cast<std::size_t>(tip)].y();
   run->comp.runner->run(s, 30);  // t = 0.15: closed and lifted
-  const std::size_t held = run->comp.contact->grasped_counts()[0];
+  const std::size_t held = contact::grasped_counts(run->assembled.state)[0];
   EXPECT_GE(held, 3u);  // the beam's top nodes at x = 9, 9.5 and 10 cm
   EXPECT_GT(s.mesh.x[static_cast<std::size_t>(tip)].y(), y0 + 0.002);  // the end came up
-  EXPECT_GT(s.handoff.tool_force_n[0].y(), 0.0);                       // it pulls the tissue up
+  EXPECT_GT(s.events.tool_force_n[0].y(), 0.0);                        // it pulls the tissue up
   run->comp.runner->run(s, 12);                                        // t = 0.21: opened
-  EXPECT_EQ(run->comp.contact->grasped_counts()[0], 0u);
+  EXPECT_EQ(contact::grasped_counts(run->assembled.state)[0], 0u);
   EXPECT_EQ(s.mesh.fixed, fixed0);
   const auto m = run->comp.metrics->report();
   EXPECT_NEAR(m["path_length_m"]["grasper"].get<double>(), 0.005, 1e-9);
@@ -292,17 +292,17 @@ TEST(Grasper, TwoGraspersHandTissueOverAndEveryNodeGetsItsFlagBack) {
     SimState& s = run->assembled.state;
     const std::vector<std::uint8_t> fixed0 = s.mesh.fixed;
     run->comp.runner->run(s, 20);  // t = 0.1: both hold
-    const auto counts = run->comp.contact->grasped_counts();
+    const auto counts = contact::grasped_counts(run->assembled.state);
     ASSERT_GE(counts[0], 3u);
     ASSERT_GE(counts[1], 3u);
     run->comp.runner->run(s, 6);  // t = 0.13: one has let go, the other holds
     const std::size_t holder = first_lets_go_first ? 1 : 0;
-    ASSERT_EQ(run->comp.contact->grasped_counts()[1 - holder], 0u);
-    ASSERT_GE(run->comp.contact->grasped_counts()[holder], 3u);
-    for (std::int32_t v : s.handoff.grasped[holder])
+    ASSERT_EQ(contact::grasped_counts(run->assembled.state)[1 - holder], 0u);
+    ASSERT_GE(contact::grasped_counts(run->assembled.state)[holder], 3u);
+    for (std::int32_t v : s.shared.grasped[holder])
       EXPECT_EQ(s.mesh.fixed[static_cast<std::size_t>(v)], 1) << "node " << v;
     run->comp.runner->run(s, 8);  // t = 0.17: both have let go
-    EXPECT_EQ(run->comp.contact->grasped_counts()[holder], 0u);
+    EXPECT_EQ(contact::grasped_counts(run->assembled.state)[holder], 0u);
     EXPECT_EQ(s.mesh.fixed, fixed0);
   }
 }
@@ -354,17 +354,17 @@ TEST(Grasper, TheHapticLoopFeelsTheHeldTissuesPull) {
   auto run = grab_lift_release(dir);
   SimState& s = run->assembled.state;
   run->comp.runner->run(s, 30);  // closed and lifted 5 mm
-  ASSERT_GE(run->comp.contact->grasped_counts()[0], 3u);
+  ASSERT_GE(contact::grasped_counts(run->assembled.state)[0], 3u);
   auto probe = reacting_copy(*run, run->comp.contact);
   SimState copy = s;
   probe->step(StepContext{30, s.time_s, 0.005}, copy);
-  ASSERT_EQ(copy.handoff.tool_reactions.size(), 1u);
-  const Vec3 pull = copy.handoff.tool_reactions[0].held_pull_n;
+  ASSERT_EQ(copy.events.tool_reactions.size(), 1u);
+  const Vec3 pull = copy.events.tool_reactions[0].held_pull_n;
   // The lifted end pulls the jaws back down; it is what the grasper pulls the tissue with,
   // reversed (the shaft touches nothing here).
   EXPECT_LT(pull.y(), 0.0);
-  EXPECT_LT((pull + copy.handoff.tool_force_n[0]).norm(), 1e-12 * pull.norm());
-  EXPECT_EQ(copy.handoff.tool_reactions[0].jaw_torque_nm, 0.0);
+  EXPECT_LT((pull + copy.events.tool_force_n[0]).norm(), 1e-12 * pull.norm());
+  EXPECT_EQ(copy.events.tool_reactions[0].jaw_torque_nm, 0.0);
 }
 
 // An exchange withdraws a grasper holding tissue into its port: it lets go (the held nodes are
@@ -375,7 +375,7 @@ TEST(Grasper, WithdrawnIntoItsPortItLetsGoAndTouchesNothing) {
   SimState& s = run->assembled.state;
   const std::vector<std::uint8_t> fixed_before = s.mesh.fixed;
   run->comp.runner->run(s, 30);  // closed and lifted 5 mm
-  ASSERT_GE(run->comp.contact->grasped_counts()[0], 3u);
+  ASSERT_GE(contact::grasped_counts(run->assembled.state)[0], 3u);
   auto probe = reacting_copy(*run, run->comp.contact);
   SimState copy = s;
   // Its port far from the beam, and then (a property over placements) anywhere near it: an
@@ -385,11 +385,11 @@ TEST(Grasper, WithdrawnIntoItsPortItLetsGoAndTouchesNothing) {
   for (int k = 0; k < 50; ++k) {
     copy.tools[0] = port_pose(Vec3(u(rng), u(rng), u(rng)), Vec3(0.0, 0.0, -1.0));
     probe->step(StepContext{30 + static_cast<std::uint64_t>(k), s.time_s, 0.005}, copy);
-    EXPECT_EQ(probe->grasped_counts()[0], 0u) << k;
-    EXPECT_EQ(copy.handoff.tool_force_n[0].norm(), 0.0) << k;
-    EXPECT_TRUE(copy.handoff.external_force_n.empty()) << k;
-    EXPECT_FALSE(copy.handoff.contact_planes[0]) << k;
-    EXPECT_EQ(copy.handoff.tool_reactions[0].held_pull_n.norm(), 0.0) << k;
+    EXPECT_EQ(contact::grasped_counts(copy)[0], 0u) << k;
+    EXPECT_EQ(copy.events.tool_force_n[0].norm(), 0.0) << k;
+    EXPECT_TRUE(copy.events.external_force_n.empty()) << k;
+    EXPECT_FALSE(copy.events.contact_planes[0]) << k;
+    EXPECT_EQ(copy.events.tool_reactions[0].held_pull_n.norm(), 0.0) << k;
     EXPECT_EQ(copy.mesh.fixed, fixed_before) << k;  // the grasp's Dirichlet nodes are free again
   }
 }
@@ -407,11 +407,11 @@ TEST(Contact, TheHapticLoopFeelsTheTissuePushingOnTheShaft) {
   SimState s = run->assembled.state;
   run->comp.runner->step(s);  // the script poses the tool
   probe->step(StepContext{1, s.time_s, 0.005}, s);
-  const ToolReaction& r = s.handoff.tool_reactions[0];
+  const ToolReaction& r = s.events.tool_reactions[0];
   // The beam pushes the shaft up, as hard as the shaft pushes it down (the jaws, beyond the
   // beam, touch nothing), where it crosses the beam: 20 of the 22.5 cm from port to tip.
   EXPECT_GT(r.shaft_push_n.y(), 0.0);
-  EXPECT_LT((r.shaft_push_n + s.handoff.tool_force_n[0]).norm(), 1e-12 * r.shaft_push_n.norm());
+  EXPECT_LT((r.shaft_push_n + s.events.tool_force_n[0]).norm(), 1e-12 * r.shaft_push_n.norm());
   EXPECT_NEAR(r.shaft_lever, 0.2 / 0.225, 0.03);
   EXPECT_EQ(r.held_pull_n.norm(), 0.0);
 }
@@ -430,14 +430,14 @@ TEST(Scissors, TissueBetweenClosingBladesResistsUntilTheStrokeIsCut) {
     s.tools[0].tip_m = {0.05, -0.003, 0.0};
     s.tools[0].quat_wxyz = {0.7071067811865476, 0.7071067811865476, 0.0, 0.0};
     s.tools[0].jaw_rad = jaw;
-    s.handoff.cuts.clear();
+    s.events.cuts.clear();
     if (cut) {
       CutEvent e;
       e.tool = 0;
-      s.handoff.cuts.push_back(e);
+      s.events.cuts.push_back(e);
     }
     probe->step(StepContext{0, 0.0, 0.005}, s);
-    return s.handoff.tool_reactions[0].jaw_torque_nm;
+    return s.events.tool_reactions[0].jaw_torque_nm;
   };
   EXPECT_EQ(torque_at(1.0, false), 0.0);  // opened: nothing to resist
   const double part = torque_at(0.6, false);
@@ -500,7 +500,7 @@ TEST(Grasper, MovingTheHeldNodesIsNotAnEnergyGainOfTheSolve) {
   int held_steps = 0, flagged = 0;
   for (int k = 0; k < 45; ++k) {
     run->comp.runner->run(s, 1);
-    held_steps += run->comp.contact->grasped_counts()[0] > 0 ? 1 : 0;
+    held_steps += contact::grasped_counts(run->assembled.state)[0] > 0 ? 1 : 0;
     const fem::StepStatus& st = run->comp.fem->last_status();
     flagged += st.energy_gain ? 1 : 0;
     EXPECT_TRUE(st.converged) << "step " << k;
@@ -529,7 +529,7 @@ TEST(Contact, ShaftPressesTheBeamDownAndTwoToolsActAtOnce) {
   std::int64_t touching_steps = 0;
   for (int k = 0; k < 20; ++k) {
     pressed->comp.runner->step(s);
-    const auto& f = s.handoff.tool_force_n;
+    const auto& f = s.events.tool_force_n;
     if (pressed->comp.contact->contacts() > 0) {
       ++touching_steps;
       EXPECT_LT(f[0].y(), 0.0) << "step " << k;  // pushes down

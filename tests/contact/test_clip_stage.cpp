@@ -64,22 +64,22 @@ TEST(ClipStage, RandomClipsClampExactlyTheirRegionPressItAndRideRigidMotions) {
     const double wide = open(rng);
     s.tools[0] = pose(tip, q, wide);
     stage.step({0, 0.0, 0.005}, s);
-    ASSERT_TRUE(s.handoff.clips.empty());
+    ASSERT_TRUE(s.shared.clips.empty());
     s.tools[0] = pose(tip, q, 0.0);
     const std::vector<std::int32_t> expected = in_jaws(s.mesh, s.tools[0], wide);
     const std::vector<Vec3> x0 = s.mesh.x;
     const std::vector<std::uint8_t> fixed0 = s.mesh.fixed;
     stage.step({1, 0.005, 0.005}, s);
     if (expected.empty()) {
-      ASSERT_TRUE(s.handoff.clips.empty()) << "trial " << trial;
-      ASSERT_EQ(stage.dropped()[0], 1) << "trial " << trial;
+      ASSERT_TRUE(s.shared.clips.empty()) << "trial " << trial;
+      ASSERT_EQ(clips_dropped(s, 0), 1) << "trial " << trial;
       ASSERT_EQ(s.mesh.fixed, fixed0);
       ++dropped;
       continue;
     }
     ++placed;
-    ASSERT_EQ(s.handoff.clips.size(), 1u) << "trial " << trial;
-    const Clip clip = s.handoff.clips[0];
+    ASSERT_EQ(s.shared.clips.size(), 1u) << "trial " << trial;
+    const Clip clip = s.shared.clips[0];
     ASSERT_EQ(clip.nodes, expected.size()) << "trial " << trial;
     for (std::int32_t k : expected)
       ASSERT_EQ(s.mesh.fixed[static_cast<std::size_t>(k)], 1) << "trial " << trial;
@@ -108,8 +108,8 @@ TEST(ClipStage, RandomClipsClampExactlyTheirRegionPressItAndRideRigidMotions) {
     const Vec3 t(0.01 * n(rng), 0.01 * n(rng), 0.01 * n(rng));
     for (Vec3& x : s.mesh.x) x = r * x + t;
     stage.step({100, 0.5, 0.005}, s);
-    const Clip& moved = s.handoff.clips[0];
-    ASSERT_LT((moved.frame - r.toRotationMatrix() * before.handoff.clips[0].frame).norm(), 1e-9)
+    const Clip& moved = s.shared.clips[0];
+    ASSERT_LT((moved.frame - r.toRotationMatrix() * before.shared.clips[0].frame).norm(), 1e-9)
         << "trial " << trial;
     for (std::int32_t k : expected)
       ASSERT_LT((s.mesh.x[static_cast<std::size_t>(k)] -

@@ -71,7 +71,7 @@ TEST(StapleLines, RandomFiresClampExactlyTheirBandsAndPressThemToTheStapleHeight
     const double wide = open(rng);
     s.tools[1] = pose(tip, q, wide);
     stage.step({0, 0.0, 0.005}, s);
-    ASSERT_TRUE(s.handoff.clips.empty());
+    ASSERT_TRUE(s.shared.clips.empty());
     s.tools[1] = pose(tip, q, 0.0);
     const std::array<std::vector<std::int32_t>, 2> expected{in_line(s.mesh, s.tools[1], wide, 0),
                                                             in_line(s.mesh, s.tools[1], wide, 1)};
@@ -79,17 +79,17 @@ TEST(StapleLines, RandomFiresClampExactlyTheirBandsAndPressThemToTheStapleHeight
     const std::vector<std::uint8_t> fixed0 = s.mesh.fixed;
     stage.step({1, 0.005, 0.005}, s);
     if (expected[0].empty() && expected[1].empty()) {
-      ASSERT_TRUE(s.handoff.clips.empty()) << "trial " << trial;
-      ASSERT_EQ(stage.dropped()[1], 1) << "trial " << trial;
+      ASSERT_TRUE(s.shared.clips.empty()) << "trial " << trial;
+      ASSERT_EQ(clips_dropped(s, 1), 1) << "trial " << trial;
       ASSERT_EQ(s.mesh.fixed, fixed0);
       ++dropped;
       continue;
     }
     ++laid;
     const std::size_t lines = (expected[0].empty() ? 0u : 1u) + (expected[1].empty() ? 0u : 1u);
-    ASSERT_EQ(s.handoff.clips.size(), lines) << "trial " << trial;
+    ASSERT_EQ(s.shared.clips.size(), lines) << "trial " << trial;
     std::size_t clamped = 0;
-    for (const Clip& c : s.handoff.clips) {
+    for (const Clip& c : s.shared.clips) {
       ASSERT_EQ(c.kind, Clip::Kind::kStaple);
       ASSERT_EQ(c.tool, 1u);
       const int k = stapler_local(stapler_jaws(s.tools[1], wide), c.hinge_m).y() < 0.0 ? 0 : 1;
@@ -104,7 +104,7 @@ TEST(StapleLines, RandomFiresClampExactlyTheirBandsAndPressThemToTheStapleHeight
     // Pressed after kStapleSqueezeS: across within the staple height, along and pin unchanged.
     for (int k = 2; k < 2 + static_cast<int>(kStapleSqueezeS / 0.005) + 1; ++k)
       stage.step({static_cast<std::uint64_t>(k), 0.005 * k, 0.005}, s);
-    for (const Clip& c : s.handoff.clips) {
+    for (const Clip& c : s.shared.clips) {
       const Mat3 rt = c.frame.transpose();
       for (const auto& line : expected)
         for (std::int32_t k : line) {
@@ -134,7 +134,7 @@ TEST(StapleLines, JawsClosedOnAPlacedClipAreRefusedAndLayNothing) {
   stage.step({0, 0.0, 0.005}, s);
   s.tools[0].jaw_rad = 0.0;
   stage.step({1, 0.005, 0.005}, s);
-  ASSERT_EQ(s.handoff.clips.size(), 1u);
+  ASSERT_EQ(s.shared.clips.size(), 1u);
   // The stapler the same way, its knife 1 mm beside the clip: the clip is in its jaws.
   const Eigen::Quaterniond across =
       down * Eigen::Quaterniond(Eigen::AngleAxisd(0.5 * M_PI, Vec3::UnitZ()));  // pin along +-x
@@ -146,20 +146,20 @@ TEST(StapleLines, JawsClosedOnAPlacedClipAreRefusedAndLayNothing) {
   };
   const std::vector<std::uint8_t> fixed0 = s.mesh.fixed;
   fire(0.013, 2);
-  EXPECT_EQ(stage.refused()[1], 1);
-  EXPECT_EQ(stage.dropped()[1], 0);
-  EXPECT_EQ(s.handoff.clips.size(), 1u);
+  EXPECT_EQ(stapler_refused(s, 1), 1);
+  EXPECT_EQ(clips_dropped(s, 1), 0);
+  EXPECT_EQ(s.shared.clips.size(), 1u);
   EXPECT_EQ(s.mesh.fixed, fixed0);
   // Fired 6 mm away from the clip, clear of it: two lines.
   fire(0.018, 4);
-  EXPECT_EQ(stage.refused()[1], 1);
-  ASSERT_EQ(s.handoff.clips.size(), 3u);
-  EXPECT_EQ(s.handoff.clips[1].kind, Clip::Kind::kStaple);
-  EXPECT_EQ(s.handoff.clips[2].kind, Clip::Kind::kStaple);
+  EXPECT_EQ(stapler_refused(s, 1), 1);
+  ASSERT_EQ(s.shared.clips.size(), 3u);
+  EXPECT_EQ(s.shared.clips[1].kind, Clip::Kind::kStaple);
+  EXPECT_EQ(s.shared.clips[2].kind, Clip::Kind::kStaple);
   // Fired across its own first line: refused too.
   fire(0.0185, 6);
-  EXPECT_EQ(stage.refused()[1], 2);
-  EXPECT_EQ(s.handoff.clips.size(), 3u);
+  EXPECT_EQ(stapler_refused(s, 1), 2);
+  EXPECT_EQ(s.shared.clips.size(), 3u);
 }
 
 }  // namespace

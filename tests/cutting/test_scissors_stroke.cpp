@@ -24,8 +24,8 @@
 #include "engine/geometry/point_triangle.h"
 #include "engine/mesh_check.h"
 #include "engine/sim_state.h"
-#include "engine/state_codec.h"
 #include "engine/tool_geometry.h"
+#include "support/block_copy.h"
 #include "support/test_meshes.h"
 
 namespace serosa::cutting {
@@ -473,11 +473,11 @@ TEST(ScissorsStroke, ARestoredStrokeCutsAsTheUninterruptedOne) {
       state.tools[0] = pose(m, s, jaw[k], Vec3::Zero());
       stage->step(StepContext{k, 0.005 * static_cast<double>(k), 0.005}, state);
       if (k == save_at) {
-        StateWriter w;
-        stage->save(w);
+        const CuttingBlock saved = test_blocks::copy(state.blocks.cutting);
+        state.blocks.cutting = {};
         stage = std::make_unique<CuttingStage>(scene);
-        StateReader r(w.bytes(), "cutting");
-        stage->restore(r, state);
+        state.blocks.cutting = saved;
+        stage->adopt(state);
       }
     }
     return state.mesh;

@@ -10,7 +10,7 @@
 #include "engine/kuhn_grid.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"
-#include "engine/state_codec.h"
+#include "support/block_copy.h"
 
 namespace serosa::cutting {
 namespace {
@@ -27,7 +27,7 @@ Scene scene() {
 SimState slab() {
   SimState s;
   s.mesh = kuhn_grid(6, 0.005);
-  s.handoff.coagulated.assign(s.mesh.x.size(), 0);
+  s.blocks.cutting.coagulated.assign(s.mesh.x.size(), 0);
   return s;
 }
 
@@ -43,67 +43,65 @@ TEST(SmokeStage, CoagulationRaisesPuffsThatRiseSwellThinAndClear) {
   SmokeStage stage(scene());
   SimState s = slab();
   run(stage, s, 5);
-  EXPECT_TRUE(s.handoff.smoke.empty());
-  for (std::size_t i = 0; i < 10; ++i) s.handoff.coagulated[i] = 1;  // ten nodes at once
+  EXPECT_TRUE(s.shared.smoke.empty());
+  for (std::size_t i = 0; i < 10; ++i) s.blocks.cutting.coagulated[i] = 1;  // ten nodes at once
   run(stage, s, 1);
-  ASSERT_EQ(s.handoff.smoke.size(), static_cast<std::size_t>(SmokeStage::kPuffsPerStep));
-  const SmokePuff first = s.handoff.smoke[0];
+  ASSERT_EQ(s.shared.smoke.size(), static_cast<std::size_t>(SmokeStage::kPuffsPerStep));
+  const SmokePuff first = s.shared.smoke[0];
   EXPECT_NEAR((first.at_m - s.mesh.x[0]).norm(), 0.0, 0.001);
   run(stage, s, 1);  // the same marks raise no more puffs
-  ASSERT_EQ(s.handoff.smoke.size(), static_cast<std::size_t>(SmokeStage::kPuffsPerStep));
+  ASSERT_EQ(s.shared.smoke.size(), static_cast<std::size_t>(SmokeStage::kPuffsPerStep));
   run(stage, s, 100);
-  const SmokePuff later = s.handoff.smoke[0];
+  const SmokePuff later = s.shared.smoke[0];
   EXPECT_NEAR(later.at_m.z() - first.at_m.z(), SmokeStage::kRiseMps * 101 * kDt, 1e-9);
   EXPECT_GT(later.radius_m, first.radius_m);
   EXPECT_LT(later.density, first.density);
   run(stage, s, static_cast<int>(SmokeStage::kLifeS / kDt));
-  EXPECT_TRUE(s.handoff.smoke.empty());
+  EXPECT_TRUE(s.shared.smoke.empty());
 }
 
 TEST(SmokeStage, TheRingHoldsAtMostItsPuffsAndAStepDoesNotReallocate) {
   SmokeStage stage(scene());
   SimState s = slab();
   run(stage, s, 1);
-  const SmokePuff* storage = s.handoff.smoke.data();
+  const SmokePuff* storage = s.shared.smoke.data();
   for (std::size_t i = 0; i < s.mesh.x.size(); ++i) {
-    s.handoff.coagulated[i] = 1;
+    s.blocks.cutting.coagulated[i] = 1;
     run(stage, s, 1);
-    ASSERT_LE(s.handoff.smoke.size(), SmokeStage::kMaxPuffs);
-    ASSERT_EQ(s.handoff.smoke.data(), storage) << "step " << i;
+    ASSERT_LE(s.shared.smoke.size(), SmokeStage::kMaxPuffs);
+    ASSERT_EQ(s.shared.smoke.data(), storage) << "step " << i;
   }
-  EXPECT_EQ(s.handoff.smoke.size(), SmokeStage::kMaxPuffs);
+  EXPECT_EQ(s.shared.smoke.size(), SmokeStage::kMaxPuffs);
 }
 
 TEST(SmokeStage, ARestoredStageContinuesBitForBit) {
   SmokeStage a(scene());
   SimState s = slab();
   for (std::size_t i = 0; i < 40; i += 3) {
-    s.handoff.coagulated[i] = 1;
+    s.blocks.cutting.coagulated[i] = 1;
     run(a, s, 7);
   }
-  StateWriter out;
-  a.save(out);
-  const std::vector<std::uint8_t> bytes = out.bytes();
   SimState r = s;
-  r.handoff.smoke.clear();
+  r.shared.smoke.clear();
+  r.blocks.smoke = {};
+  r.blocks.smoke = test_blocks::copy(s.blocks.smoke);
   SmokeStage b(scene());
-  StateReader in(bytes, "snapshot");
-  b.restore(in, r);
+  b.adopt(r);
   for (std::size_t i = 40; i < 80; i += 2) {
-    s.handoff.coagulated[i] = r.handoff.coagulated[i] = 1;
+    s.blocks.cutting.coagulated[i] = r.blocks.cutting.coagulated[i] = 1;
     run(a, s, 3);
     run(b, r, 3);
   }
-  ASSERT_EQ(r.handoff.smoke.size(), s.handoff.smoke.size());
-  for (std::size_t k = 0; k < s.handoff.smoke.size(); ++k) {
-    EXPECT_EQ(r.handoff.smoke[k].at_m, s.handoff.smoke[k].at_m);
-    EXPECT_EQ(r.handoff.smoke[k].density, s.handoff.smoke[k].density);
+  ASSERT_EQ(r.shared.smoke.size(), s.shared.smoke.size());
+  for (std::size_t k = 0; k < s.shared.smoke.size(); ++k) {
+    EXPECT_EQ(r.shared.smoke[k].at_m, s.shared.smoke[k].at_m);
+    EXPECT_EQ(r.shared.smoke[k].density, s.shared.smoke[k].density);
   }
   SimState small = slab();
   small.mesh.x.resize(4);
+  small.blocks.smoke = test_blocks::copy(s.blocks.smoke);
   SmokeStage c(scene());
-  StateReader bad(bytes, "snapshot");
-  EXPECT_THROW(c.restore(bad, small), InputError);
+  EXPECT_THROW(c.adopt(small), BlockMismatch);
 }
 
 }  // namespace

@@ -33,10 +33,10 @@ SimState random_state(std::uint32_t seed) {
     t.jaw_rad = u(rng);
     t.buttons = rng() & 3u;
   }
-  if (seed % 2 == 0) s.handoff.external_force_n.assign(s.mesh.x.size(), Vec3(u(rng), 0.0, 1.0));
-  s.handoff.nodes_moved = seed % 3 == 0;
-  s.handoff.tool_force_n.assign(s.tools.size(), Vec3(0.0, u(rng), 0.0));
-  SurfaceMesh& f = s.handoff.surface;
+  if (seed % 2 == 0) s.events.external_force_n.assign(s.mesh.x.size(), Vec3(u(rng), 0.0, 1.0));
+  s.events.nodes_moved = seed % 3 == 0;
+  s.events.tool_force_n.assign(s.tools.size(), Vec3(0.0, u(rng), 0.0));
+  SurfaceMesh& f = s.shared.surface;
   for (std::int32_t i = 0; i + 2 < s.mesh.num_nodes(); i += 3) {
     f.faces.push_back({i, i + 1, i + 2});
     f.face_tet.push_back(i / 3);
@@ -65,9 +65,9 @@ TEST(StateCodec, ReadBackEqualsWhatWasWrittenForManyStates) {
     EXPECT_EQ(back.mesh.rest, s.mesh.rest);
     EXPECT_EQ(back.mesh.mass, s.mesh.mass);
     EXPECT_EQ(back.mesh.fixed, s.mesh.fixed);
-    EXPECT_EQ(back.handoff.nodes_moved, s.handoff.nodes_moved);
-    EXPECT_EQ(back.handoff.surface.faces, s.handoff.surface.faces);
-    EXPECT_EQ(back.handoff.surface.groups.size(), s.handoff.surface.groups.size());
+    EXPECT_EQ(back.events.nodes_moved, s.events.nodes_moved);
+    EXPECT_EQ(back.shared.surface.faces, s.shared.surface.faces);
+    EXPECT_EQ(back.shared.surface.groups.size(), s.shared.surface.groups.size());
     EXPECT_EQ(encode(back), bytes) << "seed " << seed;  // padding never reaches the bytes
   }
 }
@@ -96,24 +96,80 @@ TEST(StateCodec, EveryTruncationAndManyFlipsAreInputErrors) {
 
 TEST(StateCodec, CutsInFlightAreNotSnapshotted) {
   SimState s = random_state(2);
-  s.handoff.cuts.emplace_back();
+  s.events.cuts.emplace_back();
   StateWriter w;
   EXPECT_THROW(write_sim_state(w, s), std::logic_error);
 }
 
-TEST(StateCodec, RunnerSnapshotOfNoStagesIsTheStateAlone) {
+// Every block of the state, filled at random: a snapshot carries each in a section of its own,
+// and what comes back writes the same bytes.
+void random_blocks(std::uint32_t seed, SimState& s) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const auto n = static_cast<std::int32_t>(s.mesh.num_nodes());
+  StageBlocks& b = s.blocks;
+  b.contact.grasps.resize(s.tools.size());
+  for (ContactBlock::Grasp& g : b.contact.grasps) {
+    g.holding = rng() % 2 == 0;
+    for (int k = 0; k < static_cast<int>(rng() % 4); ++k) {
+      g.nodes.push_back(static_cast<std::int32_t>(rng() % static_cast<unsigned>(n)));
+      g.local.emplace_back(u(rng), u(rng), u(rng));
+      g.was_fixed.push_back(static_cast<std::uint8_t>(rng() % 2));
+    }
+    g.widest_rad = u(rng);
+  }
+  for (int k = 0; k < static_cast<int>(seed % 3); ++k) {
+    ClipsBlock::Placed p;
+    p.clip.kind = static_cast<Clip::Kind>(rng() % 3);
+    p.clip.hinge_m = Vec3(u(rng), u(rng), u(rng));
+    p.clip.groups = {1, 2};
+    p.nodes = {0, n - 1};
+    p.local = {Vec3(u(rng), 0.0, 0.0), Vec3(0.0, u(rng), 0.0)};
+    p.settled = rng() % 2 == 0;
+    b.clips.placed.push_back(p);
+  }
+  b.clips.widest_rad.assign(s.tools.size(), u(rng));
+  b.clips.triggers.assign(s.tools.size(), StaplerTrigger{u(rng)});
+  CuttingBlock::Follow f;
+  f.before = s.tools.empty() ? std::nullopt : std::optional<ToolState>(s.tools[0]);
+  StrokeRecord r;
+  r.steps = seed;
+  r.samples.resize(seed % 5);
+  for (StrokeSample& x : r.samples) x.bary = {u(rng), u(rng), u(rng), u(rng)};
+  if (seed % 2 == 1) f.stroke = r;
+  b.cutting.scissors.assign(1 + seed % 2, f);
+  b.cutting.coagulated.assign(static_cast<std::size_t>(n), static_cast<std::uint8_t>(seed % 2));
+  b.bleeding.sources.resize(seed % 3);
+  b.bleeding.stain.assign(static_cast<std::size_t>(n), static_cast<float>(u(rng)));
+  b.smoke.puffs.resize(seed % 4);
+  b.smoke.next = rng();
+}
+
+TEST(StateCodec, ASnapshotHoldsTheStateAndEveryBlockAndWritesTheSameBytesBack) {
   Runner runner(0.005);
-  SimState s = random_state(6);
-  const std::vector<std::uint8_t> snap = runner.snapshot(s);
-  const auto sections = snapshot_sections(snap, "snap");
-  ASSERT_EQ(sections.size(), 1u);
-  EXPECT_EQ(sections[0].name, "state");
-  SimState back;
-  runner.restore(snap, back, "snap");
-  EXPECT_EQ(state_hash(back), state_hash(s));
-  std::vector<std::uint8_t> wrong = snap;
-  wrong[0] = 'X';
-  EXPECT_THROW(runner.restore(wrong, back, "snap"), InputError);
+  std::vector<std::string> names{"state"};
+  const StageBlocks none;
+  StageBlocks::each_named(none, [&](const char* name, const auto&) { names.push_back(name); });
+  for (std::uint32_t seed = 1; seed < 200; ++seed) {
+    SimState s = random_state(seed);
+    random_blocks(seed, s);
+    const std::vector<std::uint8_t> snap = runner.snapshot(s);
+    const auto sections = snapshot_sections(snap, "snap");
+    ASSERT_EQ(sections.size(), names.size());
+    for (std::size_t i = 0; i < names.size(); ++i) EXPECT_EQ(sections[i].name, names[i]);
+    SimState back;
+    runner.restore(snap, back, "snap");
+    ASSERT_EQ(state_hash(back), state_hash(s));
+    ASSERT_EQ(runner.snapshot(back), snap) << "seed " << seed;
+    std::vector<std::uint8_t> wrong = snap;
+    wrong[0] = 'X';
+    EXPECT_THROW(runner.restore(wrong, back, "snap"), InputError);
+    // A block cut short anywhere is an error naming it, never a read past its end.
+    const SnapshotSection& last = sections.back();
+    std::vector<std::uint8_t> cut(
+        snap.begin(), snap.begin() + static_cast<std::ptrdiff_t>(last.offset + last.size / 2));
+    EXPECT_THROW(runner.restore(cut, back, "snap"), InputError);
+  }
 }
 
 }  // namespace

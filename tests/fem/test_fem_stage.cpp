@@ -49,8 +49,8 @@ TEST(FemStage, ExternalForcesAndGravityOff) {
   for (std::size_t i = 0; i < s.mesh.x.size(); ++i)
     EXPECT_LE((s.mesh.x[i] - s.mesh.rest[i]).norm(), 1e-15);  // round-off of F = I only
   // Push the tip node up along z, as the contact stage hands forces over.
-  s.handoff.external_force_n.assign(s.mesh.rest.size(), Vec3::Zero());
-  s.handoff.external_force_n[4].z() = 1e-3;
+  s.events.external_force_n.assign(s.mesh.rest.size(), Vec3::Zero());
+  s.events.external_force_n[4].z() = 1e-3;
   for (int k = 0; k < 5; ++k) fem.step(ctx, s);
   EXPECT_GT(s.mesh.x[4].z(), s.mesh.rest[4].z() + 1e-4);
   EXPECT_TRUE(fem.last_status().applied);

@@ -13,8 +13,8 @@
 #include "engine/kuhn_grid.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"
-#include "engine/state_codec.h"
 #include "metrics/bleeding_stage.h"
+#include "support/block_copy.h"
 
 namespace serosa::metrics {
 namespace {
@@ -34,7 +34,7 @@ SimState slab() {
   SimState s;
   s.mesh = kuhn_grid(4, 0.01);
   for (Vec3& x : s.mesh.x) x.z() *= 0.25;
-  s.handoff.coagulated.assign(s.mesh.x.size(), 0);
+  s.blocks.cutting.coagulated.assign(s.mesh.x.size(), 0);
   return s;
 }
 
@@ -51,14 +51,14 @@ TEST(BleedingStage, ShedsTheMeanFlowAndThePoolStainsOnlyWhatItReaches) {
   BleedingStage stage(floor_scene());
   SimState s = slab();
   run(stage, s, 10);  // nothing bleeds: nothing published
-  EXPECT_TRUE(s.handoff.blood.empty());
-  EXPECT_TRUE(s.handoff.stain.empty());
+  EXPECT_TRUE(s.shared.blood.empty());
+  EXPECT_TRUE(s.blocks.bleeding.stain.empty());
   const Vec3 cut(0.0, 0.0, 0.01);
-  s.handoff.bleeds.emplace_back(cut, s.time_s);
+  s.shared.bleeds.emplace_back(cut, s.time_s);
   const double since = s.time_s;
   run(stage, s, static_cast<int>(std::lround(4.0 / BleedingStage::kHeartRateHz / kDt)));
-  ASSERT_EQ(s.handoff.blood.size(), 1u);
-  const Blood& b = s.handoff.blood[0];
+  ASSERT_EQ(s.shared.blood.size(), 1u);
+  const Blood& b = s.shared.blood[0];
   const double elapsed = s.time_s - since;
   EXPECT_NEAR(b.shed_m3, BleedingStage::kFlowM3PerS * elapsed, 0.02 * b.shed_m3);
   EXPECT_NEAR(b.pool_radius_m,
@@ -67,20 +67,20 @@ TEST(BleedingStage, ShedsTheMeanFlowAndThePoolStainsOnlyWhatItReaches) {
   // The pool lies on the support, straight below the cut.
   EXPECT_NEAR(b.pool_m.z(), -0.002, 1e-12);
   EXPECT_NEAR((b.pool_m - cut).head<2>().norm(), 0.0, 1e-12);
-  ASSERT_EQ(s.handoff.stain.size(), s.mesh.x.size());
+  ASSERT_EQ(s.blocks.bleeding.stain.size(), s.mesh.x.size());
   for (std::size_t i = 0; i < s.mesh.x.size(); ++i) {
     const double d = (s.mesh.x[i] - b.pool_m).norm();
     if (d >= b.pool_radius_m) {
-      EXPECT_EQ(s.handoff.stain[i], 0.0f) << i;
+      EXPECT_EQ(s.blocks.bleeding.stain[i], 0.0f) << i;
     } else if (d < 0.5 * b.pool_radius_m) {
-      EXPECT_GT(s.handoff.stain[i], 0.9f) << i;
+      EXPECT_GT(s.blocks.bleeding.stain[i], 0.9f) << i;
     }
   }
   // Stains stay where the tissue moves away.
-  const std::vector<float> before = s.handoff.stain;
+  const std::vector<float> before = s.blocks.bleeding.stain;
   for (Vec3& x : s.mesh.x) x.x() += 0.2;
   run(stage, s, 1);
-  for (std::size_t i = 0; i < before.size(); ++i) EXPECT_GE(s.handoff.stain[i], before[i]);
+  for (std::size_t i = 0; i < before.size(); ++i) EXPECT_GE(s.blocks.bleeding.stain[i], before[i]);
 }
 
 TEST(BleedingStage, ALigatureOverTheEndOrLaterCoagulationClosesItTheStrokesOwnDoesNot) {
@@ -88,39 +88,39 @@ TEST(BleedingStage, ALigatureOverTheEndOrLaterCoagulationClosesItTheStrokesOwnDo
     BleedingStage stage(floor_scene());
     SimState s = slab();
     const Vec3 cut(0.0, 0.0, 0.01);
-    s.handoff.bleeds.emplace_back(cut, s.time_s);
+    s.shared.bleeds.emplace_back(cut, s.time_s);
     const double since = s.time_s;
     // The cutting stroke coagulates the cut end's node as it divides.
-    s.handoff.coagulated[0] = 1;
+    s.blocks.cutting.coagulated[0] = 1;
     for (std::size_t i = 0; i < s.mesh.x.size(); ++i)
-      if ((s.mesh.x[i] - cut).norm() < 1e-9) s.handoff.coagulated[i] = 1;
+      if ((s.mesh.x[i] - cut).norm() < 1e-9) s.blocks.cutting.coagulated[i] = 1;
     run(stage, s, static_cast<int>(std::lround(1.2 * BleedingStage::kOwnStrokeS / kDt)));
-    ASSERT_EQ(s.handoff.blood.size(), 1u);
-    EXPECT_GT(s.handoff.blood[0].pulse, 0.0) << "the stroke's own coagulation closed it";
+    ASSERT_EQ(s.shared.blood.size(), 1u);
+    EXPECT_GT(s.shared.blood[0].pulse, 0.0) << "the stroke's own coagulation closed it";
     if (by_clip) {
       Clip c;
       c.hinge_m = cut - Vec3(0.0, 0.0, 0.003);
       c.placed_s = s.time_s;
-      s.handoff.clips.push_back(c);
+      s.shared.clips.push_back(c);
     } else {
       // A node near the end, coagulated after the stroke.
       std::size_t near = 0;
       double best = 1e9;
       for (std::size_t i = 0; i < s.mesh.x.size(); ++i) {
         const double d = (s.mesh.x[i] - cut).norm();
-        if (d > 1e-9 && d < best && s.handoff.coagulated[i] == 0) {
+        if (d > 1e-9 && d < best && s.blocks.cutting.coagulated[i] == 0) {
           best = d;
           near = i;
         }
       }
       s.mesh.x[near] = cut + Vec3(0.002, 0.0, 0.0);
-      s.handoff.coagulated[near] = 1;
+      s.blocks.cutting.coagulated[near] = 1;
     }
     run(stage, s, 1);
-    const double shed = s.handoff.blood[0].shed_m3;
-    EXPECT_EQ(s.handoff.blood[0].pulse, 0.0) << (by_clip ? "clip" : "coagulation");
+    const double shed = s.shared.blood[0].shed_m3;
+    EXPECT_EQ(s.shared.blood[0].pulse, 0.0) << (by_clip ? "clip" : "coagulation");
     run(stage, s, 100);
-    EXPECT_EQ(s.handoff.blood[0].shed_m3, shed);  // nothing more is shed
+    EXPECT_EQ(s.shared.blood[0].shed_m3, shed);  // nothing more is shed
     EXPECT_GT(shed, 0.0);
     EXPECT_LT(shed, BleedingStage::kFlowM3PerS * (s.time_s - since));
   }
@@ -129,30 +129,27 @@ TEST(BleedingStage, ALigatureOverTheEndOrLaterCoagulationClosesItTheStrokesOwnDo
 TEST(BleedingStage, ARestoredStageContinuesBitForBitAndABadSnapshotIsAnError) {
   BleedingStage a(floor_scene());
   SimState s = slab();
-  s.handoff.bleeds.emplace_back(Vec3(0.01, 0.01, 0.01), 0.0);
+  s.shared.bleeds.emplace_back(Vec3(0.01, 0.01, 0.01), 0.0);
   run(a, s, 137);
-  StateWriter out;
-  a.save(out);
-  const std::vector<std::uint8_t> bytes = out.bytes();
   SimState r = s;
-  r.handoff.blood.clear();
-  r.handoff.stain.clear();
+  r.shared.blood.clear();
+  r.blocks.bleeding = {};
+  r.blocks.bleeding = test_blocks::copy(s.blocks.bleeding);
   BleedingStage b(floor_scene());
-  StateReader in(bytes, "snapshot");
-  b.restore(in, r);
-  ASSERT_EQ(r.handoff.blood.size(), s.handoff.blood.size());
-  EXPECT_EQ(r.handoff.stain, s.handoff.stain);
+  b.adopt(r);
+  ASSERT_EQ(r.shared.blood.size(), s.shared.blood.size());
+  EXPECT_EQ(r.blocks.bleeding.stain, s.blocks.bleeding.stain);
   run(a, s, 200);
   run(b, r, 200);
-  EXPECT_EQ(r.handoff.blood[0].shed_m3, s.handoff.blood[0].shed_m3);
-  EXPECT_EQ(r.handoff.blood[0].pool_radius_m, s.handoff.blood[0].pool_radius_m);
-  EXPECT_EQ(r.handoff.stain, s.handoff.stain);
+  EXPECT_EQ(r.shared.blood[0].shed_m3, s.shared.blood[0].shed_m3);
+  EXPECT_EQ(r.shared.blood[0].pool_radius_m, s.shared.blood[0].pool_radius_m);
+  EXPECT_EQ(r.blocks.bleeding.stain, s.blocks.bleeding.stain);
 
   SimState small = slab();
   small.mesh.x.resize(3);
+  small.blocks.bleeding = test_blocks::copy(s.blocks.bleeding);
   BleedingStage c(floor_scene());
-  StateReader bad(bytes, "snapshot");
-  EXPECT_THROW(c.restore(bad, small), InputError);
+  EXPECT_THROW(c.adopt(small), BlockMismatch);
 }
 
 }  // namespace

@@ -27,7 +27,7 @@ SimState bead(int tools) {
   SimState s;
   s.mesh = kuhn_grid(spec);
   s.tools.resize(static_cast<std::size_t>(tools));
-  s.handoff.grasped.resize(static_cast<std::size_t>(tools));
+  s.shared.grasped.resize(static_cast<std::size_t>(tools));
   return s;
 }
 
@@ -40,8 +40,8 @@ void put(SimState& s, const Vec3& c) {
 }
 
 void hold(SimState& s, std::vector<int> tools) {
-  for (auto& g : s.handoff.grasped) g.clear();
-  for (int t : tools) s.handoff.grasped[static_cast<std::size_t>(t)] = {0, 1};
+  for (auto& g : s.shared.grasped) g.clear();
+  for (int t : tools) s.shared.grasped[static_cast<std::size_t>(t)] = {0, 1};
 }
 
 TEST(TransferWatch, AHandOffADropAndAPlacing) {
