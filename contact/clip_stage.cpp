@@ -328,7 +328,7 @@ void ClipStage::adopt(SimState& state) {
   const std::size_t tools = m_role.size();
   for (std::size_t size :
        {b.widest_rad.size(), b.dropped.size(), b.refused.size(), b.triggers.size()})
-    if (size != 0 && size != tools)
+    if ((state.step > 0 || size != 0) && size != tools)  // (the first step shapes them)
       throw BlockMismatch("ligatures of " + std::to_string(size) + " tools, the scene has " +
                           std::to_string(tools));
   for (const Placed& p : b.placed) {

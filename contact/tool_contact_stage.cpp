@@ -290,7 +290,8 @@ void ToolContactStage::withdraw(SimState& state, Grasp& g) {
 
 void ToolContactStage::adopt(SimState& state) {
   const auto& grasps = state.blocks.contact.grasps;
-  if (!grasps.empty() && grasps.size() != m_kinds.size())
+  // Every step shapes the block for the scene: a state that has stepped has it so.
+  if ((state.step > 0 || !grasps.empty()) && grasps.size() != m_kinds.size())
     throw BlockMismatch("grasps of " + std::to_string(grasps.size()) + " tools, the scene has " +
                         std::to_string(m_kinds.size()));
   for (const Grasp& g : grasps) {

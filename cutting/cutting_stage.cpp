@@ -429,8 +429,8 @@ void CuttingStage::cut(const StepContext& ctx, SimState& state, std::size_t tool
 
 void CuttingStage::adopt(SimState& state) {
   const CuttingBlock& b = state.blocks.cutting;
-  const auto fits = [](std::size_t size, std::size_t scene, const char* what) {
-    if (size != 0 && size != scene)
+  const auto fits = [&](std::size_t size, std::size_t scene, const char* what) {
+    if ((state.step > 0 || size != 0) && size != scene)  // (the first step shapes them)
       throw BlockMismatch(std::string("strokes of ") + std::to_string(size) + " " + what +
                           ", the scene has " + std::to_string(scene));
   };

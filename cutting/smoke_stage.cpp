@@ -83,7 +83,7 @@ void SmokeStage::publish(double t, SimState& state) {
 
 void SmokeStage::adopt(SimState& state) {
   const SmokeBlock& b = state.blocks.smoke;
-  if (!b.puffs.empty() && b.puffs.size() != kMaxPuffs)
+  if ((state.step > 0 || !b.puffs.empty()) && b.puffs.size() != kMaxPuffs)
     throw BlockMismatch("smoke of " + std::to_string(b.puffs.size()) + " puffs, not " +
                         std::to_string(kMaxPuffs));
   if (b.seen.size() > state.mesh.x.size())

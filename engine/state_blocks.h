@@ -16,6 +16,7 @@
 
 #include "engine/clip.h"
 #include "engine/math.h"
+#include "engine/metrics_block.h"
 #include "engine/stapler.h"
 #include "engine/tool_state.h"
 
@@ -171,12 +172,13 @@ struct StageBlocks {
   ContactBlock contact;
   ClipsBlock clips;
   CuttingBlock cutting;
+  MetricsBlock metrics;
   BleedingBlock bleeding;
   SmokeBlock smoke;
   /// Each block with its name, in snapshot order.
   template <class S, class F>
   static void each_named(S& s, F&& f) {
-    f("contact", s.contact), f("clips", s.clips), f("cutting", s.cutting),
+    f("contact", s.contact), f("clips", s.clips), f("cutting", s.cutting), f("metrics", s.metrics),
         f("bleeding", s.bleeding), f("smoke", s.smoke);
   }
 };

@@ -14,13 +14,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/bound_block.h"
 #include "engine/clip.h"
 #include "engine/math.h"
-
-namespace serosa {
-class StateWriter;
-class StateReader;
-}  // namespace serosa
+#include "engine/metrics_block.h"
 
 namespace serosa::metrics {
 
@@ -34,21 +31,22 @@ class ClipPlacement {
   [[nodiscard]] bool active() const noexcept { return m_on; }
   void step(const std::vector<Clip>& clips);
 
-  [[nodiscard]] int on_artery() const noexcept { return m_on_artery; }
-  [[nodiscard]] int off_artery() const noexcept { return m_off_artery; }
-  [[nodiscard]] double target_error_m() const noexcept { return m_error; }
+  [[nodiscard]] int on_artery() const noexcept { return m_b->on_artery; }
+  [[nodiscard]] int off_artery() const noexcept { return m_b->off_artery; }
+  [[nodiscard]] double target_error_m() const noexcept { return m_b->error; }
 
   /// metrics["clips"] = {"on_artery", "off_artery", "target_error_m" (with a target)}.
   void report(nlohmann::json& metrics) const;
-  void save(StateWriter& out) const;
-  void restore(StateReader& in);
+  /// Reads and writes the SimState block `b` from now on (engine/bound_block.h).
+  void bind(ClipPlacementBlock& b) noexcept { m_b.bind(b); }
+  /// The zero block it starts a state's from.
+  [[nodiscard]] const ClipPlacementBlock& unbound_block() const noexcept { return m_b.unbound(); }
 
  private:
   bool m_on = false;
   int m_artery = -1;
   std::optional<Vec3> m_target;
-  int m_on_artery = 0, m_off_artery = 0;
-  double m_error = 0.0;  // m; +inf: no clip on the artery
+  BoundBlock<ClipPlacementBlock> m_b;  // its block of the state
 };
 
 }  // namespace serosa::metrics

@@ -17,23 +17,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/bound_block.h"
+#include "engine/metrics_block.h"
 #include "engine/tool_state.h"
-
-namespace serosa {
-class StateWriter;
-class StateReader;
-}  // namespace serosa
 
 namespace serosa::metrics {
 
-/// One exchange: at t_s, `hand` (0 left, 1 right) put down `from` and took `to` (tool indices;
-/// -1 for none).
-struct Exchange {
-  double t_s = 0.0;
-  std::uint8_t hand = 0;
-  std::int32_t from = -1;
-  std::int32_t to = -1;
-};
+using serosa::Exchange;
 
 class HandExchanges {
  public:
@@ -42,24 +32,23 @@ class HandExchanges {
 
   /// The tool hand h (0 left, 1 right) holds now, if any.
   [[nodiscard]] std::optional<std::size_t> held(std::size_t h) const {
-    return m_held[h] < 0 ? std::nullopt : std::optional<std::size_t>(m_held[h]);
+    return m_b->held[h] < 0 ? std::nullopt : std::optional<std::size_t>(m_b->held[h]);
   }
   /// Whether any input so far named a hand.
-  [[nodiscard]] bool hands_seen() const noexcept { return m_seen; }
-  [[nodiscard]] const std::vector<Exchange>& exchanges() const noexcept { return m_exchanges; }
-  [[nodiscard]] double out_of_body_s() const noexcept { return m_out_s; }
+  [[nodiscard]] bool hands_seen() const noexcept { return m_b->seen; }
+  [[nodiscard]] const std::vector<Exchange>& exchanges() const noexcept { return m_b->exchanges; }
+  [[nodiscard]] double out_of_body_s() const noexcept { return m_b->out_s; }
 
   /// "exchanges" and "out_of_body_s" into `j`, tools named by `names` (only once hands were seen).
   void report(nlohmann::json& j, const std::vector<std::string>& names) const;
 
-  void save(StateWriter& out) const;
-  void restore(StateReader& in);
+  /// Reads and writes the SimState block `b` from now on (engine/bound_block.h).
+  void bind(ExchangesBlock& b) noexcept { m_b.bind(b); }
+  /// The zero block it starts a state's from.
+  [[nodiscard]] const ExchangesBlock& unbound_block() const noexcept { return m_b.unbound(); }
 
  private:
-  std::array<std::int32_t, 2> m_held{-1, -1};  // tool index per hand, -1 none
-  bool m_seen = false;
-  std::vector<Exchange> m_exchanges;
-  double m_out_s = 0.0;
+  BoundBlock<ExchangesBlock> m_b;  // its block of the state
 };
 
 }  // namespace serosa::metrics

@@ -53,7 +53,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/bound_block.h"
 #include "engine/math.h"
+#include "engine/metrics_block.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"
 #include "engine/stage.h"
@@ -97,35 +99,35 @@ class MetricsStage final : public Stage {
 
   [[nodiscard]] std::string_view name() const noexcept override { return "metrics"; }
   void step(const StepContext& ctx, SimState& state) override;
-  /// The sums so far (path lengths, forces, cut volumes, deviations, peak stress).
-  void save(StateWriter& out) const override;
-  void restore(StateReader& in, SimState& state) override;
+  /// The sums so far (path lengths, forces, cut volumes, deviations, peak stress) are
+  /// SimState::blocks.metrics; a restored block is checked against the scene and read from then on.
+  void adopt(SimState& state) override;
 
   [[nodiscard]] nlohmann::json report() const;
 
-  [[nodiscard]] double path_length_m(std::size_t tool) const { return m_path[tool]; }
+  [[nodiscard]] double path_length_m(std::size_t tool) const { return m_b->path[tool]; }
   /// The largest force the tool put on the tissue so far, N (0 before any contact step).
-  [[nodiscard]] double force_max_n(std::size_t tool) const { return m_force_max[tool]; }
+  [[nodiscard]] double force_max_n(std::size_t tool) const { return m_b->force_max[tool]; }
   /// The tool's force on the tissue in the last step, N.
   [[nodiscard]] double load_n(std::size_t tool) const { return m_load[tool]; }
   /// Above this a tool's force counts as rough handling (the scene's force_limit), N.
   [[nodiscard]] double force_limit_n() const noexcept { return m_force_limit; }
-  [[nodiscard]] double peak_stress_pa() const noexcept { return m_peak_stress; }
+  [[nodiscard]] double peak_stress_pa() const noexcept { return m_b->peak_stress; }
   /// Times the peak stress rose above the scene's tear stress (0 without one).
   [[nodiscard]] std::int64_t tears() const noexcept {
-    return static_cast<std::int64_t>(m_tear_times.size());
+    return static_cast<std::int64_t>(m_b->tear_times.size());
   }
-  [[nodiscard]] double time_s() const noexcept { return m_time; }
-  [[nodiscard]] double cut_volume_m3() const noexcept { return m_cut_volume; }
-  [[nodiscard]] double collateral_m3() const noexcept { return m_collateral; }
-  [[nodiscard]] double deviation_max_m() const noexcept { return m_dev_max; }
-  [[nodiscard]] double idle_time_s() const noexcept { return m_idle_s; }
+  [[nodiscard]] double time_s() const noexcept { return m_b->time; }
+  [[nodiscard]] double cut_volume_m3() const noexcept { return m_b->cut_volume; }
+  [[nodiscard]] double collateral_m3() const noexcept { return m_b->collateral; }
+  [[nodiscard]] double deviation_max_m() const noexcept { return m_b->dev_max; }
+  [[nodiscard]] double idle_time_s() const noexcept { return m_b->idle_s; }
   [[nodiscard]] double bimanual_fraction() const noexcept {
-    return m_active_s > 0.0 ? m_bimanual_s / m_active_s : 0.0;
+    return m_b->active_s > 0.0 ? m_b->bimanual_s / m_b->active_s : 0.0;
   }
-  [[nodiscard]] double force_over_s() const noexcept { return m_force_over_s; }
+  [[nodiscard]] double force_over_s() const noexcept { return m_b->force_over_s; }
   /// Time the tool's tip was out of the endoscope's view, s (0 without an endoscope).
-  [[nodiscard]] double out_of_view_s(std::size_t tool) const { return m_out_of_view_s[tool]; }
+  [[nodiscard]] double out_of_view_s(std::size_t tool) const { return m_b->out_of_view_s[tool]; }
   /// The scene's view targets the endoscope has not centred yet.
   [[nodiscard]] std::size_t targets_missed() const;
   /// When the endoscope had centred every view target, s; the run's time while any is missed.
@@ -139,7 +141,7 @@ class MetricsStage final : public Stage {
   /// What each of the procedure's steps cost (inactive without [metrics] procedure).
   [[nodiscard]] const StepSplits& step_splits() const noexcept { return m_splits; }
   [[nodiscard]] double deviation_mean_m() const noexcept {
-    return m_cut_volume > 0.0 ? m_dev_weighted / m_cut_volume : 0.0;
+    return m_b->cut_volume > 0.0 ? m_b->dev_weighted / m_b->cut_volume : 0.0;
   }
 
  private:
@@ -164,37 +166,21 @@ class MetricsStage final : public Stage {
   [[nodiscard]] double peak_stress(const TetMesh& mesh);
 
   LameTable m_lame;
-  bool m_forces = false;  // a contact stage hands tool forces over
   std::int64_t m_stress_every;
-  double m_time = 0.0;
-  std::vector<double> m_path;                // (tools)
-  std::vector<Vec3> m_last_tip;              // (tools)
-  std::vector<std::uint8_t> m_last_in_port;  // (tools) 1: it waited in its port last step
   HandExchanges m_exchanges;
-  bool m_have_last = false;
-  std::vector<double> m_force_max, m_force_sum;  // (tools)
-  std::vector<std::int64_t> m_force_steps;       // (tools)
-  double m_peak_stress = 0.0;
   std::optional<double> m_tear_stress;  // Pa
-  bool m_over_tear = false;             // the last sample's peak stress was above it
-  std::vector<double> m_tear_times;     // s
-  double m_idle_s = 0.0, m_active_s = 0.0, m_bimanual_s = 0.0, m_force_over_s = 0.0;  // s
-  std::vector<double> m_moved;           // (tools) this step's tip moves, m
-  std::vector<double> m_recent;          // (window x tools) the last steps' tip moves, m
-  std::uint64_t m_recent_at = 0;         // steps put into m_recent so far
-  std::size_t m_window = 1;              // steps in kIdleWindowS
-  std::vector<double> m_load;            // (tools) this step's force on the tissue, N
-  std::vector<double> m_out_of_view_s;   // (tools) time each tip spent out of the scope's view, s
-  std::optional<std::size_t> m_scope;    // the scene's first endoscope
-  std::vector<Vec3> m_targets;           // (k) the scene's view targets, m
-  std::vector<double> m_target_first_s;  // (k) when each was first centred, s; -1: not yet
+  std::vector<double> m_moved;          // (tools) this step's tip moves, m
+  std::size_t m_window = 1;             // steps in kIdleWindowS
+  std::vector<double> m_load;           // (tools) this step's force on the tissue, N
+  std::optional<std::size_t> m_scope;   // the scene's first endoscope
+  std::vector<Vec3> m_targets;          // (k) the scene's view targets, m
   // The rest data of the stress, refilled when the topology changes or a snapshot is restored.
   RestStress m_rest;
   std::uint64_t m_rest_version = 0;
   bool m_rest_valid = false;
-  double m_cut_volume = 0.0, m_collateral = 0.0, m_dev_weighted = 0.0, m_dev_max = 0.0;
-  std::int64_t m_cut_tets = 0;
   void publish_bleeds(SimState& state) const;
+  /// Reads and writes `b` from now on, and its parts the watchers' (the first step shapes it).
+  void bind(MetricsBlock& b);
 
   ProcedureErrors m_errors;
   ProcedureSteps m_steps;
@@ -203,6 +189,7 @@ class MetricsStage final : public Stage {
   TransferWatch m_transfer;
   /// Follows the procedure's steps at the end of a step, splitting the run where one is done.
   void follow_steps(SimState& state);
+  BoundBlock<MetricsBlock> m_b;  // its block of the state (the sums above are its)
 };
 
 }  // namespace serosa::metrics

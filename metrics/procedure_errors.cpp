@@ -3,7 +3,6 @@
 #include <algorithm>
 
 #include "engine/hook.h"
-#include "engine/state_codec.h"
 
 namespace serosa::metrics {
 
@@ -31,7 +30,7 @@ void ProcedureErrors::check_cuts(double time_s, const SimState& state) {
     for (const Vec3& c : cut.removed_centroids_m) where += c;
     if (!cut.removed_centroids_m.empty())
       where /= static_cast<double>(cut.removed_centroids_m.size());
-    m_errors.push_back({ProcedureError::Kind::kBleeding, time_s, where});
+    m_b->errors.push_back({ProcedureError::Kind::kBleeding, time_s, where});
   }
 }
 
@@ -48,27 +47,27 @@ void ProcedureErrors::check_burns(double time_s, const SimState& state) {
   // One injury per press of the pedal, however long the hook stays on the wall.
   const bool pedal = std::any_of(state.tools.begin(), state.tools.end(),
                                  [](const ToolState& t) { return pedal_down(t); });
-  if (!pedal) m_counted = false;
+  if (!pedal) m_b->counted = false;
   const std::vector<std::uint8_t>& coag = state.blocks.cutting.coagulated;
-  if (state.blocks.cutting.coagulated_version == m_seen_coag) return;
-  m_seen_coag = state.blocks.cutting.coagulated_version;
-  m_burnt.resize(n, 0);
+  if (state.blocks.cutting.coagulated_version == m_b->seen_coag) return;
+  m_b->seen_coag = state.blocks.cutting.coagulated_version;
+  m_b->burnt.resize(n, 0);
   std::optional<Vec3> first;
   for (std::size_t v = 0; v < n && v < coag.size(); ++v) {
-    if (coag[v] == 0 || m_node_prot[v] == 0 || m_burnt[v] != 0) continue;
-    m_burnt[v] = 1;
+    if (coag[v] == 0 || m_node_prot[v] == 0 || m_b->burnt[v] != 0) continue;
+    m_b->burnt[v] = 1;
     if (!first) first = mesh.x[v];
   }
   // Marks that appear with the pedal up are the wound of a press already counted (its cut's
   // nodes, their clones), not a burn of their own.
-  if (first && pedal && !m_counted) {
-    m_errors.push_back({ProcedureError::Kind::kThermalInjury, time_s, *first});
-    m_counted = true;
+  if (first && pedal && !m_b->counted) {
+    m_b->errors.push_back({ProcedureError::Kind::kThermalInjury, time_s, *first});
+    m_b->counted = true;
   }
 }
 
 std::int64_t ProcedureErrors::count(ProcedureError::Kind kind) const {
-  return std::count_if(m_errors.begin(), m_errors.end(),
+  return std::count_if(m_b->errors.begin(), m_b->errors.end(),
                        [&](const ProcedureError& e) { return e.kind == kind; });
 }
 
@@ -95,44 +94,11 @@ void ProcedureErrors::report(nlohmann::json& metrics, bool steps) const {
     metrics["specimens_dropped"] = count(ProcedureError::Kind::kSpecimenDropped);
   }
   nlohmann::json list = nlohmann::json::array();
-  for (const ProcedureError& e : m_errors)
+  for (const ProcedureError& e : m_b->errors)
     list.push_back({{"kind", kind_name(e.kind)},
                     {"time_s", e.time_s},
                     {"where_m", {e.where_m.x(), e.where_m.y(), e.where_m.z()}}});
   metrics["errors"] = std::move(list);
-}
-
-void ProcedureErrors::save(StateWriter& out) const {
-  if (!active()) return;
-  out.array(m_burnt);
-  out.u64(m_seen_coag);
-  out.u8(m_counted ? 1 : 0);
-  out.u32(static_cast<std::uint32_t>(m_errors.size()));
-  for (const ProcedureError& e : m_errors) {
-    out.u8(static_cast<std::uint8_t>(e.kind));
-    out.f64(e.time_s);
-    for (int k = 0; k < 3; ++k) out.f64(e.where_m(k));
-  }
-}
-
-void ProcedureErrors::restore(StateReader& in) {
-  if (!active()) return;
-  in.array(m_burnt);
-  m_seen_coag = in.u64();
-  m_counted = in.u8() != 0;
-  const std::uint32_t k = in.u32();
-  m_errors.clear();
-  for (std::uint32_t i = 0; i < k; ++i) {
-    ProcedureError e;
-    const std::uint8_t kind = in.u8();
-    if (kind > static_cast<std::uint8_t>(ProcedureError::Kind::kSpecimenDropped))
-      in.fail("an unknown kind of procedure error");
-    e.kind = static_cast<ProcedureError::Kind>(kind);
-    e.time_s = in.f64();
-    for (int c = 0; c < 3; ++c) e.where_m(c) = in.f64();
-    m_errors.push_back(e);
-  }
-  m_prot_version = ~0ull;
 }
 
 }  // namespace serosa::metrics

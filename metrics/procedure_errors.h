@@ -14,27 +14,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/bound_block.h"
 #include "engine/math.h"
+#include "engine/metrics_block.h"
 #include "engine/sim_state.h"
-
-namespace serosa {
-class StateWriter;
-class StateReader;
-}  // namespace serosa
 
 namespace serosa::metrics {
 
-struct ProcedureError {
-  enum class Kind : std::uint8_t {
-    kBleeding,
-    kThermalInjury,
-    kTransectionAboveSecuring,  ///< metrics/procedure_steps.h
-    kSpecimenDropped,           ///< metrics/procedure_steps.h
-  };
-  Kind kind = Kind::kBleeding;
-  double time_s = 0.0;          ///< simulated time of the step it happened in, s
-  Vec3 where_m = Vec3::Zero();  ///< where: the cut tets' mean centroid, the first burnt node, m
-};
+using serosa::ProcedureError;
 
 class ProcedureErrors {
  public:
@@ -47,10 +34,10 @@ class ProcedureErrors {
   /// Looks at this step's cuts, clips and coagulation marks (end of the step, time_s).
   void step(double time_s, const SimState& state);
 
-  [[nodiscard]] const std::vector<ProcedureError>& errors() const noexcept { return m_errors; }
+  [[nodiscard]] const std::vector<ProcedureError>& errors() const noexcept { return m_b->errors; }
   [[nodiscard]] std::int64_t count(ProcedureError::Kind kind) const;
   /// An error another watcher found (the procedure's steps).
-  void add(const ProcedureError& e) { m_errors.push_back(e); }
+  void add(const ProcedureError& e) { m_b->errors.push_back(e); }
   /// The report's name of a kind: "bleeding", "thermal_injury", "transection_above_securing",
   /// "specimen_dropped".
   [[nodiscard]] static const char* kind_name(ProcedureError::Kind kind);
@@ -60,8 +47,12 @@ class ProcedureErrors {
   void report(nlohmann::json& metrics, bool steps = false) const;
   void report(nlohmann::json& metrics) const;
 
-  void save(StateWriter& out) const;
-  void restore(StateReader& in);
+  /// Reads and writes the SimState block `b` from now on (engine/bound_block.h).
+  void bind(ErrorsBlock& b) noexcept { m_b.bind(b); }
+  /// The bound block was restored: drops the caches taken from the mesh.
+  void adopt() noexcept { m_prot_version = ~0ull; }
+  /// The zero block it starts a state's from.
+  [[nodiscard]] const ErrorsBlock& unbound_block() const noexcept { return m_b.unbound(); }
 
  private:
   void check_cuts(double time_s, const SimState& state);
@@ -71,10 +62,7 @@ class ProcedureErrors {
   std::vector<int> m_protected;           // sorted
   std::vector<std::uint8_t> m_node_prot;  // (n) 1: a node of a protected group's tet
   std::uint64_t m_prot_version = ~0ull;   // topology the above was taken from
-  std::vector<std::uint8_t> m_burnt;      // (n) protected nodes found coagulated so far
-  std::uint64_t m_seen_coag = 0;          // the coagulation version looked at last
-  bool m_counted = false;                 // an injury counted since the pedal last went down
-  std::vector<ProcedureError> m_errors;
+  BoundBlock<ErrorsBlock> m_b;            // its block of the state
 };
 
 }  // namespace serosa::metrics

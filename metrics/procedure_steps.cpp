@@ -5,7 +5,6 @@
 
 #include "engine/node_components.h"
 #include "engine/scene.h"
-#include "engine/state_codec.h"
 
 namespace serosa::metrics {
 namespace {
@@ -23,21 +22,21 @@ bool secures_base(const Clip& c) {
 ProcedureSteps::ProcedureSteps(ProcedureGroupIds ids, std::vector<std::string> tools)
     : m_on(true), m_ids(std::move(ids)), m_tools(std::move(tools)) {
   std::sort(m_ids.mesentery.begin(), m_ids.mesentery.end());
-  for (std::size_t i = 0; i < kProcedureSteps.size(); ++i) m_steps[i].name = kProcedureSteps[i];
+  for (std::size_t i = 0; i < kProcedureSteps.size(); ++i) m_b->steps[i].name = kProcedureSteps[i];
 }
 
 void ProcedureSteps::step(double time_s, const SimState& state, ProcedureErrors& errors) {
   if (!m_on) return;
   m_time = time_s;
-  if (!m_ready) init(state.mesh);
+  if (!m_b->ready) init(state.mesh);
   refresh_groups(state.mesh);
   const bool cut = !state.events.cuts.empty();
   if (cut) m_pieces_stale = true;
-  if (!m_steps[kExpose].done) expose(state);
-  if (!m_steps[kSecure].done) secure(state);
-  if (cut && !m_steps[kDivide].done) divide(state);
-  if (cut && !m_steps[kTransect].done) transect(state, time_s, errors);
-  if (m_steps[kTransect].done) follow_specimen(state, time_s, errors);
+  if (!m_b->steps[kExpose].done) expose(state);
+  if (!m_b->steps[kSecure].done) secure(state);
+  if (cut && !m_b->steps[kDivide].done) divide(state);
+  if (cut && !m_b->steps[kTransect].done) transect(state, time_s, errors);
+  if (m_b->steps[kTransect].done) follow_specimen(state, time_s, errors);
 }
 
 // Where the specimen leaves the base, its far end and its volume, from the rest state.
@@ -54,22 +53,23 @@ void ProcedureSteps::init(const TetMesh& mesh) {
       ++n_shared;
     }
   }
-  m_origin = n_shared > 0 ? Vec3(shared / static_cast<double>(n_shared))
-             : n_base > 0 ? Vec3(base / static_cast<double>(n_base))
-                          : Vec3::Zero();
+  m_b->origin = n_shared > 0 ? Vec3(shared / static_cast<double>(n_shared))
+                : n_base > 0 ? Vec3(base / static_cast<double>(n_base))
+                             : Vec3::Zero();
   double farthest = -1.0;
   for (std::size_t v = 0; v < m_role.size(); ++v) {
     if ((m_role[v] & kSpecimenNode) == 0) continue;
-    const double d = (mesh.rest[v] - m_origin).norm();
+    const double d = (mesh.rest[v] - m_b->origin).norm();
     if (d > farthest) {
       farthest = d;
-      m_far = static_cast<std::int32_t>(v);
+      m_b->far = static_cast<std::int32_t>(v);
     }
   }
-  m_volume = 0.0;
+  m_b->volume = 0.0;
   for (std::int32_t t = 0; t < mesh.num_tets(); ++t)
-    if (mesh.group[static_cast<std::size_t>(t)] == m_ids.specimen) m_volume += mesh.rest_volume(t);
-  m_ready = true;
+    if (mesh.group[static_cast<std::size_t>(t)] == m_ids.specimen)
+      m_b->volume += mesh.rest_volume(t);
+  m_b->ready = true;
 }
 
 void ProcedureSteps::refresh_groups(const TetMesh& mesh) {
@@ -116,7 +116,7 @@ void ProcedureSteps::divide(const SimState& state) {
     const auto c = static_cast<std::size_t>(comp[v]);
     if (touches.size() <= c) touches.resize(c + 1, 0);
     if ((m_role[v] & kBaseNode) != 0) touches[c] |= 2;
-    if ((m_role[v] & kSpecimenNode) != 0 && (mesh.rest[v] - m_origin).norm() > kBaseZone)
+    if ((m_role[v] & kSpecimenNode) != 0 && (mesh.rest[v] - m_b->origin).norm() > kBaseZone)
       touches[c] |= 1;
   }
   if (std::find(touches.begin(), touches.end(), 3) != touches.end()) return;
@@ -127,7 +127,7 @@ void ProcedureSteps::secure(const SimState& state) {
   for (const Clip& c : state.shared.clips) {
     if (!secures_base(c)) continue;
     if (std::find(c.groups.begin(), c.groups.end(), m_ids.specimen) == c.groups.end()) continue;
-    if ((c.rest_centre_m - m_origin).norm() > kBaseZone) continue;
+    if ((c.rest_centre_m - m_b->origin).norm() > kBaseZone) continue;
     mark(kSecure, m_time, static_cast<std::int64_t>(c.tool));
     return;
   }
@@ -138,9 +138,9 @@ void ProcedureSteps::secure(const SimState& state) {
 // stapler's knife runs between its two lines, so its stump-side line is there.
 void ProcedureSteps::transect(const SimState& state, double time_s, ProcedureErrors& errors) {
   const TetMesh& mesh = state.mesh;
-  if (m_far < 0 || m_far >= mesh.num_nodes()) return;
+  if (m_b->far < 0 || m_b->far >= mesh.num_nodes()) return;
   const std::vector<std::int32_t> comp = node_components(mesh);
-  const std::int32_t far = comp[static_cast<std::size_t>(m_far)];
+  const std::int32_t far = comp[static_cast<std::size_t>(m_b->far)];
   std::vector<std::uint8_t> stump;  // (pieces) 1: holds base nodes
   for (std::size_t v = 0; v < comp.size(); ++v) {
     if (comp[v] < 0 || (m_role[v] & kBaseNode) == 0) continue;
@@ -151,16 +151,16 @@ void ProcedureSteps::transect(const SimState& state, double time_s, ProcedureErr
   }
   const CutEvent& cut = state.events.cuts.back();
   mark(kTransect, time_s, static_cast<std::int64_t>(cut.tool));
-  m_freed_at = Vec3::Zero();
-  for (const Vec3& p : cut.polygon_m) m_freed_at += p;
-  if (!cut.polygon_m.empty()) m_freed_at /= static_cast<double>(cut.polygon_m.size());
+  m_b->freed_at = Vec3::Zero();
+  for (const Vec3& p : cut.polygon_m) m_b->freed_at += p;
+  if (!cut.polygon_m.empty()) m_b->freed_at /= static_cast<double>(cut.polygon_m.size());
   double volume = 0.0;
   for (std::int32_t t = 0; t < mesh.num_tets(); ++t) {
     const auto ut = static_cast<std::size_t>(t);
     if (mesh.group[ut] == m_ids.specimen && comp[static_cast<std::size_t>(mesh.tets[ut][0])] == far)
       volume += mesh.rest_volume(t);
   }
-  m_fraction = m_volume > 0.0 ? volume / m_volume : 0.0;
+  m_b->fraction = m_b->volume > 0.0 ? volume / m_b->volume : 0.0;
   const bool secured =
       std::any_of(state.shared.clips.begin(), state.shared.clips.end(), [&](const Clip& c) {
         if (!secures_base(c) || c.node < 0 || c.node >= mesh.num_nodes()) return false;
@@ -168,7 +168,8 @@ void ProcedureSteps::transect(const SimState& state, double time_s, ProcedureErr
         return k >= 0 && static_cast<std::size_t>(k) < stump.size() &&
                stump[static_cast<std::size_t>(k)] != 0;
       });
-  if (!secured) errors.add({ProcedureError::Kind::kTransectionAboveSecuring, time_s, m_freed_at});
+  if (!secured)
+    errors.add({ProcedureError::Kind::kTransectionAboveSecuring, time_s, m_b->freed_at});
 }
 
 // The freed specimen: extracted once carried far enough, dropped if let go before that.
@@ -177,13 +178,14 @@ void ProcedureSteps::follow_specimen(const SimState& state, double time_s,
   const TetMesh& mesh = state.mesh;
   if (m_pieces_stale) {
     const std::vector<std::int32_t> comp = node_components(mesh);
-    const std::int32_t far =
-        m_far >= 0 && m_far < mesh.num_nodes() ? comp[static_cast<std::size_t>(m_far)] : -1;
+    const std::int32_t far = m_b->far >= 0 && m_b->far < mesh.num_nodes()
+                                 ? comp[static_cast<std::size_t>(m_b->far)]
+                                 : -1;
     m_in_specimen.assign(comp.size(), 0);
     for (std::size_t v = 0; v < comp.size(); ++v) m_in_specimen[v] = far >= 0 && comp[v] == far;
     m_pieces_stale = false;
   }
-  if (m_steps[kExtract].done) return;
+  if (m_b->steps[kExtract].done) return;
   Vec3 centre = Vec3::Zero();
   std::size_t count = 0;
   for (std::size_t v = 0; v < m_in_specimen.size(); ++v)
@@ -194,12 +196,12 @@ void ProcedureSteps::follow_specimen(const SimState& state, double time_s,
   if (count == 0) return;
   centre /= static_cast<double>(count);
   const std::int64_t tool = holder(state);
-  if ((centre - m_freed_at).norm() >= kExtractDistance) {
+  if ((centre - m_b->freed_at).norm() >= kExtractDistance) {
     mark(kExtract, time_s, tool);
     return;
   }
-  if (tool < 0 && !m_dropped) {
-    m_dropped = true;
+  if (tool < 0 && !m_b->dropped) {
+    m_b->dropped = true;
     errors.add({ProcedureError::Kind::kSpecimenDropped, time_s, centre});
   }
 }
@@ -215,19 +217,20 @@ std::int64_t ProcedureSteps::holder(const SimState& state) const {
 }
 
 void ProcedureSteps::mark(Index i, double time_s, std::int64_t tool) {
-  m_steps[i].done = true;
-  m_steps[i].time_s = time_s;
-  m_steps[i].tool = tool;
+  m_b->steps[i].done = true;
+  m_b->steps[i].time_s = time_s;
+  m_b->steps[i].tool = tool;
 }
 
 bool ProcedureSteps::completed() const {
-  return std::all_of(m_steps.begin(), m_steps.end(), [](const ProcedureStep& s) { return s.done; });
+  return std::all_of(m_b->steps.begin(), m_b->steps.end(),
+                     [](const ProcedureStep& s) { return s.done; });
 }
 
 void ProcedureSteps::report(nlohmann::json& metrics) const {
   if (!m_on) return;
   nlohmann::json steps = nlohmann::json::array();
-  for (const ProcedureStep& s : m_steps) {
+  for (const ProcedureStep& s : m_b->steps) {
     nlohmann::json j{{"name", s.name}, {"done", s.done}};
     j["time_s"] = s.done ? nlohmann::json(s.time_s) : nlohmann::json(nullptr);
     j["tool"] = s.tool >= 0 && static_cast<std::size_t>(s.tool) < m_tools.size()
@@ -237,39 +240,11 @@ void ProcedureSteps::report(nlohmann::json& metrics) const {
   }
   metrics["procedure"] = {{"steps", std::move(steps)},
                           {"completed", completed()},
-                          {"specimen_volume_fraction", m_fraction}};
+                          {"specimen_volume_fraction", m_b->fraction}};
 }
 
-void ProcedureSteps::save(StateWriter& out) const {
-  if (!m_on) return;
-  for (const ProcedureStep& s : m_steps) {
-    out.u8(s.done ? 1 : 0);
-    out.f64(s.time_s);
-    out.u64(static_cast<std::uint64_t>(s.tool));
-  }
-  out.u8(m_ready ? 1 : 0);
-  for (int k = 0; k < 3; ++k) out.f64(m_origin(k));
-  out.u64(static_cast<std::uint64_t>(static_cast<std::int64_t>(m_far)));
-  out.f64(m_volume);
-  for (int k = 0; k < 3; ++k) out.f64(m_freed_at(k));
-  out.f64(m_fraction);
-  out.u8(m_dropped ? 1 : 0);
-}
-
-void ProcedureSteps::restore(StateReader& in) {
-  if (!m_on) return;
-  for (ProcedureStep& s : m_steps) {
-    s.done = in.u8() != 0;
-    s.time_s = in.f64();
-    s.tool = static_cast<std::int64_t>(in.u64());
-  }
-  m_ready = in.u8() != 0;
-  for (int k = 0; k < 3; ++k) m_origin(k) = in.f64();
-  m_far = static_cast<std::int32_t>(static_cast<std::int64_t>(in.u64()));
-  m_volume = in.f64();
-  for (int k = 0; k < 3; ++k) m_freed_at(k) = in.f64();
-  m_fraction = in.f64();
-  m_dropped = in.u8() != 0;
+void ProcedureSteps::adopt() {
+  for (std::size_t i = 0; i < m_b->steps.size(); ++i) m_b->steps[i].name = kProcedureSteps[i];
   m_version = ~0ull;
   m_pieces_stale = true;
 }

@@ -25,15 +25,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/bound_block.h"
 #include "engine/math.h"
+#include "engine/metrics_block.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"
 #include "metrics/procedure_errors.h"
-
-namespace serosa {
-class StateWriter;
-class StateReader;
-}  // namespace serosa
 
 namespace serosa::metrics {
 
@@ -48,12 +45,7 @@ struct ProcedureGroupIds {
   std::vector<int> mesentery;  ///< the fold's groups: the mesentery's and its artery's
 };
 
-struct ProcedureStep {
-  std::string_view name;  ///< "expose", "divide_mesentery", ...
-  bool done = false;
-  double time_s = 0.0;     ///< when it was done (end of that step), s
-  std::int64_t tool = -1;  ///< the tool that did it (index into Scene::tools); -1: none known
-};
+using serosa::ProcedureStep;
 
 class ProcedureSteps {
  public:
@@ -66,17 +58,21 @@ class ProcedureSteps {
   void step(double time_s, const SimState& state, ProcedureErrors& errors);
 
   [[nodiscard]] const std::array<ProcedureStep, kProcedureSteps.size()>& steps() const noexcept {
-    return m_steps;
+    return m_b->steps;
   }
   [[nodiscard]] bool completed() const;
   /// The freed specimen's share of the specimen group's rest volume (0 before the transection).
-  [[nodiscard]] double specimen_fraction() const noexcept { return m_fraction; }
+  [[nodiscard]] double specimen_fraction() const noexcept { return m_b->fraction; }
   /// metrics["procedure"] = {"steps": [{"name", "done", "time_s", "tool"}], "completed",
   /// "specimen_volume_fraction"}.
   void report(nlohmann::json& metrics) const;
 
-  void save(StateWriter& out) const;
-  void restore(StateReader& in);
+  /// Reads and writes the SimState block `b` from now on (engine/bound_block.h).
+  void bind(StepsBlock& b) noexcept { m_b.bind(b); }
+  /// The bound block was restored: names its steps and drops the caches taken from the mesh.
+  void adopt();
+  /// The zero block it starts a state's from.
+  [[nodiscard]] const StepsBlock& unbound_block() const noexcept { return m_b.unbound(); }
 
  private:
   enum Index : std::size_t { kExpose, kDivide, kSecure, kTransect, kExtract };
@@ -94,22 +90,13 @@ class ProcedureSteps {
   bool m_on = false;
   ProcedureGroupIds m_ids;
   std::vector<std::string> m_tools;
-  std::array<ProcedureStep, kProcedureSteps.size()> m_steps;
   double m_time = 0.0;  // the step being looked at, s
-  // From the first step's mesh (saved):
-  bool m_ready = false;
-  Vec3 m_origin = Vec3::Zero();  // rest: the mean of the nodes the specimen shares with the base
-  std::int32_t m_far = -1;       // the specimen's node farthest from there at rest
-  double m_volume = 0.0;         // the specimen group's rest volume, m^3
-  // After the transection (saved):
-  Vec3 m_freed_at = Vec3::Zero();  // where the specimen was freed (the cut's centre), m
-  double m_fraction = 0.0;
-  bool m_dropped = false;
-  // Caches (rebuilt):
+  // Caches (rebuilt after a restore: adopt()):
   std::uint64_t m_version = ~0ull;          // topology the node roles were taken from
   std::vector<std::uint8_t> m_role;         // (n) bit 0: specimen node, bit 1: base node
   std::vector<std::uint8_t> m_in_specimen;  // (n) 1: in the freed specimen's piece
   bool m_pieces_stale = true;
+  BoundBlock<StepsBlock> m_b;  // its block of the state
 };
 
 }  // namespace serosa::metrics

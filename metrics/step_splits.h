@@ -15,19 +15,12 @@
 
 #include <nlohmann/json.hpp>
 
-namespace serosa {
-class StateWriter;
-class StateReader;
-}  // namespace serosa
+#include "engine/bound_block.h"
+#include "engine/metrics_block.h"
 
 namespace serosa::metrics {
 
-struct StepSplit {
-  double duration_s = 0.0;     ///< s
-  std::vector<double> path_m;  ///< (tools) m
-  double idle_s = 0.0;         ///< s
-  [[nodiscard]] double hand_path_m(const std::vector<std::uint8_t>& hand) const;
-};
+using serosa::StepSplit;
 
 class StepSplits {
  public:
@@ -36,31 +29,32 @@ class StepSplits {
   /// 1 for a hand instrument (not the endoscope).
   StepSplits(std::size_t steps, std::vector<std::string> tools, std::vector<std::uint8_t> hand);
 
-  [[nodiscard]] bool active() const noexcept { return !m_done.empty(); }
+  [[nodiscard]] bool active() const noexcept { return !m_b->done.empty(); }
   /// Adds one solver step: each tip's move (m, (tools)), whether every hand was idle, its dt (s).
   void add(const std::vector<double>& moved, bool idle, double dt_s);
   /// Step `step` was just done: the open split is its own, and a new one opens.
   void close(std::size_t step);
 
-  [[nodiscard]] const StepSplit& split(std::size_t step) const { return m_done[step]; }
-  [[nodiscard]] const StepSplit& open() const noexcept { return m_open; }
+  [[nodiscard]] const StepSplit& split(std::size_t step) const { return m_b->done[step]; }
+  [[nodiscard]] const StepSplit& open() const noexcept { return m_b->open; }
   /// The hand instruments' path in the split, m.
-  [[nodiscard]] double hand_path_m(const StepSplit& s) const { return s.hand_path_m(m_hand); }
+  [[nodiscard]] double hand_path_m(const StepSplit& s) const;
 
   /// Adds each split's figures to metrics["procedure"]["steps"][i], and the open one as
   /// metrics["procedure"]["after_last_step"].
   void report(nlohmann::json& metrics) const;
 
-  void save(StateWriter& out) const;
-  void restore(StateReader& in);
+  /// Reads and writes the SimState block `b` from now on (engine/bound_block.h).
+  void bind(SplitsBlock& b) noexcept { m_b.bind(b); }
+  /// The zero block it starts a state's from.
+  [[nodiscard]] const SplitsBlock& unbound_block() const noexcept { return m_b.unbound(); }
 
  private:
   [[nodiscard]] nlohmann::json json(const StepSplit& s) const;
 
   std::vector<std::string> m_tools;
   std::vector<std::uint8_t> m_hand;  // (tools)
-  std::vector<StepSplit> m_done;     // (steps) each step's split; zero until it is done
-  StepSplit m_open;                  // since the last step done
+  BoundBlock<SplitsBlock> m_b;       // its block of the state
 };
 
 }  // namespace serosa::metrics

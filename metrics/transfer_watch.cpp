@@ -2,8 +2,6 @@
 
 #include <algorithm>
 
-#include "engine/state_codec.h"
-
 namespace serosa::metrics {
 
 TransferWatch::TransferWatch(int group, Vec3 target, double radius, Vec3 up)
@@ -38,60 +36,40 @@ void TransferWatch::step(double time_s, const SimState& state) {
   if (!m_on) return;
   refresh_nodes(state.mesh);
   if (m_nodes.empty()) return;
-  m_centre.setZero();
-  for (std::int32_t v : m_nodes) m_centre += state.mesh.x[static_cast<std::size_t>(v)];
-  m_centre /= static_cast<double>(m_nodes.size());
+  m_b->centre.setZero();
+  for (std::int32_t v : m_nodes) m_b->centre += state.mesh.x[static_cast<std::size_t>(v)];
+  m_b->centre /= static_cast<double>(m_nodes.size());
   find_holders(state, m_now);
-  if (m_now.empty() && !m_holders.empty() && error_m() > m_radius) {
-    ++m_drops;
-    m_drop_times.push_back(time_s);
+  if (m_now.empty() && !m_b->holders.empty() && error_m() > m_radius) {
+    ++m_b->drops;
+    m_b->drop_times.push_back(time_s);
   }
   if (m_now.size() == 1) {
     // Held by one grasper: another's if it came from a hold both shared (no let-go between).
-    const bool shared = m_holders.size() >= 2 &&
-                        std::find(m_holders.begin(), m_holders.end(), m_now[0]) != m_holders.end();
-    if (shared && m_sole >= 0 && m_sole != m_now[0]) ++m_handoffs;
-    m_sole = m_now[0];
+    const bool shared =
+        m_b->holders.size() >= 2 &&
+        std::find(m_b->holders.begin(), m_b->holders.end(), m_now[0]) != m_b->holders.end();
+    if (shared && m_b->sole >= 0 && m_b->sole != m_now[0]) ++m_b->handoffs;
+    m_b->sole = m_now[0];
   } else if (m_now.empty()) {
-    m_sole = -1;
+    m_b->sole = -1;
   }
-  m_holders = m_now;
+  m_b->holders = m_now;
 }
 
 bool TransferWatch::placed() const {
-  return m_on && m_holders.empty() && error_m() <= m_radius &&
-         (m_centre - m_target).dot(m_up) <= m_radius;
+  return m_on && m_b->holders.empty() && error_m() <= m_radius &&
+         (m_b->centre - m_target).dot(m_up) <= m_radius;
 }
 
 void TransferWatch::report(nlohmann::json& metrics) const {
   if (!m_on) return;
   nlohmann::json& j = metrics["transfer"];
-  j["handoffs"] = m_handoffs;
-  j["drops"] = m_drops;
-  j["drop_times_s"] = m_drop_times;
+  j["handoffs"] = m_b->handoffs;
+  j["drops"] = m_b->drops;
+  j["drop_times_s"] = m_b->drop_times;
   j["placed"] = placed();
   j["placement_error_m"] = error_m();
-}
-
-void TransferWatch::save(StateWriter& out) const {
-  if (!m_on) return;
-  for (int k = 0; k < 3; ++k) out.f64(m_centre(k));
-  out.array(m_holders);
-  out.u64(static_cast<std::uint64_t>(m_sole));
-  out.u64(static_cast<std::uint64_t>(m_handoffs));
-  out.u64(static_cast<std::uint64_t>(m_drops));
-  out.array(m_drop_times);
-}
-
-void TransferWatch::restore(StateReader& in) {
-  if (!m_on) return;
-  for (int k = 0; k < 3; ++k) m_centre(k) = in.f64();
-  in.array(m_holders);
-  m_sole = static_cast<std::int64_t>(in.u64());
-  m_handoffs = static_cast<int>(in.u64());
-  m_drops = static_cast<int>(in.u64());
-  in.array(m_drop_times);
-  m_version = ~0ull;
 }
 
 }  // namespace serosa::metrics

@@ -19,13 +19,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/bound_block.h"
 #include "engine/math.h"
+#include "engine/metrics_block.h"
 #include "engine/sim_state.h"
-
-namespace serosa {
-class StateWriter;
-class StateReader;
-}  // namespace serosa
 
 namespace serosa::metrics {
 
@@ -39,16 +36,20 @@ class TransferWatch {
   /// Looks at the end of a solver step (time_s).
   void step(double time_s, const SimState& state);
 
-  [[nodiscard]] int handoffs() const noexcept { return m_handoffs; }
-  [[nodiscard]] int drops() const noexcept { return m_drops; }
+  [[nodiscard]] int handoffs() const noexcept { return m_b->handoffs; }
+  [[nodiscard]] int drops() const noexcept { return m_b->drops; }
   [[nodiscard]] bool placed() const;
-  [[nodiscard]] double error_m() const { return across(m_centre - m_target).norm(); }
+  [[nodiscard]] double error_m() const { return across(m_b->centre - m_target).norm(); }
 
   /// metrics["transfer"] = {"handoffs", "drops", "drop_times_s", "placed",
   /// "placement_error_m"}.
   void report(nlohmann::json& metrics) const;
-  void save(StateWriter& out) const;
-  void restore(StateReader& in);
+  /// Reads and writes the SimState block `b` from now on (engine/bound_block.h).
+  void bind(TransferBlock& b) noexcept { m_b.bind(b); }
+  /// The bound block was restored: drops the caches taken from the mesh.
+  void adopt() noexcept { m_version = ~0ull; }
+  /// The zero block it starts a state's from.
+  [[nodiscard]] const TransferBlock& unbound_block() const noexcept { return m_b.unbound(); }
 
  private:
   [[nodiscard]] Vec3 across(const Vec3& d) const { return d - d.dot(m_up) * m_up; }
@@ -60,17 +61,12 @@ class TransferWatch {
   int m_group = -1;
   Vec3 m_target = Vec3::Zero(), m_up = Vec3::UnitZ();
   double m_radius = 0.0;
-  // Followed (saved):
-  Vec3 m_centre = Vec3::Zero();         // the object's centre now, m
-  std::vector<std::int64_t> m_holders;  // the graspers holding it now
-  std::int64_t m_sole = -1;             // the last grasper that held it alone; -1: none yet
-  int m_handoffs = 0, m_drops = 0;
-  std::vector<double> m_drop_times;  // s
-  // Caches (rebuilt):
+  // Caches (rebuilt after a restore: adopt()):
   std::uint64_t m_version = ~0ull;
   std::vector<std::uint8_t> m_in_object;  // (n) 1: a node of the object
   std::vector<std::int32_t> m_nodes;      // the object's nodes
   std::vector<std::int64_t> m_now;        // scratch: this step's holders
+  BoundBlock<TransferBlock> m_b;          // its block of the state
 };
 
 }  // namespace serosa::metrics

@@ -16,11 +16,11 @@
 #include "engine/instrument_hold.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"
-#include "engine/state_codec.h"
 #include "engine/tissue_stress.h"
 #include "engine/tool_geometry.h"
 #include "fem/fem_stage.h"
 #include "metrics/metrics_stage.h"
+#include "support/block_copy.h"
 #include "support/test_meshes.h"
 
 namespace serosa::app {
@@ -150,10 +150,8 @@ TEST(Metrics, PeakStressFollowsATopologyChangeAndARestore) {
   deform(other.mesh, rng, 1e-3);
   MetricsStage restored(scene, table);
   restored.step({0, 0.0, 0.005}, first);
-  StateWriter out;
-  MetricsStage(scene, table).save(out);
-  StateReader in(out.bytes(), "metrics snapshot");
-  restored.restore(in, other);
+  other.blocks.metrics = {};  // a snapshot taken before the first step
+  restored.adopt(other);
   restored.step({1, 0.005, 0.005}, other);
   EXPECT_EQ(restored.peak_stress_pa(), peak_per_tet(other.mesh, table));
 }
@@ -334,17 +332,14 @@ TEST(Grasper, LiftingHarderThanTheTissueBearsCountsATear) {
   EXPECT_FALSE(run_with("").contains("tears"));
 }
 
-// The stage with the haptic loop's reactions on, taking over `from`'s grasps (a snapshot).
+// The stage with the haptic loop's reactions on, taking over `from`'s grasps (the run's state's).
 std::unique_ptr<contact::ToolContactStage> reacting_copy(const BeamRun& run,
                                                          const contact::ToolContactStage* from) {
   auto probe = std::make_unique<contact::ToolContactStage>(
       run.scene, lame_table(run.scene, run.assembled), contact::ContactOutputs{true, false});
   if (from != nullptr) {
-    StateWriter out;
-    from->save(out);
     SimState copy = run.assembled.state;
-    StateReader in(out.bytes(), "grasps");
-    probe->restore(in, copy);
+    probe->adopt(copy);
   }
   return probe;
 }

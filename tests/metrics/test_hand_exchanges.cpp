@@ -7,8 +7,8 @@
 #include <random>
 
 #include "engine/instrument_hold.h"
-#include "engine/state_codec.h"
 #include "metrics/hand_exchanges.h"
+#include "support/block_copy.h"
 
 namespace serosa::metrics {
 namespace {
@@ -74,13 +74,13 @@ TEST(HandExchanges, ASnapshotRestoresTheWholeAccount) {
   };
   for (int trial = 0; trial < 200; ++trial) {
     HandExchanges a;
+    ExchangesBlock state_a;
+    a.bind(state_a);
     for (int k = 1; k <= 20; ++k)
       a.step(k * 0.005, 0.005, hands(random_hand(), random_hand(), random_hand(), pick(rng) == 0));
-    StateWriter out;
-    a.save(out);
     HandExchanges b;
-    StateReader in(out.bytes(), "exchanges");
-    b.restore(in);
+    ExchangesBlock state_b = test_blocks::copy(state_a);
+    b.bind(state_b);
     for (int k = 21; k <= 40; ++k) {
       const auto t = hands(random_hand(), random_hand(), random_hand(), pick(rng) == 0);
       a.step(k * 0.005, 0.005, t);

@@ -8,8 +8,8 @@
 #include <cmath>
 
 #include "engine/sim_state.h"
-#include "engine/state_codec.h"
 #include "metrics/metrics_stage.h"
+#include "support/block_copy.h"
 
 namespace serosa::metrics {
 namespace {
@@ -67,20 +67,20 @@ TEST(IdleTime, ARestoredStageGoesOnAsTheUninterruptedOne) {
   const LameTable table;
   MetricsStage whole(one_grasper(), table);
   MetricsStage first(one_grasper(), table);
-  SimState s;
+  SimState s, cut_short;  // the uninterrupted run's state, and the one stopped at 190 steps
   for (std::uint64_t k = 0; k < 300; ++k) {
     s.tools = {input(k, 0.02, 25, 1.0)};
     whole.step({k, static_cast<double>(k) * kDt, kDt}, s);
-    if (k < 190) first.step({k, static_cast<double>(k) * kDt, kDt}, s);
+    cut_short.tools = s.tools;
+    if (k < 190) first.step({k, static_cast<double>(k) * kDt, kDt}, cut_short);
   }
-  StateWriter out;
-  first.save(out);
+  SimState r;
+  r.blocks.metrics = test_blocks::copy(cut_short.blocks.metrics);
   MetricsStage restored(one_grasper(), table);
-  StateReader in(out.bytes(), "metrics snapshot");
-  restored.restore(in, s);
+  restored.adopt(r);
   for (std::uint64_t k = 190; k < 300; ++k) {
-    s.tools = {input(k, 0.02, 25, 1.0)};
-    restored.step({k, static_cast<double>(k) * kDt, kDt}, s);
+    r.tools = {input(k, 0.02, 25, 1.0)};
+    restored.step({k, static_cast<double>(k) * kDt, kDt}, r);
   }
   EXPECT_GT(whole.idle_time_s(), 0.2);  // it stopped at 1 s, inside the window at the snapshot
   EXPECT_EQ(restored.idle_time_s(), whole.idle_time_s());

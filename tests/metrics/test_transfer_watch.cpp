@@ -8,8 +8,8 @@
 
 #include "engine/kuhn_grid.h"
 #include "engine/sim_state.h"
-#include "engine/state_codec.h"
 #include "metrics/transfer_watch.h"
+#include "support/block_copy.h"
 
 namespace serosa::metrics {
 namespace {
@@ -111,11 +111,9 @@ TEST(TransferWatch, RandomGraspSequencesCountAsTheRulesSay) {
     }
     ASSERT_EQ(w.handoffs(), handoffs) << "trial " << trial;
     ASSERT_EQ(w.drops(), drops) << "trial " << trial;
-    StateWriter out;
-    w.save(out);
     TransferWatch back(kBead, kTarget, kRadius, Vec3::UnitZ());
-    StateReader in(out.bytes(), "transfer");
-    back.restore(in);
+    TransferBlock restored = test_blocks::copy(w.unbound_block());  // (w was never bound)
+    back.bind(restored);
     EXPECT_EQ(back.handoffs(), handoffs);
     EXPECT_EQ(back.drops(), drops);
     EXPECT_EQ(back.placed(), w.placed());
