@@ -99,6 +99,17 @@ std::vector<std::uint8_t> Runner::snapshot(const SimState& state) const {
   return std::move(out.bytes());
 }
 
+std::uint32_t snapshot_version() noexcept { return kSnapshotVersion; }
+
+std::uint32_t snapshot_version(std::span<const std::uint8_t> snapshot) noexcept {
+  std::uint32_t v = 0;
+  if (snapshot.size() < sizeof kSnapshotMagic + sizeof v ||
+      std::memcmp(snapshot.data(), kSnapshotMagic, sizeof kSnapshotMagic) != 0)
+    return 0;
+  std::memcpy(&v, snapshot.data() + sizeof kSnapshotMagic, sizeof v);
+  return v;
+}
+
 std::vector<SnapshotSection> snapshot_sections(std::span<const std::uint8_t> snapshot,
                                                const std::string& what) {
   StateReader in(snapshot, what);

@@ -43,6 +43,10 @@ struct SnapshotSection {
 };
 
 /// The parts of a snapshot (Runner::snapshot), checked; throws InputError naming `what`.
+/// The snapshot version this build writes and reads.
+[[nodiscard]] std::uint32_t snapshot_version() noexcept;
+/// The version `snapshot` was written with; 0 when the bytes are not a snapshot.
+[[nodiscard]] std::uint32_t snapshot_version(std::span<const std::uint8_t> snapshot) noexcept;
 [[nodiscard]] std::vector<SnapshotSection> snapshot_sections(std::span<const std::uint8_t> snapshot,
                                                              const std::string& what);
 

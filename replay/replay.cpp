@@ -23,6 +23,7 @@
 #include "engine/scene.h"
 #include "engine/sim_state.h"
 #include "metrics/metrics_stage.h"
+#include "replay/old_snapshots.h"
 
 namespace serosa::replay {
 
@@ -83,7 +84,8 @@ ReplayResult run_replay(const ReplayOptions& options) {
   if (options.report) check_output_file("--report", *options.report);
   if (options.frames) check_output_folder("--frames", *options.frames);
   const std::string file = options.recording.string();
-  const recording::Recording rec = recording::read_recording(options.recording);
+  recording::Recording rec = recording::read_recording(options.recording);
+  const std::optional<RunWarning> old_snapshots = drop_old_snapshots(rec, file);
   const std::string scene_path = rec.header.get("scene_path");
   const std::string scene_text = rec.header.get("scene_text");
   if (scene_path.empty() || scene_text.empty())
@@ -124,6 +126,10 @@ ReplayResult run_replay(const ReplayOptions& options) {
   driven.scene_record = false;
   Simulation sim(scene, driven, std::move(hooks));
   std::vector<RunWarning> warnings;
+  if (old_snapshots) {
+    warnings.push_back(*old_snapshots);
+    print_warnings(warnings);
+  }
   if (options.from_s) {
     const auto* snap = snapshot_before(rec, *options.from_s, scene.settings.dt_s);
     if (snap == nullptr) {
@@ -133,9 +139,10 @@ ReplayResult run_replay(const ReplayOptions& options) {
       sim.restore(snap->second, file + ": snapshot after step " + std::to_string(snap->first));
       result.start_step = snap->first;
     }
-    warnings = from_warnings(file, *options.from_s, rec.inputs.size(), scene.settings.dt_s,
-                             result.start_step);
-    print_warnings(warnings);
+    std::vector<RunWarning> past_end = from_warnings(file, *options.from_s, rec.inputs.size(),
+                                                     scene.settings.dt_s, result.start_step);
+    print_warnings(past_end);
+    warnings.insert(warnings.end(), past_end.begin(), past_end.end());
   }
 
   const SimState& state = sim.state();

@@ -4,10 +4,13 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <spdlog/spdlog.h>
+
 #include "app/compose.h"
 #include "app/simulation.h"
 #include "engine/input_error.h"
 #include "engine/record_stage.h"
+#include "replay/old_snapshots.h"
 
 namespace serosa::replay {
 
@@ -17,6 +20,7 @@ ReplayController::ReplayController(const std::filesystem::path& recording,
                                    ReplayControllerOptions options)
     : m_rec(recording::read_recording(recording)), m_options(options), m_path(recording) {
   const std::string file = recording.string();
+  if (const auto old = drop_old_snapshots(m_rec, file)) spdlog::warn("{}", old->text);
   const std::string scene_path = m_rec.header.get("scene_path");
   const std::string scene_text = m_rec.header.get("scene_text");
   if (scene_path.empty() || scene_text.empty())

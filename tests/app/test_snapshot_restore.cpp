@@ -14,6 +14,8 @@
 #include "app/headless.h"
 #include "app_test_util.h"
 #include "engine/input_error.h"
+#include "engine/recording_reader.h"
+#include "engine/recording_writer.h"
 #include "engine/sim_state.h"
 #include "replay/replay.h"
 
@@ -170,6 +172,35 @@ TEST(Snapshot, ReplayFromATimeStartsAtTheSnapshotBeforeItAndVerifies) {
   EXPECT_EQ(r0.start_step, 0u);
   EXPECT_EQ(r0.steps, kSteps);
   EXPECT_TRUE(r0.report["verify"]["ok"].get<bool>());
+
+  // The same run as a build that wrote snapshot version 5 recorded it: the snapshots are skipped
+  // and said so, the replay starts from step 0 and verifies the recorded hashes.
+  const recording::Recording rec = recording::read_recording(*h.record);
+  const fs::path old = dir / "old.lapr";
+  {
+    recording::RecordingWriter w(old, rec.header);
+    for (std::uint64_t k = 0; k < rec.inputs.size(); ++k) {
+      w.record_inputs(k, rec.inputs[k]);
+      if (const auto it = rec.hashes.find(k); it != rec.hashes.end()) w.record_hash(k, it->second);
+      if (const auto it = rec.snapshots.find(k + 1); it != rec.snapshots.end()) {
+        std::vector<std::uint8_t> v5 = it->second;
+        v5[4] = 5;  // the version, after "SNAP"
+        w.record_snapshot(k + 1, v5);
+      }
+    }
+    w.close(rec.inputs.size());
+  }
+  o.recording = old;
+  o.from_s = 3.5;
+  const ReplayResult r5 = run_replay(o);
+  EXPECT_EQ(r5.start_step, 0u);
+  EXPECT_EQ(r5.snapshots_checked, 0u);
+  EXPECT_GT(r5.hashes_checked, 0u);
+  EXPECT_TRUE(r5.report["verify"]["ok"].get<bool>());
+  ASSERT_TRUE(r5.report.contains("warnings"));
+  EXPECT_EQ(r5.report["warnings"][0]["kind"], "old_snapshots");
+  EXPECT_NE(r5.report["warnings"][0]["text"].get<std::string>().find("version 5"),
+            std::string::npos);
 }
 
 }  // namespace
