@@ -85,11 +85,6 @@ std::vector<std::uint8_t> Runner::snapshot(const SimState& state) const {
     put(w, block);
     blocks.emplace_back(name, std::move(w));
   });
-  for (const Entry& e : m_entries) {
-    StateWriter block;
-    e.stage->save(block);
-    if (block.size() > 0) blocks.emplace_back(std::string(e.stage->name()), std::move(block));
-  }
   out.u32(static_cast<std::uint32_t>(blocks.size()));
   for (auto& [name, block] : blocks) {
     out.string(name);
@@ -152,19 +147,9 @@ void Runner::restore(std::span<const std::uint8_t> snapshot, SimState& state,
     if (in.left() != 0) in.fail("bytes after the block's last field");
     blocks.erase(it);
   });
+  if (!blocks.empty())
+    throw InputError(what, 0, "a block this build does not know: '" + blocks.begin()->first + "'");
   state = std::move(restored);
-  // Every stage reads its block; a stage that keeps state and finds none fails on its first read
-  // (a snapshot of another composition). Blocks of stages not built here (the session's haptic
-  // loop, in a replay) are left alone.
-  for (Entry& e : m_entries) {
-    const std::string name(e.stage->name());
-    const auto it = blocks.find(name);
-    const std::span<const std::uint8_t> bytes =
-        it == blocks.end() ? std::span<const std::uint8_t>{} : it->second;
-    StateReader in(bytes, what + ": stage '" + name + "'");
-    e.stage->restore(in, state);
-    if (in.left() != 0) in.fail("the stage left bytes of its block unread");
-  }
   for (Entry& e : m_entries) {
     try {
       e.stage->adopt(state);

@@ -35,18 +35,18 @@ enum class Slot : std::uint8_t {
   record,   ///< what the step consumed, and state hashes, to a recording (or checked: verify)
 };
 
-/// One part of a snapshot: "state" (SimState) or a stage's block, by byte range.
+/// One part of a snapshot: "state" (SimState without its blocks) or a block, by byte range.
 struct SnapshotSection {
   std::string name;
   std::size_t offset = 0;
   std::size_t size = 0;
 };
 
-/// The parts of a snapshot (Runner::snapshot), checked; throws InputError naming `what`.
 /// The snapshot version this build writes and reads.
 [[nodiscard]] std::uint32_t snapshot_version() noexcept;
 /// The version `snapshot` was written with; 0 when the bytes are not a snapshot.
 [[nodiscard]] std::uint32_t snapshot_version(std::span<const std::uint8_t> snapshot) noexcept;
+/// The parts of a snapshot (Runner::snapshot), checked; throws InputError naming `what`.
 [[nodiscard]] std::vector<SnapshotSection> snapshot_sections(std::span<const std::uint8_t> snapshot,
                                                              const std::string& what);
 
@@ -71,11 +71,11 @@ class Runner {
   /// Takes n steps.
   void run(SimState& state, std::uint64_t n);
 
-  /// The whole state after the last step: SimState and each stage's block, as bytes
+  /// The whole state after the last step, SimState with its blocks, as bytes
   /// (engine/state_codec.h). Between steps only (no cut in flight).
   [[nodiscard]] std::vector<std::uint8_t> snapshot(const SimState& state) const;
-  /// Restores a snapshot into `state` and into this runner's stages, which must be freshly built
-  /// for the scene it was taken from: each stage that keeps a block gets its own back (by name).
+  /// Restores a snapshot into `state`, then lets every stage adopt it (Stage::adopt: checks its
+  /// block, rebuilds its caches) — stages built for the scene it was taken from, fresh or not.
   /// Throws InputError naming `what` when the bytes are damaged or do not fit these stages.
   void restore(std::span<const std::uint8_t> snapshot, SimState& state, const std::string& what);
   /// Writes a snapshot to `writer` every `every_steps` steps (0: never), at the end of the step:

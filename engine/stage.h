@@ -10,8 +10,6 @@
 namespace serosa {
 
 struct SimState;
-class StateWriter;
-class StateReader;
 
 /// A restored block that does not fit the stage's scene or the restored mesh (Stage::adopt); the
 /// runner names the snapshot and the block and throws InputError.
@@ -30,12 +28,10 @@ struct StepContext {
 /// A stage holds its own read-only model (given at construction) and its private caches; each
 /// step it reads and writes the shared SimState. Stages never call each other.
 ///
-/// What a stage keeps from one step to the next that SimState does not hold and that cannot be
-/// derived from it (FEM's warm starts and factor schedule, a stroke in progress, grasp holds,
-/// metric sums) is its block of the whole state: save() writes it and restore() reads it back
-/// into a stage freshly built for the same scene, so that a restored run continues bit for bit
-/// (engine/state_codec.h, Runner::snapshot). Caches derived from SimState are not saved: a
-/// restored stage rebuilds them.
+/// What a stage carries from one step to the next that the mesh and the tools do not hold (FEM's
+/// warm starts and factor schedule, a stroke in progress, grasp holds, metric sums) is its block
+/// of the state, SimState::blocks (engine/state_blocks.h): the stage keeps nothing a restored
+/// state could not give back, and a snapshot is SimState alone (engine/state_codec.h).
 class Stage {
  public:
   virtual ~Stage() = default;
@@ -51,12 +47,6 @@ class Stage {
   /// Builds, before the first step and outside its time, what that step would build itself (FEM's
   /// matrix structure and first factor). Optional: a run gives the same bits without it.
   virtual void prepare(const StepContext& /*ctx*/, SimState& /*state*/) {}
-  /// Writes this stage's block of the whole state (nothing: a stage that keeps none).
-  virtual void save(StateWriter& /*out*/) const {}
-  /// Reads the block save() wrote, after `state` (restored; a stage may rebuild what it derives
-  /// into it, as FEM its masses) and before the next step. Throws
-  /// InputError (through the reader) when the block does not fit this stage.
-  virtual void restore(StateReader& /*in*/, SimState& /*state*/) {}
   /// The whole state was replaced (a snapshot restored): checks that this stage's block of it
   /// (SimState::blocks) fits the scene and the mesh, throwing BlockMismatch when it does not, and
   /// drops or rebuilds what the stage derives from the state (trees, tables, what it publishes in

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "engine/clip.h"
+#include "engine/fem_block.h"
 #include "engine/math.h"
 #include "engine/metrics_block.h"
 #include "engine/stapler.h"
@@ -169,6 +170,7 @@ struct CuttingBlock {
 
 /// Every stage's block, named as the stage is (its snapshot section).
 struct StageBlocks {
+  FemBlock fem;
   ContactBlock contact;
   ClipsBlock clips;
   CuttingBlock cutting;
@@ -178,8 +180,8 @@ struct StageBlocks {
   /// Each block with its name, in snapshot order.
   template <class S, class F>
   static void each_named(S& s, F&& f) {
-    f("contact", s.contact), f("clips", s.clips), f("cutting", s.cutting), f("metrics", s.metrics),
-        f("bleeding", s.bleeding), f("smoke", s.smoke);
+    f("fem", s.fem), f("contact", s.contact), f("clips", s.clips), f("cutting", s.cutting),
+        f("metrics", s.metrics), f("bleeding", s.bleeding), f("smoke", s.smoke);
   }
 };
 

@@ -5,12 +5,6 @@
 
 namespace serosa::fem {
 
-std::int64_t CsrMatrix::nnz() const {
-  std::int64_t s = 0;
-  for (std::int32_t n : row_nz) s += n;
-  return s;
-}
-
 namespace {
 template <class T>
 void resize_with_room(std::vector<T>& v, std::size_t n) {

@@ -1,30 +1,15 @@
-// CsrMatrix: a square sparse matrix in compressed sparse row form, the storage the implicit step
-// assembles into (pattern once per topology version, patched locally after a cut; values every
-// step) and both solvers read. Rows may be *unpacked*: row r holds row_nz[r] entries from
-// row_start[r], and the storage may hold unused slack between rows (room to grow after a cut
-// without moving every other row). For the symmetric system matrices used here the row arrays are
-// also a valid compressed-column view (CHOLMOD's unpacked form, p = row_start, nz = row_nz), which
-// is how CHOLMOD reads them without a copy.
+// Operations on CsrMatrix (engine/csr_matrix.h): packed copies and products.
 #pragma once
 
 #include <cstdint>
 #include <span>
 #include <vector>
 
+#include "engine/csr_matrix.h"
+
 namespace serosa::fem {
 
-struct CsrMatrix {
-  std::int32_t rows = 0;                ///< number of rows = columns (3n for n nodes)
-  std::vector<std::int32_t> row_start;  ///< (rows + 1) start of each row in col/val; [rows] = size
-  std::vector<std::int32_t> row_nz;     ///< (rows) entries used in each row
-  std::vector<std::int32_t> col;        ///< (storage) column of each entry, ascending within a row
-  std::vector<double> val;              ///< (storage) value of each entry
-
-  /// Entries in use (sum of row_nz).
-  [[nodiscard]] std::int64_t nnz() const;
-  /// Entries allocated, slack and unused gaps included.
-  [[nodiscard]] std::int64_t storage() const { return static_cast<std::int64_t>(col.size()); }
-};
+using serosa::CsrMatrix;
 
 /// to = from with its rows packed (no slack). to's buffers are reused, and grown with a quarter to
 /// spare when they must grow, so that copying a matrix that grows a little after each cut touches

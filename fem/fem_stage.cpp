@@ -6,14 +6,13 @@
 #include <utility>
 
 #include "engine/sim_state.h"
-#include "engine/state_codec.h"
 
 namespace serosa::fem {
 
 FemStage::FemStage(FemConfig config) : m_integrator(std::move(config)) {}
 
 void FemStage::take_cuts(SimState& state) {
-  if (!m_built) return;  // the first step builds everything anyway
+  if (!state.blocks.fem.stage_built) return;  // the first step builds everything anyway
   for (const CutEvent& cut : state.events.cuts) {
     if (cut.delta.version_before != m_seen_version) continue;  // seen, or not ours to follow
     m_integrator.update(state.mesh, cut.delta);
@@ -23,33 +22,30 @@ void FemStage::take_cuts(SimState& state) {
 }
 
 void FemStage::prepare(const StepContext& ctx, SimState& state) {
-  if (m_built && m_seen_version == state.mesh.topology_version) return;
+  m_integrator.bind(state.blocks.fem);
+  if (state.blocks.fem.stage_built && m_seen_version == state.mesh.topology_version) return;
   if (m_integrator.config().solver.threads > 0)
     omp_set_num_threads(m_integrator.config().solver.threads);
   m_integrator.prepare(state.mesh, ctx.dt_s);
   m_seen_version = state.mesh.topology_version;
-  m_built = true;
+  state.blocks.fem.stage_built = true;
   ++m_stats.rebuilds;
 }
 
-void FemStage::save(StateWriter& out) const {
-  out.u8(m_built ? 1 : 0);
-  m_integrator.save(out);
-}
-
-void FemStage::restore(StateReader& in, SimState& state) {
-  m_built = in.u8() != 0;
-  m_integrator.restore(in, state.mesh);
+void FemStage::adopt(SimState& state) {
+  m_integrator.bind(state.blocks.fem);
+  m_integrator.adopt(state.mesh);
   m_seen_version = state.mesh.topology_version;
 }
 
 void FemStage::step(const StepContext& ctx, SimState& state) {
+  m_integrator.bind(state.blocks.fem);
   take_cuts(state);
   if (state.events.nodes_moved) m_integrator.restart_energy_balance();
-  if (!m_built || m_seen_version != state.mesh.topology_version) {
+  if (!state.blocks.fem.stage_built || m_seen_version != state.mesh.topology_version) {
     m_integrator.rebuild(state.mesh);
     m_seen_version = state.mesh.topology_version;
-    m_built = true;
+    state.blocks.fem.stage_built = true;
     ++m_stats.rebuilds;
   }
   if (m_integrator.config().solver.threads > 0)

@@ -70,9 +70,9 @@ class FemStage final : public Stage {
   void step(const StepContext& ctx, SimState& state) override;
   /// The structure and the first factor (ImplicitIntegrator::prepare), before the first step.
   void prepare(const StepContext& ctx, SimState& state) override;
-  /// The integrator's block (ImplicitIntegrator::save).
-  void save(StateWriter& out) const override;
-  void restore(StateReader& in, SimState& state) override;
+  /// The integrator's part of the state is SimState::blocks.fem; a restored one is checked
+  /// against the mesh and the caches (elements, pattern, factors) are rebuilt for it.
+  void adopt(SimState& state) override;
 
   [[nodiscard]] const StepStatus& last_status() const noexcept { return m_last; }
   [[nodiscard]] const FemStageStats& stats() const noexcept { return m_stats; }
@@ -88,7 +88,6 @@ class FemStage final : public Stage {
   FemStageStats m_stats;
   std::uint64_t m_seen_version = 0;
   bool m_last_solve_converged = true;  ///< for the stats: the step before this one's solve
-  bool m_built = false;
 };
 
 }  // namespace serosa::fem

@@ -5,25 +5,28 @@
 #include <cmath>
 #include <utility>
 
+#include "engine/stage.h"
 #include "fem/block_system.h"
 #include "fem/elastic_forces.h"
 #include "fem/rotation.h"
 
 namespace serosa::fem {
 
-ImplicitIntegrator::ImplicitIntegrator(FemConfig config) : m_config(std::move(config)) {}
+ImplicitIntegrator::ImplicitIntegrator(FemConfig config) : m_config(std::move(config)) {
+  m_lagged.bind(m_b->lagged);  // its own schedule until a state's block is bound
+}
 
 void ImplicitIntegrator::rebuild_solver_structure(const TetMesh& mesh) {
   build_pattern(mesh, m_pattern, m_a);
   const auto n3 = static_cast<std::size_t>(3 * mesh.num_nodes());
   m_rhs.assign(n3, 0.0);
   m_pcg.r.assign(n3, 0.0);
-  m_dv.resize(n3, 0.0);
+  m_b->dv.resize(n3, 0.0);
   m_fe.resize(4 * static_cast<std::size_t>(mesh.num_tets()));
   m_rot.resize(static_cast<std::size_t>(mesh.num_tets()), Mat3::Identity());
   m_rg.resize(4 * static_cast<std::size_t>(mesh.num_tets()));
   m_analyzed = false;
-  ++m_structure;
+  ++m_b->structure;
   if (m_config.solver.kind == SolverKind::cholmod) m_analyzed = m_cholmod.analyze(m_a);
 }
 
@@ -49,13 +52,13 @@ void ImplicitIntegrator::reserve_for_cuts(TetMesh& mesh) {
   reserve_spare(m_el.node_mass, n);
   reserve_spare(m_el.node_damping, n);
   reserve_spare(mesh.mass, n);
-  reserve_spare(m_q, m);
-  reserve_spare(m_q_prev, m);
+  reserve_spare(m_b->q, m);
+  reserve_spare(m_b->q_prev, m);
   reserve_spare(m_rot, m);
   reserve_spare(m_scale, m);
   reserve_spare(m_rg, 4 * m);
   reserve_spare(m_fe, 4 * m);
-  for (std::vector<double>* v : {&m_rhs, &m_dv, &m_pcg.r, &m_pcg.z, &m_pcg.p, &m_pcg.ap})
+  for (std::vector<double>* v : {&m_rhs, &m_b->dv, &m_pcg.r, &m_pcg.z, &m_pcg.p, &m_pcg.ap})
     reserve_spare(*v, 3 * n);
 }
 
@@ -63,17 +66,18 @@ void ImplicitIntegrator::rebuild(TetMesh& mesh) {
   mesh.fill_node_state();
   build_elements(mesh, m_config, m_el);
   mesh.mass = m_el.node_mass;
-  m_q.assign(static_cast<std::size_t>(mesh.num_tets()), Quat::Identity());
-  m_q_prev = m_q;
-  m_plastic.clear();
-  m_dv.assign(3 * static_cast<std::size_t>(mesh.num_nodes()), 0.0);
+  m_b->q.assign(static_cast<std::size_t>(mesh.num_tets()), Quat::Identity());
+  m_b->q_prev = m_b->q;
+  m_b->plastic.clear();
+  m_b->dv.assign(3 * static_cast<std::size_t>(mesh.num_nodes()), 0.0);
   m_rot.assign(static_cast<std::size_t>(mesh.num_tets()), Mat3::Identity());
   m_lagged.clear();
-  m_changed.clear();
+  m_b->changed.clear();
   rebuild_solver_structure(mesh);
   reserve_for_cuts(mesh);
-  m_built = true;
-  m_energy_pending = false;
+  m_b->node_damping = m_el.node_damping;
+  m_b->built = true;
+  m_b->energy_pending = false;
 }
 
 void ImplicitIntegrator::prepare(TetMesh& mesh, double dt_s) {
@@ -81,23 +85,23 @@ void ImplicitIntegrator::prepare(TetMesh& mesh, double dt_s) {
   if (m_config.solver.kind != SolverKind::pcg_lagged) return;
   // The next step's own matrix: its element pass and assembly, without keeping what they change
   // of the warm starts (the step redoes them from the same start).
-  const std::vector<Quat> q = m_q, q_prev = m_q_prev;
-  if (m_config.plasticity.on) m_plastic.resize(mesh.tets.size(), Mat3::Zero());
+  const std::vector<Quat> q = m_b->q, q_prev = m_b->q_prev;
+  if (m_config.plasticity.on) m_b->plastic.resize(mesh.tets.size(), Mat3::Zero());
   m_blocks_fresh = m_csr_fresh = false;
   (void)element_pass(mesh, dt_s);
   (void)assemble_system(mesh, dt_s);
   update_node_rotations(mesh);
   update_free_mask(mesh);
-  m_lagged.factor_now(lagged_csr(mesh, dt_s), m_structure, m_node_rot, m_q, m_free);
+  m_lagged.factor_now(lagged_csr(mesh, dt_s), m_b->structure, m_node_rot, m_b->q, m_free);
   m_lagged.warm_up();
-  m_q = q;
-  m_q_prev = q_prev;
+  m_b->q = q;
+  m_b->q_prev = q_prev;
 }
 
 void ImplicitIntegrator::update(TetMesh& mesh, const TopologyDelta& delta) {
-  if (!m_built || m_el.topology_version != delta.version_before ||
+  if (!m_b->built || m_el.topology_version != delta.version_before ||
       m_pattern.topology_version != delta.version_before ||
-      mesh.topology_version != delta.version_after || m_el.elements.size() != m_q.size()) {
+      mesh.topology_version != delta.version_after || m_el.elements.size() != m_b->q.size()) {
     rebuild(mesh);
     return;
   }
@@ -119,42 +123,42 @@ void ImplicitIntegrator::update(TetMesh& mesh, const TopologyDelta& delta) {
   // Per-tet rotations follow the same slot rules; added tets start from their SVD polar factor.
   for (std::size_t k = 0; k < delta.slot_of_added.size(); ++k) {
     const auto slot = static_cast<std::size_t>(delta.slot_of_added[k]);
-    if (slot >= m_q.size()) {
-      m_q.resize(slot + 1);
-      m_q_prev.resize(slot + 1);
+    if (slot >= m_b->q.size()) {
+      m_b->q.resize(slot + 1);
+      m_b->q_prev.resize(slot + 1);
     }
     const TetElement& e = m_el.elements[slot];
     const Tet& n = mesh.tets[slot];
-    m_q[slot] = e.active() ? Quat(polar_rotation_svd(nodal_gradient(e, mesh.x[n[0]], mesh.x[n[1]],
-                                                                    mesh.x[n[2]], mesh.x[n[3]])))
-                           : Quat::Identity();
-    m_q_prev[slot] = m_q[slot];  // no rotation rate yet
+    m_b->q[slot] = e.active() ? Quat(polar_rotation_svd(nodal_gradient(
+                                    e, mesh.x[n[0]], mesh.x[n[1]], mesh.x[n[2]], mesh.x[n[3]])))
+                              : Quat::Identity();
+    m_b->q_prev[slot] = m_b->q[slot];  // no rotation rate yet
   }
   for (const auto& [from, to] : delta.moved_tets) {
-    m_q[static_cast<std::size_t>(to)] = m_q[static_cast<std::size_t>(from)];
-    m_q_prev[static_cast<std::size_t>(to)] = m_q_prev[static_cast<std::size_t>(from)];
+    m_b->q[static_cast<std::size_t>(to)] = m_b->q[static_cast<std::size_t>(from)];
+    m_b->q_prev[static_cast<std::size_t>(to)] = m_b->q_prev[static_cast<std::size_t>(from)];
   }
-  m_q.resize(static_cast<std::size_t>(mesh.num_tets()));
-  m_q_prev.resize(static_cast<std::size_t>(mesh.num_tets()));
+  m_b->q.resize(static_cast<std::size_t>(mesh.num_tets()));
+  m_b->q_prev.resize(static_cast<std::size_t>(mesh.num_tets()));
   // Plastic strain follows the same slots; new tets start without any.
-  if (!m_plastic.empty()) {
+  if (!m_b->plastic.empty()) {
     for (std::int32_t slot : delta.slot_of_added) {
-      if (static_cast<std::size_t>(slot) >= m_plastic.size())
-        m_plastic.resize(static_cast<std::size_t>(slot) + 1);
-      m_plastic[static_cast<std::size_t>(slot)].setZero();
+      if (static_cast<std::size_t>(slot) >= m_b->plastic.size())
+        m_b->plastic.resize(static_cast<std::size_t>(slot) + 1);
+      m_b->plastic[static_cast<std::size_t>(slot)].setZero();
     }
     for (const auto& [from, to] : delta.moved_tets)
-      m_plastic[static_cast<std::size_t>(to)] = m_plastic[static_cast<std::size_t>(from)];
-    m_plastic.resize(static_cast<std::size_t>(mesh.num_tets()), Mat3::Zero());
+      m_b->plastic[static_cast<std::size_t>(to)] = m_b->plastic[static_cast<std::size_t>(from)];
+    m_b->plastic.resize(static_cast<std::size_t>(mesh.num_tets()), Mat3::Zero());
   }
   m_lagged.relabel_tets(delta, static_cast<std::size_t>(mesh.num_tets()));
   // The nodes whose rows of A the cut changed (the lagged factor's patch, fem/lagged_factor.h).
-  m_changed.resize(static_cast<std::size_t>(mesh.num_nodes()), 1);
+  m_b->changed.resize(static_cast<std::size_t>(mesh.num_nodes()), 1);
   for (const Tet& t : m_removed)
-    for (std::int32_t i : t) m_changed[static_cast<std::size_t>(i)] = 1;
+    for (std::int32_t i : t) m_b->changed[static_cast<std::size_t>(i)] = 1;
   for (std::int32_t slot : delta.slot_of_added)
     for (std::int32_t i : mesh.tets[static_cast<std::size_t>(slot)])
-      m_changed[static_cast<std::size_t>(i)] = 1;
+      m_b->changed[static_cast<std::size_t>(i)] = 1;
   // Matrix pattern: only the rows of touched nodes and the blocks of tets around them.
   m_last_update = update_pattern(mesh, delta, m_removed, m_pattern, m_a);
   // Per-node and per-tet work arrays grow or shrink at their ends (new nodes: no warm start).
@@ -162,68 +166,47 @@ void ImplicitIntegrator::update(TetMesh& mesh, const TopologyDelta& delta) {
   const auto m = static_cast<std::size_t>(mesh.num_tets());
   m_rhs.resize(n3, 0.0);
   m_pcg.r.resize(n3, 0.0);
-  m_dv.resize(n3, 0.0);
+  m_b->dv.resize(n3, 0.0);
   m_fe.resize(4 * m);
   m_rot.resize(m, Mat3::Identity());
   m_rg.resize(4 * m);
   // A direct factor is global: CHOLMOD re-analyzes the new pattern; pcg_cholmod's background
   // factor is requested for the new structure by the next step.
   m_analyzed = false;
-  ++m_structure;
+  ++m_b->structure;
   if (m_config.solver.kind == SolverKind::cholmod) m_analyzed = m_cholmod.analyze(m_a);
-  m_energy_pending = false;  // the cut changed the energy: no balance across it
+  m_b->energy_pending = false;  // the cut changed the energy: no balance across it
+  m_b->node_damping = m_el.node_damping;
 }
 
-void ImplicitIntegrator::save(StateWriter& out) const {
-  out.u8(m_built ? 1 : 0);
-  if (!m_built) return;
-  out.u64(m_steps);
-  out.u64(m_structure);
-  out.array(m_q);
-  out.array(m_q_prev);
-  out.array(m_dv);
-  out.array(m_plastic);
-  out.array(m_el.node_mass);
-  out.array(m_el.node_damping);
-  out.f64(m_energy_before);
-  out.f64(m_energy_work);
-  out.u8(m_energy_pending ? 1 : 0);
-  out.array(m_changed);
-  m_lagged.save(out);
-}
-
-void ImplicitIntegrator::restore(StateReader& in, TetMesh& mesh) {
-  if (in.u8() == 0) return;  // saved before its first step: nothing built yet
-  rebuild(mesh);
-  m_steps = in.u64();
-  m_structure = in.u64();
+void ImplicitIntegrator::adopt(TetMesh& mesh) {
+  if (!m_b->built) return;  // restored from before its first step: nothing built yet
+  FemBlock saved = std::move(*m_b);
+  const std::vector<double> mass = std::move(mesh.mass);
+  rebuild(mesh);  // the caches; it rewrites the block, which the saved one then replaces
+  *m_b = std::move(saved);
+  m_lagged.bind(m_b->lagged);
   const auto m = static_cast<std::size_t>(mesh.num_tets());
   const auto n = static_cast<std::size_t>(mesh.num_nodes());
-  in.array(m_q);
-  in.array(m_q_prev);
-  in.array(m_dv);
-  in.array(m_plastic);
-  in.array(m_el.node_mass);
-  in.array(m_el.node_damping);
-  if (m_q.size() != m || m_q_prev.size() != m || m_dv.size() != 3 * n ||
-      (!m_plastic.empty() && m_plastic.size() != m) || m_el.node_mass.size() != n ||
-      m_el.node_damping.size() != n)
-    in.fail("the FEM state does not fit the mesh (" + std::to_string(m) + " tets, " +
-            std::to_string(n) + " nodes)");
-  mesh.mass = m_el.node_mass;
-  m_energy_before = in.f64();
-  m_energy_work = in.f64();
-  m_energy_pending = in.u8() != 0;
-  in.array(m_changed);
-  if (m_changed.size() > n) in.fail("the FEM's touched-node flags do not fit the mesh");
-  m_lagged.restore(in, m_config.solver.background_factor);
+  const FemBlock& b = *m_b;
+  if (b.q.size() != m || b.q_prev.size() != m || b.dv.size() != 3 * n ||
+      (!b.plastic.empty() && b.plastic.size() != m) || mass.size() != n ||
+      b.node_damping.size() != n || b.changed.size() > n)
+    throw BlockMismatch("the FEM state does not fit the mesh (" + std::to_string(m) + " tets, " +
+                        std::to_string(n) + " nodes)");
+  mesh.mass = mass;  // as the cuts left them, not as the rebuild summed them
+  m_el.node_mass = mass;
+  m_el.node_damping = b.node_damping;
+  if (!m_lagged.adopt(m_config.solver.background_factor))
+    throw BlockMismatch("a matrix of the lagged factor's schedule is not SPD");
   if (m_lagged.rows_needed() > 3 * static_cast<std::int64_t>(n))
-    in.fail("the lagged factor's matrices do not fit the mesh (" + std::to_string(n) + " nodes)");
+    throw BlockMismatch("the lagged factor's matrices do not fit the mesh (" + std::to_string(n) +
+                        " nodes)");
 }
 
 StepStatus ImplicitIntegrator::step(TetMesh& mesh, double dt_s, std::span<const Vec3> f_ext) {
   const StepStatus st = step_from(mesh, dt_s, f_ext, m_config.solver.remove_energy_gain);
-  ++m_steps;
+  ++m_b->steps;
   return st;
 }
 
@@ -238,7 +221,7 @@ StepStatus ImplicitIntegrator::step_from(TetMesh& mesh, double dt_s, std::span<c
     rebuild(mesh);
   StepStatus st;
   m_blocks_fresh = m_csr_fresh = false;
-  if (m_config.plasticity.on) m_plastic.resize(mesh.tets.size(), Mat3::Zero());
+  if (m_config.plasticity.on) m_b->plastic.resize(mesh.tets.size(), Mat3::Zero());
   const ElementPass pass = element_pass(mesh, dt_s);
   st.inverted_tets = pass.inverted;
   st.turned_tets = pass.turned;
@@ -258,7 +241,7 @@ StepStatus ImplicitIntegrator::step_from(TetMesh& mesh, double dt_s, std::span<c
     return again;
   }
 
-  if (!m_config.solver.warm_start) std::fill(m_dv.begin(), m_dv.end(), 0.0);
+  if (!m_config.solver.warm_start) std::fill(m_b->dv.begin(), m_b->dv.end(), 0.0);
   const SystemProduct a = assemble_system(mesh, dt_s);
   const SolveStatus ss = solve_system(mesh, dt_s, a, st);
   st.converged = ss.converged && !st.energy_gain;
@@ -271,7 +254,7 @@ StepStatus ImplicitIntegrator::step_from(TetMesh& mesh, double dt_s, std::span<c
   }
   // Never apply a non-finite or diverged solution (worse than dv = 0: phi > 0).
   if (!ss.finite || !std::isfinite(ss.residual) || !(ss.energy <= 0.0)) {
-    std::fill(m_dv.begin(), m_dv.end(), 0.0);
+    std::fill(m_b->dv.begin(), m_b->dv.end(), 0.0);
     st.applied = false;
     st.converged = st.solve_converged = false;
     return st;
@@ -279,9 +262,9 @@ StepStatus ImplicitIntegrator::step_from(TetMesh& mesh, double dt_s, std::span<c
   const double work_j = apply_update(mesh, dt_s, f_ext);
   // The energy balance of this step is checked at the start of the next one (divergence guard:
   // StepStatus::energy_gain), where the rotations of x' come for free.
-  m_energy_before = kinetic_j + pass.elastic_j;
-  m_energy_work = work_j;
-  m_energy_pending = true;
+  m_b->energy_before = kinetic_j + pass.elastic_j;
+  m_b->energy_work = work_j;
+  m_b->energy_pending = true;
   if (m_config.plasticity.on) update_plasticity(mesh, dt_s);
   st.applied = true;
   return st;
@@ -315,10 +298,10 @@ ImplicitIntegrator::ElementPass ImplicitIntegrator::element_pass(const TetMesh& 
     if (f.determinant() <= 0.0) ++inverted;
     if (m_config.corotational) {
       // Warm-started from the last steps' rotations (fem/rotation.h step_rotation).
-      Quat& q = m_q[ut];
+      Quat& q = m_b->q[ut];
       const Quat last = q;
-      m_rot[ut] = step_rotation(f, q, m_q_prev[ut], kStepRotationTolerance);
-      m_q_prev[ut] = last;
+      m_rot[ut] = step_rotation(f, q, m_b->q_prev[ut], kStepRotationTolerance);
+      m_b->q_prev[ut] = last;
       if (std::abs(q.dot(last)) < kTurnedCosHalf) ++turned;
     } else {
       m_rot[ut].setIdentity();
@@ -327,7 +310,7 @@ ImplicitIntegrator::ElementPass ImplicitIntegrator::element_pass(const TetMesh& 
     m_scale[ut] = tet_scale(e, dt_s);
     const Mat3 fv = nodal_gradient(e, mesh.v[nd[0]], mesh.v[nd[1]], mesh.v[nd[2]], mesh.v[nd[3]]);
     elastic += element_forces_energy(e, m_rot[ut], f, fv, e.beta_s + dt_s, out,
-                                     plastic ? &m_plastic[ut] : nullptr);
+                                     plastic ? &m_b->plastic[ut] : nullptr);
   }
   return {inverted, turned, elastic, stiffness_volume};
 }
@@ -360,19 +343,19 @@ double ImplicitIntegrator::assemble_rhs(const TetMesh& mesh, double dt_s,
 void ImplicitIntegrator::check_energy_balance(const ElementPass& pass, double kinetic_j,
                                               StepStatus& st) {
   st.energy_j = kinetic_j + pass.elastic_j;
-  if (m_energy_pending) {
-    st.energy_change_j = st.energy_j - m_energy_before - m_energy_work;
+  if (m_b->energy_pending) {
+    st.energy_change_j = st.energy_j - m_b->energy_before - m_b->energy_work;
     // Relative to the energies involved, with a floor for a mesh (nearly) at rest, where those
     // are rounding noise: the elastic energy of a uniform strain kEnergyFloorStrain.
     const double floor_j = 0.5 * kEnergyFloorStrain * kEnergyFloorStrain * pass.stiffness_volume;
     if (!(st.energy_change_j <=
-          kEnergyGainTolerance * (m_energy_before + st.energy_j + std::abs(m_energy_work)) +
+          kEnergyGainTolerance * (m_b->energy_before + st.energy_j + std::abs(m_b->energy_work)) +
               floor_j)) {
       st.energy_gain = true;
-      std::fill(m_dv.begin(), m_dv.end(), 0.0);  // no warm start from an energy-injecting dv
+      std::fill(m_b->dv.begin(), m_b->dv.end(), 0.0);  // no warm start from an energy-injecting dv
     }
   }
-  m_energy_pending = false;
+  m_b->energy_pending = false;
 }
 
 // Fixed nodes stay, and so do massless nodes (left in no active tet by a cut: they belong to no
@@ -389,7 +372,7 @@ double ImplicitIntegrator::apply_update(TetMesh& mesh, double dt_s, std::span<co
       mesh.v[ui].setZero();
       continue;
     }
-    mesh.v[ui] += Vec3(m_dv[3 * ui], m_dv[3 * ui + 1], m_dv[3 * ui + 2]);
+    mesh.v[ui] += Vec3(m_b->dv[3 * ui], m_b->dv[3 * ui + 1], m_b->dv[3 * ui + 2]);
     mesh.x[ui] += dt_s * mesh.v[ui];
     Vec3 f = m_el.node_mass[ui] * g;
     if (has_ext) f += f_ext[ui];
@@ -410,7 +393,7 @@ void ImplicitIntegrator::update_plasticity(const TetMesh& mesh, double dt_s) {
     const Tet& nd = mesh.tets[ut];
     const Mat3 f = nodal_gradient(e, mesh.x[nd[0]], mesh.x[nd[1]], mesh.x[nd[2]], mesh.x[nd[3]]);
     const Mat3 g = m_rot[ut].transpose() * f;  // rotation of this step (frozen over it)
-    Mat3& ep = m_plastic[ut];
+    Mat3& ep = m_b->plastic[ut];
     const Mat3 elastic = 0.5 * (g + g.transpose()) - Mat3::Identity() - ep;
     if (elastic.norm() > p.yield) ep += rate * elastic;
     const double norm = ep.norm();

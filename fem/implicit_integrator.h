@@ -27,6 +27,8 @@
 #include <span>
 #include <vector>
 
+#include "engine/bound_block.h"
+#include "engine/fem_block.h"
 #include "engine/tet_mesh.h"
 #include "engine/topology_delta.h"
 #include "fem/background_factor.h"
@@ -121,23 +123,27 @@ class ImplicitIntegrator {
 
   /// Forget the last step's energy balance (StepStatus::energy_gain): call after setting x or v
   /// by hand (initial conditions, a teleported node), which the next step would flag as a gain.
-  void restart_energy_balance() { m_energy_pending = false; }
+  void restart_energy_balance() { m_b->energy_pending = false; }
 
   /// pcg_cholmod: blocks until the background factorization (if any) is done. Tests and shutdown
   /// only; steps never call it.
   void wait_for_background() { m_factor.wait(); }
 
-  /// What a step carries to the next that the mesh does not hold: the rotations that warm-start
-  /// it, CG's warm start, plastic strain, the lumped masses as the cuts left them (sums updated
-  /// by subtraction, which a rebuild would round differently), the energy guard's balance and the
-  /// lagged factor's schedule. With the mesh, restore() continues the run bit for bit.
-  void save(StateWriter& out) const;
-  /// Rebuilds for `mesh` (the restored one) and reads what save() wrote over it; mesh.mass is set
-  /// to the saved masses. Throws InputError (through `in`) when the block does not fit the mesh.
-  void restore(StateReader& in, TetMesh& mesh);
+  /// What a step carries to the next that the mesh does not hold is `b`, a block of the state
+  /// (engine/fem_block.h: the rotations that warm-start it, CG's warm start, plastic strain, the
+  /// damping as the cuts left it, the energy guard's balance and the lagged factor's schedule),
+  /// from now on. Without a bind (a test, a benchmark) the integrator keeps its own.
+  void bind(FemBlock& b) noexcept {
+    m_b.bind(b);
+    m_lagged.bind(b.lagged);
+  }
+  /// The bound block and `mesh` were restored: rebuilds the caches for them (elements, pattern,
+  /// factors), keeping the restored masses, and continues the run bit for bit. Throws
+  /// BlockMismatch when the block does not fit the mesh.
+  void adopt(TetMesh& mesh);
   [[nodiscard]] const FemConfig& config() const { return m_config; }
   /// (m) per-tet plastic strain (plasticity on; empty before the first step or when off).
-  [[nodiscard]] std::span<const Mat3> plastic_strain() const { return m_plastic; }
+  [[nodiscard]] std::span<const Mat3> plastic_strain() const { return m_b->plastic; }
   [[nodiscard]] const FemElements& elements() const { return m_el; }
   [[nodiscard]] std::span<const Mat3> rotations() const { return m_rot; }
   /// The matrix pattern (CSR); its values hold A only for solver.kind = cholmod (CG fills the
@@ -234,31 +240,25 @@ class ImplicitIntegrator {
   std::vector<float> m_blocks_f;       // the same in float (solver.float_matrix)
   std::vector<double> m_fill_scratch;  // fill_blocks' per-thread row sums (no step allocates)
   std::vector<TetScale> m_scale;       // (m) per-tet stiffness scales of the fill, this step
-  std::vector<Quat> m_q;               // (m) per-tet rotation, warm start of the next step
-  std::vector<Quat> m_q_prev;          // (m) the rotation a step before, for the extrapolated start
   std::vector<Mat3> m_rot;             // (m) R_e of the current step
   std::vector<Vec3> m_rg;              // (4m) rotated gradients R_e b_a of the current step, 1/m
-  std::vector<Mat3> m_plastic;         // (m) plastic strain eps_p (plasticity on), 1
   SystemOperator m_op;                 // matrix-free system (solver.matrix_free)
   std::vector<Vec3> m_fe;              // (4m) per-tet corner forces of the right-hand side, N
   std::vector<double> m_rhs;           // (3n) b = dt (...), N s
-  std::vector<double> m_dv;            // (3n) velocity change, m/s (CG warm start)
   PcgScratch m_pcg;
   CholmodSolver m_cholmod;  // cholmod: factor of A
   bool m_analyzed = false;
   // pcg_cholmod: the factor of the rest-state system (R = I), computed in the background for
-  // each matrix structure (m_structure counts rebuilds of the pattern).
+  // each matrix structure (m_b->structure counts rebuilds of the pattern).
   BackgroundFactor m_factor;
-  std::uint64_t m_structure = 0;
   std::vector<Vec3> m_rg_rest;  // (4m) unrotated gradients b_a
   // pcg_lagged: the factor of a recent step's A (fem/lagged_factor.h), computed from the blocks
-  // copied into m_a; m_steps counts steps (the factor's install schedule).
+  // copied into m_a; m_b->steps counts steps (the factor's install schedule).
   LaggedFactor m_lagged;
-  std::vector<std::uint8_t> m_free;     // (n) 1 where the node takes part in the solve
-  std::vector<Quat> m_node_rot;         // (n) the nodes' rotations this step (factor warping)
-  std::vector<Mat3> m_warp;             // (n) each node's turn since the installed factor's step
-  std::vector<Quat> m_node_warp;        // (n) scratch: the same as quaternions (misfit)
-  std::vector<std::uint8_t> m_changed;  // (n) 1: a cut since the installed factor touched the node
+  std::vector<std::uint8_t> m_free;  // (n) 1 where the node takes part in the solve
+  std::vector<Quat> m_node_rot;      // (n) the nodes' rotations this step (factor warping)
+  std::vector<Mat3> m_warp;          // (n) each node's turn since the installed factor's step
+  std::vector<Quat> m_node_warp;     // (n) scratch: the same as quaternions (misfit)
   std::vector<std::uint8_t> m_kind_changed;  // (n) scratch: held or let go since the factor
   std::vector<std::uint8_t> m_patch_nodes;   // (n) scratch: the changed nodes and their rings
   std::vector<std::uint8_t> m_ring_inner;    // (n) scratch: the patch before its next ring
@@ -266,14 +266,10 @@ class ImplicitIntegrator {
   // cut, a grasp or a release (not only misfit nodes), and it was made new on this step for one.
   bool m_patch_for_change = false;
   bool m_patch_new = false;
-  std::uint64_t m_steps = 0;
   std::vector<Tet> m_removed;  // scratch of update(): nodes of the removed tets
   PatternUpdateStats m_last_update;
   // Divergence guard: energy at the start of the last step and the external work over it, J.
-  double m_energy_before = 0.0;
-  double m_energy_work = 0.0;
-  bool m_energy_pending = false;  // the last step's balance is still to be checked
-  bool m_built = false;           // rebuild() ran: update() has something to update
+  BoundBlock<FemBlock> m_b;  // the warm starts, the balance and the schedule: state
 };
 
 }  // namespace serosa::fem

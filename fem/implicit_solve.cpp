@@ -60,14 +60,14 @@ SolveStatus ImplicitIntegrator::solve_direct(const SystemProduct& a) {
     ss.finite = false;
     return ss;
   }
-  ss = m_cholmod.solve(m_rhs, m_dv);
-  a.apply(m_dv, m_pcg.r);
+  ss = m_cholmod.solve(m_rhs, m_b->dv);
+  a.apply(m_b->dv, m_pcg.r);
   for (std::size_t i = 0; i < m_rhs.size(); ++i) m_pcg.r[i] = m_rhs[i] - m_pcg.r[i];
   const double rr = dot(m_pcg.r, m_pcg.r);
   const double bn = std::sqrt(dot(m_rhs, m_rhs));
   ss.residual = bn > 0.0 ? std::sqrt(rr) / bn : 0.0;
   double phi = 0.0;  // -dv.(b + r) / 2
-  for (std::size_t i = 0; i < m_rhs.size(); ++i) phi -= 0.5 * m_dv[i] * (m_rhs[i] + m_pcg.r[i]);
+  for (std::size_t i = 0; i < m_rhs.size(); ++i) phi -= 0.5 * m_b->dv[i] * (m_rhs[i] + m_pcg.r[i]);
   ss.energy = phi;
   ss.converged = ss.finite && ss.residual <= std::max(m_config.solver.tolerance, 1e-8);
   return ss;
@@ -78,8 +78,8 @@ SolveStatus ImplicitIntegrator::solve_cg(const TetMesh& mesh, double dt_s, const
   const SolverSettings& s = m_config.solver;
   const Preconditioner precond = cg_preconditioner(mesh, dt_s, st);
   const SolveStatus ss =
-      a.apply_dot ? pcg(a.apply_dot, m_rhs, m_dv, s.tolerance, s.max_iterations, precond, m_pcg)
-                  : pcg(a.apply, m_rhs, m_dv, s.tolerance, s.max_iterations, precond, m_pcg);
+      a.apply_dot ? pcg(a.apply_dot, m_rhs, m_b->dv, s.tolerance, s.max_iterations, precond, m_pcg)
+                  : pcg(a.apply, m_rhs, m_b->dv, s.tolerance, s.max_iterations, precond, m_pcg);
   if (s.kind == SolverKind::pcg_lagged) schedule_refresh(mesh, dt_s, ss.iterations, st);
   return ss;
 }
@@ -104,18 +104,18 @@ Preconditioner ImplicitIntegrator::cg_preconditioner(const TetMesh& mesh, double
     // (fem/background_factor.h): until it is ready for this structure, Jacobi; after a dt
     // change, the old factor until the new one is ready.
     m_factor.poll();
-    CholmodSolver* factor = m_factor.factor_for(m_structure);
+    CholmodSolver* factor = m_factor.factor_for(m_b->structure);
     if ((factor == nullptr || m_factor.factor_dt() != dt_s) &&
-        !m_factor.requested(m_structure, dt_s)) {
+        !m_factor.requested(m_b->structure, dt_s)) {
       const auto m = static_cast<std::size_t>(mesh.num_tets());
       m_rg_rest.resize(4 * m);
       for (std::size_t t = 0; t < m; ++t)
         for (std::size_t c = 0; c < 4; ++c) m_rg_rest[4 * t + c] = m_el.elements[t].grad[c];
       CsrMatrix rest = m_a;
       fill_system(mesh, m_el, m_pattern, m_rg_rest, dt_s, rest);
-      m_factor.request(std::move(rest), m_structure, dt_s, s.factor_delay_ms);
+      m_factor.request(std::move(rest), m_b->structure, dt_s, s.factor_delay_ms);
       if (!s.background_factor) m_factor.wait();
-      factor = m_factor.factor_for(m_structure);
+      factor = m_factor.factor_for(m_b->structure);
     }
     if (factor != nullptr) {
       precond.apply = [factor](std::span<const double> r, std::span<double> z) {
@@ -133,18 +133,18 @@ Preconditioner ImplicitIntegrator::cg_preconditioner(const TetMesh& mesh, double
 
 void ImplicitIntegrator::lagged_preconditioner(const TetMesh& mesh, double dt_s, StepStatus& st,
                                                Preconditioner& precond) {
-  m_lagged.begin_step(m_steps);
+  m_lagged.begin_step(m_b->steps);
   m_patch_for_change = m_patch_new = false;
   update_node_rotations(mesh);
   const auto n = static_cast<std::size_t>(mesh.num_nodes());
   update_free_mask(mesh);
-  m_changed.resize(n, 1);  // new nodes are touched
-  const bool stale = m_lagged.ready() && m_lagged.structure() != m_structure;
-  if (m_lagged.ready() && !stale) std::fill(m_changed.begin(), m_changed.end(), 0);
+  m_b->changed.resize(n, 1);  // new nodes are touched
+  const bool stale = m_lagged.ready() && m_lagged.structure() != m_b->structure;
+  if (m_lagged.ready() && !stale) std::fill(m_b->changed.begin(), m_b->changed.end(), 0);
   if (!m_lagged.ready() || (stale && !m_config.solver.patch_after_cut)) {
     // The first step, after a full rebuild (or after a cut without patching): factor this
     // step's matrix now.
-    m_lagged.factor_now(lagged_csr(mesh, dt_s), m_structure, m_node_rot, m_q, m_free);
+    m_lagged.factor_now(lagged_csr(mesh, dt_s), m_b->structure, m_node_rot, m_b->q, m_free);
     st.factor_refresh = true;
   } else {
     // A cut since the installed factor, or nodes held or let go since: their rows get a factor
@@ -152,13 +152,13 @@ void ImplicitIntegrator::lagged_preconditioner(const TetMesh& mesh, double dt_s,
     m_kind_changed.resize(n);
     const bool kinds = m_lagged.kinds_changed(m_free, m_kind_changed);
     m_patch_for_change = stale || kinds;
-    m_patch_new = m_patch_for_change && !m_lagged.patch_fits(m_structure, m_free);
+    m_patch_new = m_patch_for_change && !m_lagged.patch_fits(m_b->structure, m_free);
     const Misfit misfit = m_config.solver.misfit_rad > 0.0 ? mark_misfit_nodes(mesh) : Misfit{};
     if (!m_patch_for_change && misfit.nodes == 0) {
       m_lagged.drop_patch();  // the installed factor fits again
     } else if (misfit.unpatched > 0 || m_patch_new) {
       if (stale)  // the cut's touched nodes too
-        for (std::size_t i = 0; i < n; ++i) m_kind_changed[i] |= m_changed[i];
+        for (std::size_t i = 0; i < n; ++i) m_kind_changed[i] |= m_b->changed[i];
       patch_lagged_factor(mesh, dt_s, st);
     }
   }
@@ -186,13 +186,13 @@ int ImplicitIntegrator::mark_patch_misfit(const TetMesh& mesh, double cos_half) 
   if (!m_lagged.has_patch()) return 0;
   const std::span<const Quat> patch0 = m_lagged.patch_rotations();
   int marked = 0;
-  for (std::size_t t = 0; t < std::min(m_q.size(), patch0.size()); ++t) {
+  for (std::size_t t = 0; t < std::min(m_b->q.size(), patch0.size()); ++t) {
     if (!m_el.elements[t].active()) continue;
     const Tet& nodes = mesh.tets[t];
     if (std::none_of(nodes.begin(), nodes.end(),
                      [&](std::int32_t i) { return m_lagged.patched(static_cast<std::size_t>(i)); }))
       continue;
-    if (std::abs(m_q[t].dot(patch0[t])) >= cos_half) continue;
+    if (std::abs(m_b->q[t].dot(patch0[t])) >= cos_half) continue;
     ++marked;
     for (const std::int32_t i : nodes) m_kind_changed[static_cast<std::size_t>(i)] = 1;
   }
@@ -208,11 +208,11 @@ ImplicitIntegrator::Misfit ImplicitIntegrator::mark_factor_misfit(const TetMesh&
   m_node_warp.resize(nw);  // each node's warp once, not once per corner
   for (std::size_t i = 0; i < nw; ++i) m_node_warp[i] = m_node_rot[i] * node0[i].conjugate();
   Misfit marked;
-  for (std::size_t t = 0; t < std::min(m_q.size(), tet0.size()); ++t) {
+  for (std::size_t t = 0; t < std::min(m_b->q.size(), tet0.size()); ++t) {
     // Tets a cut added since the factor's step have no rotation of its (zero): a cut's patch
     // holds their nodes.
     if (!m_el.elements[t].active() || tet0[t].coeffs().squaredNorm() == 0.0) continue;
-    const Quat turn = m_q[t] * tet0[t].conjugate();
+    const Quat turn = m_b->q[t] * tet0[t].conjugate();
     for (const std::int32_t i : mesh.tets[t]) {
       const auto u = static_cast<std::size_t>(i);
       if (u >= nw || m_kind_changed[u] != 0) continue;
@@ -238,9 +238,9 @@ void ImplicitIntegrator::patch_lagged_factor(const TetMesh& mesh, double dt_s, S
           m_patch_nodes[static_cast<std::size_t>(j)] = 1;
   }
   st.factor_patch =
-      m_lagged.patch(patch_rows_csr(mesh, dt_s), m_structure, m_patch_nodes, m_free, m_q);
+      m_lagged.patch(patch_rows_csr(mesh, dt_s), m_b->structure, m_patch_nodes, m_free, m_b->q);
   if (!st.factor_patch) {
-    m_lagged.factor_now(lagged_csr(mesh, dt_s), m_structure, m_node_rot, m_q, m_free);
+    m_lagged.factor_now(lagged_csr(mesh, dt_s), m_b->structure, m_node_rot, m_b->q, m_free);
     st.factor_refresh = true;
   }
 }
@@ -293,7 +293,7 @@ void ImplicitIntegrator::update_node_rotations(const TetMesh& mesh) {
     for (const std::int32_t ic : m_pattern.incident_of(i)) {
       const auto t = static_cast<std::size_t>(ic) / 4;
       if (!m_el.elements[t].active()) continue;
-      const Eigen::Vector4d q = m_q[t].coeffs();
+      const Eigen::Vector4d q = m_b->q[t].coeffs();
       sum += sum.dot(q) < 0.0 ? Eigen::Vector4d(-q) : q;
     }
     const double norm = sum.norm();
@@ -310,7 +310,7 @@ void ImplicitIntegrator::schedule_refresh(const TetMesh& mesh, double dt_s, int 
   if (st.factor_patch && m_patch_new) return;
   // After a cut (the installed factor is of an older structure), a grasp or a release (a patch
   // in use) a refresh is due whatever the iterations: the patch only bridges the lag.
-  const bool cut = m_lagged.structure() != m_structure;
+  const bool cut = m_lagged.structure() != m_b->structure;
   const bool patched = m_lagged.has_patch() && m_patch_for_change;
   if (!cut && !patched && iterations <= s.refresh_iterations) return;
   // Urgent: a solve that needed several times the usual iterations (a sudden turn), or a grasp or
@@ -322,9 +322,9 @@ void ImplicitIntegrator::schedule_refresh(const TetMesh& mesh, double dt_s, int 
   const int lag = urgent ? std::min(s.urgent_lag_steps, s.factor_lag_steps)
                   : cut  ? std::max(s.cut_lag_steps, s.factor_lag_steps)
                          : s.factor_lag_steps;
-  m_lagged.request(lagged_csr(mesh, dt_s), m_structure,
-                   m_steps + static_cast<std::uint64_t>(std::max(lag, 1)), s.background_factor,
-                   m_node_rot, m_q, m_free);
+  m_lagged.request(lagged_csr(mesh, dt_s), m_b->structure,
+                   m_b->steps + static_cast<std::uint64_t>(std::max(lag, 1)), s.background_factor,
+                   m_node_rot, m_b->q, m_free);
   st.factor_refresh = true;
 }
 

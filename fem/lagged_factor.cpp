@@ -4,6 +4,37 @@
 #include <utility>
 
 namespace serosa::fem {
+namespace {
+
+// A record no longer in use: emptied (its buffers kept for the next), so that the state holds
+// nothing of it.
+void empty(CsrMatrix& a) {
+  a.rows = 0;
+  a.row_start.clear();
+  a.row_nz.clear();
+  a.col.clear();
+  a.val.clear();
+}
+void empty(FactoredMatrix& f) {
+  f.on = false;
+  empty(f.a);
+  f.node_rot.clear();
+  f.tet_rot.clear();
+  f.free.clear();
+  f.structure = 0;
+  f.ready_step = 0;
+}
+void empty(FactorPatch& p) {
+  p.on = false;
+  empty(p.a);
+  empty(p.tu);
+  p.nodes.clear();
+  p.free.clear();
+  p.tet_rot.clear();
+  p.structure = 0;
+}
+
+}  // namespace
 
 LaggedFactor::~LaggedFactor() {
   if (m_job && m_job->thread.joinable()) m_job->thread.join();
@@ -28,19 +59,18 @@ void LaggedFactor::install() {
   if (m_job->thread.joinable()) m_job->thread.join();
   if (m_job->ok) {
     m_spare = std::move(m_installed);
-    m_spare_structure = m_installed_structure;
+    m_spare_structure = m_b->installed.structure;
     m_installed = std::move(m_job->solver);
     m_installed_rows = m_job->a.rows;
     std::swap(m_installed_blocks, m_job->blocks);
-    // Swapped, not moved: the job keeps the replaced buffers for the next request to copy into.
-    std::swap(m_installed_a, m_job->a);
-    std::swap(m_installed_rot, m_job->node_rot);
-    std::swap(m_installed_tet_rot, m_job->tet_rot);
-    std::swap(m_installed_free, m_job->free);
-    m_installed_structure = m_job->structure;
-    ++m_refreshes;
+    // Swapped, not moved: the record keeps the replaced buffers for the next request to copy into.
+    std::swap(m_b->installed, m_b->pending);
+    m_b->installed.structure = m_job->structure;
+    m_b->installed.ready_step = 0;  // (a pending refresh's)
+    ++m_b->refreshes;
     // The patch stays until the integrator finds the installed factor fits (patch_fits).
   }
+  empty(m_b->pending);
   m_job->solver.reset();
   m_recycled = std::move(m_job);
 }
@@ -48,30 +78,41 @@ void LaggedFactor::install() {
 // A job for `a`, in the buffers of the last one when there is one: the copy of a into them
 // touches no new pages (a fresh 2 MB copy cost the step after a cut about half a millisecond).
 std::unique_ptr<LaggedFactor::Job> LaggedFactor::new_job(const CsrMatrix& a,
-                                                         std::uint64_t structure,
-                                                         std::span<const Quat> node_rot,
-                                                         std::span<const Quat> tet_rot,
-                                                         std::span<const std::uint8_t> free) {
+                                                         std::uint64_t structure) {
   std::unique_ptr<Job> job = m_recycled ? std::move(m_recycled) : std::make_unique<Job>();
   job->ok = false;
   job->analyzed = false;
   job->analysis_of = nullptr;
   copy_packed(a, job->a);
-  job->node_rot.assign(node_rot.begin(), node_rot.end());
-  job->tet_rot.assign(tet_rot.begin(), tet_rot.end());
-  job->free.assign(free.begin(), free.end());
   job->structure = structure;
   return job;
+}
+
+// The thread factors its own copy of the matrix (the state may be replaced meanwhile); the
+// state's record of it is what a snapshot keeps.
+void LaggedFactor::record_pending(const CsrMatrix& a, std::uint64_t structure,
+                                  std::uint64_t ready_step, std::span<const Quat> node_rot,
+                                  std::span<const Quat> tet_rot,
+                                  std::span<const std::uint8_t> free) {
+  FactoredMatrix& p = m_b->pending;
+  p.on = true;
+  copy_packed(a, p.a);
+  p.node_rot.assign(node_rot.begin(), node_rot.end());
+  p.tet_rot.assign(tet_rot.begin(), tet_rot.end());
+  p.free.assign(free.begin(), free.end());
+  p.structure = structure;
+  p.ready_step = ready_step;
 }
 
 std::int64_t LaggedFactor::rows_needed() const {
   std::int64_t rows = ready() ? m_installed_rows : 0;
   if (m_job) rows = std::max<std::int64_t>(rows, m_job->a.rows);
-  if (m_patch && !m_patch_nodes.empty())
-    rows = std::max<std::int64_t>(rows, 3 * (static_cast<std::int64_t>(m_patch_nodes.back()) + 1));
+  if (m_patch && !m_b->patch.nodes.empty())
+    rows =
+        std::max<std::int64_t>(rows, 3 * (static_cast<std::int64_t>(m_b->patch.nodes.back()) + 1));
   if (m_patch) {
-    for (const std::int32_t c : m_patch_tu.col) rows = std::max<std::int64_t>(rows, c + 1);
-    rows = std::max<std::int64_t>(rows, 3 * static_cast<std::int64_t>(m_patch_free.size()));
+    for (const std::int32_t c : m_b->patch.tu.col) rows = std::max<std::int64_t>(rows, c + 1);
+    rows = std::max<std::int64_t>(rows, 3 * static_cast<std::int64_t>(m_b->patch.free.size()));
   }
   return rows;
 }
@@ -116,15 +157,16 @@ bool LaggedFactor::patch(const CsrMatrix& a, std::uint64_t structure,
 }
 
 bool LaggedFactor::patch_fits(std::uint64_t structure, std::span<const std::uint8_t> free) const {
-  return m_patch && m_patch_structure == structure &&
-         std::equal(free.begin(), free.end(), m_patch_free.begin(), m_patch_free.end());
+  return m_patch && m_b->patch.structure == structure &&
+         std::equal(free.begin(), free.end(), m_b->patch.free.begin(), m_b->patch.free.end());
 }
 
 bool LaggedFactor::kinds_changed(std::span<const std::uint8_t> free,
                                  std::span<std::uint8_t> changed) const {
   bool any = false;
   for (std::size_t i = 0; i < changed.size(); ++i) {
-    changed[i] = i < m_installed_free.size() && i < free.size() && free[i] != m_installed_free[i];
+    changed[i] =
+        i < m_b->installed.free.size() && i < free.size() && free[i] != m_b->installed.free[i];
     any = any || changed[i] != 0;
   }
   return any;
@@ -136,25 +178,27 @@ bool LaggedFactor::install_patch(CsrMatrix tt, CsrMatrix tu, std::vector<std::in
   // The same rows as the patch in use (a misfit's patch, made anew each step while tets turn):
   // the same pattern, whose analysis is kept (CHOLMOD orders by pattern alone, so the bits are
   // those of a fresh analysis).
-  const bool same = m_patch != nullptr && m_patch_structure == structure &&
-                    nodes == m_patch_nodes && tt.row_nz == m_patch_a.row_nz &&
-                    tt.col == m_patch_a.col;
+  const bool same = m_patch != nullptr && m_b->patch.structure == structure &&
+                    nodes == m_b->patch.nodes && tt.row_nz == m_b->patch.a.row_nz &&
+                    tt.col == m_b->patch.a.col;
   std::unique_ptr<CholmodSolver> solver =
       same ? std::move(m_patch)
            : std::make_unique<CholmodSolver>(CholmodSolver::Layout::simplicial);
   m_patch.reset();
+  empty(m_b->patch);
   if (nodes.empty()) return false;
   if ((!same && !solver->analyze(tt)) || !solver->factorize(tt)) return false;
   m_patch = std::move(solver);
-  m_patch_a = std::move(tt);
-  m_patch_tu = std::move(tu);
-  m_patch_nodes = std::move(nodes);
-  m_patch_structure = structure;
-  m_patch_free = std::move(free);
-  m_patch_tet_rot = std::move(tet_rot);
-  m_patch_index.assign(static_cast<std::size_t>(m_patch_nodes.back()) + 1, -1);
-  for (std::size_t k = 0; k < m_patch_nodes.size(); ++k)
-    m_patch_index[static_cast<std::size_t>(m_patch_nodes[k])] = static_cast<std::int32_t>(k);
+  m_b->patch.on = true;
+  m_b->patch.a = std::move(tt);
+  m_b->patch.tu = std::move(tu);
+  m_b->patch.nodes = std::move(nodes);
+  m_b->patch.structure = structure;
+  m_b->patch.free = std::move(free);
+  m_b->patch.tet_rot = std::move(tet_rot);
+  m_patch_index.assign(static_cast<std::size_t>(m_b->patch.nodes.back()) + 1, -1);
+  for (std::size_t k = 0; k < m_b->patch.nodes.size(); ++k)
+    m_patch_index[static_cast<std::size_t>(m_b->patch.nodes[k])] = static_cast<std::int32_t>(k);
   return true;
 }
 
@@ -166,7 +210,8 @@ bool LaggedFactor::factor_now(const CsrMatrix& a, std::uint64_t structure,
                               std::span<const Quat> node_rot, std::span<const Quat> tet_rot,
                               std::span<const std::uint8_t> free) {
   clear();
-  std::unique_ptr<Job> job = new_job(a, structure, node_rot, tet_rot, free);
+  std::unique_ptr<Job> job = new_job(a, structure);
+  record_pending(a, structure, 0, node_rot, tet_rot, free);
   job->solver = std::make_unique<CholmodSolver>(CholmodSolver::Layout::node_blocks);
   run(*job);
   m_job = std::move(job);
@@ -177,14 +222,13 @@ bool LaggedFactor::factor_now(const CsrMatrix& a, std::uint64_t structure,
 
 void LaggedFactor::warm_up() {
   if (!ready() || m_job || m_spare) return;
-  std::unique_ptr<Job> job = new_job(m_installed_a, m_installed_structure, m_installed_rot,
-                                     m_installed_tet_rot, m_installed_free);
+  std::unique_ptr<Job> job = new_job(m_b->installed.a, m_b->installed.structure);
   job->solver = std::make_unique<CholmodSolver>(CholmodSolver::Layout::node_blocks);
   job->analysis_of = m_installed.get();
   run(*job);
   if (job->ok) {
     m_spare = std::move(job->solver);
-    m_spare_structure = m_installed_structure;
+    m_spare_structure = m_b->installed.structure;
   }
   job->solver.reset();
   m_recycled = std::move(job);
@@ -194,11 +238,12 @@ void LaggedFactor::request(const CsrMatrix& a, std::uint64_t structure, std::uin
                            bool background, std::span<const Quat> node_rot,
                            std::span<const Quat> tet_rot, std::span<const std::uint8_t> free) {
   if (m_job) install();  // one job at a time; callers ask only when none is pending
-  std::unique_ptr<Job> job = new_job(a, structure, node_rot, tet_rot, free);
+  std::unique_ptr<Job> job = new_job(a, structure);
+  record_pending(a, structure, ready_step, node_rot, tet_rot, free);
   job->ready_step = ready_step;
   job->solver = take_spare(structure, job->analyzed);
   job->analysis_of = !job->analyzed && m_installed != nullptr &&
-                             m_installed_structure == structure && m_installed->analyzed()
+                             m_b->installed.structure == structure && m_installed->analyzed()
                          ? m_installed.get()
                          : nullptr;
   Job* j = job.get();
@@ -214,140 +259,33 @@ void LaggedFactor::clear() {
   m_job.reset();
   m_installed.reset();
   m_installed_blocks.clear();
-  m_installed_a = CsrMatrix{};
-  m_installed_free.clear();
-  m_installed_rot.clear();
-  m_installed_tet_rot.clear();
+  empty(m_b->installed);
+  empty(m_b->pending);
   m_spare.reset();
   m_installed_rows = 0;
   m_patch.reset();
+  empty(m_b->patch);
 }
 
-namespace {
-
-// Packed: each row's used entries only, so that the bytes depend on the matrix, not on the slack
-// its pattern's storage happens to leave (a rebuilt pattern is compact, an updated one is not).
-void write_csr(StateWriter& out, const CsrMatrix& a) {
-  out.u32(static_cast<std::uint32_t>(a.rows));
-  std::vector<std::int32_t> col;
-  std::vector<double> val;
-  for (std::int32_t r = 0; r < a.rows; ++r) {
-    const auto begin = static_cast<std::size_t>(a.row_start[static_cast<std::size_t>(r)]);
-    const auto nz = static_cast<std::size_t>(a.row_nz[static_cast<std::size_t>(r)]);
-    col.insert(col.end(), a.col.begin() + static_cast<std::ptrdiff_t>(begin),
-               a.col.begin() + static_cast<std::ptrdiff_t>(begin + nz));
-    val.insert(val.end(), a.val.begin() + static_cast<std::ptrdiff_t>(begin),
-               a.val.begin() + static_cast<std::ptrdiff_t>(begin + nz));
-  }
-  out.array(a.row_nz);
-  out.array(col);
-  out.array(val);
+void LaggedFactor::drop_patch() {
+  m_patch.reset();
+  empty(m_b->patch);
 }
 
-// square: columns below rows (a factor's matrix); else any non-negative column (a coupling block).
-CsrMatrix read_csr(StateReader& in, bool square = true) {
-  CsrMatrix a;
-  a.rows = static_cast<std::int32_t>(in.u32());
-  in.array(a.row_nz);
-  in.array(a.col);
-  in.array(a.val);
-  const auto rows = static_cast<std::size_t>(a.rows);
-  if (a.rows < 0 || a.row_nz.size() != rows || a.col.size() != a.val.size())
-    in.fail("a factor's matrix is inconsistent");
-  a.row_start.assign(rows + 1, 0);
-  std::int64_t at = 0;
-  for (std::size_t r = 0; r < rows; ++r) {
-    a.row_start[r] = static_cast<std::int32_t>(at);
-    if (a.row_nz[r] < 0) in.fail("a factor's matrix has a row of negative length");
-    at += a.row_nz[r];
-    if (at > static_cast<std::int64_t>(a.col.size()))
-      in.fail("a factor's matrix rows run past its entries");
-  }
-  a.row_start[rows] = static_cast<std::int32_t>(at);
-  for (std::int32_t c : a.col)
-    if (c < 0 || (square && c >= a.rows)) in.fail("a factor's matrix has a column out of range");
-  return a;
-}
-
-}  // namespace
-
-void LaggedFactor::save(StateWriter& out) const {
-  out.u64(m_refreshes);
-  out.u8(ready() ? 1 : 0);
-  if (ready()) {
-    write_csr(out, m_installed_a);
-    out.array(m_installed_rot);
-    out.array(m_installed_tet_rot);
-    out.array(m_installed_free);
-    out.u64(m_installed_structure);
-  }
-  out.u8(m_job ? 1 : 0);
-  if (m_job) {
-    write_csr(out, m_job->a);  // read-only in the job's thread too
-    out.array(m_job->node_rot);
-    out.array(m_job->tet_rot);
-    out.array(m_job->free);
-    out.u64(m_job->structure);
-    out.u64(m_job->ready_step);
-  }
-  out.u8(m_patch ? 1 : 0);
-  if (m_patch) {
-    write_csr(out, m_patch_a);
-    write_csr(out, m_patch_tu);
-    out.array(m_patch_nodes);
-    out.array(m_patch_free);
-    out.array(m_patch_tet_rot);
-    out.u64(m_patch_structure);
-  }
-}
-
-void LaggedFactor::restore(StateReader& in, bool background) {
+bool LaggedFactor::adopt(bool background) {
+  const LaggedBlock saved = *m_b;  // clear() and the factoring below rewrite the record
   clear();
-  const std::uint64_t refreshes = in.u64();
-  if (in.u8() != 0) {
-    CsrMatrix a = read_csr(in);
-    std::vector<Quat> rot, tet_rot;
-    std::vector<std::uint8_t> free;
-    in.array(rot);
-    in.array(tet_rot);
-    in.array(free);
-    const std::uint64_t structure = in.u64();
-    if (3 * free.size() != static_cast<std::size_t>(a.rows))
-      in.fail("the installed factor's free mask does not fit its matrix");
-    if (!factor_now(a, structure, rot, tet_rot, free))
-      in.fail("the installed factor's matrix is not SPD");
-  }
-  if (in.u8() != 0) {
-    CsrMatrix a = read_csr(in);
-    std::vector<Quat> rot, tet_rot;
-    std::vector<std::uint8_t> free;
-    in.array(rot);
-    in.array(tet_rot);
-    in.array(free);
-    const std::uint64_t structure = in.u64();
-    const std::uint64_t ready_step = in.u64();
-    if (3 * free.size() != static_cast<std::size_t>(a.rows))
-      in.fail("the pending refresh's free mask does not fit its matrix");
-    request(a, structure, ready_step, background, rot, tet_rot, free);
-  }
-  if (in.u8() != 0) {
-    CsrMatrix a = read_csr(in);
-    CsrMatrix tu = read_csr(in, /*square=*/false);
-    std::vector<std::int32_t> nodes;
-    std::vector<std::uint8_t> free;
-    std::vector<Quat> tet_rot;
-    in.array(nodes);
-    in.array(free);
-    in.array(tet_rot);
-    const std::uint64_t structure = in.u64();
-    if (3 * nodes.size() != static_cast<std::size_t>(a.rows) || tu.rows != a.rows ||
-        !std::is_sorted(nodes.begin(), nodes.end()) || (!nodes.empty() && nodes.front() < 0))
-      in.fail("the patch's nodes do not fit its matrix");
-    if (!install_patch(std::move(a), std::move(tu), std::move(nodes), structure, std::move(free),
-                       std::move(tet_rot)))
-      in.fail("the patch's matrix is not SPD");
-  }
-  m_refreshes = refreshes;
+  bool ok = true;
+  if (saved.installed.on)
+    ok = factor_now(saved.installed.a, saved.installed.structure, saved.installed.node_rot,
+                    saved.installed.tet_rot, saved.installed.free);
+  const FactoredMatrix& p = saved.pending;
+  if (ok && p.on)
+    request(p.a, p.structure, p.ready_step, background, p.node_rot, p.tet_rot, p.free);
+  const FactorPatch& t = saved.patch;
+  if (ok && t.on) ok = install_patch(t.a, t.tu, t.nodes, t.structure, t.free, t.tet_rot);
+  m_b->refreshes = saved.refreshes;
+  return ok;
 }
 
 void LaggedFactor::relabel_tets(const TopologyDelta& delta, std::size_t tets) {
@@ -363,15 +301,16 @@ void LaggedFactor::relabel_tets(const TopologyDelta& delta, std::size_t tets) {
       q[static_cast<std::size_t>(to)] = q[static_cast<std::size_t>(from)];
     q.resize(tets, none);
   };
-  relabel(m_installed_tet_rot);
-  if (m_job) relabel(m_job->tet_rot);  // the thread reads only the job's matrix
+  relabel(m_b->installed.tet_rot);
+  if (m_b->pending.on) relabel(m_b->pending.tet_rot);  // the thread reads only the job's matrix
 }
 
 void LaggedFactor::warp(std::span<const Quat> node_rot, std::span<Mat3> warp) const {
-  const std::size_t nf = m_installed_rot.size();
+  const std::size_t nf = m_b->installed.node_rot.size();
   for (std::size_t i = 0; i < warp.size(); ++i)
-    warp[i] = i < nf ? Mat3((node_rot[i] * m_installed_rot[i].conjugate()).toRotationMatrix())
-                     : Mat3::Identity();
+    warp[i] = i < nf
+                  ? Mat3((node_rot[i] * m_b->installed.node_rot[i].conjugate()).toRotationMatrix())
+                  : Mat3::Identity();
 }
 
 // Without a patch: z = W F^{-1} W^T r on the factor's free rows, Jacobi on the others. With one,
@@ -395,21 +334,21 @@ void LaggedFactor::apply(std::span<const double> r, std::span<double> z,
   factor_solve(rhs, z, inv_diag, free, warp);
   if (!m_patch) return;
   // z_T = w - A_TT^{-1} (A_TU y_U)
-  m_ty.assign(3 * m_patch_nodes.size(), 0.0);
+  m_ty.assign(3 * m_b->patch.nodes.size(), 0.0);
   for (std::size_t k = 0; k < m_ty.size(); ++k) {
     double sum = 0.0;
-    const auto begin = static_cast<std::size_t>(m_patch_tu.row_start[k]);
-    const auto end = begin + static_cast<std::size_t>(m_patch_tu.row_nz[k]);
+    const auto begin = static_cast<std::size_t>(m_b->patch.tu.row_start[k]);
+    const auto end = begin + static_cast<std::size_t>(m_b->patch.tu.row_nz[k]);
     for (std::size_t e = begin; e < end; ++e) {
-      const auto j = static_cast<std::size_t>(m_patch_tu.col[e]);
-      if (j < z.size() && !in_patch(j / 3)) sum += m_patch_tu.val[e] * z[j];
+      const auto j = static_cast<std::size_t>(m_b->patch.tu.col[e]);
+      if (j < z.size() && !in_patch(j / 3)) sum += m_b->patch.tu.val[e] * z[j];
     }
     m_ty[k] = sum;
   }
   m_pz.resize(m_ty.size());
   m_patch->solve(m_ty, m_pz);
-  for (std::size_t k = 0; k < m_patch_nodes.size(); ++k) {
-    const auto i = static_cast<std::size_t>(m_patch_nodes[k]);
+  for (std::size_t k = 0; k < m_b->patch.nodes.size(); ++k) {
+    const auto i = static_cast<std::size_t>(m_b->patch.nodes[k]);
     if (i >= free.size() || free[i] == 0) continue;
     for (std::size_t c = 0; c < 3; ++c) z[3 * i + c] = m_w[3 * k + c] - m_pz[3 * k + c];
   }
@@ -418,9 +357,9 @@ void LaggedFactor::apply(std::span<const double> r, std::span<double> z,
 // w = A_TT^{-1} r_T on the patch's nodes still free (0 for the others).
 void LaggedFactor::patch_solve(std::span<const double> r, std::span<const std::uint8_t> free,
                                std::vector<double>& w) {
-  m_pr.resize(3 * m_patch_nodes.size());
-  for (std::size_t k = 0; k < m_patch_nodes.size(); ++k) {
-    const auto i = static_cast<std::size_t>(m_patch_nodes[k]);
+  m_pr.resize(3 * m_b->patch.nodes.size());
+  for (std::size_t k = 0; k < m_b->patch.nodes.size(); ++k) {
+    const auto i = static_cast<std::size_t>(m_b->patch.nodes[k]);
     for (std::size_t c = 0; c < 3; ++c)
       m_pr[3 * k + c] = i < free.size() && free[i] != 0 ? r[3 * i + c] : 0.0;
   }
@@ -431,11 +370,11 @@ void LaggedFactor::patch_solve(std::span<const double> r, std::span<const std::u
 // out_U += s A_UT w (A_UT = A_TU^T: the patch's rows give its columns).
 void LaggedFactor::multiply_ut(std::span<const double> w, double s, std::span<double> out) const {
   for (std::size_t k = 0; k < w.size(); ++k) {
-    const auto begin = static_cast<std::size_t>(m_patch_tu.row_start[k]);
-    const auto end = begin + static_cast<std::size_t>(m_patch_tu.row_nz[k]);
+    const auto begin = static_cast<std::size_t>(m_b->patch.tu.row_start[k]);
+    const auto end = begin + static_cast<std::size_t>(m_b->patch.tu.row_nz[k]);
     for (std::size_t e = begin; e < end; ++e) {
-      const auto j = static_cast<std::size_t>(m_patch_tu.col[e]);
-      if (j < out.size()) out[j] += s * m_patch_tu.val[e] * w[k];
+      const auto j = static_cast<std::size_t>(m_b->patch.tu.col[e]);
+      if (j < out.size()) out[j] += s * m_b->patch.tu.val[e] * w[k];
     }
   }
 }

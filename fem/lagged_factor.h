@@ -58,8 +58,9 @@
 #include <thread>
 #include <vector>
 
+#include "engine/bound_block.h"
+#include "engine/fem_block.h"
 #include "engine/math.h"
-#include "engine/state_codec.h"
 #include "engine/topology_delta.h"
 #include "fem/block_factor.h"
 #include "fem/cholmod_solver.h"
@@ -113,9 +114,9 @@ class LaggedFactor {
   /// Whether node i's rows are solved by the patch.
   [[nodiscard]] bool patched(std::size_t node) const { return in_patch(node); }
   /// The tets' rotations at the patch's step ((m) of its structure; the patch is not warped).
-  [[nodiscard]] std::span<const Quat> patch_rotations() const { return m_patch_tet_rot; }
+  [[nodiscard]] std::span<const Quat> patch_rotations() const { return m_b->patch.tet_rot; }
   /// Drops the patch (the installed factor fits the matrix again).
-  void drop_patch() { m_patch.reset(); }
+  void drop_patch();
   /// The most rows any factor it holds (installed, pending, patch) applies to: a restored
   /// schedule must fit the mesh (3 x its nodes).
   [[nodiscard]] std::int64_t rows_needed() const;
@@ -127,9 +128,9 @@ class LaggedFactor {
   /// tets: the mesh's tet count after it.
   void relabel_tets(const TopologyDelta& delta, std::size_t tets);
   /// The tets' rotations at the installed factor's step ((m) of its structure; empty if none).
-  [[nodiscard]] std::span<const Quat> tet_rotations() const { return m_installed_tet_rot; }
+  [[nodiscard]] std::span<const Quat> tet_rotations() const { return m_b->installed.tet_rot; }
   /// The nodes' rotations then ((rows / 3)).
-  [[nodiscard]] std::span<const Quat> node_rotations() const { return m_installed_rot; }
+  [[nodiscard]] std::span<const Quat> node_rotations() const { return m_b->installed.node_rot; }
 
   /// The turn of each node since the installed factor's step: warp[i] = R_i R0_i^T for the
   /// factor's nodes, the identity beyond. node_rot: (n) the nodes' rotations now; warp: (n) out.
@@ -142,31 +143,29 @@ class LaggedFactor {
   void apply(std::span<const double> r, std::span<double> z, std::span<const double> inv_diag,
              std::span<const std::uint8_t> free, std::span<const Mat3> warp);
 
-  /// Its part of the whole state: the matrices of the installed factor and of the pending
-  /// refresh with their rotations, free masks, structures and install step (the factors themselves
-  /// are recomputed from them on restore: CHOLMOD gives the same bits for the same matrix).
-  void save(StateWriter& out) const;
-  /// Reads what save() wrote; the pending refresh is factored in the background or now
-  /// (`background`), to be installed at its step as before.
-  void restore(StateReader& in, bool background);
+  /// Its schedule is `b` (a block of the state: the matrices of the installed factor, of the
+  /// pending refresh and of the patch with their rotations, free masks, structures and install
+  /// step) from now on.
+  void bind(LaggedBlock& b) noexcept { m_b.bind(b); }
+  /// The bound schedule was restored: factors its matrices again (CHOLMOD gives the same bits for
+  /// the same matrix); the pending refresh in the background or now (`background`), to be
+  /// installed at its step as before. False when a matrix is not SPD.
+  bool adopt(bool background);
 
   [[nodiscard]] bool ready() const { return m_installed != nullptr; }
   [[nodiscard]] bool pending() const { return m_job != nullptr; }
   /// Rows of the installed factor (0 when none).
   [[nodiscard]] std::int32_t rows() const { return ready() ? m_installed_rows : 0; }
   /// Structure the installed factor was computed for.
-  [[nodiscard]] std::uint64_t structure() const { return m_installed_structure; }
+  [[nodiscard]] std::uint64_t structure() const { return m_b->installed.structure; }
   /// Refreshes installed so far (factor_now included).
-  [[nodiscard]] std::uint64_t refreshes() const { return m_refreshes; }
+  [[nodiscard]] std::uint64_t refreshes() const { return m_b->refreshes; }
 
  private:
   struct Job {
     CsrMatrix a;
     std::uint64_t structure = 0;
     std::uint64_t ready_step = 0;
-    std::vector<Quat> node_rot;      // (n) the nodes' rotations at a's step
-    std::vector<Quat> tet_rot;       // (m) the tets' rotations at a's step
-    std::vector<std::uint8_t> free;  // (n) 1 where the node took part in a's solve
     std::unique_ptr<CholmodSolver> solver;
     LdlFactor ldl;          // the factor as exported, kept for its buffers
     BlockFactor blocks;     // its 3x3 float blocks (fem/block_factor.h), empty if not node-blocked
@@ -181,37 +180,28 @@ class LaggedFactor {
   void install();  // joins the job and installs its factor if it succeeded
   std::unique_ptr<CholmodSolver> take_spare(std::uint64_t structure, bool& analyzed);
 
-  std::unique_ptr<Job> new_job(const CsrMatrix& a, std::uint64_t structure,
-                               std::span<const Quat> node_rot, std::span<const Quat> tet_rot,
-                               std::span<const std::uint8_t> free);
+  std::unique_ptr<Job> new_job(const CsrMatrix& a, std::uint64_t structure);
+  /// The pending refresh's record in the state (what a restore factors again).
+  void record_pending(const CsrMatrix& a, std::uint64_t structure, std::uint64_t ready_step,
+                      std::span<const Quat> node_rot, std::span<const Quat> tet_rot,
+                      std::span<const std::uint8_t> free);
 
   std::unique_ptr<Job> m_job;
   std::unique_ptr<Job> m_recycled;  // the last job done, its buffers kept for the next
   std::unique_ptr<CholmodSolver> m_installed;
   BlockFactor m_installed_blocks;  // the installed factor's solves (empty: CHOLMOD's)
-  CsrMatrix m_installed_a;         // the matrix the installed factor was computed from (snapshots)
   std::int32_t m_installed_rows = 0;
-  std::vector<Quat> m_installed_rot;           // (rows / 3) R0 of the installed factor
-  std::vector<Quat> m_installed_tet_rot;       // (m) the tets' rotations at its step
-  std::vector<std::uint8_t> m_installed_free;  // (rows / 3) its matrix's free mask
-  std::uint64_t m_installed_structure = 0;
   // The factor replaced at the last install, kept with its analysis for the next refresh of the
   // same pattern (a numeric refactorization skips the symbolic analysis).
   std::unique_ptr<CholmodSolver> m_spare;
   std::uint64_t m_spare_structure = 0;
-  std::uint64_t m_refreshes = 0;
   std::vector<double> m_r, m_z;  // (rows()) the turned, filtered residual and its solve
-  // The patch after a cut: a factor of A restricted to the rows of m_patch_nodes.
+  // The patch after a cut: a factor of A restricted to the rows of m_b->patch.nodes.
   std::unique_ptr<CholmodSolver> m_patch;
-  CsrMatrix m_patch_a;   // that submatrix A_TT (snapshots)
-  CsrMatrix m_patch_tu;  // the patch rows' other entries A_TU, global columns
-  std::uint64_t m_patch_structure = 0;
-  std::vector<std::int32_t> m_patch_nodes;    // ascending node ids
-  std::vector<std::int32_t> m_patch_index;    // node -> index in m_patch_nodes, or -1
-  std::vector<std::uint8_t> m_patch_free;     // (n) the free mask the patch was made for
-  std::vector<Quat> m_patch_tet_rot;          // (m) the tets' rotations at its step
+  std::vector<std::int32_t> m_patch_index;    // node -> index in the patch's nodes, or -1
   std::vector<double> m_pr, m_pz, m_w, m_ty;  // (3 patch nodes) patch-sized work vectors
   std::vector<double> m_ru;                   // (3n) r_U - A_UT w
+  BoundBlock<LaggedBlock> m_b;                // the schedule: its block of the state
   bool install_patch(CsrMatrix tt, CsrMatrix tu, std::vector<std::int32_t> nodes,
                      std::uint64_t structure, std::vector<std::uint8_t> free,
                      std::vector<Quat> tet_rot);
