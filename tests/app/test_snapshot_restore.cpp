@@ -126,6 +126,59 @@ TEST(Snapshot, RestoreAtRandomStepsEqualsTheUninterruptedRunBitForBit) {
   }
 }
 
+// The default procedure, five steps with four exchanges of the right hand: snapshots at random
+// steps and at the first step after each exchange (the hands' account is in the metrics' block),
+// each restored into a fresh pipeline; 60 steps on, every hash equals the uninterrupted run's, and
+// the last one, run to the end, gives the same whole state, byte for byte.
+TEST(Snapshot, TheDefaultProcedureWithItsExchangesRestoresBitForBitAtRandomSteps) {
+  const Scene scene = load_scene(source("config/appendectomy.toml"));
+  const auto steps = static_cast<std::uint64_t>(scene.headless.steps);
+  std::mt19937 rng(20261207);
+  std::uniform_int_distribution<std::uint64_t> pick(1, steps - 61);
+  std::set<std::uint64_t> wanted;
+  while (wanted.size() < 4) wanted.insert(pick(rng));
+
+  auto run = build(scene);
+  SimState& s = run->assembled.state;
+  run->comp.runner->prepare(s);
+  std::map<std::uint64_t, std::uint64_t> hashes;
+  std::map<std::uint64_t, std::vector<std::uint8_t>> taken;
+  std::size_t exchanges_seen = 0;
+  bool exchange_pending = false;
+  while (s.step < steps) {
+    run->comp.runner->step(s);
+    hashes[s.step] = state_hash(s);
+    const std::size_t exchanges = s.blocks.metrics.exchanges.exchanges.size();
+    exchange_pending = exchange_pending || exchanges > exchanges_seen;
+    exchanges_seen = exchanges;
+    const bool due = !wanted.empty() && s.step >= *wanted.begin();
+    if (s.events.cuts.empty() && (due || exchange_pending) && s.step + 60 <= steps) {
+      wanted.erase(wanted.begin(), wanted.upper_bound(s.step));
+      exchange_pending = false;
+      taken[s.step] = run->comp.runner->snapshot(s);
+    }
+  }
+  const std::vector<std::uint8_t> final_bytes = run->comp.runner->snapshot(s);
+  ASSERT_EQ(exchanges_seen, 4u);
+  ASSERT_GE(taken.size(), 8u);
+  for (auto it = taken.begin(); it != taken.end(); ++it) {
+    SCOPED_TRACE("restored after step " + std::to_string(it->first));
+    auto r = build(scene);
+    SimState& rs = r->assembled.state;
+    r->comp.runner->restore(it->second, rs, "snapshot");
+    EXPECT_EQ(r->comp.runner->snapshot(rs), it->second);
+    const bool last = std::next(it) == taken.end();
+    const std::uint64_t until = last ? steps : it->first + 60;
+    while (rs.step < until) {
+      r->comp.runner->step(rs);
+      ASSERT_EQ(state_hash(rs), hashes.at(rs.step)) << "step " << rs.step;
+    }
+    if (last) {
+      EXPECT_EQ(r->comp.runner->snapshot(rs), final_bytes);
+    }
+  }
+}
+
 TEST(Snapshot, DamagedSnapshotIsAnInputErrorNeverACrash) {
   const Scene scene = load_scene(source("config/beam.toml"));
   auto run = build(scene);
