@@ -6,7 +6,7 @@
 //  - `serosa run` without it: the scripted graspers and scissors follow the rig when one is
 //    plugged in, else the mouse and keyboard, through the haptic loop (the "haptics" effect is
 //    added: the loop is what reads a device); the scripted endoscope follows the window's keys
-//    and right button (app/scope_control.h; the rig has no third handle), from where its script
+//    and right button (window/scope_control.h; the rig has no third handle), from where its script
 //    starts it. A scene that already drives an instrument by a device (rig, rig-emulated or
 //    mouse) keeps the devices it names;
 //  - `serosa headless`: the devices the scene names.

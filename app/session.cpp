@@ -17,22 +17,13 @@
 #include "app/assessment_report.h"
 #include "app/compose.h"
 #include "app/drawn_surface.h"
-#include "app/frame_pacer.h"
-#include "app/hand_overlay.h"
 #include "app/headless.h"
 #include "app/instrument_devices.h"
 #include "app/output_paths.h"
-#include "app/overlay_stats.h"
-#include "app/pointer_control.h"
 #include "app/render_frame_from_surface.h"
 #include "app/scenery_from_scene.h"
-#include "app/scope_control.h"
 #include "app/session_summary.h"
 #include "app/simulation.h"
-#include "app/summary_screen.h"
-#include "app/view_log.h"
-#include "app/window_interrupt.h"
-#include "app/window_pointer.h"
 #include "engine/hook.h"
 #include "engine/input_error.h"
 #include "engine/record_stage.h"
@@ -54,11 +45,20 @@
 #include "render/window.h"
 #include "surface/cut_faces.h"
 #include "trainee/help_seen.h"
+#include "window/frame_pacer.h"
+#include "window/hand_overlay.h"
+#include "window/overlay_stats.h"
+#include "window/pointer_control.h"
+#include "window/scope_control.h"
+#include "window/summary_screen.h"
+#include "window/view_log.h"
+#include "window/window_interrupt.h"
+#include "window/window_pointer.h"
 
 namespace serosa::app {
 namespace {
 
-// The trainee window draws at most this many frames a second (app/frame_pacer.h).
+// The trainee window draws at most this many frames a second (window/frame_pacer.h).
 constexpr double kMaxFramesPerS = 60.0;
 
 using Clock = std::chrono::steady_clock;
@@ -179,7 +179,7 @@ class SolverLoop {
       cam = m_fitted;
     }
     f.camera = *cam;
-    FrameStats stats;
+    window::FrameStats stats;
     stats.sim_time_s = m_state.time_s;
     stats.fem_ms_per_step = m_step_ms;
     stats.solver_rate_hz = m_rate_hz;
@@ -202,7 +202,7 @@ class SolverLoop {
       }
       stats.haptic_live_rate_hz = m_hap_rate_hz;
     }
-    stats.instruments = instruments_label(
+    stats.instruments = window::instruments_label(
         m_comp.haptics != nullptr ? std::optional<DeviceKind>(m_comp.haptics->device_kind())
                                   : std::nullopt,
         m_comp.haptics != nullptr && m_comp.haptics->device_connected(), m_comp.tools != nullptr,
@@ -210,15 +210,16 @@ class SolverLoop {
     stats.cuts = m_cuts;
     stats.paused = m_control.paused.load();
     stats.slow_motion = m_slow;
-    f.overlay = overlay_data(stats);
+    f.overlay = window::overlay_data(stats);
     if (m_comp.haptics != nullptr && m_comp.haptics->device_kind() != DeviceKind::kScript) {
-      const HandleTools& handles = m_comp.haptics->handle_tools();
+      const window::HandleTools& handles = m_comp.haptics->handle_tools();
       const std::size_t active = m_control.active_handle.load();
       const bool mouse = m_comp.haptics->device_kind() == DeviceKind::kMouse;
-      mark_active_tool(f, mouse && active < handles.size() ? handles[active] : std::nullopt);
+      window::mark_active_tool(f,
+                               mouse && active < handles.size() ? handles[active] : std::nullopt);
       f.overlay.hands =
-          overlay_hands(m_scene, m_state, handles, mouse ? active : handles.size(), f);
-      f.overlay.waiting = waiting_instruments(m_scene, m_state, handles);
+          window::overlay_hands(m_scene, m_state, handles, mouse ? active : handles.size(), f);
+      f.overlay.waiting = window::waiting_instruments(m_scene, m_state, handles);
     }
     m_frames.publish();
   }
@@ -262,7 +263,7 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
   Scene loaded = load_scene(scene_path);
   std::vector<std::optional<ToolState>> rest_pose;  // how the mouse's instruments rest
   std::vector<LivePoseStage::Source> live_poses;
-  std::unique_ptr<ScopeControl> scope;  // the endoscope in the trainee's hands
+  std::unique_ptr<window::ScopeControl> scope;  // the endoscope in the trainee's hands
   if (so.tool_path) {
     play_tool_path(loaded, *so.tool_path);
   } else if (auto given = give_instruments_to_trainee(loaded, haptics::rig_plugged_in())) {
@@ -271,7 +272,7 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
     rest_pose = std::move(given->start_pose);
     for (std::size_t i = 0; i < given->scope_start.size() && !scope; ++i) {
       if (!given->scope_start[i]) continue;
-      scope = std::make_unique<ScopeControl>(loaded.tools[i], *given->scope_start[i]);
+      scope = std::make_unique<window::ScopeControl>(loaded.tools[i], *given->scope_start[i]);
       live_poses.push_back({i, &scope->pose()});
       spdlog::info("the endoscope follows the right mouse button, I/K and ,/.");
     }
@@ -296,8 +297,8 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
   const bool mouse = comp.haptics != nullptr && comp.haptics->device_kind() == DeviceKind::kMouse;
   const bool in_hands =
       comp.haptics != nullptr && comp.haptics->device_kind() != DeviceKind::kScript;
-  PointerControl pointer;
-  std::optional<ViewLog> view_log;
+  window::PointerControl pointer;
+  std::optional<window::ViewLog> view_log;
   if (so.view_log) {
     std::vector<std::string> names;
     for (const Tool& t : scene.tools) names.push_back(t.name);
@@ -307,7 +308,7 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
   bool show_help =
       in_hands && !so.help_file.empty() && trainee::first_time_help(so.help_file, so.trainee);
 
-  const InterruptGuard interrupts;
+  const window::InterruptGuard interrupts;
   render::Window window(scene.render.width, scene.render.height, "Serosa");
   render::FrameRenderer renderer;
   // Software GL's workers yield to the solver (render/renderer_threads.h).
@@ -320,8 +321,8 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
   options.shape_factor = static_cast<float>(scene.render.shape_factor);
   bool show_overlay = true;
   int asked_tessellation = scene.render.tessellation;  // the scene's or the keys'
-  FramePacer pacer(asked_tessellation, kMaxFramesPerS);
-  FrameRate frame_rate;
+  window::FramePacer pacer(asked_tessellation, kMaxFramesPerS);
+  window::FrameRate frame_rate;
 
   TripleBuffer<render::RenderFrame> frames;
   Control control;
@@ -359,9 +360,10 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
       const bool help_key = window.pressed(render::Key::kH);
       if (window.pressed(render::Key::kF1) || help_key) show_help = !show_help;
       if (window.pressed(render::Key::kF2)) show_overlay = !show_overlay;
-      const PointerEvents events = pointer_events(window);
+      const window::PointerEvents events = window::pointer_events(window);
       if (mouse) {
-        comp.haptics->feed_pointer(pointer.update(events, screen_axes(frames.front().camera)));
+        comp.haptics->feed_pointer(
+            pointer.update(events, window::screen_axes(frames.front().camera)));
         control.active_handle.store(pointer.active());
       }
       if (scope) scope->update(window);
@@ -465,8 +467,9 @@ int run_session(const std::filesystem::path& scene_path, const SessionOptions& s
     // Ctrl-C or a solver error.
     if (report.contains("assessment") && !window.should_close() && !interrupts.interrupted() &&
         !loop.error() && (ended || (timed_out && so.summary_seconds > 0.0)))
-      show_summary(window, renderer, frames.front(), options, overlay, session_summary(report),
-                   timed_out ? so.summary_seconds : 0.0, snapshot, interrupts.flag());
+      window::show_summary(window, renderer, frames.front(), options, overlay,
+                           session_summary(report), timed_out ? so.summary_seconds : 0.0, snapshot,
+                           interrupts.flag());
   }
   if (loop.error()) std::rethrow_exception(loop.error());
   return 0;

@@ -29,7 +29,7 @@ struct SessionOptions {
   std::string trainee;
   std::filesystem::path help_file;
   /// Where each frame's instruments, guide and organs were drawn, as JSON lines
-  /// (app/view_log.h); none when empty.
+  /// (window/view_log.h); none when empty.
   std::optional<std::filesystem::path> view_log;
 };
 
@@ -52,7 +52,7 @@ struct SessionOptions {
 /// level, O toggle a 0/30 degree scope, H or F1 the controls panel (shown by itself the first
 /// time a trainee drives), F2 hide/show the overlay, Esc end the session (then the summary of
 /// its assessment, when the scene scores it; Esc again to leave). With mouse-driven instruments
-/// (app/pointer_control.h): drag with the left button to move the active one's tip the way the
+/// (window/pointer_control.h): drag with the left button to move the active one's tip the way the
 /// pointer goes in the picture (it pivots about its trocar), W/S into and out of the picture,
 /// the wheel in and out along the shaft, Q/E roll, J taps open/close the jaws and held closes them
 /// steadily, P the pedal, Home back into view, Tab the other hand. The overlay names what each hand

@@ -3,7 +3,7 @@
 // loop turns what changed since its last poll into a goal for each handle and moves the handle
 // towards it at the haptic rate:
 //  - a drag moves the goal tip by move_m, in the scene frame: the window turns pixels into metres
-//    along the picture's right and up at a fixed gain (app/pointer_control.h), so the tip goes
+//    along the picture's right and up at a fixed gain (window/pointer_control.h), so the tip goes
 //    the way the pointer went whatever the instrument's insertion or shaft direction;
 //  - the goal tip then goes through the trocar kinematics: the shaft pivots about its port and
 //    the tip stays within max_cone_rad of the port's axis and between min and max insertion, so

@@ -155,7 +155,7 @@ struct OverlayData {
   /// "emulated rig", "emulated rig not connected", "script", "recording"; null: not shown.
   const char* instruments = nullptr;
   /// The window's measured frame rate, frames/s, and the tessellation it draws with now (the
-  /// renderer steps them down when the solver falls behind, app/frame_pacer.h); <= 0: unknown.
+  /// renderer steps them down when the solver falls behind, window/frame_pacer.h); <= 0: unknown.
   double frame_rate_hz = 0.0;
   int drawn_tessellation = 0;
   float drawn_scale = 1.0f;  ///< the fraction of the window's resolution drawn at

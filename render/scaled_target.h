@@ -1,6 +1,6 @@
 // ScaledTarget: draws a frame at a fraction of the framebuffer's resolution and stretches it over
 // the framebuffer. A software renderer's cost (Mesa's llvmpipe) follows the pixels it shades, so
-// this is the window's cheapest way to give CPU back to the solver (app/frame_pacer.h's last
+// this is the window's cheapest way to give CPU back to the solver (window/frame_pacer.h's last
 // resort before dropping frames). At scale 1 it is a pass-through: the frame is drawn directly.
 #pragma once
 

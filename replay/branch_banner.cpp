@@ -7,7 +7,6 @@
 
 namespace serosa::replay {
 
-using namespace serosa::app;  // the driver, the composition and the window's parts
 namespace {
 
 // "a", "a and b", "a, b and c".

@@ -67,7 +67,7 @@ MouseTakeover::MouseTakeover(const Scene& scene, const std::vector<ToolState>& t
   for (std::size_t i = 0; i < m_tools.size() && i < tools.size() && !m_scope; ++i) {
     if (instrument(m_tools[i]) || !scope_posed(tools[i])) continue;
     m_scope_tool = i;
-    m_scope = std::make_unique<ScopeControl>(m_tools[i], tools[i]);
+    m_scope = std::make_unique<window::ScopeControl>(m_tools[i], tools[i]);
     if ((tools[i].buttons & kScopeAngledButton) != 0) m_scope->toggle_optic();  // as recorded
   }
 }

@@ -1,7 +1,7 @@
 // MouseTakeover: the instructor (or trainee) takes over a paused replay with the mouse ("branch
 // from replay"). After ReplayController::branch() the replay's instruments the mouse holds follow
 // a haptics::MouseKeyboardDevice per hand instead of the recording, the way the trainee session
-// hands them out (app/pointer_control.h: Tab makes the other hand active, X exchanges the active
+// hands them out (window/pointer_control.h: Tab makes the other hand active, X exchanges the active
 // hand's instrument):
 //  - at the branch, the left hand (handle 0) takes the instrument the recording's left hand held,
 //    the right hand (handle 1) the right's (engine/instrument_hold.h; a hand that held none is
@@ -22,7 +22,7 @@
 //    instrument's range (engine/jaw_range.h). The device's buttons (a hook's pedal) likewise keep
 //    the recorded ones until the input toggles one;
 //  - the endoscope (the scene's first, when the recording posed it) is the mouse's from the
-//    branch on, through the session's scope control (app/scope_control.h: right button, I/K,
+//    branch on, through the session's scope control (window/scope_control.h: right button, I/K,
 //    comma/period, O), from its pose at the branch: the instructor's view moves only when they
 //    move it.
 // poll() turns the cumulative input into the tool inputs for the replay's next step and apply()
@@ -37,14 +37,14 @@
 #include <optional>
 #include <vector>
 
-#include "app/scope_control.h"
 #include "engine/scene.h"
 #include "engine/tool_state.h"
 #include "haptics/mouse_device.h"
+#include "window/scope_control.h"
 
 namespace serosa::replay {
 
-using app::ScopeControl;
+using window::ScopeControl;
 
 class ReplayController;
 
@@ -99,7 +99,7 @@ class MouseTakeover {
   /// The endoscope the mouse drives (scene index), if any.
   [[nodiscard]] std::optional<std::size_t> scope_tool() const noexcept { return m_scope_tool; }
   /// Its control: the window feeds it its keys and right button (ScopeControl::update).
-  [[nodiscard]] ScopeControl* scope() noexcept { return m_scope.get(); }
+  [[nodiscard]] window::ScopeControl* scope() noexcept { return m_scope.get(); }
 
  private:
   /// What a hand's device saw of the input when its instrument was taken, and what it held.
@@ -127,7 +127,7 @@ class MouseTakeover {
   std::vector<TakeoverInput> m_let_go;  // their last inputs, for the next poll
   bool m_hands = false;  // the recording says which hand holds what (engine/instrument_hold.h)
   std::optional<std::size_t> m_scope_tool;
-  std::unique_ptr<ScopeControl> m_scope;
+  std::unique_ptr<window::ScopeControl> m_scope;
   haptics::PointerInput m_initial{};
 };
 

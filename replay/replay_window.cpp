@@ -12,15 +12,10 @@
 
 #include "app/compose.h"
 #include "app/drawn_surface.h"
-#include "app/overlay_stats.h"
-#include "app/pointer_control.h"
 #include "app/render_frame_from_surface.h"
 #include "app/scenery_from_scene.h"
 #include "app/session.h"
 #include "app/session_summary.h"
-#include "app/summary_screen.h"
-#include "app/window_interrupt.h"
-#include "app/window_pointer.h"
 #include "engine/scene.h"
 #include "metrics/metrics_stage.h"
 #include "render/camera.h"
@@ -34,6 +29,11 @@
 #include "replay/replay_controller.h"
 #include "replay/replay_timeline.h"
 #include "replay/replay_window.h"
+#include "window/overlay_stats.h"
+#include "window/pointer_control.h"
+#include "window/summary_screen.h"
+#include "window/window_interrupt.h"
+#include "window/window_pointer.h"
 
 namespace serosa::replay {
 
@@ -131,10 +131,12 @@ class ReplayWindow {
       m_options.tessellation = std::max(m_options.tessellation - 1, 1);
     if (m_window.pressed(render::Key::kH)) m_show_overlay = !m_show_overlay;
     if (m_window.pressed(render::Key::kB) && !m_replay.branched()) branch_here();
-    const PointerEvents events = pointer_events(m_window);  // taken every frame: none pile up
+    const window::PointerEvents events =
+        window::pointer_events(m_window);  // taken every frame: none pile up
     if (m_takeover) {
-      if (ScopeControl* scope_control = m_takeover->scope()) scope_control->update(m_window);
-      m_takeover->apply(m_pointer.update(events, screen_axes(m_frame.camera)), m_replay);
+      if (window::ScopeControl* scope_control = m_takeover->scope())
+        scope_control->update(m_window);
+      m_takeover->apply(m_pointer.update(events, window::screen_axes(m_frame.camera)), m_replay);
     }
   }
 
@@ -186,7 +188,7 @@ class ReplayWindow {
     m_replay.branch(file);
     m_branch_path = file;
     m_takeover.emplace(m_replay.scene(), m_replay.state().tools);
-    m_pointer = PointerControl(m_takeover->initial_input());
+    m_pointer = window::PointerControl(m_takeover->initial_input());
     spdlog::info(
         "replay: branched at {:.3f} s (step {}) into {}; the mouse takes over (Tab: other "
         "hand, X: next instrument)",
@@ -209,7 +211,8 @@ class ReplayWindow {
       cam = m_fitted;
     }
     m_frame.camera = *cam;
-    m_frame.overlay = overlay_data(frame_stats());  // the metrics are the debrief's, by domain
+    m_frame.overlay =
+        window::overlay_data(frame_stats());  // the metrics are the debrief's, by domain
     if (m_takeover)
       m_frame.overlay.branch =
           branch_banner(scene, *m_takeover,
@@ -226,9 +229,9 @@ class ReplayWindow {
     }
   }
 
-  [[nodiscard]] FrameStats frame_stats() const {
+  [[nodiscard]] window::FrameStats frame_stats() const {
     const SimState& state = m_replay.state();
-    FrameStats stats;
+    window::FrameStats stats;
     stats.sim_time_s = state.time_s;
     stats.fem_ms_per_step = m_step_ms;
     stats.solver_rate_hz = m_rate_hz;
@@ -285,8 +288,8 @@ class ReplayWindow {
     }
     const nlohmann::json report = finish_branch(m_replay, m_branch_path);
     if (m_end_branch_asked && !m_interrupts.interrupted() && report.contains("assessment"))
-      show_summary(m_window, m_renderer, m_frame, m_options, m_overlay, session_summary(report),
-                   0.0, {}, m_interrupts.flag());
+      window::show_summary(m_window, m_renderer, m_frame, m_options, m_overlay,
+                           session_summary(report), 0.0, {}, m_interrupts.flag());
   }
 
   std::filesystem::path m_recording;
@@ -300,11 +303,11 @@ class ReplayWindow {
   int m_current_mark = -1;                          // the mark last jumped to
   // The branch: the mouse's takeover, its file, its own marks and assessment.
   std::optional<MouseTakeover> m_takeover;
-  PointerControl m_pointer;
+  window::PointerControl m_pointer;
   std::filesystem::path m_branch_path;
   BranchDebrief m_branch_debrief;
   bool m_end_branch_asked = false;
-  const InterruptGuard m_interrupts;
+  const window::InterruptGuard m_interrupts;
   render::Window m_window;
   render::FrameRenderer m_renderer;
   render::Overlay m_overlay;

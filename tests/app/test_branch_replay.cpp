@@ -14,7 +14,6 @@
 #include <nlohmann/json.hpp>
 
 #include "app/headless.h"
-#include "app/pointer_control.h"
 #include "app_test_util.h"
 #include "engine/hook.h"
 #include "engine/instrument_hold.h"
@@ -26,6 +25,7 @@
 #include "replay/mouse_takeover.h"
 #include "replay/replay.h"
 #include "replay/replay_controller.h"
+#include "window/pointer_control.h"
 
 namespace serosa::app {
 namespace {

@@ -1,4 +1,4 @@
-// FramePacer (app/frame_pacer.h): a solver falling behind makes the window cheaper, rung by rung
+// FramePacer (window/frame_pacer.h): a solver falling behind makes the window cheaper, rung by rung
 // (tessellation first, then resolution, then frame rate), and a solver keeping up brings it back;
 // the frame rate never exceeds the cap; a picture too costly for kMinFps steps down the picture's
 // rungs alone, and the pacer does not climb back to a rung that drew too slowly.
@@ -7,12 +7,12 @@
 #include <chrono>
 #include <vector>
 
-#include "app/frame_pacer.h"
+#include "window/frame_pacer.h"
 
 namespace serosa::app {
 namespace {
 
-using Clock = FramePacer::Clock;
+using Clock = window::FramePacer::Clock;
 using std::chrono::duration_cast;
 
 Clock::duration sec(double s) {
@@ -21,7 +21,7 @@ Clock::duration sec(double s) {
 
 // Draws frames as the pacer schedules them for `seconds` (each taking `draw_s`), all with the
 // solver behind or not; returns the time reached and counts the frames.
-Clock::time_point play(FramePacer& p, Clock::time_point t, double seconds, bool behind,
+Clock::time_point play(window::FramePacer& p, Clock::time_point t, double seconds, bool behind,
                        double draw_s, int* frames = nullptr) {
   const Clock::time_point end = t + sec(seconds);
   while (t < end) {
@@ -33,7 +33,7 @@ Clock::time_point play(FramePacer& p, Clock::time_point t, double seconds, bool 
 }
 
 TEST(FramePacer, BehindStepsDownTessellationThenFrameRateAndRecovers) {
-  FramePacer p(3, 60.0);
+  window::FramePacer p(3, 60.0);
   Clock::time_point t{};
   int frames = 0;
   t = play(p, t, 2.0, false, 0.001, &frames);
@@ -83,7 +83,7 @@ TEST(FramePacer, BehindStepsDownTessellationThenFrameRateAndRecovers) {
 }
 
 TEST(FramePacer, OccasionalLateStepsDoNotStepDown) {
-  FramePacer p(4, 60.0);
+  window::FramePacer p(4, 60.0);
   Clock::time_point t{};
   for (int k = 0; k < 600; ++k) {
     t = std::max(t, p.next_frame()) + sec(0.002);
@@ -93,7 +93,7 @@ TEST(FramePacer, OccasionalLateStepsDoNotStepDown) {
 }
 
 TEST(FramePacer, ASlowDrawIsNotCaughtUpAndTheUserMovesTheTop) {
-  FramePacer p(3, 60.0);
+  window::FramePacer p(3, 60.0);
   Clock::time_point t{};
   p.frame_done(t + sec(0.2), false);  // one frame took 200 ms
   EXPECT_LE(p.next_frame() - (t + sec(0.2)), sec(1.0 / 60.0) + sec(1e-9));
@@ -109,7 +109,7 @@ TEST(FramePacer, ASlowDrawIsNotCaughtUpAndTheUserMovesTheTop) {
 // Each frame costs what its tessellation and resolution make it (software GL: 11 frames/s at
 // tessellation 3, about 17 at 2): the solver keeps up throughout.
 TEST(FramePacer, ATooCostlyPictureStepsDownTheTessellationAndStaysThere) {
-  FramePacer p(3, 60.0);
+  window::FramePacer p(3, 60.0);
   const auto cost = [&p] {
     const double by_level[] = {0.0, 0.04, 0.06, 0.09};
     const auto scale = static_cast<double>(p.resolution_scale());
@@ -129,7 +129,7 @@ TEST(FramePacer, ATooCostlyPictureStepsDownTheTessellationAndStaysThere) {
   }
   EXPECT_EQ(p.tessellation(), 2);
   // From the tenth second on: at least kMinFps on average (a retry of level 3 each kRetryS).
-  EXPECT_GE(frames / 20.0, FramePacer::kMinFps);
+  EXPECT_GE(frames / 20.0, window::FramePacer::kMinFps);
 }
 
 }  // namespace

@@ -2,20 +2,20 @@
 // loop's telemetry (a dash when no loop runs), cuts, the replay position and the metrics report.
 #include <gtest/gtest.h>
 
-#include "app/overlay_stats.h"
 #include "haptics/loop_telemetry.h"
 #include "render/overlay.h"
+#include "window/overlay_stats.h"
 
 namespace serosa::app {
 namespace {
 
 TEST(OverlayStats, HapticRateIsTheMedianTickRateAndADashWithoutALoop) {
-  FrameStats s;
+  window::FrameStats s;
   s.sim_time_s = 2.0;
   s.fem_ms_per_step = 4.5;
   s.solver_rate_hz = 180.0;
   s.cuts = 2;
-  render::OverlayData d = overlay_data(s);
+  render::OverlayData d = window::overlay_data(s);
   EXPECT_EQ(d.haptic_rate_hz, 0.0);
   EXPECT_EQ(render::overlay_text(d).stats[2], "haptics \u2014");
   EXPECT_EQ(render::overlay_text(d).stats[1], "FEM 4.50 ms/step  (180 steps/s)");
@@ -26,38 +26,39 @@ TEST(OverlayStats, HapticRateIsTheMedianTickRateAndADashWithoutALoop) {
   for (int i = 0; i < 990; ++i) t->record_period(1'000'000);
   for (int i = 0; i < 10; ++i) t->record_period(4'000'000);
   s.haptics = t.get();
-  d = overlay_data(s);
+  d = window::overlay_data(s);
   EXPECT_NEAR(d.haptic_rate_hz, 1000.0, 1.0);
   EXPECT_EQ(render::overlay_text(d).stats[2], "haptics 1000 Hz");
   // A loop that ran at 500 Hz.
   auto slow = std::make_unique<haptics::LoopTelemetry>();
   for (int i = 0; i < 100; ++i) slow->record_period(2'000'000);
-  EXPECT_NEAR(haptic_rate_hz(*slow), 500.0, 0.5);
+  EXPECT_NEAR(window::haptic_rate_hz(*slow), 500.0, 0.5);
   // A loop that has not ticked twice yet: no rate.
-  EXPECT_EQ(haptic_rate_hz(haptics::LoopTelemetry{}), 0.0);
+  EXPECT_EQ(window::haptic_rate_hz(haptics::LoopTelemetry{}), 0.0);
 }
 
 TEST(OverlayStats, TheOverlaySaysWhatDrivesTheInstruments) {
-  EXPECT_STREQ(instruments_label(DeviceKind::kMouse, true, true), "mouse");
-  EXPECT_STREQ(instruments_label(DeviceKind::kRig, true, false), "rig");
-  EXPECT_STREQ(instruments_label(DeviceKind::kRig, false, false), "rig not connected");
-  EXPECT_STREQ(instruments_label(DeviceKind::kRig, false, false, true), "rig disconnected");
-  EXPECT_STREQ(instruments_label(DeviceKind::kRigEmulated, false, false, true),
+  EXPECT_STREQ(window::instruments_label(DeviceKind::kMouse, true, true), "mouse");
+  EXPECT_STREQ(window::instruments_label(DeviceKind::kRig, true, false), "rig");
+  EXPECT_STREQ(window::instruments_label(DeviceKind::kRig, false, false), "rig not connected");
+  EXPECT_STREQ(window::instruments_label(DeviceKind::kRig, false, false, true), "rig disconnected");
+  EXPECT_STREQ(window::instruments_label(DeviceKind::kRigEmulated, false, false, true),
                "emulated rig disconnected");
-  EXPECT_STREQ(instruments_label(DeviceKind::kRig, true, false, true), "rig");
-  EXPECT_STREQ(instruments_label(DeviceKind::kRigEmulated, false, false),
+  EXPECT_STREQ(window::instruments_label(DeviceKind::kRig, true, false, true), "rig");
+  EXPECT_STREQ(window::instruments_label(DeviceKind::kRigEmulated, false, false),
                "emulated rig not connected");
-  EXPECT_STREQ(instruments_label(DeviceKind::kScript, true, true), "script");
-  EXPECT_STREQ(instruments_label(std::nullopt, false, true), "script");
-  EXPECT_EQ(instruments_label(std::nullopt, false, false), nullptr);
+  EXPECT_STREQ(window::instruments_label(DeviceKind::kScript, true, true), "script");
+  EXPECT_STREQ(window::instruments_label(std::nullopt, false, true), "script");
+  EXPECT_EQ(window::instruments_label(std::nullopt, false, false), nullptr);
 
-  FrameStats s;
+  window::FrameStats s;
   s.haptic_live_rate_hz = 998.0;
-  s.instruments = instruments_label(DeviceKind::kRig, false, false);
-  EXPECT_EQ(render::overlay_text(overlay_data(s)).stats[2], "haptics 998 Hz  (rig not connected)");
+  s.instruments = window::instruments_label(DeviceKind::kRig, false, false);
+  EXPECT_EQ(render::overlay_text(window::overlay_data(s)).stats[2],
+            "haptics 998 Hz  (rig not connected)");
   s.haptic_live_rate_hz = 0.0;
-  s.instruments = instruments_label(std::nullopt, false, true);
-  EXPECT_EQ(render::overlay_text(overlay_data(s)).stats[2], "haptics \u2014  (script)");
+  s.instruments = window::instruments_label(std::nullopt, false, true);
+  EXPECT_EQ(render::overlay_text(window::overlay_data(s)).stats[2], "haptics \u2014  (script)");
 }
 
 TEST(OverlayStats, ReplayAndMetricsReachTheOverlay) {
@@ -66,14 +67,14 @@ TEST(OverlayStats, ReplayAndMetricsReachTheOverlay) {
                                  {"force_max_n", {{"scissors", 1.5}}},
                                  {"peak_stress_pa", 2500.0},
                                  {"cut", {{"tets", 12}, {"volume_m3", 2e-7}}}};
-  FrameStats s;
+  window::FrameStats s;
   s.replay = true;
   s.replay_position_s = 3.5;
   s.replay_duration_s = 5.0;
   s.replay_speed = 0.5;
   s.paused = true;
   s.metrics = &report;
-  const render::OverlayData d = overlay_data(s);
+  const render::OverlayData d = window::overlay_data(s);
   EXPECT_TRUE(d.replay);
   EXPECT_EQ(render::overlay_text(d).timeline, "0:03.5 / 0:05.0  x0.5  [paused]");
   ASSERT_EQ(d.metrics.size(), 7u);  // nlohmann orders object keys alphabetically

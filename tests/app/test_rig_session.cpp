@@ -21,7 +21,6 @@
 #include "app/assemble_state.h"
 #include "app/compose.h"
 #include "app/headless.h"
-#include "app/overlay_stats.h"
 #include "app_test_util.h"
 #include "cutting/validate.h"
 #include "engine/instrument_hold.h"
@@ -35,6 +34,7 @@
 #include "haptics/haptics_stage.h"
 #include "haptics/trocar_kinematics.h"
 #include "umockdev_rerun.h"
+#include "window/overlay_stats.h"
 
 namespace serosa::app {
 namespace {
@@ -267,8 +267,8 @@ TEST(RigSession, UnplugMidSessionIsToldApartAndAReplugResumes) {
     }
   };
   const auto label = [&] {
-    return std::string(instruments_label(stage.device_kind(), stage.device_connected(), false,
-                                         stage.rig_was_connected()));
+    return std::string(window::instruments_label(stage.device_kind(), stage.device_connected(),
+                                                 false, stage.rig_was_connected()));
   };
   // Connected, the held tissue's pull reaches the hand (after the slew ramp, and again after any
   // late tick of a loaded or sanitizer build zeroed it: wait until it shows, at most 10 s).

@@ -1,4 +1,4 @@
-// The endoscope in the trainee's hands (app/scope_control.h): it starts where the script started
+// The endoscope in the trainee's hands (window/scope_control.h): it starts where the script started
 // it, pivots about its trocar (the shaft always through the port), inserts along its shaft, and
 // rotating it sweeps the 30 degree optic's view around the shaft; the solver takes its pose at the
 // step boundary (engine/live_pose_stage.h).
@@ -6,13 +6,13 @@
 
 #include <cmath>
 
-#include "app/scope_control.h"
 #include "app_test_util.h"
 #include "engine/live_pose_stage.h"
 #include "engine/scope_view.h"
 #include "engine/sim_state.h"
 #include "engine/tool_path.h"
 #include "render/camera.h"
+#include "window/scope_control.h"
 
 namespace serosa::app {
 namespace {
@@ -53,7 +53,7 @@ Scope default_scope() {
 
 TEST(ScopeControl, StartsWhereTheScriptStartsIt) {
   const Scope s = default_scope();
-  const ScopeControl scope(s.tool, s.start);
+  const window::ScopeControl scope(s.tool, s.start);
   const ToolState p = scope.pose().load();
   EXPECT_GT(p.tick, 0u);  // published: the solver's first step takes it
   EXPECT_LT((tip_of(p) - tip_of(s.start)).norm(), 1e-12);
@@ -62,7 +62,7 @@ TEST(ScopeControl, StartsWhereTheScriptStartsIt) {
 
 TEST(ScopeControl, PivotsAboutItsPortInsertsAlongItsShaftAndRotatesAboutIt) {
   const Scope s = default_scope();
-  ScopeControl scope(s.tool, s.start);
+  window::ScopeControl scope(s.tool, s.start);
   const Vec3 pivot = scope.trocar().pivot_m;
   const ToolState p0 = scope.pose().load();
   for (int k = 0; k < 50; ++k) {  // a walk of drags, insertions and turns
@@ -75,12 +75,12 @@ TEST(ScopeControl, PivotsAboutItsPortInsertsAlongItsShaftAndRotatesAboutIt) {
     EXPECT_NEAR(to_tip.dot(shaft_of(p)), scope.joints().insertion_m, 1e-12) << k;
   }
   // Insertion alone moves the tip along the shaft.
-  ScopeControl in(s.tool, s.start);
+  window::ScopeControl in(s.tool, s.start);
   in.move(0.0, 0.0, 0.01, 0.0);
   const ToolState p1 = in.pose().load();
   EXPECT_LT((tip_of(p1) - tip_of(p0) - 0.01 * shaft_of(p0)).norm(), 1e-12);
   // Rotation alone keeps tip and shaft; the 0 degree view stays, the 30 degree one sweeps round.
-  ScopeControl turn(s.tool, s.start);
+  window::ScopeControl turn(s.tool, s.start);
   turn.move(0.0, 0.0, 0.0, 1.0);
   const ToolState p2 = turn.pose().load();
   EXPECT_LT((tip_of(p2) - tip_of(p0)).norm(), 1e-12);
@@ -96,7 +96,7 @@ TEST(ScopeControl, PivotsAboutItsPortInsertsAlongItsShaftAndRotatesAboutIt) {
 // scope is turned.
 TEST(ScopeControl, TheOpticIsPartOfThePoseAndTheMetricsSeeWhatTheWindowShows) {
   const Scope s = default_scope();
-  ScopeControl scope(s.tool, s.start);
+  window::ScopeControl scope(s.tool, s.start);
   EXPECT_EQ(scope.pose().load().buttons & kScopeAngledButton, 0u);
   for (int k = 0; k < 200; ++k) {
     if (k % 3 == 0) scope.toggle_optic();

@@ -15,7 +15,6 @@
 #include "app/assemble_state.h"
 #include "app/compose.h"
 #include "app/headless.h"
-#include "app/pointer_control.h"
 #include "app_test_util.h"
 #include "contact/tool_contact_stage.h"
 #include "engine/jaw_range.h"
@@ -29,6 +28,7 @@
 #include "replay/mouse_takeover.h"
 #include "replay/replay.h"
 #include "replay/replay_controller.h"
+#include "window/pointer_control.h"
 
 namespace serosa::app {
 namespace {
@@ -234,9 +234,9 @@ TEST(SessionHaptics, MouseTakeoverBranchReplaysVerifiedWithTheOriginalPrefix) {
   EXPECT_LT((tip_of(c.state().tools[0]) - tip_of(before)).norm(), 1e-12);  // no jump
   EXPECT_NEAR(c.state().tools[0].jaw_rad, 0.5, 1e-12);
   for (int i = 0; i < 34; ++i) {
-    in.move_m[0][0] += 4.0 * kDragMetresPerPixel;  // drag 4 px right a step
-    if (i % 10 == 0) in.depth_steps[0] -= 1.0;     // retract
-    in.jaw_fraction[0] = i < 20 ? held : 0.0;      // held open (as recorded), then closing
+    in.move_m[0][0] += 4.0 * window::kDragMetresPerPixel;  // drag 4 px right a step
+    if (i % 10 == 0) in.depth_steps[0] -= 1.0;             // retract
+    in.jaw_fraction[0] = i < 20 ? held : 0.0;              // held open (as recorded), then closing
     take.apply(in, c);
     ASSERT_TRUE(c.step_forward());
   }

@@ -1,9 +1,9 @@
-#include "app/frame_pacer.h"
+#include "window/frame_pacer.h"
 
 #include <algorithm>
 #include <array>
 
-namespace serosa::app {
+namespace serosa::window {
 namespace {
 
 // Below tessellation 1: the resolution scales, then the frame-rate caps (frames/s).
@@ -104,4 +104,4 @@ void FrameRate::tick(FramePacer::Clock::time_point now) {
   m_frames = 0;
 }
 
-}  // namespace serosa::app
+}  // namespace serosa::window

@@ -10,7 +10,7 @@
 #include "render/session_summary.h"
 #include "render/window.h"
 
-namespace serosa::app {
+namespace serosa::window {
 
 /// Draws `frame` with the summary over it (the window's title says so) until the trainee leaves
 /// (Esc or Space pressed, the window closed,
@@ -21,4 +21,4 @@ void show_summary(render::Window& window, render::FrameRenderer& renderer,
                   render::Overlay& overlay, const render::SessionSummary& summary, double seconds,
                   const std::filesystem::path& snapshot, const std::atomic<bool>& interrupted);
 
-}  // namespace serosa::app
+}  // namespace serosa::window

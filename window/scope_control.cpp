@@ -1,4 +1,4 @@
-#include "app/scope_control.h"
+#include "window/scope_control.h"
 
 #include <algorithm>
 #include <cstring>
@@ -6,7 +6,7 @@
 #include "engine/scope_view.h"
 #include "render/window.h"
 
-namespace serosa::app {
+namespace serosa::window {
 
 ScopeControl::ScopeControl(const Tool& tool, const ToolState& start, const ScopeMapping& mapping)
     : m_map(mapping) {
@@ -68,4 +68,4 @@ void ScopeControl::update(render::Window& window) {
     move(pitch, yaw, insertion, roll);
 }
 
-}  // namespace serosa::app
+}  // namespace serosa::window

@@ -1,4 +1,4 @@
-#include "app/overlay_stats.h"
+#include "window/overlay_stats.h"
 
 #include <array>
 #include <string>
@@ -6,7 +6,7 @@
 
 #include "haptics/loop_telemetry.h"
 
-namespace serosa::app {
+namespace serosa::window {
 namespace {
 
 struct Suffix {
@@ -98,4 +98,4 @@ render::OverlayData overlay_data(const FrameStats& s) {
   return o;
 }
 
-}  // namespace serosa::app
+}  // namespace serosa::window

@@ -1,4 +1,4 @@
-#include "app/view_log.h"
+#include "window/view_log.h"
 
 #include <map>
 #include <string>
@@ -9,7 +9,7 @@
 #include "render/camera.h"
 #include "render/tool_mesh.h"
 
-namespace serosa::app {
+namespace serosa::window {
 namespace {
 
 using Json = nlohmann::json;
@@ -126,4 +126,4 @@ void ViewLog::write(const render::RenderFrame& frame, int width, int height, dou
   if (!m_out) throw InputError(m_file.string(), 0, "cannot write the view log", "a writable path");
 }
 
-}  // namespace serosa::app
+}  // namespace serosa::window

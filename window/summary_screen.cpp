@@ -1,11 +1,11 @@
-#include "app/summary_screen.h"
+#include "window/summary_screen.h"
 
 #include <chrono>
 #include <thread>
 
 #include "render/png_writer.h"
 
-namespace serosa::app {
+namespace serosa::window {
 
 void show_summary(render::Window& window, render::FrameRenderer& renderer,
                   const render::RenderFrame& frame, const render::SnapshotOptions& options,
@@ -32,4 +32,4 @@ void show_summary(render::Window& window, render::FrameRenderer& renderer,
   }
 }
 
-}  // namespace serosa::app
+}  // namespace serosa::window

@@ -1,11 +1,11 @@
-// The trainee window's input in the mouse control's plain terms (app/pointer_control.h).
+// The trainee window's input in the mouse control's plain terms (window/pointer_control.h).
 #pragma once
 
-#include "app/pointer_control.h"
 #include "render/render_frame.h"
 #include "render/window.h"
+#include "window/pointer_control.h"
 
-namespace serosa::app {
+namespace serosa::window {
 
 /// The events the window gathered since the last call (render::Window::take_events), and whether
 /// J is held now.
@@ -14,4 +14,4 @@ namespace serosa::app {
 /// The picture's right and up in the scene, for `camera` (unit, orthogonal to its view).
 [[nodiscard]] ScreenAxes screen_axes(const render::Camera& camera);
 
-}  // namespace serosa::app
+}  // namespace serosa::window

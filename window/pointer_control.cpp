@@ -1,10 +1,10 @@
-#include "app/pointer_control.h"
+#include "window/pointer_control.h"
 
 #include <algorithm>
 
 #include "engine/hook.h"
 
-namespace serosa::app {
+namespace serosa::window {
 
 const haptics::PointerInput& PointerControl::update(const PointerEvents& e,
                                                     const ScreenAxes& axes) {
@@ -52,4 +52,4 @@ void PointerControl::update_jaw(const PointerEvents& e) {
   jaw = held < kJawTapS ? (m_jaw_start > 0.5 ? 0.0 : 1.0) : bitten(m_jaw_start, held);
 }
 
-}  // namespace serosa::app
+}  // namespace serosa::window

@@ -13,7 +13,7 @@
 
 #include "render/render_frame.h"
 
-namespace serosa::app {
+namespace serosa::window {
 
 class ViewLog {
  public:
@@ -33,4 +33,4 @@ class ViewLog {
   std::ofstream m_out;
 };
 
-}  // namespace serosa::app
+}  // namespace serosa::window

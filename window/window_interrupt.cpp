@@ -1,8 +1,8 @@
-#include "app/window_interrupt.h"
+#include "window/window_interrupt.h"
 
 #include <csignal>
 
-namespace serosa::app {
+namespace serosa::window {
 namespace {
 
 // Set by the handler, read by the window loops (see the header for why it is process-wide).
@@ -26,4 +26,4 @@ bool InterruptGuard::interrupted() const { return g_interrupted.load(); }
 
 const std::atomic<bool>& InterruptGuard::flag() const { return g_interrupted; }
 
-}  // namespace serosa::app
+}  // namespace serosa::window

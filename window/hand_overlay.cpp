@@ -1,4 +1,4 @@
-#include "app/hand_overlay.h"
+#include "window/hand_overlay.h"
 
 #include <algorithm>
 
@@ -6,7 +6,7 @@
 #include "engine/instrument_hold.h"
 #include "engine/jaw_range.h"
 
-namespace serosa::app {
+namespace serosa::window {
 
 std::vector<render::OverlayHand> overlay_hands(const Scene& scene, const SimState& state,
                                                const HandleTools& handles,
@@ -54,4 +54,4 @@ void mark_active_tool(render::RenderFrame& frame, std::optional<std::size_t> too
   for (render::RenderTool& t : frame.tools) t.active = tool && t.scene_tool == *tool;
 }
 
-}  // namespace serosa::app
+}  // namespace serosa::window

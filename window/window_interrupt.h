@@ -4,7 +4,7 @@
 
 #include <atomic>
 
-namespace serosa::app {
+namespace serosa::window {
 
 /// Installs the SIGINT/SIGTERM handler for its lifetime (clearing the flag) and restores the
 /// previous handlers after. A signal handler can reach no other state, so the flag it sets is
@@ -26,4 +26,4 @@ class InterruptGuard {
   void (*m_term)(int);
 };
 
-}  // namespace serosa::app
+}  // namespace serosa::window

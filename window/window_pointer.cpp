@@ -1,6 +1,6 @@
-#include "app/window_pointer.h"
+#include "window/window_pointer.h"
 
-namespace serosa::app {
+namespace serosa::window {
 
 PointerEvents pointer_events(render::Window& window) {
   const render::Window::Events w = window.take_events();
@@ -38,4 +38,4 @@ ScreenAxes screen_axes(const render::Camera& camera) {
   return a;
 }
 
-}  // namespace serosa::app
+}  // namespace serosa::window

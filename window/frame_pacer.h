@@ -16,7 +16,7 @@
 #include <optional>
 #include <vector>
 
-namespace serosa::app {
+namespace serosa::window {
 
 class FramePacer {
  public:
@@ -95,4 +95,4 @@ class FrameRate {
   double m_hz = 0.0;
 };
 
-}  // namespace serosa::app
+}  // namespace serosa::window

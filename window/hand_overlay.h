@@ -14,7 +14,7 @@
 #include "haptics/rig_protocol.h"
 #include "render/render_frame.h"
 
-namespace serosa::app {
+namespace serosa::window {
 
 /// Scene tool index of each haptic handle (nullopt: idle).
 using HandleTools = std::array<std::optional<std::size_t>, haptics::kHandles>;
@@ -35,4 +35,4 @@ using HandleTools = std::array<std::optional<std::size_t>, haptics::kHandles>;
 /// Marks the drawn tool of `tool` (a scene tool index) active, every other one not.
 void mark_active_tool(render::RenderFrame& frame, std::optional<std::size_t> tool);
 
-}  // namespace serosa::app
+}  // namespace serosa::window

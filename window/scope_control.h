@@ -20,7 +20,7 @@ namespace serosa::render {
 class Window;
 }
 
-namespace serosa::app {
+namespace serosa::window {
 
 struct ScopeMapping {
   double rad_per_px = 0.002;   ///< pitch and yaw per pixel of right-button drag
@@ -59,4 +59,4 @@ class ScopeControl {
   float m_y = 0.0f;
 };
 
-}  // namespace serosa::app
+}  // namespace serosa::window

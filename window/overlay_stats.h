@@ -16,7 +16,7 @@ namespace serosa::haptics {
 struct LoopTelemetry;
 }
 
-namespace serosa::app {
+namespace serosa::window {
 
 /// What one published frame says about the run.
 struct FrameStats {
@@ -60,4 +60,4 @@ struct FrameStats {
 /// The overlay's data for these stats.
 [[nodiscard]] render::OverlayData overlay_data(const FrameStats& stats);
 
-}  // namespace serosa::app
+}  // namespace serosa::window

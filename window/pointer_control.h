@@ -20,7 +20,7 @@
 #include "engine/math.h"
 #include "haptics/mouse_device.h"
 
-namespace serosa::app {
+namespace serosa::window {
 
 /// Tip motion per pixel of drag, m (0.1 mm: the 1280-pixel picture spans 13 cm of motion).
 inline constexpr double kDragMetresPerPixel = 1e-4;
@@ -73,4 +73,4 @@ class PointerControl {
   double m_jaw_start = 0.0;    // the jaw fraction when it went down
 };
 
-}  // namespace serosa::app
+}  // namespace serosa::window
