@@ -428,6 +428,17 @@ TEST(SessionHaptics, PressingXBringsInTheNextInstrument) {
   EXPECT_GE(moved, 3) << m["path_length_m"].dump(1);
   const CliResult verify = run_serosa("replay '" + recording.string() + "' --headless --verify");
   EXPECT_EQ(verify.code, 0) << verify.out;
+  // Restored from the session's last snapshot, after its exchanges (a T past the end starts from
+  // it), the replay goes on as the session did: every later hash and snapshot equal.
+  const fs::path late = dir / "late.json";
+  const CliResult from =
+      run_serosa("replay '" + recording.string() + "' --headless --verify --from 1000 --report '" +
+                 late.string() + "'");
+  EXPECT_EQ(from.code, 0) << from.out;
+  nlohmann::json lr;
+  std::ifstream(late) >> lr;
+  EXPECT_GT(lr["start_step"].get<std::uint64_t>(), 0u) << lr.dump(1);
+  EXPECT_TRUE(lr["verify"]["ok"].get<bool>()) << lr["verify"].dump(1);
 }
 
 }  // namespace
