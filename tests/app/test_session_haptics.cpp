@@ -428,16 +428,21 @@ TEST(SessionHaptics, PressingXBringsInTheNextInstrument) {
   EXPECT_GE(moved, 3) << m["path_length_m"].dump(1);
   const CliResult verify = run_serosa("replay '" + recording.string() + "' --headless --verify");
   EXPECT_EQ(verify.code, 0) << verify.out;
-  // Restored from the session's last snapshot, after its exchanges (a T past the end starts from
-  // it), the replay goes on as the session did: every later hash and snapshot equal.
+  // Restored from a snapshot half way through the session, after its first exchanges, the
+  // replay goes on as the session did: every later hash equal. (Under a sanitizer the session
+  // may not reach its first snapshot, a second in: it then replays from step 0.)
+  const auto steps = rep["recording"]["steps"].get<double>();
   const fs::path late = dir / "late.json";
   const CliResult from =
-      run_serosa("replay '" + recording.string() + "' --headless --verify --from 1000 --report '" +
-                 late.string() + "'");
+      run_serosa("replay '" + recording.string() + "' --headless --verify --from " +
+                 std::to_string(0.5 * steps * 0.005) + " --report '" + late.string() + "'");
   EXPECT_EQ(from.code, 0) << from.out;
   nlohmann::json lr;
   std::ifstream(late) >> lr;
-  EXPECT_GT(lr["start_step"].get<std::uint64_t>(), 0u) << lr.dump(1);
+  if (rep["recording"]["snapshots"].get<int>() > 1) {
+    EXPECT_GT(lr["start_step"].get<std::uint64_t>(), 0u) << lr.dump(1);
+  }
+  EXPECT_GT(lr["verify"]["hashes_checked"].get<std::uint64_t>(), 0u) << lr["verify"].dump(1);
   EXPECT_TRUE(lr["verify"]["ok"].get<bool>()) << lr["verify"].dump(1);
 }
 
