@@ -42,12 +42,12 @@ CuttingStage::~CuttingStage() = default;
 namespace {
 
 // What a stroke's report says before it is cut.
-StrokeReport stroke_report(std::uint64_t first_step, std::uint64_t last_step,
-                           const StrokeRecord& stroke, const StrokePolygons& polygons) {
+StrokeReport stroke_report(std::uint64_t first_step, std::uint64_t last_step, std::uint64_t steps,
+                           const StrokePolygons& polygons) {
   StrokeReport r;
   r.first_step = first_step;
   r.last_step = last_step;
-  r.steps = stroke.steps;
+  r.steps = steps;
   r.polygons = polygons.polygons.size();
   r.deviation_m = polygons.fit.deviation_m;
   return r;
@@ -128,9 +128,10 @@ void CuttingStage::follow_hook(const StepContext& ctx, SimState& state, std::siz
     if (!h.stroke) return;
     ToolState end = now;
     end.jaw_rad = 0.0;  // one region over every sample
-    const StrokePolygons polys =
-        ScissorsStroke(*h.stroke).polygons(state.mesh, end, kStrokeClosedRad);
-    StrokeReport report = stroke_report(h.first_step, ctx.step, *h.stroke, polys);
+    const std::uint64_t steps = h.stroke->steps;
+    const StrokePolygons polys = ScissorsStroke(std::move(*h.stroke), std::move(m_scratch))
+                                     .polygons(state.mesh, end, kStrokeClosedRad);
+    StrokeReport report = stroke_report(h.first_step, ctx.step, steps, polys);
     h.stroke.reset();
     ++m_stats.strokes;
     ++m_stats.hook_strokes;
@@ -144,7 +145,7 @@ void CuttingStage::follow_hook(const StepContext& ctx, SimState& state, std::siz
   coagulate(ctx, state, seg.a, seg.b);
   if (!before || !pedal_down(*before)) return;  // the stroke starts with the next step
   refresh_bvh(ctx, state.mesh);
-  ScissorsStroke stroke = h.stroke ? ScissorsStroke(std::move(*h.stroke))
+  ScissorsStroke stroke = h.stroke ? ScissorsStroke(std::move(*h.stroke), std::move(m_scratch))
                                    : ScissorsStroke(*before, state.mesh.topology_version);
   if (!h.stroke) {
     h.first_step = ctx.step;
@@ -163,6 +164,7 @@ void CuttingStage::follow_hook(const StepContext& ctx, SimState& state, std::siz
   }
   stroke.count_step();
   h.stroke = stroke.release();
+  m_scratch = stroke.release_scratch();
 }
 
 void CuttingStage::coagulate(const StepContext& ctx, SimState& state, const Vec3& a,
@@ -248,19 +250,21 @@ void CuttingStage::extend(const StepContext& ctx, const SimState& state, Follow&
   const TetMesh& mesh = state.mesh;
   refresh_bvh(ctx, mesh);
   if (!s.stroke) s.first_step = ctx.step;
-  ScissorsStroke stroke = s.stroke ? ScissorsStroke(std::move(*s.stroke))
+  ScissorsStroke stroke = s.stroke ? ScissorsStroke(std::move(*s.stroke), std::move(m_scratch))
                                    : ScissorsStroke(before, mesh.topology_version);
   stroke.sweep(before, now, mesh, *m_bvh);
   s.stroke = stroke.release();
+  m_scratch = stroke.release_scratch();
   if (!s.paused || now.jaw_rad <= s.paused->jaw_rad) s.paused = now;
 }
 
 void CuttingStage::end_stroke(const StepContext& ctx, SimState& state, std::size_t tool, Follow& s,
                               ToolState end) {
   if (!s.stroke) return;
-  const StrokePolygons cut_with_these =
-      ScissorsStroke(*s.stroke).polygons(state.mesh, end, kStrokeClosedRad);
-  StrokeReport report = stroke_report(s.first_step, ctx.step, *s.stroke, cut_with_these);
+  const std::uint64_t steps = s.stroke->steps;
+  const StrokePolygons cut_with_these = ScissorsStroke(std::move(*s.stroke), std::move(m_scratch))
+                                            .polygons(state.mesh, end, kStrokeClosedRad);
+  StrokeReport report = stroke_report(s.first_step, ctx.step, steps, cut_with_these);
   s.stroke.reset();
   s.paused.reset();
   ++m_stats.strokes;

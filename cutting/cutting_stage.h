@@ -232,6 +232,7 @@ class CuttingStage final : public Stage {
   std::vector<std::size_t> m_hooks;              // and of each hook
   std::vector<std::size_t> m_staplers;           // and of each stapler
   std::vector<std::int32_t> m_near;              // scratch: tets near a live crook
+  std::vector<std::int32_t> m_scratch;           // scratch: a stroke's tree queries
   cutting::CutOptions m_cut_options;
   CutMethod m_method = CutMethod::kPattern;  // the scene's [cutting] method
   bool m_swept_strokes = true;               // [cutting] strokes = "swept"

@@ -59,8 +59,10 @@ class ScissorsStroke {
  public:
   /// A stroke that begins at `start` on a mesh of topology version `topology_version`.
   ScissorsStroke(const ToolState& start, std::uint64_t topology_version);
-  /// Goes on with a stroke in progress (a cutting block's: engine/state_blocks.h).
-  explicit ScissorsStroke(StrokeRecord record) : m_rec(std::move(record)) {}
+  /// Goes on with a stroke in progress (a cutting block's: engine/state_blocks.h); `scratch`: a
+  /// buffer for its tree queries, kept by the caller from one step to the next (no allocation).
+  explicit ScissorsStroke(StrokeRecord record, std::vector<std::int32_t> scratch = {})
+      : m_rec(std::move(record)), m_candidates(std::move(scratch)) {}
 
   /// Samples the blades closing from `before` to `now` (same stroke), pinned to `mesh` (current
   /// positions; `bvh` refitted to them).
@@ -86,6 +88,10 @@ class ScissorsStroke {
   [[nodiscard]] std::uint64_t steps() const noexcept { return m_rec.steps; }
   /// What it swept so far, for the state; the stroke is left empty.
   [[nodiscard]] StrokeRecord release() noexcept { return std::move(m_rec); }
+  /// The query buffer back, for the next step's stroke.
+  [[nodiscard]] std::vector<std::int32_t> release_scratch() noexcept {
+    return std::move(m_candidates);
+  }
 
  private:
   void add(const Vec3& x, std::int32_t blade, const TetMesh& mesh, const TetBvh& bvh);

@@ -24,6 +24,7 @@
 #include "engine/sim_state.h"
 #include "metrics/metrics_stage.h"
 #include "replay/old_snapshots.h"
+#include "replay/recorded_scene.h"
 
 namespace serosa::replay {
 
@@ -86,17 +87,7 @@ ReplayResult run_replay(const ReplayOptions& options) {
   const std::string file = options.recording.string();
   recording::Recording rec = recording::read_recording(options.recording);
   const std::optional<RunWarning> old_snapshots = drop_old_snapshots(rec, file);
-  const std::string scene_path = rec.header.get("scene_path");
-  const std::string scene_text = rec.header.get("scene_text");
-  if (scene_path.empty() || scene_text.empty())
-    throw InputError(file, 0, "the header holds no scene", "scene_path and scene_text");
-  const Scene scene = parse_scene_text(scene_text, scene_path);
-  for (std::size_t s = 0; s < rec.inputs.size(); ++s)
-    if (rec.inputs[s].size() != scene.tools.size())
-      throw InputError(file, 0,
-                       "step " + std::to_string(s) + " records " +
-                           std::to_string(rec.inputs[s].size()) + " tools, the scene has " +
-                           std::to_string(scene.tools.size()));
+  const Scene scene = recorded_scene(rec, file);
 
   ReplayResult result;
   result.damage = rec.stopped;
@@ -178,7 +169,7 @@ ReplayResult run_replay(const ReplayOptions& options) {
     report["recording"]["stopped_at_byte"] = rec.stopped_at;
     report["recording"]["corrupt"] = rec.corrupt;
   }
-  report["scene"] = scene_path;
+  report["scene"] = rec.header.get("scene_path");
   if (!warnings.empty()) report["warnings"] = warnings_json(warnings);  // as the headless report's
   report["start_step"] = result.start_step;
   report["steps"] = result.steps;

@@ -11,6 +11,7 @@
 #include "engine/input_error.h"
 #include "engine/record_stage.h"
 #include "replay/old_snapshots.h"
+#include "replay/recorded_scene.h"
 
 namespace serosa::replay {
 
@@ -21,17 +22,7 @@ ReplayController::ReplayController(const std::filesystem::path& recording,
     : m_rec(recording::read_recording(recording)), m_options(options), m_path(recording) {
   const std::string file = recording.string();
   if (const auto old = drop_old_snapshots(m_rec, file)) spdlog::warn("{}", old->text);
-  const std::string scene_path = m_rec.header.get("scene_path");
-  const std::string scene_text = m_rec.header.get("scene_text");
-  if (scene_path.empty() || scene_text.empty())
-    throw InputError(file, 0, "the header holds no scene", "scene_path and scene_text");
-  m_scene = parse_scene_text(scene_text, scene_path);
-  for (std::size_t s = 0; s < m_rec.inputs.size(); ++s)
-    if (m_rec.inputs[s].size() != m_scene.tools.size())
-      throw InputError(file, 0,
-                       "step " + std::to_string(s) + " records " +
-                           std::to_string(m_rec.inputs[s].size()) + " tools, the scene has " +
-                           std::to_string(m_scene.tools.size()));
+  m_scene = recorded_scene(m_rec, file);
   if (!(options.snapshot_every_s > 0.0))
     throw InputError("snapshot_every_s", 0, "not positive", "> 0 s");
   m_snapshot_every = std::max<std::uint64_t>(
