@@ -13,7 +13,7 @@
 #include "app/simulation.h"
 #include "app/version.h"
 #include "cutting/cutting_stage.h"
-#include "engine/recording_writer.h"
+#include "recording/recording_writer.h"
 #include "engine/scene.h"
 
 namespace serosa::app {

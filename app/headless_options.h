@@ -42,5 +42,5 @@ struct HeadlessOptions {
   const std::atomic<bool>* stop = nullptr;
 };
 
-/// The header of a recording of `scene` (engine/recording_format.h lists the keys).
+/// The header of a recording of `scene` (recording/recording_format.h lists the keys).
 }  // namespace serosa::app

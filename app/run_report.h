@@ -9,8 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/recording_format.h"
-#include "engine/recording_writer.h"
+#include "recording/recording_format.h"
+#include "recording/recording_writer.h"
 #include "engine/scene.h"
 
 namespace serosa::app {

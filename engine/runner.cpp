@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include "engine/input_error.h"
-#include "engine/recording_writer.h"
 #include "engine/sim_state.h"
 #include "engine/state_codec.h"
 #include "engine/state_walk.h"
@@ -62,14 +61,14 @@ constexpr std::uint32_t kSnapshotVersion = 6;
 // A snapshot waits for a step with no cut in flight (the FEM stage takes a step's cuts at the
 // next one; the snapshot holds the state between steps).
 void Runner::record_snapshot_if_due(const SimState& state) {
-  if (m_snapshot_writer == nullptr || state.step < m_next_snapshot || !state.events.cuts.empty())
+  if (m_snapshot_sink == nullptr || state.step < m_next_snapshot || !state.events.cuts.empty())
     return;
-  m_snapshot_writer->record_snapshot(state.step, snapshot(state));
+  m_snapshot_sink->record_snapshot(state.step, snapshot(state));
   m_next_snapshot = (state.step / m_snapshot_every + 1) * m_snapshot_every;
 }
 
-void Runner::record_snapshots(recording::RecordingWriter& writer, std::uint64_t every_steps) {
-  m_snapshot_writer = every_steps > 0 ? &writer : nullptr;
+void Runner::record_snapshots(SnapshotSink& sink, std::uint64_t every_steps) {
+  m_snapshot_sink = every_steps > 0 ? &sink : nullptr;
   m_snapshot_every = every_steps;
   m_next_snapshot = every_steps;
 }

@@ -14,14 +14,12 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/snapshot_sink.h"
 #include "engine/stage.h"
 
 namespace serosa {
 
 struct SimState;
-namespace recording {
-class RecordingWriter;
-}
 
 /// The places of a solver step, in the order Runner::step runs them.
 enum class Slot : std::uint8_t {
@@ -78,9 +76,9 @@ class Runner {
   /// block, rebuilds its caches) — stages built for the scene it was taken from, fresh or not.
   /// Throws InputError naming `what` when the bytes are damaged or do not fit these stages.
   void restore(std::span<const std::uint8_t> snapshot, SimState& state, const std::string& what);
-  /// Writes a snapshot to `writer` every `every_steps` steps (0: never), at the end of the step:
+  /// Hands a snapshot to `sink` every `every_steps` steps (0: never), at the end of the step:
   /// at the first step on or after each multiple of every_steps.
-  void record_snapshots(recording::RecordingWriter& writer, std::uint64_t every_steps);
+  void record_snapshots(SnapshotSink& sink, std::uint64_t every_steps);
 
   [[nodiscard]] double dt_s() const noexcept { return m_dt_s; }
   /// Each stage's timing, in the order the step runs them.
@@ -101,7 +99,7 @@ class Runner {
 
   double m_dt_s;
   std::vector<Entry> m_entries;  // ordered by slot, then by addition
-  recording::RecordingWriter* m_snapshot_writer = nullptr;
+  SnapshotSink* m_snapshot_sink = nullptr;
   std::uint64_t m_snapshot_every = 0;
   std::uint64_t m_next_snapshot = 0;  // step count at or after which the next one is written
 };

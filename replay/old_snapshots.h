@@ -6,7 +6,7 @@
 #include <string>
 
 #include "app/run_warnings.h"
-#include "engine/recording_reader.h"
+#include "recording/recording_reader.h"
 
 namespace serosa::replay {
 

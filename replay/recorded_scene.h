@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "engine/recording_reader.h"
+#include "recording/recording_reader.h"
 #include "engine/scene.h"
 
 namespace serosa::replay {

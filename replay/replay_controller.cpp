@@ -9,7 +9,7 @@
 #include "app/compose.h"
 #include "app/simulation.h"
 #include "engine/input_error.h"
-#include "engine/record_stage.h"
+#include "recording/record_stage.h"
 #include "replay/old_snapshots.h"
 #include "replay/recorded_scene.h"
 

@@ -26,8 +26,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/recording_reader.h"
-#include "engine/recording_writer.h"
+#include "recording/recording_reader.h"
+#include "recording/recording_writer.h"
 #include "engine/scene.h"
 #include "engine/sim_state.h"
 

@@ -1,13 +1,12 @@
 # Fails when a file includes a folder it may not (docs/ARCHITECTURE.md "The three floors"):
-# engine/ includes no other floor; fem, cutting, surface, haptics, render, metrics, contact
-# include only engine; batch/ and trainee/ (beside app/ on the top floor, which composes nothing)
-# include only engine too, and only app/ includes them; window/ (beside app/ as well: the trainee
-# window's parts) includes engine and the domains, and only app/ and replay/ include it; replay/
-# and bench/suite/ stand on top of
-# app/, and only the command line's main (app/main.cpp) includes them; python/ (the module on top
-# of app/) is included by no floor.
+# engine/ includes no other floor; fem, cutting, surface, haptics, render, metrics, contact and
+# recording include only engine; batch/ and trainee/ (beside app/ on the top floor, which
+# composes nothing) include only engine too, and only app/ includes them; window/ (beside app/ as
+# well: the trainee window's parts) includes engine and the domains, and only app/ and replay/
+# include it; replay/ and bench/suite/ stand on top of app/, and only the command line's main
+# (app/main.cpp) includes them; python/ (the module on top of app/) is included by no floor.
 cmake_policy(SET CMP0057 NEW)  # if(IN_LIST) in script mode
-set(domains fem cutting surface haptics render metrics contact)
+set(domains fem cutting surface haptics render metrics contact recording)
 set(beside_app batch trainee)
 set(bad "")
 foreach(folder engine ${domains} ${beside_app} window app)

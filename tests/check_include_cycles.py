@@ -12,7 +12,7 @@ import sys
 
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([a-z_0-9/]+)\.(?:h|cuh)"', re.M)
 FOLDERS = ["engine", "fem", "cutting", "surface", "contact", "haptics", "metrics", "render",
-           "batch", "trainee", "window", "app", "replay", "bench", "python"]
+           "recording", "batch", "trainee", "window", "app", "replay", "bench", "python"]
 
 
 def modules(root, folder):

@@ -17,7 +17,7 @@
 #include "app_test_util.h"
 #include "engine/hook.h"
 #include "engine/instrument_hold.h"
-#include "engine/recording_reader.h"
+#include "recording/recording_reader.h"
 #include "engine/shell_command.h"
 #include "engine/sim_state.h"
 #include "engine/tool_path.h"

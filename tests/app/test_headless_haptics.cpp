@@ -7,7 +7,7 @@
 
 #include "app/headless.h"
 #include "app_test_util.h"
-#include "engine/recording_reader.h"
+#include "recording/recording_reader.h"
 #include "replay/replay.h"
 
 namespace serosa::app {

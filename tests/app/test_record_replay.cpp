@@ -15,8 +15,8 @@
 
 #include "app/headless.h"
 #include "app_test_util.h"
-#include "engine/recording_reader.h"
-#include "engine/recording_writer.h"
+#include "recording/recording_reader.h"
+#include "recording/recording_writer.h"
 #include "replay/replay.h"
 
 namespace serosa::app {

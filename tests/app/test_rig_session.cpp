@@ -25,7 +25,7 @@
 #include "cutting/validate.h"
 #include "engine/instrument_hold.h"
 #include "engine/mesh_io.h"
-#include "engine/recording_reader.h"
+#include "recording/recording_reader.h"
 #include "engine/scene.h"
 #include "engine/tool_path.h"
 #include "haptics/emulated_rig.h"

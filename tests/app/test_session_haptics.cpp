@@ -18,7 +18,7 @@
 #include "app_test_util.h"
 #include "contact/tool_contact_stage.h"
 #include "engine/jaw_range.h"
-#include "engine/recording_reader.h"
+#include "recording/recording_reader.h"
 #include "engine/scene.h"
 #include "engine/shell_command.h"
 #include "engine/sim_state.h"

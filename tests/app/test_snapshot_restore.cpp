@@ -14,8 +14,8 @@
 #include "app/headless.h"
 #include "app_test_util.h"
 #include "engine/input_error.h"
-#include "engine/recording_reader.h"
-#include "engine/recording_writer.h"
+#include "recording/recording_reader.h"
+#include "recording/recording_writer.h"
 #include "engine/sim_state.h"
 #include "replay/replay.h"
 

@@ -14,7 +14,7 @@
 
 #include "app_test_util.h"
 #include "engine/input_error.h"
-#include "engine/recording_reader.h"
+#include "recording/recording_reader.h"
 #include "trainee/progress_db.h"
 #include "trainee/trainee_progress.h"
 

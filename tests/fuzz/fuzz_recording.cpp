@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "engine/input_error.h"
-#include "engine/recording_format.h"
-#include "engine/recording_reader.h"
+#include "recording/recording_format.h"
+#include "recording/recording_reader.h"
 #include "fuzz_check.h"
 
 namespace {

@@ -12,9 +12,9 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/recording_writer.h"
 #include "engine/stage.h"
 #include "engine/tool_state.h"
+#include "recording/recording_writer.h"
 
 namespace serosa::recording {
 

@@ -11,8 +11,8 @@
 #include <thread>
 
 #include "engine/input_error.h"
-#include "engine/recording_reader.h"
-#include "engine/recording_writer.h"
+#include "recording/recording_reader.h"
+#include "recording/recording_writer.h"
 
 namespace serosa::recording {
 namespace {

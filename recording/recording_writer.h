@@ -1,5 +1,5 @@
 // RecordingWriter: the solver hands it what it consumed each step; a writer thread turns that
-// into checksummed chunks of a .lapr file (engine/recording_format.h), flushed at least every
+// into checksummed chunks of a .lapr file (recording/recording_format.h), flushed at least every
 // `flush_interval` (default 0.2 s), so a crash or kill -9 loses at most that much of the run.
 //
 // The solver side (record_inputs, record_hash, record_event) only appends bytes to a buffer under
@@ -18,8 +18,9 @@
 #include <thread>
 #include <vector>
 
-#include "engine/recording_format.h"
+#include "engine/snapshot_sink.h"
 #include "engine/tool_state.h"
+#include "recording/recording_format.h"
 
 namespace serosa::recording {
 
@@ -37,14 +38,14 @@ struct WriterStats {
   std::uint64_t snapshots = 0;  ///< snapshot records taken
 };
 
-class RecordingWriter {
+class RecordingWriter final : public SnapshotSink {
  public:
   /// Creates (truncates) `path`, writes the header and starts the writer thread. Throws
   /// std::runtime_error naming the file when it cannot be created or written.
   RecordingWriter(const std::filesystem::path& path, const Header& header,
                   WriterOptions options = {});
   /// Same as close() (errors are swallowed here; call close() to see them).
-  ~RecordingWriter();
+  ~RecordingWriter() override;
   RecordingWriter(const RecordingWriter&) = delete;
   RecordingWriter& operator=(const RecordingWriter&) = delete;
 
@@ -54,7 +55,7 @@ class RecordingWriter {
   void record_hash(std::uint64_t step, std::uint64_t hash);
   /// The whole state after `steps` steps (Runner::snapshot). A snapshot too large for one chunk
   /// is left out, with an event saying so (the replay then starts from an earlier one).
-  void record_snapshot(std::uint64_t steps, std::span<const std::uint8_t> snapshot);
+  void record_snapshot(std::uint64_t steps, std::span<const std::uint8_t> snapshot) override;
   /// A named event at step `step` (e.g. "pause", "branch").
   void record_event(std::uint64_t step, const std::string& text);
 

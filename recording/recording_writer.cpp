@@ -1,4 +1,4 @@
-#include "engine/recording_writer.h"
+#include "recording/recording_writer.h"
 
 #include <stdexcept>
 

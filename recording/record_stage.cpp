@@ -1,4 +1,4 @@
-#include "engine/record_stage.h"
+#include "recording/record_stage.h"
 
 #include <stdexcept>
 

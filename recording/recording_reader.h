@@ -1,4 +1,4 @@
-// Reading a .lapr recording (engine/recording_format.h). A damaged file is read up to its last
+// Reading a .lapr recording (recording/recording_format.h). A damaged file is read up to its last
 // good chunk: the reader says where it stopped and why, and what came before stays usable.
 #pragma once
 
@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/recording_format.h"
 #include "engine/tool_state.h"
+#include "recording/recording_format.h"
 
 namespace serosa::recording {
 

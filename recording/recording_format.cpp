@@ -1,4 +1,4 @@
-#include "engine/recording_format.h"
+#include "recording/recording_format.h"
 
 #include <array>
 #include <bit>

@@ -1,4 +1,4 @@
-#include "engine/recording_reader.h"
+#include "recording/recording_reader.h"
 
 #include <algorithm>
 #include <bit>
