@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/mesh_io.h"
-#include "engine/scene.h"
+#include "engine/io/mesh_io.h"
+#include "engine/scene/scene.h"
 #include "engine/sim_state.h"
 
 namespace serosa::app {

@@ -1,5 +1,5 @@
 // The report's "assessment": the session's metrics (the metrics stage's, and what the final mesh
-// shows) scored against the scene's rubric (engine/rubric.h, metrics/assessment.h).
+// shows) scored against the scene's rubric (engine/scene/rubric.h, metrics/assessment.h).
 #pragma once
 
 #include <map>
@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/tet_mesh.h"
 #include "metrics/metrics_stage.h"
 

@@ -14,8 +14,8 @@
 #include "app/command.h"
 #include "app/mesh_check_report.h"
 #include "engine/input_error.h"
+#include "engine/io/mesh_io.h"
 #include "engine/mesh_check.h"
-#include "engine/mesh_io.h"
 
 namespace serosa::app {
 

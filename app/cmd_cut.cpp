@@ -36,8 +36,8 @@
 #include "cutting/tet_bvh.h"
 #include "cutting/validate.h"
 #include "engine/input_error.h"
+#include "engine/io/mesh_io.h"
 #include "engine/mesh_check.h"
-#include "engine/mesh_io.h"
 #include "engine/topology_delta.h"
 
 namespace serosa::app {

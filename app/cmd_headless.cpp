@@ -21,7 +21,7 @@
 #include "app/run_summary.h"
 #include "batch/golden.h"
 #include "engine/input_error.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "trainee/task_option.h"
 #include "trainee/trainee_session.h"
 

@@ -10,7 +10,7 @@
 #include "app/emulated_rig_process.h"
 #include "app/session.h"
 #include "engine/input_error.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "trainee/help_seen.h"
 #include "trainee/task_option.h"
 #include "trainee/trainee_session.h"

@@ -13,8 +13,8 @@
 #include "app/command.h"
 #include "engine/boundary.h"
 #include "engine/input_error.h"
+#include "engine/io/mesh_io.h"
 #include "engine/mesh_check.h"
-#include "engine/mesh_io.h"
 
 namespace serosa::app {
 

@@ -4,7 +4,7 @@
 // same command line, before it does anything else.
 #pragma once
 
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 
 namespace serosa::app {
 

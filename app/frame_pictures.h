@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "app/drawn_surface.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/sim_state.h"
 #include "render/image.h"
 #include "render/render_frame.h"

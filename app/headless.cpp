@@ -13,8 +13,8 @@
 #include "app/simulation.h"
 #include "app/version.h"
 #include "cutting/cutting_stage.h"
+#include "engine/scene/scene.h"
 #include "recording/recording_writer.h"
-#include "engine/scene.h"
 
 namespace serosa::app {
 namespace {

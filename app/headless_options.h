@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-#include "engine/scene_override.h"
+#include "engine/scene/scene_override.h"
 
 namespace serosa::app {
 

@@ -3,9 +3,9 @@
 #include <algorithm>
 
 #include "engine/input_error.h"
+#include "engine/scene/tool_path.h"
 #include "engine/scope_view.h"
 #include "engine/tool_geometry.h"
-#include "engine/tool_path.h"
 
 namespace serosa::app {
 

@@ -10,8 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/io/mesh_io.h"
 #include "engine/mesh_check.h"
-#include "engine/mesh_io.h"
 #include "engine/tet_mesh.h"
 
 namespace serosa::app {

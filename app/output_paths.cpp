@@ -1,7 +1,7 @@
 #include "app/output_paths.h"
 
 #include "engine/input_error.h"
-#include "engine/mesh_io.h"
+#include "engine/io/mesh_io.h"
 #include "surface/extract_surface.h"
 
 namespace serosa::app {

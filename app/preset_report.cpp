@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "engine/presets.h"
+#include "engine/scene/presets.h"
 
 namespace serosa::app {
 

@@ -1,13 +1,13 @@
 // The "preset" block of a run's report: what the scene's quality or accuracy_target
-// chose from the measured curves (engine/presets.h), what that choice costs and delivers on the
-// reference scene it was measured on, and the solver settings the run actually used (explicit
+// chose from the measured curves (engine/scene/presets.h), what that choice costs and delivers on
+// the reference scene it was measured on, and the solver settings the run actually used (explicit
 // [solver] and [render] keys win over the preset).
 #pragma once
 
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 
 namespace serosa::app {
 

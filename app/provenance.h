@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "app/assemble_state.h"
-#include "engine/scene.h"
-#include "engine/scene_override.h"
+#include "engine/scene/scene.h"
+#include "engine/scene/scene_override.h"
 
 namespace serosa::app {
 

@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/sim_state.h"
 #include "engine/tet_mesh.h"
 #include "render/render_frame.h"

@@ -9,9 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/scene/scene.h"
 #include "recording/recording_format.h"
 #include "recording/recording_writer.h"
-#include "engine/scene.h"
 
 namespace serosa::app {
 

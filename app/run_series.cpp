@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "engine/mesh_io.h"
+#include "engine/io/mesh_io.h"
 
 namespace serosa::app {
 

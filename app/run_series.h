@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/sim_state.h"
 #include "fem/implicit_integrator.h"
 

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <optional>
 
-#include "engine/tool_path.h"
+#include "engine/scene/tool_path.h"
 
 namespace serosa::app {
 namespace {

@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/assemble_state.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "fem/fem_stage.h"
 
 namespace serosa::app {

@@ -2,7 +2,7 @@
 // Scenery: built once per scene and handed to every frame (app/frame_pictures.h, app/session.h).
 #pragma once
 
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/tet_mesh.h"
 #include "render/render_frame.h"
 

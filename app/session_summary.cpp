@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <string>
 
-#include "engine/rubric.h"
+#include "engine/scene/rubric.h"
 
 namespace serosa::app {
 namespace {

@@ -26,7 +26,7 @@
 #include "app/run_series.h"
 #include "app/run_warnings.h"
 #include "cutting/convex_polygon.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/seqlock.h"
 
 namespace serosa::app {

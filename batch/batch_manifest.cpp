@@ -9,8 +9,8 @@
 #include <toml++/toml.h>
 
 #include "engine/input_error.h"
-#include "engine/scene.h"
-#include "engine/toml_reader.h"
+#include "engine/scene/scene.h"
+#include "engine/scene/toml_reader.h"
 
 namespace serosa::batch {
 namespace {

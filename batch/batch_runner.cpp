@@ -16,7 +16,7 @@
 #include "batch/path_perturb.h"
 #include "batch/run_fingerprint.h"
 #include "batch/run_gate.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 
 namespace serosa::batch {
 namespace {

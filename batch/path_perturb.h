@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 
-#include "engine/tool_path.h"
+#include "engine/scene/tool_path.h"
 
 namespace serosa::batch {
 

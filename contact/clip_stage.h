@@ -40,7 +40,7 @@
 
 #include "engine/clip.h"
 #include "engine/math.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/stage.h"
 #include "engine/stapler.h"
 #include "engine/state_blocks.h"

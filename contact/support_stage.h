@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "engine/math.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/stage.h"
 
 namespace serosa::contact {

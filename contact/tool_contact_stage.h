@@ -43,7 +43,7 @@
 #include "engine/contact_plane.h"
 #include "engine/geometry/surface_bvh.h"
 #include "engine/math.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/sim_state.h"
 #include "engine/stage.h"
 #include "engine/state_blocks.h"

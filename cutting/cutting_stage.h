@@ -62,7 +62,7 @@
 #include "cutting/cut_method.h"
 #include "cutting/flat_cut.h"
 #include "cutting/scissors_stroke.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/stage.h"
 #include "engine/stapler.h"
 #include "engine/state_blocks.h"

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "engine/math.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/sim_state.h"
 #include "engine/stage.h"
 #include "engine/state_blocks.h"

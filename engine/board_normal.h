@@ -4,7 +4,7 @@
 #pragma once
 
 #include "engine/math.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 
 namespace serosa {
 

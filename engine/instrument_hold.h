@@ -16,7 +16,7 @@
 #include <optional>
 
 #include "engine/math.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/tool_state.h"
 
 namespace serosa {

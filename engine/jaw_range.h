@@ -4,7 +4,7 @@
 // scissors' 15 mm blades as it does on the rig.
 #pragma once
 
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 
 namespace serosa {
 

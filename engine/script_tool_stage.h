@@ -7,9 +7,9 @@
 #include <string_view>
 #include <vector>
 
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
+#include "engine/scene/tool_path.h"
 #include "engine/stage.h"
-#include "engine/tool_path.h"
 
 namespace serosa {
 

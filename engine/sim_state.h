@@ -96,8 +96,8 @@ struct SharedState {
   SurfaceMesh surface;
 };
 
-/// The mutable state of a running scene. The scene model (engine/scene.h) is read-only after load;
-/// this is what stages write. Copyable: snapshots, tests and benchmarks copy it.
+/// The mutable state of a running scene. The scene model (engine/scene/scene.h) is read-only after
+/// load; this is what stages write. Copyable: snapshots, tests and benchmarks copy it.
 struct SimState {
   double time_s = 0.0;           ///< simulated time, s
   std::uint64_t step = 0;        ///< solver steps taken

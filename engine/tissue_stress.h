@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "engine/math.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/tet_mesh.h"
 
 namespace serosa {

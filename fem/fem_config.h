@@ -1,5 +1,6 @@
 // FemConfig: the read-only FEM model a scene describes (materials per group, solver settings,
-// gravity). Plain structs: app maps the scene (engine/scene.h) onto them; fem never reads TOML.
+// gravity). Plain structs: app maps the scene (engine/scene/scene.h) onto them; fem never reads
+// TOML.
 #pragma once
 
 #include <cstdint>

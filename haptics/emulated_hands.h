@@ -7,8 +7,8 @@
 #include <array>
 #include <optional>
 
-#include "engine/scene.h"
-#include "engine/tool_path.h"
+#include "engine/scene/scene.h"
+#include "engine/scene/tool_path.h"
 #include "haptics/hand_rack.h"
 #include "haptics/rig_hand_script.h"
 

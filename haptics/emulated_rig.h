@@ -20,7 +20,7 @@
 #include <optional>
 #include <vector>
 
-#include "engine/tool_path.h"
+#include "engine/scene/tool_path.h"
 #include "haptics/rig_calibration.h"
 #include "haptics/rig_hand_script.h"
 #include "haptics/rig_protocol.h"

@@ -47,7 +47,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/math.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/sim_state.h"
 #include "engine/stage.h"
 #include "haptics/contact_model.h"

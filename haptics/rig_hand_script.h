@@ -1,6 +1,6 @@
 // What a scripted hand does with a rig handle over a tool path whose hand column names the hands
-// (engine/tool_path.h): the emulated rig's handles play the procedure as a trainee would, each
-// instrument in turn.
+// (engine/scene/tool_path.h): the emulated rig's handles play the procedure as a trainee would,
+// each instrument in turn.
 //
 // A handle follows the path of the instrument its hand holds, carried from that instrument's
 // port to the handle's own trocar (haptics/hand_rack.h: the rig's joints are the same whichever
@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "engine/instrument_hold.h"
-#include "engine/tool_path.h"
+#include "engine/scene/tool_path.h"
 #include "haptics/hand_rack.h"
 #include "haptics/trocar_kinematics.h"
 

@@ -1,12 +1,13 @@
-// ScriptDevice: a scripted tool path (engine/tool_path.h CSV) played in real time as a device.
-// Time starts at the first poll. Each handle follows one tool of the path (or stays at rest);
-// joints are recovered through the handle's trocar (inverse kinematics of the scripted pose).
+// ScriptDevice: a scripted tool path (engine/scene/tool_path.h CSV) played in real time as a
+// device. Time starts at the first poll. Each handle follows one tool of the path (or stays at
+// rest); joints are recovered through the handle's trocar (inverse kinematics of the scripted
+// pose).
 #pragma once
 
 #include <array>
 #include <optional>
 
-#include "engine/tool_path.h"
+#include "engine/scene/tool_path.h"
 #include "haptics/device.h"
 
 namespace serosa::haptics {

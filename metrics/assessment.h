@@ -1,4 +1,5 @@
-// Assessment: a session's metrics scored against a rubric (engine/rubric.h, docs/assessment.md).
+// Assessment: a session's metrics scored against a rubric (engine/scene/rubric.h,
+// docs/assessment.md).
 #pragma once
 
 #include <map>
@@ -7,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/rubric.h"
+#include "engine/scene/rubric.h"
 
 namespace serosa::metrics {
 

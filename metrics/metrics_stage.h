@@ -56,7 +56,7 @@
 #include "engine/bound_block.h"
 #include "engine/math.h"
 #include "engine/metrics_block.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/sim_state.h"
 #include "engine/stage.h"
 #include "engine/tissue_stress.h"

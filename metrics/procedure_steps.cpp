@@ -4,7 +4,7 @@
 #include <utility>
 
 #include "engine/node_components.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 
 namespace serosa::metrics {
 namespace {

@@ -28,7 +28,7 @@
 #include "engine/bound_block.h"
 #include "engine/math.h"
 #include "engine/metrics_block.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/sim_state.h"
 #include "metrics/procedure_errors.h"
 

@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/math.h"
-#include "engine/scene_override.h"
+#include "engine/scene/scene_override.h"
 #include "engine/tool_state.h"
 
 namespace serosa::python {

@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <string>
 
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "replay/mouse_takeover.h"
 
 namespace serosa::replay {

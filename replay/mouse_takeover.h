@@ -37,7 +37,7 @@
 #include <optional>
 #include <vector>
 
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/tool_state.h"
 #include "haptics/mouse_device.h"
 #include "window/scope_control.h"

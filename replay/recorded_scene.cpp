@@ -1,7 +1,7 @@
 #include "replay/recorded_scene.h"
 
 #include "engine/input_error.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 
 namespace serosa::replay {
 

@@ -3,8 +3,8 @@
 
 #include <string>
 
+#include "engine/scene/scene.h"
 #include "recording/recording_reader.h"
-#include "engine/scene.h"
 
 namespace serosa::replay {
 

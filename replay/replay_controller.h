@@ -26,10 +26,10 @@
 #include <string>
 #include <vector>
 
+#include "engine/scene/scene.h"
+#include "engine/sim_state.h"
 #include "recording/recording_reader.h"
 #include "recording/recording_writer.h"
-#include "engine/scene.h"
-#include "engine/sim_state.h"
 
 namespace serosa::recording {
 class RecordStage;

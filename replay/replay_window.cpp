@@ -16,7 +16,7 @@
 #include "app/scenery_from_scene.h"
 #include "app/session.h"
 #include "app/session_summary.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "metrics/metrics_stage.h"
 #include "render/camera.h"
 #include "render/frame_renderer.h"

@@ -4,7 +4,7 @@
 #include <cstdio>
 
 #include "engine/input_error.h"
-#include "engine/toml_reader.h"
+#include "engine/scene/toml_reader.h"
 
 namespace serosa::trainee {
 namespace {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/sim_state.h"
 #include "haptics/rig_protocol.h"
 #include "render/render_frame.h"

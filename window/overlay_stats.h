@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "render/render_frame.h"
 
 namespace serosa::haptics {

@@ -11,7 +11,7 @@
 
 #include <cstdint>
 
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/seqlock.h"
 #include "engine/tool_state.h"
 #include "haptics/trocar_kinematics.h"

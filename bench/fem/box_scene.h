@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <string>
 
-#include "engine/mesh_io.h"
+#include "engine/io/mesh_io.h"
 #include "engine/tet_mesh.h"
 #include "fem/bench_support.h"
 #include "fem/fem_config.h"

@@ -24,7 +24,7 @@
 #include <string>
 #include <unordered_map>
 
-#include "engine/mesh_io.h"
+#include "engine/io/mesh_io.h"
 
 #include "render/frame_renderer.h"
 #include "render/gl_context.h"

@@ -25,8 +25,8 @@
 #include "app/assemble_state.h"
 #include "app/compose.h"
 #include "bench/suite/bench_parts.h"
-#include "engine/presets.h"
-#include "engine/scene.h"
+#include "engine/scene/presets.h"
+#include "engine/scene/scene.h"
 #include "fem/bench_support.h"
 #include "fem/implicit_integrator.h"
 
@@ -95,8 +95,8 @@ void add_solver_row(Table& t, std::string setting, double knob, const SolverRun&
         {knob, r.timed.ms_per_step, r.error, r.sag, static_cast<double>(r.timed.not_converged)});
 }
 
-// What each quality preset (engine/presets.h) costs and delivers in this run: the settings the
-// preset picks from the compiled-in curves, run again on this box. On the full run (the box the
+// What each quality preset (engine/scene/presets.h) costs and delivers in this run: the settings
+// the preset picks from the compiled-in curves, run again on this box. On the full run (the box the
 // curves were measured on) each must deliver its target; on the quick box only the order holds.
 void presets(const Box& box, const TetMesh& ref, PartResult& result) {
   Table t{"fem_presets",

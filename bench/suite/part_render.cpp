@@ -18,7 +18,7 @@
 #include "app/scenery_from_scene.h"
 #include "app/simulation.h"
 #include "bench/suite/bench_parts.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/sim_state.h"
 #include "render/frame_renderer.h"
 #include "render/gl_context.h"

@@ -17,7 +17,7 @@
 #include "app/compose.h"
 #include "app/simulation.h"
 #include "bench/suite/bench_parts.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/sim_state.h"
 
 namespace serosa::bench {

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "bench/suite/bench_parts.h"
-#include "engine/mesh_io.h"
+#include "engine/io/mesh_io.h"
 #include "render/frame_renderer.h"
 #include "render/gl_context.h"
 #include "render/icosphere.h"

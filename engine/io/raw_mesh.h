@@ -10,8 +10,8 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/io/mesh_io.h"
 #include "engine/math.h"
-#include "engine/mesh_io.h"
 #include "engine/tet_mesh.h"
 
 namespace serosa::io {

@@ -6,8 +6,8 @@
 #include <system_error>
 
 #include "engine/input_error.h"
+#include "engine/io/mesh_io.h"
 #include "engine/io/raw_mesh.h"
-#include "engine/mesh_io.h"
 
 namespace serosa {
 namespace {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "engine/io/mesh_io.h"
 #include "engine/io/text_format.h"
-#include "engine/mesh_io.h"
 
 namespace serosa {
 namespace {

@@ -3,8 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "engine/io/mesh_io.h"
 #include "engine/io/text_format.h"
-#include "engine/mesh_io.h"
 
 namespace serosa {
 namespace {

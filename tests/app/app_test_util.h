@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "engine/input_error.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/shell_command.h"
 #include "support/test_paths.h"
 

@@ -16,7 +16,7 @@
 #include "app/assemble_state.h"
 #include "app/read_png.h"
 #include "engine/input_error.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "procedure_checks.h"
 #include "render/image.h"
 #include "render/image_stats.h"

@@ -14,7 +14,7 @@
 
 #include "app/headless.h"
 #include "app_test_util.h"
-#include "engine/rubric.h"
+#include "engine/scene/rubric.h"
 #include "render/session_summary.h"
 
 namespace serosa::app {

@@ -17,7 +17,7 @@
 
 #include "engine/boundary.h"
 #include "engine/box_meshes.h"
-#include "engine/mesh_io.h"
+#include "engine/io/mesh_io.h"
 #include "support/test_paths.h"
 
 namespace serosa {

@@ -13,8 +13,8 @@
 
 #include "app_test_util.h"
 #include "cutting/validate.h"
+#include "engine/io/mesh_io.h"
 #include "engine/mesh_check.h"
-#include "engine/mesh_io.h"
 
 namespace serosa::app {
 namespace {

@@ -11,8 +11,8 @@
 #include "app/assemble_state.h"
 #include "app/compose.h"
 #include "app/render_frame_from_surface.h"
-#include "engine/mesh_io.h"
-#include "engine/scene.h"
+#include "engine/io/mesh_io.h"
+#include "engine/scene/scene.h"
 #include "engine/sim_state.h"
 #include "support/test_paths.h"
 

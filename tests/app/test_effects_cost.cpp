@@ -16,7 +16,7 @@
 #include "app/compose.h"
 #include "app_test_util.h"
 #include "engine/runner.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/script_tool_stage.h"
 #include "engine/sim_state.h"
 #include "fem/fem_stage.h"

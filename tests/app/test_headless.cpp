@@ -11,7 +11,7 @@
 
 #include "app/headless.h"
 #include "engine/input_error.h"
-#include "engine/mesh_io.h"
+#include "engine/io/mesh_io.h"
 #include "engine/sim_state.h"
 #include "support/test_paths.h"
 

@@ -12,10 +12,10 @@
 #include "app/instrument_devices.h"
 #include "app_test_util.h"
 #include "engine/input_error.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
+#include "engine/scene/tool_path.h"
 #include "engine/scope_view.h"
 #include "engine/tool_geometry.h"
-#include "engine/tool_path.h"
 #include "haptics/haptics_stage.h"
 #include "haptics/trocar_kinematics.h"
 

@@ -10,8 +10,8 @@
 #include "app_test_util.h"
 #include "engine/input_error.h"
 #include "engine/jaw_range.h"
-#include "engine/scene.h"
-#include "engine/tool_path.h"
+#include "engine/scene/scene.h"
+#include "engine/scene/tool_path.h"
 
 namespace serosa::app {
 namespace {

@@ -10,7 +10,7 @@
 #include "app/instrument_devices.h"
 #include "app_test_util.h"
 #include "engine/jaw_range.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/scope_view.h"
 #include "haptics/haptics_stage.h"
 #include "haptics/mouse_device.h"

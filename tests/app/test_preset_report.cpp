@@ -7,7 +7,7 @@
 
 #include "app/headless.h"
 #include "app_test_util.h"
-#include "engine/presets.h"
+#include "engine/scene/presets.h"
 
 namespace serosa::app {
 namespace {

@@ -27,7 +27,7 @@
 #include "cutting/cut_mesh.h"
 #include "cutting/cutting_stage.h"
 #include "cutting/validate.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/sim_state.h"
 #include "engine/topology_delta.h"
 #include "render/image.h"

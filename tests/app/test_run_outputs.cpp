@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app_test_util.h"
-#include "engine/mesh_io.h"
+#include "engine/io/mesh_io.h"
 #include "engine/shell_command.h"
 
 namespace serosa::app {

@@ -13,7 +13,7 @@
 
 #include "app/run_warnings.h"
 #include "app_test_util.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/shell_command.h"
 
 namespace serosa::app {

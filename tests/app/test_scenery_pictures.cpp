@@ -15,7 +15,7 @@
 #include "app/frame_pictures.h"
 #include "app/read_png.h"
 #include "app/scenery_from_scene.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "render/image.h"
 #include "render/image_stats.h"
 

@@ -8,9 +8,9 @@
 
 #include "app_test_util.h"
 #include "engine/live_pose_stage.h"
+#include "engine/scene/tool_path.h"
 #include "engine/scope_view.h"
 #include "engine/sim_state.h"
-#include "engine/tool_path.h"
 #include "render/camera.h"
 #include "window/scope_control.h"
 

@@ -14,7 +14,7 @@
 #include "app_test_util.h"
 #include "contact/tool_contact_stage.h"
 #include "engine/instrument_hold.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/sim_state.h"
 #include "engine/tissue_stress.h"
 #include "engine/tool_geometry.h"

@@ -14,8 +14,8 @@
 #include "app/headless.h"
 #include "app_test_util.h"
 #include "cutting/validate.h"
+#include "engine/io/mesh_io.h"
 #include "engine/mesh_check.h"
-#include "engine/mesh_io.h"
 #include "engine/tool_geometry.h"
 
 namespace serosa::app {

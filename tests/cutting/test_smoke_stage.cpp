@@ -8,7 +8,7 @@
 #include "cutting/smoke_stage.h"
 #include "engine/input_error.h"
 #include "engine/kuhn_grid.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/sim_state.h"
 #include "support/block_copy.h"
 

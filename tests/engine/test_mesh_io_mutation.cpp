@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "engine/input_error.h"
-#include "engine/mesh_io.h"
+#include "engine/io/mesh_io.h"
 #include "test_mesh_io_util.h"
 
 namespace serosa {

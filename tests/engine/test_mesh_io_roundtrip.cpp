@@ -10,7 +10,7 @@
 #include <string>
 
 #include "engine/input_error.h"
-#include "engine/mesh_io.h"
+#include "engine/io/mesh_io.h"
 #include "support/test_paths.h"
 #include "test_mesh_io_util.h"
 

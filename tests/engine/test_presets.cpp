@@ -1,7 +1,7 @@
-// Presets pick from the measured curves (engine/presets.h): the compiled-in curves equal the CSV
-// files of the bench runs they were copied from, and the choice is the cheapest point within the
-// target for every target.
-#include "engine/presets.h"
+// Presets pick from the measured curves (engine/scene/presets.h): the compiled-in curves equal the
+// CSV files of the bench runs they were copied from, and the choice is the cheapest point within
+// the target for every target.
+#include "engine/scene/presets.h"
 
 #include <gtest/gtest.h>
 
@@ -74,7 +74,7 @@ TEST(Presets, SolverCurveIsTheMeasuredOne) {
       const SolverCurvePoint* p = nullptr;
       for (const SolverCurvePoint& q : solver_curve())
         if (q.setting == label) p = &q;
-      ASSERT_NE(p, nullptr) << src.file << ": " << label << " is not in engine/presets.cpp";
+      ASSERT_NE(p, nullptr) << src.file << ": " << label << " is not in engine/scene/presets.cpp";
       EXPECT_EQ(p->kind, src.kind) << label;
       EXPECT_NEAR(p->ms_per_step, std::stod(row.at("ms_per_step")), 1e-6) << label;
       const double e = std::stod(row.at("rel_error"));

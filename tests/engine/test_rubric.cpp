@@ -1,6 +1,6 @@
-// The assessment rubric (engine/rubric.h): the shipped one loads and scores every GOALS domain;
-// every mistake an instructor can make in one is an InputError naming the rubric file, the line
-// and the key; and a scene whose rubric names what the scene does not have is refused at load.
+// The assessment rubric (engine/scene/rubric.h): the shipped one loads and scores every GOALS
+// domain; every mistake an instructor can make in one is an InputError naming the rubric file, the
+// line and the key; and a scene whose rubric names what the scene does not have is refused at load.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -9,8 +9,8 @@
 #include <string>
 
 #include "engine/input_error.h"
-#include "engine/rubric.h"
-#include "engine/scene.h"
+#include "engine/scene/rubric.h"
+#include "engine/scene/scene.h"
 #include "support/test_paths.h"
 
 namespace serosa {

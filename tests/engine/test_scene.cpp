@@ -1,6 +1,6 @@
 // Scene loading: defaults, every key, relative paths, presets, and one test per error kind, each
 // checking that the message names the key path and the line.
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -12,7 +12,7 @@
 #include <string>
 
 #include "engine/input_error.h"
-#include "engine/presets.h"
+#include "engine/scene/presets.h"
 #include "support/test_paths.h"
 
 namespace serosa {

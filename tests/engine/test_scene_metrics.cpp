@@ -7,7 +7,7 @@
 #include <string>
 
 #include "engine/input_error.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 
 namespace serosa {
 namespace {

@@ -1,13 +1,14 @@
-// Overrides of scene keys as an engineer types them on the command line (engine/scene_override.h):
-// a bare word sets a key that holds text, a key through a list of tables is told to name one by
-// its index, and what is not TOML where a number belongs stays an error naming the key.
+// Overrides of scene keys as an engineer types them on the command line
+// (engine/scene/scene_override.h): a bare word sets a key that holds text, a key through a list of
+// tables is told to name one by its index, and what is not TOML where a number belongs stays an
+// error naming the key.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <string>
 
 #include "engine/input_error.h"
-#include "engine/scene_override.h"
+#include "engine/scene/scene_override.h"
 #include "support/test_paths.h"
 
 namespace serosa {

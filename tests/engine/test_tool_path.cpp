@@ -1,5 +1,5 @@
 // Tool path CSV: parsing, interpolation (lerp + slerp, clamped) and every validation error.
-#include "engine/tool_path.h"
+#include "engine/scene/tool_path.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/mesh_io.h"
+#include "engine/io/mesh_io.h"
 #include "fem_fixtures.h"
 #include "support/test_paths.h"
 

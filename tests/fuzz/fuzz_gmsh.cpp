@@ -4,7 +4,7 @@
 #include <string>
 
 #include "engine/input_error.h"
-#include "engine/mesh_io.h"
+#include "engine/io/mesh_io.h"
 #include "fuzz_check.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "engine/input_error.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "fuzz_check.h"
 
 namespace {

@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "engine/instrument_hold.h"
-#include "engine/tool_path.h"
+#include "engine/scene/tool_path.h"
 #include "haptics/haptic_loop.h"
 #include "haptics/mouse_device.h"
 #include "haptics/replay_device.h"

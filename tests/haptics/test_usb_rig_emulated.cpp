@@ -16,7 +16,7 @@
 #include <thread>
 #include <vector>
 
-#include "engine/tool_path.h"
+#include "engine/scene/tool_path.h"
 #include "haptics/emulated_rig.h"
 #include "haptics/haptic_loop.h"
 #include "haptics/usb_rig.h"

@@ -11,7 +11,7 @@
 
 #include "engine/input_error.h"
 #include "engine/kuhn_grid.h"
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "engine/sim_state.h"
 #include "metrics/bleeding_stage.h"
 #include "support/block_copy.h"

@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <random>
 
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 #include "render/image_stats.h"
 #include "render/lens_pass.h"
 #include "render/materials.h"

@@ -1,4 +1,4 @@
-#include "engine/toml_reader.h"
+#include "engine/scene/toml_reader.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-// The scene loader's inner workings (engine/scene_load.h is the interface): one Loader per
+// The scene loader's inner workings (engine/scene/scene_load.h is the interface): one Loader per
 // document, with typed access to its TOML that names the file, line and key path of every error,
 // and one reader per part of the document, each in a file of its own (scene_load.cpp: the order
 // of reading and the checks across tables; scene_load_organs.cpp, scene_load_settings.cpp,
@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "engine/input_error.h"
-#include "engine/scene.h"
-#include "engine/tool_path.h"
+#include "engine/scene/scene.h"
+#include "engine/scene/tool_path.h"
 
 namespace serosa::scene_detail {
 

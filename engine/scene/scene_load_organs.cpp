@@ -1,6 +1,6 @@
 // The scene's organs and supports: [[organ]] (mesh, groups, material and its per-group
 // overrides, fixed nodes, placement) and [[support]] (docs/scene-format.md).
-#include "engine/scene_loader.h"
+#include "engine/scene/scene_loader.h"
 
 #include <algorithm>
 #include <charconv>

@@ -4,7 +4,7 @@
 // is an error that lists what was meant. Every error names the file, the line of the offending key
 // or value (toml++ source regions) and the key path ("organ[0].young"); a missing key names the
 // line of the table that should hold it.
-#include "engine/scene_loader.h"
+#include "engine/scene/scene_loader.h"
 
 #include <algorithm>
 #include <charconv>
@@ -13,7 +13,7 @@
 #include <system_error>
 
 #include "engine/hook.h"
-#include "engine/presets.h"
+#include "engine/scene/presets.h"
 
 namespace serosa::scene_detail {
 

@@ -1,4 +1,4 @@
-#include "engine/presets.h"
+#include "engine/scene/presets.h"
 
 #include <algorithm>
 

@@ -1,6 +1,6 @@
 // The scene's [[tool]] tables: kind, device, hand, trocar and each scripted tool's path
 // (docs/scene-format.md).
-#include "engine/scene_loader.h"
+#include "engine/scene/scene_loader.h"
 
 #include <algorithm>
 #include <utility>

@@ -1,4 +1,4 @@
-#include "engine/scene_override.h"
+#include "engine/scene/scene_override.h"
 
 #include <charconv>
 #include <fstream>

@@ -1,6 +1,6 @@
 // Scene model helpers: enum names and the small queries on the model structs. The loader is in
 // scene_load.cpp.
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 
 #include <array>
 #include <cmath>

@@ -1,6 +1,6 @@
 // The scene's [metrics] table (force limit, planned cut, transfer, procedure, rubric) and the
 // checks of its rubric against what the scene measures (docs/scene-format.md, docs/assessment.md).
-#include "engine/scene_loader.h"
+#include "engine/scene/scene_loader.h"
 
 #include <algorithm>
 #include <limits>

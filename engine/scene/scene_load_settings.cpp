@@ -1,6 +1,6 @@
 // The scene's settings tables: [solver], [render] (and its looks), [record], [cutting] and
 // [headless] (docs/scene-format.md).
-#include "engine/scene_loader.h"
+#include "engine/scene/scene_loader.h"
 
 #include <algorithm>
 #include <limits>

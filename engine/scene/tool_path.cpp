@@ -1,4 +1,4 @@
-#include "engine/tool_path.h"
+#include "engine/scene/tool_path.h"
 
 #include <algorithm>
 #include <charconv>

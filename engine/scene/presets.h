@@ -1,15 +1,15 @@
 // Presets: a scene's `quality` ("fast" | "balanced" | "accurate") or `accuracy_target`
 // picks the solver settings and the Phong tessellation level from the accuracy-versus-time curves
 // `serosa bench` measured (docs/BENCHMARKS.md "Presets"): the cheapest measured setting whose
-// error is within the target. The curves are compiled in (engine/presets.cpp); a test checks them
-// against the CSV files of the run they were copied from (docs/plots/), so they cannot drift
+// error is within the target. The curves are compiled in (engine/scene/presets.cpp); a test checks
+// them against the CSV files of the run they were copied from (docs/plots/), so they cannot drift
 // apart silently.
 #pragma once
 
 #include <span>
 #include <string_view>
 
-#include "engine/scene.h"
+#include "engine/scene/scene.h"
 
 namespace serosa {
 

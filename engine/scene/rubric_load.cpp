@@ -5,8 +5,8 @@
 #include <string>
 
 #include "engine/input_error.h"
-#include "engine/rubric.h"
-#include "engine/toml_reader.h"
+#include "engine/scene/rubric.h"
+#include "engine/scene/toml_reader.h"
 
 namespace serosa {
 

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "engine/math.h"
-#include "engine/rubric.h"
+#include "engine/scene/rubric.h"
 
 namespace serosa {
 
@@ -114,7 +114,7 @@ struct SceneSettings {
   std::set<Effect> effects{Effect::kFem, Effect::kGravity};  ///< listed effects, enum order
   std::optional<Quality> quality;  ///< preset that chose the solver/render defaults, if given
   /// Displacement error the solver preset must stay within, relative (dimensionless, (0, 1)):
-  /// `accuracy_target` in the scene, else the quality preset's target (engine/presets.h).
+  /// `accuracy_target` in the scene, else the quality preset's target (engine/scene/presets.h).
   std::optional<double> accuracy_target;
 
   [[nodiscard]] bool has(Effect e) const { return effects.count(e) != 0; }
@@ -330,7 +330,7 @@ struct MetricsSettings {
   /// The procedure's steps are followed (expose, divide the mesentery, secure the base,
   /// transect, extract); needs `artery`. None: no steps are reported.
   std::optional<ProcedureGroups> procedure;
-  /// What the session is scored on (engine/rubric.h); none: no assessment is reported.
+  /// What the session is scored on (engine/scene/rubric.h); none: no assessment is reported.
   std::optional<Rubric> rubric;
 };
 
