@@ -17,6 +17,10 @@
 namespace serosa::fem::bench {
 namespace {
 
+using serosa::bench::relative_displacement_error;
+using serosa::bench::run_timed_steps;
+using serosa::bench::TimedRun;
+
 constexpr int kSteps = 100;  // 1 s at dt = 0.01 s
 
 struct Run {

@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <string>
 
+#include "bench/support/fem_measure.h"
 #include "engine/io/mesh_io.h"
 #include "engine/tet_mesh.h"
-#include "fem/bench_support.h"
 #include "fem/fem_config.h"
 
 namespace serosa::fem::bench {
@@ -17,7 +17,9 @@ namespace serosa::fem::bench {
 inline constexpr double kBoxDt = 0.01;  ///< s
 
 /// Structured 4k x k x k grid of unit-length/k cubes, 6 tets each (Kuhn): 24 k^3 tets.
-inline TetMesh structured_box(int k) { return structured_bar(4 * k, k, k, 4.0, 1.0, 1.0); }
+inline TetMesh structured_box(int k) {
+  return serosa::bench::structured_bar(4 * k, k, k, 4.0, 1.0, 1.0);
+}
 
 /// assets/<name> (the gmsh boxes), x = 0 fixed.
 inline TetMesh asset_box(const std::string& name) {
@@ -38,6 +40,6 @@ inline FemConfig box_config(SolverKind kind, double tolerance, int max_iteration
 }
 
 /// Sag of the free end: mean downward displacement of the nodes at x = 4, m.
-inline double free_end_sag(const TetMesh& m) { return fem::free_end_sag(m, 4.0); }
+inline double free_end_sag(const TetMesh& m) { return serosa::bench::free_end_sag(m, 4.0); }
 
 }  // namespace serosa::fem::bench

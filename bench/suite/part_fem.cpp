@@ -11,7 +11,7 @@
 //  (c) Corotational against linear FEM under rotation: the 4 x 1 x 1 box's x = 0 face turned
 //      about z at 90 degrees per second (dt = 0.01 s, no gravity); the volume's relative growth
 //      against the angle reached (= time).
-// fem/bench_support.h holds the measurement code bench/fem shares.
+// bench/support/fem_measure.h holds the measurement code bench/fem shares.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -25,9 +25,9 @@
 #include "app/assemble_state.h"
 #include "app/compose.h"
 #include "bench/suite/bench_parts.h"
+#include "bench/support/fem_measure.h"
 #include "engine/scene/presets.h"
 #include "engine/scene/scene.h"
-#include "fem/bench_support.h"
 #include "fem/implicit_integrator.h"
 
 namespace serosa::bench {
@@ -50,7 +50,7 @@ struct Box {
 Box sofa_box(const BenchOptions& options) {
   Box b;
   if (options.quick) {
-    b.mesh = fem::structured_bar(16, 4, 4, 4.0, 1.0, 1.0);
+    b.mesh = structured_bar(16, 4, 4, 4.0, 1.0, 1.0);
     b.config.default_material = fem::FemMaterial{3000.0, 0.45, 1.0, 0.1, 0.1};
     b.label = "structured 4x1x1 m box";
   } else {
@@ -65,7 +65,7 @@ Box sofa_box(const BenchOptions& options) {
 }
 
 struct SolverRun {
-  fem::TimedRun timed;
+  TimedRun timed;
   double error = 0.0;
   double sag = 0.0;
 };
@@ -77,9 +77,9 @@ SolverRun solve_box(const Box& box, const TetMesh& ref, fem::SolverKind kind, do
   cfg.solver.max_iterations = cap;
   TetMesh m = box.mesh;
   SolverRun r;
-  r.timed = fem::run_timed_steps(m, cfg, kBoxSteps, kBoxDt);
-  r.error = fem::relative_displacement_error(m, ref);
-  r.sag = fem::free_end_sag(m, box.x_end);
+  r.timed = run_timed_steps(m, cfg, kBoxSteps, kBoxDt);
+  r.error = relative_displacement_error(m, ref);
+  r.sag = free_end_sag(m, box.x_end);
   return r;
 }
 
@@ -132,9 +132,9 @@ void solver_knobs(const BenchOptions& options, PartResult& result) {
   TetMesh ref = box.mesh;
   fem::FemConfig ref_cfg = box.config;
   ref_cfg.solver.kind = fem::SolverKind::cholmod;
-  const fem::TimedRun chol = fem::run_timed_steps(ref, ref_cfg, kBoxSteps, kBoxDt);
+  const TimedRun chol = run_timed_steps(ref, ref_cfg, kBoxSteps, kBoxDt);
   Table tc{"fem_cholmod", {"ms_per_step", "rel_error", "sag_1s_m"}, {}, {}};
-  tc.add("cholmod (the reference)", {chol.ms_per_step, 0.0, fem::free_end_sag(ref, box.x_end)});
+  tc.add("cholmod (the reference)", {chol.ms_per_step, 0.0, free_end_sag(ref, box.x_end)});
 
   Table tt = solver_table("fem_cg_tolerance", "tolerance");
   const std::vector<double> tols =
@@ -217,11 +217,11 @@ void beam_resolution(const BenchOptions& options, PartResult& result) {
   const std::vector<int> ks =
       options.quick ? std::vector<int>{1, 2, 3} : std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8};
   for (int k : ks) {
-    TetMesh m = fem::structured_bar(10 * k, k, k, length, thick, thick);
+    TetMesh m = structured_bar(10 * k, k, k, length, thick, thick);
     // Backward Euler with dt >> the beam's period steps to static equilibrium (the cantilever
     // test of tests/fem): the third and fourth steps agree.
-    const fem::TimedRun r = fem::run_timed_steps(m, cfg, 4, 100.0);
-    const double sag = fem::free_end_sag(m, length);
+    const TimedRun r = run_timed_steps(m, cfg, 4, 100.0);
+    const double sag = free_end_sag(m, length);
     t.add(std::to_string(k) + " across",
           {static_cast<double>(m.num_tets()), r.ms_per_step, std::abs(sag - w_eb) / w_eb, sag});
   }
@@ -259,7 +259,7 @@ struct RotationRun {
 };
 
 RotationRun rotate(bool corotational, int k, double angle_rad) {
-  TetMesh m = fem::structured_bar(4 * k, k, k, 4.0, 1.0, 1.0);
+  TetMesh m = structured_bar(4 * k, k, k, 4.0, 1.0, 1.0);
   const double v0 = volume(m);
   const Mat3 rot = Eigen::AngleAxisd(angle_rad, Vec3::UnitZ()).toRotationMatrix();
   for (std::size_t n = 0; n < m.rest.size(); ++n) m.x[n] = rot * m.rest[n];
@@ -268,7 +268,7 @@ RotationRun rotate(bool corotational, int k, double angle_rad) {
   cfg.gravity_on = false;
   cfg.corotational = corotational;
   cfg.solver.kind = fem::SolverKind::cholmod;
-  const fem::TimedRun t = fem::run_timed_steps(m, cfg, 3, 100.0);
+  const TimedRun t = run_timed_steps(m, cfg, 3, 100.0);
   if (t.rejected > 0) throw std::runtime_error("fem rotation run: a step was rejected");
   return {volume(m) / v0 - 1.0, t.ms_per_step};
 }

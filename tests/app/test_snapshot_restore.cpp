@@ -14,9 +14,9 @@
 #include "app/headless.h"
 #include "app_test_util.h"
 #include "engine/input_error.h"
+#include "engine/sim_state.h"
 #include "recording/recording_reader.h"
 #include "recording/recording_writer.h"
-#include "engine/sim_state.h"
 #include "replay/replay.h"
 
 namespace serosa::app {

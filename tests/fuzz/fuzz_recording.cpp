@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "engine/input_error.h"
+#include "fuzz_check.h"
 #include "recording/recording_format.h"
 #include "recording/recording_reader.h"
-#include "fuzz_check.h"
 
 namespace {
 

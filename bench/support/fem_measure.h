@@ -7,7 +7,7 @@
 #include "engine/tet_mesh.h"
 #include "fem/fem_config.h"
 
-namespace serosa::fem {
+namespace serosa::bench {
 
 /// A bar [0, lx] x [-ly/2, ly/2] x [-lz/2, lz/2] (m) of nx x ny x nz boxes, each cut into 6
 /// positively oriented tets around its main diagonal (conforming), group 1; node state filled,
@@ -24,7 +24,7 @@ struct TimedRun {
 /// Runs `steps` steps of dt_s (s) on `mesh` (in place) with a fresh ImplicitIntegrator(cfg),
 /// timing each step (the first one includes any factorization). With pcg_cholmod the factor is
 /// computed on the first step, not in the background, so that its cost is counted.
-TimedRun run_timed_steps(TetMesh& mesh, FemConfig cfg, int steps, double dt_s);
+TimedRun run_timed_steps(TetMesh& mesh, fem::FemConfig cfg, int steps, double dt_s);
 
 /// max_i |x_i - ref.x_i| / max_i |ref.x_i - ref.rest_i|: the displacement error relative to the
 /// reference run's largest displacement (1). Same mesh topology required.
@@ -33,4 +33,4 @@ TimedRun run_timed_steps(TetMesh& mesh, FemConfig cfg, int steps, double dt_s);
 /// Mean downward (-y) displacement of the nodes at rest x >= x_end - 1e-6 m, m.
 [[nodiscard]] double free_end_sag(const TetMesh& m, double x_end);
 
-}  // namespace serosa::fem
+}  // namespace serosa::bench

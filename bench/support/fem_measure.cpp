@@ -1,4 +1,4 @@
-#include "fem/bench_support.h"
+#include "bench/support/fem_measure.h"
 
 #include <algorithm>
 #include <array>
@@ -9,7 +9,11 @@
 #include "engine/kuhn_grid.h"
 #include "fem/implicit_integrator.h"
 
-namespace serosa::fem {
+namespace serosa::bench {
+
+using fem::FemConfig;
+using fem::ImplicitIntegrator;
+using fem::StepStatus;
 
 TetMesh structured_bar(int nx, int ny, int nz, double lx, double ly, double lz) {
   if (nx < 1 || ny < 1 || nz < 1) throw std::invalid_argument("structured_bar: needs >= 1 box");
@@ -63,4 +67,4 @@ double free_end_sag(const TetMesh& m, double x_end) {
   return n > 0 ? s / n : 0.0;
 }
 
-}  // namespace serosa::fem
+}  // namespace serosa::bench
