@@ -60,6 +60,7 @@ fem::FemConfig fem_config(const Scene& scene, const AssembledScene& assembled) {
   c.solver.urgent_lag_steps = scene.solver.urgent_lag_steps;
   c.solver.cut_lag_steps = scene.solver.cut_lag_steps;
   c.solver.misfit_rad = scene.solver.misfit_rad;
+  c.solver.patch_rings = scene.solver.patch_rings;
   c.solver.threads = scene.solver.threads;
   // pcg-lagged needs 1-3 CG iterations a step: filling the assembled blocks for so few products
   // cost more than applying A per tet, so it fills them only on the steps that factor

@@ -17,6 +17,7 @@ nlohmann::json solver_report(const SolverSettings& solver) {
     j["urgent_lag_steps"] = solver.urgent_lag_steps;
     j["cut_lag_steps"] = solver.cut_lag_steps;
     j["misfit_rad"] = solver.misfit_rad;
+    j["patch_rings"] = solver.patch_rings;
     j["after_cut"] = solver.patch_after_cut ? "patch" : "factor";
   }
   return j;

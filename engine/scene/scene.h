@@ -215,6 +215,9 @@ struct SolverSettings {
   /// pcg-lagged: patch the rows of nodes whose tets turned otherwise than they did since the
   /// factor's step by more than this, rad; 0: never; within [0, pi].
   double misfit_rad = 0.2;
+  /// pcg-lagged: rings of neighbours around the patched nodes (a cut's, a grasp's, a misfit's)
+  /// in the patch; within [0, 8].
+  int patch_rings = 2;
   /// pcg-lagged after a cut: patch the factor on the touched rows until a refresh is in (true:
   /// "patch"), or factor the new matrix on the step after the cut (false: "factor").
   bool patch_after_cut = true;

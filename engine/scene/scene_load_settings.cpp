@@ -10,9 +10,10 @@ namespace serosa::scene_detail {
 
 void Loader::read_solver(const toml::table& t, SolverSettings& s) const {
   const std::string p = "solver";
-  check_keys(t, p,
-             {"kind", "tolerance", "max_iterations", "refresh_iterations", "factor_lag_steps",
-              "threads", "after_cut", "urgent_lag_steps", "cut_lag_steps", "misfit_rad"});
+  check_keys(
+      t, p,
+      {"kind", "tolerance", "max_iterations", "refresh_iterations", "factor_lag_steps", "threads",
+       "after_cut", "urgent_lag_steps", "cut_lag_steps", "misfit_rad", "patch_rings"});
   if (const auto* n = t.get("kind")) {
     s.kind = enum_value<SolverKind>(*n, sub(p, "kind"), solver_kind_from_name,
                                     "pcg, cholmod, pcg-cholmod, pcg-lagged");
@@ -44,6 +45,10 @@ void Loader::read_solver(const toml::table& t, SolverSettings& s) const {
   if (const auto* n = t.get("misfit_rad")) {
     s.misfit_rad = ranged(*n, sub(p, "misfit_rad"), 0.0, false, std::numbers::pi, false,
                           "an angle within [0, pi] rad (0: never)");
+  }
+  if (const auto* n = t.get("patch_rings")) {
+    s.patch_rings = static_cast<int>(
+        ranged_int(*n, sub(p, "patch_rings"), 0, 8, "a number of rings within [0, 8]"));
   }
   if (const auto* n = t.get("after_cut")) {
     const std::string v = string(*n, sub(p, "after_cut"), "\"patch\" or \"factor\"");

@@ -194,6 +194,7 @@ max_iterations = 50
 after_cut = "factor"
 urgent_lag_steps = 7
 cut_lag_steps = 30
+patch_rings = 3
 
 [render]
 tessellation = 5
@@ -301,6 +302,7 @@ steps = 250
   EXPECT_FALSE(s.solver.patch_after_cut);
   EXPECT_EQ(s.solver.urgent_lag_steps, 7);
   EXPECT_EQ(s.solver.cut_lag_steps, 30);
+  EXPECT_EQ(s.solver.patch_rings, 3);
   EXPECT_EQ(s.cutting.method, CutMethod::kSnap);
   EXPECT_DOUBLE_EQ(s.cutting.tolerance, 0.05);
   EXPECT_EQ(s.cutting.strokes, StrokeSurfaceKind::kPlane);
@@ -570,6 +572,7 @@ TEST_F(SceneTest, BadSolver) {
                "[1, 1000000]");
   expect_error(kOrgan + "[solver]\nafter_cut = \"later\"\n", 5, "solver.after_cut",
                "\"patch\" or \"factor\"");
+  expect_error(kOrgan + "[solver]\npatch_rings = 9\n", 5, "solver.patch_rings", "[0, 8]");
 }
 
 TEST_F(SceneTest, BadRender) {
