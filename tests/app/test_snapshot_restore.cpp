@@ -10,6 +10,7 @@
 #include <set>
 
 #include "app/assemble_state.h"
+#include "app/assessment_report.h"
 #include "app/compose.h"
 #include "app/headless.h"
 #include "app_test_util.h"
@@ -129,7 +130,8 @@ TEST(Snapshot, RestoreAtRandomStepsEqualsTheUninterruptedRunBitForBit) {
 // The default procedure, five steps with four exchanges of the right hand: snapshots at random
 // steps and at the first step after each exchange (the hands' account is in the metrics' block),
 // each restored into a fresh pipeline; 60 steps on, every hash equals the uninterrupted run's, and
-// the last one, run to the end, gives the same whole state, byte for byte.
+// the last one, run to the end, gives the same whole state, byte for byte. The final state alone,
+// adopted by a fresh pipeline, gives the run's report.
 TEST(Snapshot, TheDefaultProcedureWithItsExchangesRestoresBitForBitAtRandomSteps) {
   const Scene scene = load_scene(source("config/appendectomy.toml"));
   const auto steps = static_cast<std::uint64_t>(scene.headless.steps);
@@ -161,6 +163,21 @@ TEST(Snapshot, TheDefaultProcedureWithItsExchangesRestoresBitForBitAtRandomSteps
   const std::vector<std::uint8_t> final_bytes = run->comp.runner->snapshot(s);
   ASSERT_EQ(exchanges_seen, 4u);
   ASSERT_GE(taken.size(), 8u);
+  {
+    // The report is a function of the scene and the state: a pipeline that has taken no step
+    // but adopted the final state reports what the run did, its assessment included.
+    SCOPED_TRACE("the final state adopted by a fresh pipeline");
+    auto f = build(scene);
+    f->comp.runner->restore(final_bytes, f->assembled.state, "snapshot");
+    ASSERT_NE(run->comp.metrics, nullptr);
+    EXPECT_EQ(f->comp.metrics->report(), run->comp.metrics->report());
+    const nlohmann::json graded =
+        assessment_report(scene, run->comp.metrics, s.mesh, run->assembled.group_names());
+    ASSERT_FALSE(graded.is_null());
+    EXPECT_EQ(assessment_report(scene, f->comp.metrics, f->assembled.state.mesh,
+                                f->assembled.group_names()),
+              graded);
+  }
   for (auto it = taken.begin(); it != taken.end(); ++it) {
     SCOPED_TRACE("restored after step " + std::to_string(it->first));
     auto r = build(scene);
