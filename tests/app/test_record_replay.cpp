@@ -18,6 +18,7 @@
 #include "recording/recording_reader.h"
 #include "recording/recording_writer.h"
 #include "replay/replay.h"
+#include "support/file_bytes.h"
 
 namespace serosa::app {
 namespace {
@@ -26,13 +27,7 @@ using namespace serosa::replay;
 
 using namespace serosa::app::testing;
 
-std::vector<std::uint8_t> bytes_of(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary | std::ios::ate);
-  std::vector<std::uint8_t> b(static_cast<std::size_t>(std::max<std::streamoff>(in.tellg(), 0)));
-  in.seekg(0);
-  in.read(reinterpret_cast<char*>(b.data()), static_cast<std::streamsize>(b.size()));
-  return b;
-}
+using test_support::bytes_of;
 
 // A 40-step scripted transection, recorded (hash every 20 steps, from the scene).
 struct Recorded {

@@ -13,6 +13,7 @@
 #include "engine/input_error.h"
 #include "recording/recording_reader.h"
 #include "recording/recording_writer.h"
+#include "support/file_bytes.h"
 
 namespace serosa::recording {
 namespace {
@@ -25,13 +26,7 @@ fs::path temp_file(const std::string& name) {
   return d / name;
 }
 
-std::vector<std::uint8_t> bytes_of(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary | std::ios::ate);
-  std::vector<std::uint8_t> b(static_cast<std::size_t>(std::max<std::streamoff>(in.tellg(), 0)));
-  in.seekg(0);
-  in.read(reinterpret_cast<char*>(b.data()), static_cast<std::streamsize>(b.size()));
-  return b;
-}
+using test_support::bytes_of;
 
 ToolState tool(std::uint64_t step, int k) {
   ToolState t;
