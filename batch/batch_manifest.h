@@ -10,9 +10,8 @@
 //   scene = "appendectomy.toml"            # relative to the manifest's folder
 //   steps = 400                            # default: the scene's headless.steps
 //   path = "paths/x.csv"                   # default: the scene's own scripts
-//   set = { "solver.tolerance" = 1e-4 }    # overrides of scene keys
-//   (engine/scene/scene_override.h) sweep = { "solver.tolerance" = [1e-3, 1e-4] }  # one run per
-//   combination of the values,
+//   set = { "solver.tolerance" = 1e-4 }    # overrides of scene keys (scene_override.h)
+//   sweep = { "solver.tolerance" = [1e-3, 1e-4] }  # one run per combination of the values,
 //                                          # named NAME.tolerance-0.001 (not with a golden)
 //   seeds = [1, 2, 3]                      # one run per seed, the path perturbed by it
 //   perturb = 2e-4                         # m: the perturbation's amplitude (default 2e-4)

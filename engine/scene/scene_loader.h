@@ -1,8 +1,8 @@
-// The scene loader's inner workings (engine/scene/scene_load.h is the interface): one Loader per
-// document, with typed access to its TOML that names the file, line and key path of every error,
-// and one reader per part of the document, each in a file of its own (scene_load.cpp: the order
-// of reading and the checks across tables; scene_load_organs.cpp, scene_load_settings.cpp,
-// scene_load_metrics.cpp, scene_load_tools.cpp).
+// The scene loader's inner workings (load_scene, engine/scene/scene.h, is the interface): one
+// Loader per document, with typed access to its TOML that names the file, line and key path of
+// every error, and one reader per part of the document, each in a file of its own (scene_load.cpp:
+// the order of reading and the checks across tables; scene_load_organs.cpp,
+// scene_load_settings.cpp, scene_load_metrics.cpp, scene_load_tools.cpp).
 #pragma once
 
 #include <toml++/toml.h>

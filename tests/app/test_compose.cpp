@@ -43,6 +43,36 @@ TEST(Compose, NoEffectsBuildsNoStage) {
   EXPECT_TRUE(c.built.empty());
 }
 
+// Every solver key the scene reads reaches the FEM's settings: a key that stopped on the way
+// would be a knob that does nothing.
+TEST(Compose, TheScenesSolverKeysReachTheFem) {
+  Scene scene = scene_with("");
+  SolverSettings& s = scene.solver;
+  s.kind = SolverKind::kPcgLagged;
+  s.threads = 2;
+  s.tolerance = 3e-4;
+  s.max_iterations = 77;
+  s.refresh_iterations = 5;
+  s.factor_lag_steps = 9;
+  s.urgent_lag_steps = 4;
+  s.cut_lag_steps = 31;
+  s.misfit_rad = 0.35;
+  s.patch_rings = 3;
+  s.patch_after_cut = false;
+  const fem::FemConfig c = fem_config(scene, assemble_state(scene));
+  EXPECT_EQ(c.solver.kind, fem::SolverKind::pcg_lagged);
+  EXPECT_EQ(c.solver.threads, 2);
+  EXPECT_DOUBLE_EQ(c.solver.tolerance, 3e-4);
+  EXPECT_EQ(c.solver.max_iterations, 77);
+  EXPECT_EQ(c.solver.refresh_iterations, 5);
+  EXPECT_EQ(c.solver.factor_lag_steps, 9);
+  EXPECT_EQ(c.solver.urgent_lag_steps, 4);
+  EXPECT_EQ(c.solver.cut_lag_steps, 31);
+  EXPECT_DOUBLE_EQ(c.solver.misfit_rad, 0.35);
+  EXPECT_EQ(c.solver.patch_rings, 3);
+  EXPECT_FALSE(c.solver.patch_after_cut);
+}
+
 TEST(Compose, OnlyListedEffectsAreBuilt) {
   const Scene scene = scene_with("\"fem\"");
   const AssembledScene a = assemble_state(scene);
