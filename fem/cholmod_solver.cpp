@@ -60,7 +60,10 @@ struct CholmodSolver::Impl {
 };
 
 CholmodSolver::CholmodSolver(Layout layout) : m_impl(std::make_unique<Impl>()) {
-  if (layout != Layout::automatic) m_impl->common.supernodal = CHOLMOD_SIMPLICIAL;
+  // node_blocks: supernodal, since its factor is only exported (the solves are BlockFactor's) and
+  // the numeric factorization, in dense blocks through BLAS, takes about half the time.
+  if (layout == Layout::simplicial) m_impl->common.supernodal = CHOLMOD_SIMPLICIAL;
+  if (layout == Layout::node_blocks) m_impl->common.supernodal = CHOLMOD_SUPERNODAL;
   m_impl->node_blocks = layout == Layout::node_blocks;
 }
 
@@ -175,25 +178,15 @@ SolveStatus CholmodSolver::solve(std::span<const double> b, std::span<double> x)
   return st;
 }
 
-bool CholmodSolver::export_ldl(LdlFactor& out) const {
-  const Impl& m = *m_impl;
-  const cholmod_factor* f = m.factor;
-  if (!m.ok_factor || f == nullptr || f->is_super != 0 || f->is_ll != 0 ||
-      f->itype != CHOLMOD_INT || f->xtype != CHOLMOD_REAL)
-    return false;
-  const auto n = static_cast<std::size_t>(f->n);
-  const auto* perm = static_cast<const std::int32_t*>(f->Perm);
-  const auto* lp = static_cast<const std::int32_t*>(f->p);
-  const auto* li = static_cast<const std::int32_t*>(f->i);
-  const auto* lnz = static_cast<const std::int32_t*>(f->nz);
-  const auto* lx = static_cast<const double*>(f->x);
-  out.perm.assign(perm, perm + n);
-  out.col_start.assign(n + 1, 0);
-  out.row.clear();
-  out.val.clear();
-  out.d.assign(n, 0.0);
-  // Column j: its diagonal entry (D_j in LDL^T) first, then the rows below it.
-  for (std::size_t j = 0; j < n; ++j) {
+namespace {
+
+// Column j of a simplicial LDL^T factor: its diagonal entry (D_j) first, then the rows below it.
+void export_simplicial(const cholmod_factor& f, LdlFactor& out) {
+  const auto* lp = static_cast<const std::int32_t*>(f.p);
+  const auto* li = static_cast<const std::int32_t*>(f.i);
+  const auto* lnz = static_cast<const std::int32_t*>(f.nz);
+  const auto* lx = static_cast<const double*>(f.x);
+  for (std::size_t j = 0; j < f.n; ++j) {
     const auto begin = static_cast<std::size_t>(lp[j]);
     for (std::size_t e = begin; e < begin + static_cast<std::size_t>(lnz[j]); ++e) {
       if (static_cast<std::size_t>(li[e]) == j) {
@@ -205,6 +198,57 @@ bool CholmodSolver::export_ldl(LdlFactor& out) const {
     }
     out.col_start[j + 1] = static_cast<std::int32_t>(out.row.size());
   }
+}
+
+// A supernodal L L^T as LDL^T: D_j = L_jj^2, L'_ij = L_ij / L_jj. Supernode s holds columns
+// super[s] .. super[s+1]-1 as a dense column-major block of nsrow rows (its first nscol rows are
+// the diagonal block, whose upper part is not L's). Entries that are exactly zero (the padding of
+// relaxed supernodes) are left out, so the blocks are those of the simplicial factor.
+void export_supernodal(const cholmod_factor& f, LdlFactor& out) {
+  const auto* super = static_cast<const std::int32_t*>(f.super);
+  const auto* pi = static_cast<const std::int32_t*>(f.pi);
+  const auto* px = static_cast<const std::int32_t*>(f.px);
+  const auto* ls = static_cast<const std::int32_t*>(f.s);
+  const auto* lx = static_cast<const double*>(f.x);
+  for (std::size_t sn = 0; sn < f.nsuper; ++sn) {
+    const auto k1 = static_cast<std::size_t>(super[sn]);
+    const auto nscol = static_cast<std::size_t>(super[sn + 1]) - k1;
+    const auto nsrow = static_cast<std::size_t>(pi[sn + 1] - pi[sn]);
+    const std::int32_t* rows = ls + pi[sn];
+    for (std::size_t c = 0; c < nscol; ++c) {
+      const double* col = lx + static_cast<std::size_t>(px[sn]) + c * nsrow;
+      const double ljj = col[c];
+      out.d[k1 + c] = ljj * ljj;
+      for (std::size_t r = c + 1; r < nsrow; ++r) {
+        if (col[r] == 0.0) continue;
+        out.row.push_back(rows[r]);
+        out.val.push_back(col[r] / ljj);
+      }
+      out.col_start[k1 + c + 1] = static_cast<std::int32_t>(out.row.size());
+    }
+  }
+}
+
+}  // namespace
+
+bool CholmodSolver::export_ldl(LdlFactor& out) const {
+  const Impl& m = *m_impl;
+  const cholmod_factor* f = m.factor;
+  if (!m.ok_factor || f == nullptr || f->itype != CHOLMOD_INT || f->xtype != CHOLMOD_REAL)
+    return false;
+  // Simplicial factors are LDL^T (CHOLMOD's default), supernodal ones L L^T.
+  if (f->is_super == 0 && f->is_ll != 0) return false;
+  const auto n = static_cast<std::size_t>(f->n);
+  const auto* perm = static_cast<const std::int32_t*>(f->Perm);
+  out.perm.assign(perm, perm + n);
+  out.col_start.assign(n + 1, 0);
+  out.row.clear();
+  out.val.clear();
+  out.d.assign(n, 0.0);
+  if (f->is_super != 0)
+    export_supernodal(*f, out);
+  else
+    export_simplicial(*f, out);
   return true;
 }
 

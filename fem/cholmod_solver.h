@@ -22,9 +22,12 @@ class CholmodSolver {
   /// blocks), or simplicial (column by column, no BLAS): on meshes of a few thousand nodes its
   /// triangular solves are cheaper, which is what a preconditioner applied every CG iteration
   /// needs (docs/BENCHMARKS.md "FEM").
-  /// node_blocks: simplicial LDL^T under an ordering of the node graph (AMD), so that each
-  /// node's three rows stay together and the factor can be exported as 3x3 blocks
-  /// (export_ldl, fem/block_factor.h).
+  /// node_blocks: supernodal L L^T under an ordering of the node graph (AMD), so that each
+  /// node's three rows stay together and the factor can be exported as 3x3 blocks of an LDL^T
+  /// (export_ldl, fem/block_factor.h), whose solves replace CHOLMOD's. Supernodal because its
+  /// numeric factorization, the lagged factor's background refresh, runs in dense blocks through
+  /// BLAS: about half the simplicial time with OpenBLAS on the default scene (docs/BENCHMARKS.md
+  /// "FEM"); the same with the reference BLAS.
   enum class Layout : std::uint8_t { automatic, simplicial, node_blocks };
 
   explicit CholmodSolver(Layout layout = Layout::automatic);
@@ -42,8 +45,9 @@ class CholmodSolver {
   /// x = A^{-1} b with the last factorization; b and x: (rows). Status: converged = factor ok.
   SolveStatus solve(std::span<const double> b, std::span<double> x);
 
-  /// The factor as plain arrays (fem/block_factor.h LdlFactor); false unless the layout is
-  /// simplicial or node_blocks and a factorization succeeded.
+  /// The factor as plain arrays of an LDL^T (fem/block_factor.h LdlFactor; a supernodal L L^T is
+  /// scaled to it, and its exact zeros, the padding of relaxed supernodes, left out); false
+  /// unless the layout is simplicial or node_blocks and a factorization succeeded.
   bool export_ldl(LdlFactor& out) const;
 
   [[nodiscard]] bool analyzed() const;
