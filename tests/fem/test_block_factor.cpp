@@ -1,5 +1,6 @@
-// fem/block_factor.h: the node-blocked single-precision solves of a CHOLMOD LDL^T factor, against
-// CHOLMOD's own solve, on random sparse SPD systems of 3x3 blocks (a mesh's shape).
+// fem/block_factor.h: the node-blocked single-precision solves of a CHOLMOD factor (supernodal
+// L L^T, exported as LDL^T), against CHOLMOD's own solve, on random sparse SPD systems of 3x3
+// blocks (a mesh's shape).
 #include "fem/block_factor.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +11,8 @@
 #include <random>
 #include <utility>
 #include <vector>
+
+#include <Eigen/Dense>
 
 #include "engine/math.h"
 #include "fem/cholmod_solver.h"
@@ -91,6 +94,42 @@ TEST(BlockFactor, SolvesAsCholmodDoesToSinglePrecision) {
     if (trial % 3 != 0) {
       EXPECT_LE(max_abs(ay), 1e-3 * max_abs(b)) << "trial " << trial;
     }
+  }
+}
+
+// The node-blocked factor is supernodal L L^T exported as LDL^T: L D L^T must give back P A P^T
+// (dense check, to double rounding), with D > 0 and no exact zero (a relaxed supernode's padding)
+// among the exported entries.
+TEST(BlockFactor, TheExportedFactorRebuildsThePermutedMatrix) {
+  std::mt19937 rng(17);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int nodes = 2 + trial % 40;
+    const CsrMatrix a = random_system(rng, nodes, 3 * nodes, trial % 3 == 0 ? 4.0 : 1.0);
+    CholmodSolver chol(CholmodSolver::Layout::node_blocks);
+    LdlFactor ldl;
+    ASSERT_TRUE(factor(a, chol, ldl));
+    const auto n = static_cast<Eigen::Index>(a.rows);
+    Eigen::MatrixXd l = Eigen::MatrixXd::Identity(n, n), pap(n, n);
+    for (Eigen::Index j = 0; j < n; ++j)
+      for (auto e = static_cast<std::size_t>(ldl.col_start[static_cast<std::size_t>(j)]);
+           e < static_cast<std::size_t>(ldl.col_start[static_cast<std::size_t>(j) + 1]); ++e) {
+        ASSERT_GT(ldl.row[e], j) << "trial " << trial;
+        ASSERT_NE(ldl.val[e], 0.0) << "trial " << trial;
+        l(ldl.row[e], j) = ldl.val[e];
+      }
+    std::vector<double> col(static_cast<std::size_t>(n)), acol(col.size());
+    for (Eigen::Index j = 0; j < n; ++j) {  // column j of P A P^T = P A e_perm[j]
+      ASSERT_GT(ldl.d[static_cast<std::size_t>(j)], 0.0);
+      std::fill(col.begin(), col.end(), 0.0);
+      col[static_cast<std::size_t>(ldl.perm[static_cast<std::size_t>(j)])] = 1.0;
+      multiply(a, col, acol);
+      for (Eigen::Index i = 0; i < n; ++i)
+        pap(i, j) = acol[static_cast<std::size_t>(ldl.perm[static_cast<std::size_t>(i)])];
+    }
+    const Eigen::VectorXd d = Eigen::Map<const Eigen::VectorXd>(ldl.d.data(), n);
+    const Eigen::MatrixXd back = l * d.asDiagonal() * l.transpose();
+    EXPECT_LE((back - pap).cwiseAbs().maxCoeff(), 1e-10 * pap.cwiseAbs().maxCoeff())
+        << "trial " << trial;
   }
 }
 
