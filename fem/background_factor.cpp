@@ -1,5 +1,7 @@
 #include "fem/background_factor.h"
 
+#include <omp.h>
+
 #include <chrono>
 #include <utility>
 
@@ -28,6 +30,7 @@ void BackgroundFactor::start(Request req) {
   job->solver = std::make_unique<CholmodSolver>();
   Job* j = job.get();
   j->thread = std::thread([j] {
+    omp_set_num_threads(1);  // the solver's thread has the other core (fem/cholmod_solver.cpp)
     if (j->req.delay_ms > 0)
       std::this_thread::sleep_for(std::chrono::milliseconds(j->req.delay_ms));
     j->ok = j->solver->analyze(j->req.a) && j->solver->factorize(j->req.a);

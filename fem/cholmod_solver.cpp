@@ -1,6 +1,7 @@
 #include "fem/cholmod_solver.h"
 
 #include <cholmod.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -145,11 +146,36 @@ bool CholmodSolver::copy_analysis(const CholmodSolver& from) {
   return m.b != nullptr;
 }
 
+namespace {
+
+// CHOLMOD's supernodal factorization opens OpenMP regions of a compiled-in four threads
+// (CHOLMOD_OMP_NUM_THREADS), whatever the calling thread asked for. On a thread that runs alone
+// (omp_get_max_threads() == 1: the lagged factor's background refresh, a one-thread FEM stage)
+// they are made inactive for the call: on two cores the four threads took the default scene's
+// refresh from 33 to 63-80 ms of wall time, in 90,000 context switches in 3 s, and would take the
+// solver thread's core. The ICV is the calling thread's own; the regions only copy and scatter,
+// so the factor's bits do not depend on it.
+class InactiveRegionsWhenAlone {
+ public:
+  InactiveRegionsWhenAlone() : m_levels(omp_get_max_active_levels()) {
+    if (omp_get_max_threads() == 1) omp_set_max_active_levels(0);
+  }
+  ~InactiveRegionsWhenAlone() { omp_set_max_active_levels(m_levels); }
+  InactiveRegionsWhenAlone(const InactiveRegionsWhenAlone&) = delete;
+  InactiveRegionsWhenAlone& operator=(const InactiveRegionsWhenAlone&) = delete;
+
+ private:
+  int m_levels;
+};
+
+}  // namespace
+
 bool CholmodSolver::factorize(const CsrMatrix& a) {
   Impl& m = *m_impl;
   m.ok_factor = false;
   if (m.factor == nullptr || a.rows != m.rows) return false;
   cholmod_sparse s = Impl::view(a);
+  const InactiveRegionsWhenAlone alone;
   const int ok = cholmod_factorize(&s, m.factor, &m.common);
   m.ok_factor = ok != 0 && m.common.status == CHOLMOD_OK && m.factor->minor == m.factor->n;
   return m.ok_factor;

@@ -1,5 +1,7 @@
 #include "fem/lagged_factor.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <utility>
 
@@ -248,7 +250,11 @@ void LaggedFactor::request(const CsrMatrix& a, std::uint64_t structure, std::uin
                          : nullptr;
   Job* j = job.get();
   if (background)
-    j->thread = std::thread([j] { run(*j); });
+    j->thread = std::thread([j] {
+      // One thread: the solver's thread has the other core (fem/cholmod_solver.cpp).
+      omp_set_num_threads(1);
+      run(*j);
+    });
   else
     run(*j);
   m_job = std::move(job);

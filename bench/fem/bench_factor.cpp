@@ -6,6 +6,7 @@
 // 17.5k) and the gmsh 19k box. Which BLAS CHOLMOD calls is the system's (Debian's alternatives):
 // run it once with each to compare them.
 #include <benchmark/benchmark.h>
+#include <omp.h>
 
 #include "box_scene.h"
 #include "fem/block_factor.h"
@@ -24,6 +25,7 @@ CsrMatrix box_matrix(TetMesh m) {
 }
 
 void refresh_on(benchmark::State& state, const CsrMatrix& a) {
+  omp_set_num_threads(1);  // as on the refresh's own thread (fem/lagged_factor.cpp)
   const bool blocks = state.range(1) != 0;
   CholmodSolver chol(blocks ? CholmodSolver::Layout::node_blocks
                             : CholmodSolver::Layout::simplicial);
