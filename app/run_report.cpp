@@ -125,6 +125,7 @@ Json step_time_json(const std::vector<double>& ms, const std::vector<StepDetail>
       s["cg_iterations"] = d.cg_iterations;
       s["factor_refresh"] = d.factor_refresh;
       s["factor_patch"] = d.factor_patch;
+      s["factor_wait_ms"] = d.factor_wait_ms;
     }
     slowest.push_back(std::move(s));
   }

@@ -33,6 +33,7 @@ struct StepDetail {
   int cg_iterations = 0;        ///< CG iterations of its solve
   bool factor_refresh = false;  ///< a factor refresh was asked for (or computed) on this step
   bool factor_patch = false;    ///< changed rows got a factor of their own on this step
+  double factor_wait_ms = 0.0;  ///< waited for the background refresh it installed, ms
 };
 
 /// The report's "step_time_ms" object: p50, p99 and max of the solver steps' wall times (ms),

@@ -89,6 +89,7 @@ StepDetail step_detail(const Runner& runner, const fem::FemStage* fem) {
     d.cg_iterations = st.iterations;
     d.factor_refresh = st.factor_refresh;
     d.factor_patch = st.factor_patch;
+    d.factor_wait_ms = st.factor_wait_ms;
   }
   return d;
 }

@@ -81,6 +81,10 @@ struct StepStatus {
   /// pcg_lagged: the rows a cut, a grasp or a release changed since the installed factor got a
   /// factor of their own this step.
   bool factor_patch = false;
+  /// pcg_lagged: wall time this step waited for the background thread to finish the refresh it
+  /// installed, ms (0 when it was ready; LaggedFactor::last_wait_ms). The machine's, not the
+  /// model's: a replay may wait otherwise and give the same bits.
+  double factor_wait_ms = 0.0;
 };
 
 /// A tet's rotation turned by more than this in one step counts in StepStatus::turned_tets, rad.

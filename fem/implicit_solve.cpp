@@ -134,6 +134,7 @@ Preconditioner ImplicitIntegrator::cg_preconditioner(const TetMesh& mesh, double
 void ImplicitIntegrator::lagged_preconditioner(const TetMesh& mesh, double dt_s, StepStatus& st,
                                                Preconditioner& precond) {
   m_lagged.begin_step(m_b->steps);
+  st.factor_wait_ms = m_lagged.last_wait_ms();
   m_patch_for_change = m_patch_new = false;
   update_node_rotations(mesh);
   const auto n = static_cast<std::size_t>(mesh.num_nodes());

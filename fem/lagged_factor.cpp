@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <chrono>
 #include <utility>
 
 namespace serosa::fem {
@@ -58,7 +59,12 @@ std::unique_ptr<CholmodSolver> LaggedFactor::take_spare(std::uint64_t structure,
 }
 
 void LaggedFactor::install() {
-  if (m_job->thread.joinable()) m_job->thread.join();
+  if (m_job->thread.joinable()) {
+    const auto start = std::chrono::steady_clock::now();
+    m_job->thread.join();
+    m_last_wait_ms +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
   if (m_job->ok) {
     m_spare = std::move(m_installed);
     m_spare_structure = m_b->installed.structure;
@@ -205,6 +211,7 @@ bool LaggedFactor::install_patch(CsrMatrix tt, CsrMatrix tu, std::vector<std::in
 }
 
 void LaggedFactor::begin_step(std::uint64_t step) {
+  m_last_wait_ms = 0.0;
   if (m_job && step >= m_job->ready_step) install();
 }
 

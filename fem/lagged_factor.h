@@ -78,6 +78,10 @@ class LaggedFactor {
   /// Start of step `step` (the integrator's step count): installs the refresh due at this step,
   /// waiting for its thread if need be.
   void begin_step(std::uint64_t step);
+  /// Wall time the last begin_step() waited for the background thread to finish the refresh it
+  /// installed, ms (0 when it was done in time or none was due). A measure of this run's
+  /// machine, not part of the schedule: it never changes a result.
+  [[nodiscard]] double last_wait_ms() const { return m_last_wait_ms; }
   /// Factors `a` now and installs it (the first step, or after a full rebuild). `structure`
   /// identifies a's sparsity pattern (the integrator's structure counter). False if a is not SPD.
   /// node_rot: (n) the nodes' rotations at a's step (warping, above); tet_rot: (m) the tets'
@@ -187,6 +191,7 @@ class LaggedFactor {
                       std::span<const std::uint8_t> free);
 
   std::unique_ptr<Job> m_job;
+  double m_last_wait_ms = 0.0;      // see last_wait_ms()
   std::unique_ptr<Job> m_recycled;  // the last job done, its buffers kept for the next
   std::unique_ptr<CholmodSolver> m_installed;
   BlockFactor m_installed_blocks;  // the installed factor's solves (empty: CHOLMOD's)

@@ -167,7 +167,7 @@ TEST(Headless, EachSlowestStepSaysWhereItsTimeWent) {
   std::vector<StepDetail> details(ms.size());
   for (std::size_t i = 0; i < ms.size(); ++i) {
     ms[i] = 0.01 * static_cast<double>(i % 97) + 1.0;
-    details[i] = {0.5 * ms[i], its(rng), i % 5 == 0, i % 7 == 0};
+    details[i] = {0.5 * ms[i], its(rng), i % 5 == 0, i % 7 == 0, 0.25 * ms[i]};
   }
   const auto j = step_time_json(ms, details);
   ASSERT_EQ(j["slowest"].size(), 8u);
@@ -177,6 +177,7 @@ TEST(Headless, EachSlowestStepSaysWhereItsTimeWent) {
     EXPECT_EQ(s["cg_iterations"].get<int>(), d.cg_iterations);
     EXPECT_EQ(s["factor_refresh"].get<bool>(), d.factor_refresh);
     EXPECT_EQ(s["factor_patch"].get<bool>(), d.factor_patch);
+    EXPECT_EQ(s["factor_wait_ms"].get<double>(), d.factor_wait_ms);
   }
   // Without details, steps and times only.
   EXPECT_FALSE(step_time_json(ms)["slowest"][0].contains("cg_iterations"));
