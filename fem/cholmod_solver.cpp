@@ -62,7 +62,8 @@ struct CholmodSolver::Impl {
 
 CholmodSolver::CholmodSolver(Layout layout) : m_impl(std::make_unique<Impl>()) {
   // node_blocks: supernodal, since its factor is only exported (the solves are BlockFactor's) and
-  // the numeric factorization, in dense blocks through BLAS, takes about half the time.
+  // the numeric factorization, in dense blocks through BLAS, takes a fifth of the simplicial time
+  // with OpenBLAS (about half with the reference BLAS).
   if (layout == Layout::simplicial) m_impl->common.supernodal = CHOLMOD_SIMPLICIAL;
   if (layout == Layout::node_blocks) m_impl->common.supernodal = CHOLMOD_SUPERNODAL;
   m_impl->node_blocks = layout == Layout::node_blocks;
@@ -151,10 +152,11 @@ namespace {
 // CHOLMOD's supernodal factorization opens OpenMP regions of a compiled-in four threads
 // (CHOLMOD_OMP_NUM_THREADS), whatever the calling thread asked for. On a thread that runs alone
 // (omp_get_max_threads() == 1: the lagged factor's background refresh, a one-thread FEM stage)
-// they are made inactive for the call: on two cores the four threads took the default scene's
-// refresh from 33 to 63-80 ms of wall time, in 90,000 context switches in 3 s, and would take the
-// solver thread's core. The ICV is the calling thread's own; the regions only copy and scatter,
-// so the factor's bits do not depend on it.
+// they are made inactive for the call: on two cores the four threads took a refresh of the default
+// scene's size (bench/fem/bench_factor.cpp, box k = 6) from 16 to 78 ms of wall time, in 245,000
+// context switches over the benchmark against 3,152, and would take the solver thread's core. The
+// ICV is the calling thread's own; the regions only copy and scatter, so the factor's bits do not
+// depend on it.
 class InactiveRegionsWhenAlone {
  public:
   InactiveRegionsWhenAlone() : m_levels(omp_get_max_active_levels()) {

@@ -26,8 +26,8 @@ class CholmodSolver {
   /// node's three rows stay together and the factor can be exported as 3x3 blocks of an LDL^T
   /// (export_ldl, fem/block_factor.h), whose solves replace CHOLMOD's. Supernodal because its
   /// numeric factorization, the lagged factor's background refresh, runs in dense blocks through
-  /// BLAS: about half the simplicial time with OpenBLAS on the default scene (docs/BENCHMARKS.md
-  /// "FEM"); the same with the reference BLAS.
+  /// BLAS: a fifth of the simplicial time with OpenBLAS at the default scene's size, about half
+  /// with the reference BLAS (docs/BENCHMARKS.md "Factor layout").
   enum class Layout : std::uint8_t { automatic, simplicial, node_blocks };
 
   explicit CholmodSolver(Layout layout = Layout::automatic);
