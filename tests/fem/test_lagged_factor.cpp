@@ -77,15 +77,12 @@ TEST(LaggedFactor, BackgroundAndInPlaceFactoringGiveTheSameBits) {
     ASSERT_EQ(a.mesh.x[i], b.mesh.x[i]) << "node " << i;
     ASSERT_EQ(a.mesh.v[i], b.mesh.v[i]) << "node " << i;
   }
-  double waited = 0.0;
   for (std::size_t k = 0; k < a.steps.size(); ++k) {
     ASSERT_EQ(a.steps[k].iterations, b.steps[k].iterations) << "step " << k;
-    // Only a background thread is waited for; how long is the machine's and changes no bit.
+    // Only a background thread is waited for: in place, no step ever waits. (How long the
+    // background run waited is the machine's, and changes no bit: the positions above.)
     EXPECT_EQ(b.steps[k].factor_wait_ms, 0.0) << "step " << k;
-    EXPECT_GE(a.steps[k].factor_wait_ms, 0.0) << "step " << k;
-    waited += a.steps[k].factor_wait_ms;
   }
-  EXPECT_TRUE(std::isfinite(waited));
 }
 
 TEST(LaggedFactor, StaysWithinTheToleranceOfTheDirectSolver) {
